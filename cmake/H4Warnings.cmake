@@ -1,0 +1,7 @@
+# Warnings as errors for the project's own code only: h4_target_warnings(target).
+# Third-party headers come in as SYSTEM includes so their warnings stay theirs.
+function(h4_target_warnings target)
+  target_compile_options(${target} PRIVATE
+    -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wconversion-null
+    -Wimplicit-fallthrough -Werror)
+endfunction()

@@ -1,0 +1,44 @@
+// The paired dataset CSV (formats.md): one row per robot pose, encoder readings q1..q4
+// and the camera's measurement X_CT of the board.
+//   pose_id,utime,q1,q2,q3,q4,x,y,z,qw,qx,qy,qz[,set][,sigma_t,sigma_r]
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/geometry/rigid_transform.h"
+
+namespace h4 {
+
+enum class PoseSet { kCalib, kValid };
+
+struct DatasetRow {
+  int64_t pose_id = 0;
+  int64_t utime = 0;               ///< microseconds since the Unix epoch
+  std::array<double, 4> q{};       ///< encoder readings, rad
+  RigidTransform X_CT;             ///< measured board pose in the camera frame
+  std::optional<PoseSet> set;      ///< the `set` column when present
+  std::optional<double> sigma_t;   ///< per-pose translation std, m
+  std::optional<double> sigma_r;   ///< per-pose rotation std, rad
+};
+
+/// Reads a dataset CSV; throws FormatError naming file, line and field on any
+/// malformed input (missing column or field, non-number, non-unit quaternion,
+/// duplicate pose_id, unknown set). `source_name` is used in messages.
+std::vector<DatasetRow> ReadDatasetCsv(const std::string& path);
+std::vector<DatasetRow> ParseDatasetCsv(const std::string& text, const std::string& source_name);
+
+/// Writes the header and rows (full double precision); `set`/`sigma` columns are written
+/// when any row has them.
+void WriteDatasetCsv(const std::string& path, const std::vector<DatasetRow>& rows);
+std::string FormatDatasetCsv(const std::vector<DatasetRow>& rows);
+
+/// Header line of a dataset file (no trailing newline), and one formatted row, for
+/// writers that append durably row by row (the campaign).
+std::string DatasetCsvHeader(bool with_set, bool with_sigma);
+std::string DatasetCsvLine(const DatasetRow& row, bool with_set, bool with_sigma);
+
+}  // namespace h4

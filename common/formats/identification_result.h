@@ -1,0 +1,63 @@
+// The identification result JSON (formats.md, `h4cal identify --out`), read back by
+// fk, ik, validate, report and the controller export.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/geometry/rigid_transform.h"
+
+namespace h4 {
+
+struct ResultParameter {
+  std::string name;           ///< kinematics.md name: "h", "alpha1", "x2", "X_BC.tx", ...
+  double value = 0.0;         ///< identified (or fixed) value, SI
+  double apriori = 0.0;       ///< a priori value, SI
+  std::optional<double> std;  ///< one-sigma from the covariance; empty when fixed
+  bool fixed = false;         ///< status "fixed" (else "identified")
+};
+
+struct FixedParameter {
+  std::string name;
+  std::string reason;
+};
+
+struct CorrelatedPair {
+  std::string a, b;
+  double correlation = 0.0;
+};
+
+struct IdentificationResult {
+  std::string model;  ///< "12" or "31"
+  std::vector<ResultParameter> parameters;
+  RigidTransform X_BC;  ///< identified camera pose in base (B for Model 12, B31 for 31)
+  RigidTransform X_TE;  ///< identified end-effector pose in board frame
+  std::vector<FixedParameter> fixed;
+  std::array<double, 4> calib_rms_rad{};
+  std::array<double, 4> valid_rms_rad{};
+  std::vector<int64_t> calib_poses, valid_poses, rejected_poses;
+
+  // Extra keys (formats.md lets a program write more): the solver's account.
+  std::string estimator;                 ///< "measurement" | "joint" (eq. 3) | "implicit" (eq. 5)
+  std::optional<double> condition_number;  ///< of the scaled identification Jacobian
+  std::vector<CorrelatedPair> correlations;  ///< pairs with |rho| > 0.9
+  std::optional<double> valid_position_rms_m;  ///< held-out board position error, m
+  std::optional<double> valid_rotation_rms_rad;
+  std::optional<double> predicted_position_accuracy_m;  ///< from the covariance, calib poses
+  std::vector<std::string> log;  ///< solver stages, one line each
+
+  /// The parameter by name, or nullptr.
+  const ResultParameter* Find(const std::string& name) const;
+};
+
+/// Reads/writes the JSON; reading throws FormatError (file, field path, expectation).
+IdentificationResult ReadIdentificationResult(const std::string& path);
+IdentificationResult ParseIdentificationResult(const std::string& text,
+                                               const std::string& source_name);
+void WriteIdentificationResult(const std::string& path, const IdentificationResult& result);
+std::string FormatIdentificationResult(const IdentificationResult& result);
+
+}  // namespace h4
