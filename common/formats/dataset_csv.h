@@ -17,22 +17,26 @@ enum class PoseSet { kCalib, kValid };
 
 struct DatasetRow {
   int64_t pose_id = 0;
-  int64_t utime = 0;               ///< microseconds since the Unix epoch
-  std::array<double, 4> q{};       ///< encoder readings, rad
-  RigidTransform X_CT;             ///< measured board pose in the camera frame
-  std::optional<PoseSet> set;      ///< the `set` column when present
-  std::optional<double> sigma_t;   ///< per-pose translation std, m
-  std::optional<double> sigma_r;   ///< per-pose rotation std, rad
+  int64_t utime = 0;              ///< microseconds since the Unix epoch
+  std::array<double, 4> q{};      ///< encoder readings, rad
+  RigidTransform X_CT;            ///< measured board pose in the camera frame
+  std::optional<PoseSet> set;     ///< the `set` column when present
+  std::optional<double> sigma_t;  ///< per-pose translation std, m
+  std::optional<double> sigma_r;  ///< per-pose rotation std, rad
 };
 
 /// Reads a dataset CSV; throws FormatError naming file, line and field on any
 /// malformed input (missing column or field, non-number, non-unit quaternion,
-/// duplicate pose_id, unknown set). `source_name` is used in messages.
+/// duplicate pose_id, unknown set). `source_name` is used in messages. The optional
+/// `set` column must hold calib or valid on every row; `sigma_t`/`sigma_r` cells may be
+/// empty (absent) but must be positive numbers when given.
 std::vector<DatasetRow> ReadDatasetCsv(const std::string& path);
 std::vector<DatasetRow> ParseDatasetCsv(const std::string& text, const std::string& source_name);
 
-/// Writes the header and rows (full double precision); `set`/`sigma` columns are written
-/// when any row has them.
+/// Writes the header and rows (shortest round-trip doubles: read(write(x)) gives the same
+/// numbers; the rotation of X_CT goes through a quaternion, a few ulp); `set`/`sigma`
+/// columns are written when any row has them. Throws std::invalid_argument on a
+/// non-finite number or when some rows have a set and others not.
 void WriteDatasetCsv(const std::string& path, const std::vector<DatasetRow>& rows);
 std::string FormatDatasetCsv(const std::vector<DatasetRow>& rows);
 

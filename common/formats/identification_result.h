@@ -41,19 +41,26 @@ struct IdentificationResult {
   std::vector<int64_t> calib_poses, valid_poses, rejected_poses;
 
   // Extra keys (formats.md lets a program write more): the solver's account.
-  std::string estimator;                 ///< "measurement" | "joint" (eq. 3) | "implicit" (eq. 5)
+  std::string estimator;                   ///< "measurement" | "joint" (eq. 3) | "implicit" (eq. 5)
   std::optional<double> condition_number;  ///< of the scaled identification Jacobian
-  std::vector<CorrelatedPair> correlations;  ///< pairs with |rho| > 0.9
+  std::vector<CorrelatedPair> correlations;    ///< pairs with |rho| > 0.9
   std::optional<double> valid_position_rms_m;  ///< held-out board position error, m
   std::optional<double> valid_rotation_rms_rad;
   std::optional<double> predicted_position_accuracy_m;  ///< from the covariance, calib poses
-  std::vector<std::string> log;  ///< solver stages, one line each
+  std::vector<std::string> log;                         ///< solver stages, one line each
 
   /// The parameter by name, or nullptr.
   const ResultParameter* Find(const std::string& name) const;
 };
 
-/// Reads/writes the JSON; reading throws FormatError (file, field path, expectation).
+/// Reads/writes the JSON; reading throws FormatError (file, field path such as
+/// "parameters[3].value", expectation; line 0 except for a syntax error, which gives the
+/// line). Required: formats.md's keys; model "12" or "31"; parameter names unique; std
+/// null for a fixed parameter (a number or null otherwise, >= 0); every `fixed` entry
+/// names a parameter with status "fixed"; RMS values >= 0; pose ids integers. The extra
+/// keys may be absent or null. The writer writes every key (absent optionals as null,
+/// std as null for fixed parameters), shortest round-trip numbers, and throws
+/// std::invalid_argument on a non-finite number (JSON has no NaN).
 IdentificationResult ReadIdentificationResult(const std::string& path);
 IdentificationResult ParseIdentificationResult(const std::string& text,
                                                const std::string& source_name);

@@ -1,0 +1,107 @@
+// Board YAML; see board_yaml.h.
+#include "common/formats/board_yaml.h"
+
+#include <algorithm>
+#include <limits>
+
+#include "common/formats/csv_table.h"
+#include "common/formats/number_text.h"
+#include "common/formats/yaml_map.h"
+
+namespace h4 {
+namespace {
+
+std::string Joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+  return text;
+}
+
+int Count(const YamlMap& map, const std::string& key, int64_t minimum) {
+  const int64_t value = map.Int(key);
+  if (value < minimum || value > std::numeric_limits<int>::max()) {
+    map.Fail(key, "expected an integer >= " + std::to_string(minimum) + ", got " +
+                      std::to_string(value));
+  }
+  return static_cast<int>(value);
+}
+
+AprilGridSpec ReadAprilGrid(const YamlMap& root) {
+  AprilGridSpec spec;
+  if (root.Has("tagFamily")) {
+    spec.tag_family = root.String("tagFamily");
+    const std::vector<std::string>& families = AprilTagFamilies();
+    if (std::find(families.begin(), families.end(), spec.tag_family) == families.end()) {
+      root.Fail("tagFamily", "unknown tag family '" + spec.tag_family +
+                                 "', expected one of: " + Joined(families));
+    }
+  }
+  spec.cols = Count(root, "tagCols", 1);
+  spec.rows = Count(root, "tagRows", 1);
+  spec.tag_size = root.PositiveDouble("tagSize");
+  spec.tag_spacing = root.PositiveDouble("tagSpacing");
+  if (root.Has("firstId")) spec.first_id = Count(root, "firstId", 0);
+  return spec;
+}
+
+CheckerboardSpec ReadCheckerboard(const YamlMap& root) {
+  CheckerboardSpec spec;
+  spec.cols = Count(root, "targetCols", 2);
+  spec.rows = Count(root, "targetRows", 2);
+  spec.col_spacing = root.PositiveDouble("colSpacingMeters");
+  spec.row_spacing = root.PositiveDouble("rowSpacingMeters");
+  return spec;
+}
+
+}  // namespace
+
+const std::vector<std::string>& AprilTagFamilies() {
+  static const std::vector<std::string> families = {
+      "tag36h11",       "tag36h10",       "tag25h9",          "tag16h5",         "tagCircle21h7",
+      "tagCircle49h12", "tagCustom48h12", "tagStandard41h12", "tagStandard52h13"};
+  return families;
+}
+
+BoardSpec ParseBoardYaml(const std::string& text, const std::string& source_name) {
+  const YamlMap root(LoadYaml(text, source_name), source_name, "", 0);
+  root.RejectCaseVariants({"target_type", "tagFamily", "tagCols", "tagRows", "tagSize",
+                           "tagSpacing", "firstId", "targetCols", "targetRows", "colSpacingMeters",
+                           "rowSpacingMeters"});
+  const std::string type = root.String("target_type");
+  if (type == "aprilgrid") return ReadAprilGrid(root);
+  if (type == "checkerboard") return ReadCheckerboard(root);
+  root.Fail("target_type",
+            "unknown target type '" + type + "', expected 'aprilgrid' or 'checkerboard'");
+}
+
+BoardSpec ReadBoardYaml(const std::string& path) {
+  return ParseBoardYaml(ReadTextFile(path), path);
+}
+
+std::string FormatBoardYaml(const BoardSpec& board) {
+  std::string text = "# calibration board (docs/formats.md \"Board\"; sizes in m)\n";
+  if (const auto* grid = std::get_if<AprilGridSpec>(&board)) {
+    text +=
+        "target_type: aprilgrid\ntagFamily: " + grid->tag_family +
+        "\ntagCols: " + std::to_string(grid->cols) + "\ntagRows: " + std::to_string(grid->rows) +
+        "\ntagSize: " + FormatDouble(grid->tag_size, "tagSize") +
+        "  # m, outer edge of the black border\ntagSpacing: " +
+        FormatDouble(grid->tag_spacing, "tagSpacing") +
+        "  # gap between tags = tagSpacing * tagSize\nfirstId: " + std::to_string(grid->first_id) +
+        "\n";
+  } else {
+    const auto& chess = std::get<CheckerboardSpec>(board);
+    text += "target_type: checkerboard\ntargetCols: " + std::to_string(chess.cols) +
+            "  # inner corners along a row\ntargetRows: " + std::to_string(chess.rows) +
+            "  # inner corners along a column\ncolSpacingMeters: " +
+            FormatDouble(chess.col_spacing, "colSpacingMeters") +
+            "\nrowSpacingMeters: " + FormatDouble(chess.row_spacing, "rowSpacingMeters") + "\n";
+  }
+  return text;
+}
+
+void WriteBoardYaml(const std::string& path, const BoardSpec& board) {
+  WriteTextFile(path, FormatBoardYaml(board));
+}
+
+}  // namespace h4

@@ -1,0 +1,208 @@
+// The identification result JSON (formats.md "Identification result"); see
+// identification_result.h. Keys are written in the order formats.md lists them, then
+// the extra keys of the solver's account.
+#include "common/formats/identification_result.h"
+
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "common/formats/csv_table.h"
+#include "common/formats/json_fields.h"
+#include "common/formats/number_text.h"
+
+namespace h4 {
+namespace {
+
+using Ordered = nlohmann::ordered_json;
+
+RigidTransform ReadTransform(const JsonValue& value) {
+  const std::vector<double> t = value["translation"].Numbers(3);
+  const std::vector<double> rpy = value["rpy"].Numbers(3);
+  return RigidTransform::FromTranslationRpy({t[0], t[1], t[2]}, {rpy[0], rpy[1], rpy[2]});
+}
+
+std::array<double, 4> ReadRms(const JsonValue& value) {
+  value.ArraySize(4);
+  std::array<double, 4> rms{};
+  for (size_t i = 0; i < 4; ++i) rms[i] = value.At(i).NonNegativeNumber();
+  return rms;
+}
+
+std::optional<double> OptionalNumber(const JsonValue& root, const std::string& key) {
+  return root.HasNonNull(key) ? root[key].NumberOrNull() : std::nullopt;
+}
+
+void ReadParameters(const JsonValue& list, IdentificationResult* result) {
+  const size_t n = list.ArraySize();
+  std::set<std::string> names;
+  for (size_t i = 0; i < n; ++i) {
+    const JsonValue entry = list.At(i);
+    ResultParameter p;
+    p.name = entry["name"].String();
+    if (p.name.empty()) entry["name"].Fail("expected a parameter name, got an empty string");
+    if (!names.insert(p.name).second) entry["name"].Fail("parameter '" + p.name + "' given twice");
+    p.value = entry["value"].Number();
+    p.apriori = entry["apriori"].Number();
+    const std::string status = entry["status"].String();
+    if (status != "identified" && status != "fixed") {
+      entry["status"].Fail("expected \"identified\" or \"fixed\", got \"" + status + "\"");
+    }
+    p.fixed = status == "fixed";
+    p.std = entry["std"].NumberOrNull();
+    if (p.std && p.fixed) entry["std"].Fail("expected null for a fixed parameter");
+    if (p.std && *p.std < 0.0) entry["std"].Fail("expected a non-negative standard deviation");
+    result->parameters.push_back(p);
+  }
+}
+
+void ReadFixed(const JsonValue& list, IdentificationResult* result) {
+  const size_t n = list.ArraySize();
+  for (size_t i = 0; i < n; ++i) {
+    const JsonValue entry = list.At(i);
+    FixedParameter f{entry["name"].String(), entry["reason"].String()};
+    const ResultParameter* p = result->Find(f.name);
+    if (p == nullptr || !p->fixed) {
+      entry["name"].Fail("expected the name of a parameter with status \"fixed\", got \"" + f.name +
+                         "\"");
+    }
+    result->fixed.push_back(f);
+  }
+}
+
+void ReadExtras(const JsonValue& root, IdentificationResult* result) {
+  if (root.HasNonNull("estimator")) result->estimator = root["estimator"].String();
+  result->condition_number = OptionalNumber(root, "condition_number");
+  result->valid_position_rms_m = OptionalNumber(root, "valid_position_rms_m");
+  result->valid_rotation_rms_rad = OptionalNumber(root, "valid_rotation_rms_rad");
+  result->predicted_position_accuracy_m = OptionalNumber(root, "predicted_position_accuracy_m");
+  if (root.HasNonNull("correlations")) {
+    const JsonValue list = root["correlations"];
+    const size_t n = list.ArraySize();
+    for (size_t i = 0; i < n; ++i) {
+      const JsonValue entry = list.At(i);
+      CorrelatedPair pair{entry["a"].String(), entry["b"].String(), entry["correlation"].Number()};
+      if (pair.correlation < -1.0 || pair.correlation > 1.0) {
+        entry["correlation"].Fail("expected a correlation in [-1, 1]");
+      }
+      result->correlations.push_back(pair);
+    }
+  }
+  if (root.HasNonNull("log")) {
+    const JsonValue list = root["log"];
+    const size_t n = list.ArraySize();
+    for (size_t i = 0; i < n; ++i) result->log.push_back(list.At(i).String());
+  }
+}
+
+Ordered Numbers(const double* values, size_t n, const std::string& field) {
+  Ordered list = Ordered::array();
+  for (size_t i = 0; i < n; ++i) {
+    FormatDouble(values[i], field);  // throws on a non-finite value: JSON has no NaN
+    list.push_back(values[i]);
+  }
+  return list;
+}
+
+Ordered Transform(const RigidTransform& X, const std::string& name) {
+  const Eigen::Vector3d rpy = X.rpy();
+  Ordered object = Ordered::object();
+  object["translation"] = Numbers(X.translation().data(), 3, name + ".translation");
+  object["rpy"] = Numbers(rpy.data(), 3, name + ".rpy");
+  return object;
+}
+
+Ordered Number(double value, const std::string& field) {
+  FormatDouble(value, field);  // throws on a non-finite value
+  return value;
+}
+
+Ordered NumberOrNull(const std::optional<double>& value, const std::string& field) {
+  return value ? Number(*value, field) : Ordered(nullptr);
+}
+
+}  // namespace
+
+const ResultParameter* IdentificationResult::Find(const std::string& name) const {
+  for (const ResultParameter& p : parameters) {
+    if (p.name == name) return &p;
+  }
+  return nullptr;
+}
+
+IdentificationResult ParseIdentificationResult(const std::string& text,
+                                               const std::string& source_name) {
+  const nlohmann::json document = LoadJson(text, source_name);
+  const JsonValue root(document, source_name, "");
+  root.RequireObject();
+  IdentificationResult result;
+  result.model = root["model"].String();
+  if (result.model != "12" && result.model != "31") {
+    root["model"].Fail("expected \"12\" or \"31\", got \"" + result.model + "\"");
+  }
+  ReadParameters(root["parameters"], &result);
+  result.X_BC = ReadTransform(root["X_BC"]);
+  result.X_TE = ReadTransform(root["X_TE"]);
+  ReadFixed(root["fixed"], &result);
+  result.calib_rms_rad = ReadRms(root["residuals"]["calib_rms_rad"]);
+  result.valid_rms_rad = ReadRms(root["residuals"]["valid_rms_rad"]);
+  const JsonValue poses = root["poses"];
+  result.calib_poses = poses["calib"].Integers();
+  result.valid_poses = poses["valid"].Integers();
+  result.rejected_poses = poses["rejected"].Integers();
+  ReadExtras(root, &result);
+  return result;
+}
+
+IdentificationResult ReadIdentificationResult(const std::string& path) {
+  return ParseIdentificationResult(ReadTextFile(path), path);
+}
+
+std::string FormatIdentificationResult(const IdentificationResult& result) {
+  Ordered root = Ordered::object();
+  root["model"] = result.model;
+  Ordered parameters = Ordered::array();
+  for (const ResultParameter& p : result.parameters) {
+    Ordered entry = Ordered::object();
+    entry["name"] = p.name;
+    entry["value"] = Number(p.value, p.name);
+    entry["apriori"] = Number(p.apriori, p.name + ".apriori");
+    entry["std"] = p.fixed ? Ordered(nullptr) : NumberOrNull(p.std, p.name + ".std");
+    entry["status"] = p.fixed ? "fixed" : "identified";
+    parameters.push_back(entry);
+  }
+  root["parameters"] = parameters;
+  root["X_BC"] = Transform(result.X_BC, "X_BC");
+  root["X_TE"] = Transform(result.X_TE, "X_TE");
+  Ordered fixed = Ordered::array();
+  for (const FixedParameter& f : result.fixed)
+    fixed.push_back({{"name", f.name}, {"reason", f.reason}});
+  root["fixed"] = fixed;
+  root["residuals"] = {
+      {"calib_rms_rad", Numbers(result.calib_rms_rad.data(), 4, "residuals.calib_rms_rad")},
+      {"valid_rms_rad", Numbers(result.valid_rms_rad.data(), 4, "residuals.valid_rms_rad")}};
+  root["poses"] = {{"calib", result.calib_poses},
+                   {"valid", result.valid_poses},
+                   {"rejected", result.rejected_poses}};
+  root["estimator"] = result.estimator;
+  root["condition_number"] = NumberOrNull(result.condition_number, "condition_number");
+  Ordered correlations = Ordered::array();
+  for (const CorrelatedPair& pair : result.correlations) {
+    correlations.push_back(
+        {{"a", pair.a}, {"b", pair.b}, {"correlation", Number(pair.correlation, "correlation")}});
+  }
+  root["correlations"] = correlations;
+  root["valid_position_rms_m"] = NumberOrNull(result.valid_position_rms_m, "valid_position_rms_m");
+  root["valid_rotation_rms_rad"] =
+      NumberOrNull(result.valid_rotation_rms_rad, "valid_rotation_rms_rad");
+  root["predicted_position_accuracy_m"] =
+      NumberOrNull(result.predicted_position_accuracy_m, "predicted_position_accuracy_m");
+  root["log"] = result.log;
+  return root.dump(2) + "\n";
+}
+
+void WriteIdentificationResult(const std::string& path, const IdentificationResult& result) {
+  WriteTextFile(path, FormatIdentificationResult(result));
+}
+
+}  // namespace h4

@@ -1,0 +1,43 @@
+// The joints CSV; see joints_csv.h.
+#include "common/formats/joints_csv.h"
+
+#include "common/formats/csv_table.h"
+#include "common/formats/number_text.h"
+#include "common/formats/pose_id_check.h"
+
+namespace h4 {
+
+std::vector<JointsRow> ParseJointsCsv(const std::string& text, const std::string& source_name) {
+  const CsvTable table = CsvTable::Parse(text, source_name);
+  table.RequireColumns({"pose_id", "q1", "q2", "q3", "q4"});
+  PoseIdCheck ids;
+  std::vector<JointsRow> rows;
+  rows.reserve(table.num_rows());
+  for (size_t r = 0; r < table.num_rows(); ++r) {
+    JointsRow row;
+    row.pose_id = ids.Read(table, r);
+    for (size_t i = 0; i < 4; ++i) row.q[i] = table.GetDouble(r, "q" + std::to_string(i + 1));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::vector<JointsRow> ReadJointsCsv(const std::string& path) {
+  return ParseJointsCsv(ReadTextFile(path), path);
+}
+
+std::string FormatJointsCsv(const std::vector<JointsRow>& rows) {
+  std::string text = "pose_id,q1,q2,q3,q4\n";
+  for (const JointsRow& row : rows) {
+    text += std::to_string(row.pose_id);
+    for (size_t i = 0; i < 4; ++i) text += "," + FormatDouble(row.q[i], "q");
+    text += "\n";
+  }
+  return text;
+}
+
+void WriteJointsCsv(const std::string& path, const std::vector<JointsRow>& rows) {
+  WriteTextFile(path, FormatJointsCsv(rows));
+}
+
+}  // namespace h4

@@ -1,0 +1,115 @@
+// Path-aware JSON field access; see json_fields.h.
+#include "common/formats/json_fields.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/formats/format_error.h"
+
+namespace h4 {
+namespace {
+
+std::string Describe(const nlohmann::json& value) {
+  std::string text = value.dump();
+  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  return std::string(value.type_name()) + " " + text;
+}
+
+}  // namespace
+
+nlohmann::json LoadJson(const std::string& text, const std::string& source_name) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.byte is the 1-based offset of the offending character.
+    const size_t end = std::min(text.size(), e.byte > 0 ? e.byte - 1 : 0);
+    const int line =
+        1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(end), '\n'));
+    std::string what = e.what();
+    const size_t bracket = what.find("] ");
+    if (what.rfind("[json.exception", 0) == 0 && bracket != std::string::npos) {
+      what = what.substr(bracket + 2);
+    }
+    throw FormatError(source_name, line, "", "invalid JSON: " + what);
+  }
+}
+
+JsonValue JsonValue::operator[](const std::string& key) const {
+  RequireObject();
+  const std::string path = path_.empty() ? key : path_ + "." + key;
+  const auto it = value_->find(key);
+  if (it == value_->end()) throw FormatError(source_, 0, path, "missing key");
+  return JsonValue(*it, source_, path);
+}
+
+bool JsonValue::HasNonNull(const std::string& key) const {
+  RequireObject();
+  const auto it = value_->find(key);
+  return it != value_->end() && !it->is_null();
+}
+
+JsonValue JsonValue::At(size_t index) const {
+  return JsonValue((*value_)[index], source_, path_ + "[" + std::to_string(index) + "]");
+}
+
+void JsonValue::RequireObject() const {
+  if (!value_->is_object()) Fail("expected an object, got " + Describe(*value_));
+}
+
+size_t JsonValue::ArraySize(size_t count) const {
+  if (!value_->is_array() || (count > 0 && value_->size() != count)) {
+    Fail("expected an array" + (count > 0 ? " of " + std::to_string(count) : std::string()) +
+         ", got " + Describe(*value_));
+  }
+  return value_->size();
+}
+
+double JsonValue::Number() const {
+  if (!value_->is_number()) Fail("expected a number, got " + Describe(*value_));
+  const double value = value_->get<double>();
+  if (!std::isfinite(value)) Fail("expected a finite number, got " + Describe(*value_));
+  return value;
+}
+
+double JsonValue::NonNegativeNumber() const {
+  const double value = Number();
+  if (value < 0.0) Fail("expected a non-negative number, got " + Describe(*value_));
+  return value;
+}
+
+std::optional<double> JsonValue::NumberOrNull() const {
+  if (value_->is_null()) return std::nullopt;
+  return Number();
+}
+
+int64_t JsonValue::Integer() const {
+  if (value_->is_number_integer() &&
+      (!value_->is_number_unsigned() ||
+       value_->get<uint64_t>() <= static_cast<uint64_t>(INT64_MAX))) {
+    return value_->get<int64_t>();
+  }
+  Fail("expected an integer, got " + Describe(*value_));
+}
+
+std::string JsonValue::String() const {
+  if (!value_->is_string()) Fail("expected a string, got " + Describe(*value_));
+  return value_->get<std::string>();
+}
+
+std::vector<double> JsonValue::Numbers(size_t count) const {
+  ArraySize(count);
+  std::vector<double> values;
+  for (size_t i = 0; i < count; ++i) values.push_back(At(i).Number());
+  return values;
+}
+
+std::vector<int64_t> JsonValue::Integers() const {
+  const size_t n = ArraySize();
+  std::vector<int64_t> values;
+  for (size_t i = 0; i < n; ++i) values.push_back(At(i).Integer());
+  return values;
+}
+
+void JsonValue::Fail(const std::string& what) const { throw FormatError(source_, 0, path_, what); }
+
+}  // namespace h4

@@ -1,0 +1,19 @@
+// Duplicate pose id detection; see pose_id_check.h.
+#include "common/formats/pose_id_check.h"
+
+#include <string>
+
+namespace h4 {
+
+int64_t PoseIdCheck::Read(const CsvTable& table, size_t row) {
+  const int64_t id = table.GetInt64(row, "pose_id");
+  const auto [previous, inserted] = line_of_id_.emplace(id, table.line(row));
+  if (!inserted) {
+    table.Fail(row, "pose_id",
+               "duplicate pose_id " + std::to_string(id) + " (first on line " +
+                   std::to_string(previous->second) + ")");
+  }
+  return id;
+}
+
+}  // namespace h4

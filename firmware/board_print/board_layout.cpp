@@ -1,0 +1,148 @@
+// Board page layout; see board_layout.h. Tag bits come from tag_family.h (TagCells), the
+// function the renderer uses too, so print and render share one bit layout.
+#include "firmware/board_print/board_layout.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <apriltag/apriltag.h>
+
+#include "common/board/board_model.h"
+#include "firmware/detection/tag_family.h"
+
+namespace h4::cam {
+namespace {
+
+constexpr double kMm = 0.001;
+// Caption: two lines of text and the bar, below the pattern's bottom margin.
+// Kept compact (12.5 mm) so that the 9x6 chessboard with a 5 mm margin fits A4 landscape.
+constexpr double kTextSize = 3.0 * kMm;
+constexpr double kLineGap = 4.5 * kMm;
+constexpr double kBarHeight = 1.5 * kMm;
+constexpr double kCaptionHeight = 2 * kLineGap + 1.0 * kMm + kBarHeight + 1.5 * kMm;
+// The caption needs this much width (text and bar) even for a small board.
+constexpr double kMinCaptionWidth = 150 * kMm;
+
+std::string Mm(double metres) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%.1f mm", metres / kMm);
+  return buffer;
+}
+
+// Black cells of one tag, merged into runs along each row of cells.
+void AddTag(const std::vector<bool>& cells, int width, double x0, double y0, double cell,
+            std::vector<PrintRect>* black) {
+  for (int row = 0; row < width; ++row) {
+    int col = 0;
+    while (col < width) {
+      if (cells[static_cast<size_t>(row * width + col)]) {  // white
+        ++col;
+        continue;
+      }
+      const int start = col;
+      while (col < width && !cells[static_cast<size_t>(row * width + col)]) ++col;
+      black->push_back({x0 + start * cell, y0 + row * cell, (col - start) * cell, cell});
+    }
+  }
+}
+
+bool LayoutAprilGrid(const AprilGridSpec& grid, const BoardModel& model, double ox, double oy,
+                     std::vector<PrintRect>* black, std::string* error) {
+  const TagFamilyPtr family = CreateTagFamily(grid.tag_family);
+  if (!family) {
+    *error = "tag family '" + grid.tag_family + "' is not supported (tag36h11, tag25h9, tag16h5)";
+    return false;
+  }
+  for (int row = 0; row < grid.rows; ++row) {
+    for (int col = 0; col < grid.cols; ++col) {
+      const int id = grid.first_id + row * grid.cols + col;
+      int width = 0;
+      const std::vector<bool> cells = TagCells(*family, id, &width);
+      if (cells.empty()) {
+        *error = "tag id " + std::to_string(id) + " is beyond family " + grid.tag_family + " (" +
+                 std::to_string(family->ncodes) + " codes)";
+        return false;
+      }
+      const auto origin = model.TagOrigin(row, col);
+      AddTag(cells, width, ox + origin.x(), oy + origin.y(), grid.tag_size / width, black);
+    }
+  }
+  return true;
+}
+
+void LayoutCheckerboard(const CheckerboardSpec& board, double ox, double oy,
+                        std::vector<PrintRect>* black) {
+  // (cols + 1) x (rows + 1) squares; square (i, j) spans x in [(i - 1) s, i s). The
+  // top-left square is black, as board_pattern.h (the renderer) and OpenCV print it.
+  for (int j = 0; j <= board.rows; ++j) {
+    for (int i = 0; i <= board.cols; ++i) {
+      if ((i + j) % 2 != 0) continue;
+      black->push_back({ox + (i - 1) * board.col_spacing, oy + (j - 1) * board.row_spacing,
+                        board.col_spacing, board.row_spacing});
+    }
+  }
+}
+
+}  // namespace
+
+bool BoardPrintOptions::IsValid(std::string* why) const {
+  if (!(margin >= 0.0 && margin <= 1.0)) {
+    *why = "margin must be in [0, 1] m, got " + std::to_string(margin);
+    return false;
+  }
+  return true;
+}
+
+std::string DescribeBoard(const BoardSpec& board) {
+  if (const auto* grid = std::get_if<AprilGridSpec>(&board)) {
+    char spacing[32];
+    std::snprintf(spacing, sizeof(spacing), "%g", grid->tag_spacing);
+    return "aprilgrid " + std::to_string(grid->cols) + "x" + std::to_string(grid->rows) + " " +
+           grid->tag_family + " (ids " + std::to_string(grid->first_id) + "-" +
+           std::to_string(grid->first_id + grid->cols * grid->rows - 1) + "), tag " +
+           Mm(grid->tag_size) + ", spacing " + Mm(grid->tag_size * grid->tag_spacing) +
+           " (tagSpacing " + spacing + ")";
+  }
+  const auto& chess = std::get<CheckerboardSpec>(board);
+  return "checkerboard " + std::to_string(chess.cols) + "x" + std::to_string(chess.rows) +
+         " inner corners, squares " + Mm(chess.col_spacing) + " x " + Mm(chess.row_spacing);
+}
+
+bool LayoutBoard(const BoardSpec& board, const BoardPrintOptions& options, BoardLayout* layout,
+                 std::string* error) {
+  if (!options.IsValid(error)) return false;
+  const BoardModel model(board);
+  const double pattern_w = model.pattern_max().x() - model.pattern_min().x();
+  const double pattern_h = model.pattern_max().y() - model.pattern_min().y();
+  BoardLayout out;
+  out.width = pattern_w + 2 * options.margin;
+  if (options.caption) out.width = std::max(out.width, kMinCaptionWidth + 2 * options.margin);
+  // Centre the pattern horizontally when the caption widened the page.
+  out.pattern_x = (out.width - pattern_w) / 2 - model.pattern_min().x();
+  out.pattern_y = options.margin - model.pattern_min().y();
+  out.height = pattern_h + 2 * options.margin + (options.caption ? kCaptionHeight : 0.0);
+
+  if (const auto* grid = std::get_if<AprilGridSpec>(&board)) {
+    if (!LayoutAprilGrid(*grid, model, out.pattern_x, out.pattern_y, &out.black, error)) {
+      return false;
+    }
+  } else {
+    LayoutCheckerboard(std::get<CheckerboardSpec>(board), out.pattern_x, out.pattern_y, &out.black);
+  }
+
+  if (options.caption) {
+    const double x = std::max(options.margin, 2 * kMm);
+    // Baselines one line gap apart below the bottom margin, then the bar.
+    double y = pattern_h + 2 * options.margin + kLineGap;
+    out.texts.push_back({x, y, kTextSize, DescribeBoard(board)});
+    y += kLineGap;
+    out.texts.push_back(
+        {x, y, kTextSize, "Print at 100% scale (no fit to page). Check: this bar is 100 mm."});
+    out.scale_bar = {x, y + 1.0 * kMm, kScaleBarLength, kBarHeight};
+  }
+  *layout = std::move(out);
+  return true;
+}
+
+}  // namespace h4::cam

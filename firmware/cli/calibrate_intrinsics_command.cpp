@@ -1,0 +1,77 @@
+// `h4cam calibrate-intrinsics`; see calibrate_intrinsics_command.h.
+#include "firmware/cli/calibrate_intrinsics_command.h"
+
+#include <memory>
+#include <ostream>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "common/formats/board_yaml.h"
+#include "common/formats/camera_yaml.h"
+
+namespace h4::cam {
+
+IntrinsicsCalibrationResult RunCalibrateIntrinsics(const CalibrateIntrinsicsArgs& args,
+                                                   std::ostream& out) {
+  const BoardSpec board = ReadBoardYaml(args.board_path);
+  const BoardViewFinder finder(board);
+  if (!finder.ok()) throw std::runtime_error(args.board_path + ": " + finder.error());
+
+  std::vector<CalibrationView> views;
+  cv::Size image_size;
+  for (const auto& path : args.images) {
+    const cv::Mat grey = cv::imread(path, cv::IMREAD_GRAYSCALE);
+    if (grey.empty()) throw std::runtime_error(path + ": cannot read the image");
+    if (image_size.empty()) image_size = grey.size();
+    if (grey.size() != image_size) {
+      throw std::runtime_error(path + ": image is " + std::to_string(grey.cols) + "x" +
+                               std::to_string(grey.rows) + ", expected " +
+                               std::to_string(image_size.width) + "x" +
+                               std::to_string(image_size.height) + " like " + args.images[0]);
+    }
+    std::string why;
+    if (auto view = finder.Find(grey, path, &why)) {
+      out << path << ": board found, " << view->image_points.size() << " corners\n";
+      views.push_back(std::move(*view));
+    } else {
+      out << path << ": skipped: " << why << "\n";
+    }
+  }
+
+  IntrinsicsCalibrationResult result = CalibrateIntrinsics(views, image_size, args.options);
+  out << result.Report();
+  if (!result.ok()) throw std::runtime_error("calibrate-intrinsics: " + result.message);
+  WriteCameraYaml(args.out_path, result.camera);
+  out << "wrote " << args.out_path << "\n";
+  return result;
+}
+
+void AddCalibrateIntrinsicsCommand(CLI::App& app) {
+  auto args = std::make_shared<CalibrateIntrinsicsArgs>();
+  CLI::App* command = app.add_subcommand(
+      "calibrate-intrinsics",
+      "Camera intrinsics from images of a board (chessboard or AprilTag grid) -> camera YAML");
+  command->add_option("--board", args->board_path, "Board YAML")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("images", args->images, "Images of the board (at least --min-views)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--out", args->out_path, "Camera YAML to write")->required();
+  command->add_flag("--fix-aspect-ratio", args->options.fix_aspect_ratio, "Calibrate with fx = fy");
+  command
+      ->add_option("--min-views", args->options.min_views,
+                   "Fewest images with the board to calibrate from")
+      ->default_val(args->options.min_views);
+  command
+      ->add_option("--outlier-factor", args->options.outlier_factor,
+                   "A view whose RMS error exceeds this x the median is an outlier")
+      ->default_val(args->options.outlier_factor);
+  command->add_flag("--drop-outliers", args->options.drop_outliers,
+                    "Drop the outlier views and calibrate again");
+  command->callback([args] { RunCalibrateIntrinsics(*args, std::cout); });
+}
+
+}  // namespace h4::cam

@@ -1,0 +1,33 @@
+// `h4cam calibrate-intrinsics --board B.yaml IMAGES... --out camera.yaml`: finds the board
+// in each image (chessboard or AprilTag grid), calibrates the camera (intrinsics_calibration.h),
+// prints per-view errors with outliers named, and writes the camera YAML (formats.md).
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "firmware/calibration/intrinsics_calibration.h"
+
+namespace CLI {
+class App;
+}
+
+namespace h4::cam {
+
+struct CalibrateIntrinsicsArgs {
+  std::string board_path;           ///< board YAML
+  std::vector<std::string> images;  ///< image files, all of one size
+  std::string out_path;             ///< camera YAML written here
+  IntrinsicsCalibrationOptions options;
+};
+
+void AddCalibrateIntrinsicsCommand(CLI::App& app);
+
+/// Runs the calibration, reporting to `out`; returns the result (the YAML is written only
+/// when it is ok()). Throws std::runtime_error (or h4::FormatError) naming the file when an
+/// input cannot be read, images differ in size, or the calibration fails.
+IntrinsicsCalibrationResult RunCalibrateIntrinsics(const CalibrateIntrinsicsArgs& args,
+                                                   std::ostream& out);
+
+}  // namespace h4::cam

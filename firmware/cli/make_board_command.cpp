@@ -1,0 +1,43 @@
+// `h4cam make-board`; see make_board_command.h.
+#include "firmware/cli/make_board_command.h"
+
+#include <memory>
+#include <ostream>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+
+#include "common/formats/board_yaml.h"
+#include "firmware/board_print/board_print.h"
+
+namespace h4::cam {
+
+void RunMakeBoard(const MakeBoardArgs& args, std::ostream& out) {
+  const BoardSpec board = ReadBoardYaml(args.board_path);
+  BoardPrintOptions options;
+  options.margin = args.margin;
+  BoardLayout layout;
+  std::string error;
+  if (!LayoutBoard(board, options, &layout, &error)) {
+    throw std::runtime_error(args.board_path + ": " + error);
+  }
+  if (!WriteBoardFile(args.out_path, layout, args.dpi, &error)) throw std::runtime_error(error);
+  out << "wrote " << args.out_path << ": " << DescribeBoard(board) << "; page "
+      << layout.width * 1000 << " x " << layout.height * 1000 << " mm\n";
+}
+
+void AddMakeBoardCommand(CLI::App& app) {
+  auto args = std::make_shared<MakeBoardArgs>();
+  CLI::App* command = app.add_subcommand(
+      "make-board", "Printable board at exact scale (SVG, PDF or PNG by the --out extension)");
+  command->add_option("--board", args->board_path, "Board YAML")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--out", args->out_path, "Output file: .svg, .pdf or .png")->required();
+  command->add_option("--dpi", args->dpi, "PNG resolution, dots per inch")->default_val(args->dpi);
+  command->add_option("--margin", args->margin, "White border around the pattern, m")
+      ->default_val(args->margin);
+  command->callback([args] { RunMakeBoard(*args, std::cout); });
+}
+
+}  // namespace h4::cam

@@ -1,0 +1,108 @@
+// `h4cam measure`; see measure_command.h.
+#include "firmware/cli/measure_command.h"
+
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+
+#include "common/formats/board_poses_csv.h"
+#include "common/formats/board_yaml.h"
+#include "common/formats/camera_yaml.h"
+#include "firmware/pose/measure_pipeline.h"
+#include "firmware/sources/image_file_source.h"
+
+namespace h4::cam {
+
+int RunMeasure(const MeasureArgs& args, std::ostream& progress) {
+  const BoardSpec board = ReadBoardYaml(args.board_path);
+  const CameraIntrinsics camera = ReadCameraYaml(args.camera_path);
+  PipelineOptions options;
+  options.frames = args.group;
+  options.motion.max_spread_px = args.max_spread_px;
+  MeasurePipeline pipeline(board, camera, options);
+  if (!pipeline.ok()) throw std::runtime_error(args.board_path + ": " + pipeline.error());
+
+  ImageFileSource source(args.images);
+  if (!source.Open()) throw std::runtime_error(source.error());
+  const size_t total = source.files().size();
+  const size_t groups = (total + static_cast<size_t>(args.group) - 1) / static_cast<size_t>(args.group);
+  if (total % static_cast<size_t>(args.group) != 0) {
+    progress << "note: " << total << " images do not fill groups of " << args.group
+             << "; the last group averages " << total % static_cast<size_t>(args.group) << "\n";
+  }
+
+  std::vector<BoardPoseRow> rows;
+  int with_pose = 0;
+  auto record = [&](const Measurement& m) {
+    BoardPoseRow row;
+    row.image = m.origin;
+    row.corners = m.corners_used;
+    if (m.ok()) {
+      row.X_CT = m.X_CT;
+      row.rms_px = m.rms_px;
+      row.sigma_t = m.sigma_t;
+      row.sigma_r = m.sigma_r;
+      ++with_pose;
+    }
+    rows.push_back(row);
+    progress << "[" << rows.size() << "/" << groups << "] " << m.origin << ": " << ToString(m.status);
+    if (m.ok()) {
+      const Eigen::Vector3d& p = m.X_CT.translation();
+      progress << ", " << m.corners_used << " corners, rms " << m.rms_px << " px, z " << p.z()
+               << " m, sigma_t " << m.sigma_t * 1e3 << " mm";
+    } else if (!m.message.empty()) {
+      progress << " (" << m.message << ")";
+    }
+    progress << "\n";
+  };
+
+  while (!source.finished()) {
+    std::optional<Frame> frame = source.Next(std::chrono::milliseconds(0));
+    if (!frame) {
+      if (!source.error().empty()) throw std::runtime_error(source.error());
+      continue;
+    }
+    if (frame->image.cols != camera.width || frame->image.rows != camera.height) {
+      throw std::runtime_error(frame->origin + ": image is " + std::to_string(frame->image.cols) +
+                               "x" + std::to_string(frame->image.rows) + ", the camera file " +
+                               args.camera_path + " says " + std::to_string(camera.width) + "x" +
+                               std::to_string(camera.height));
+    }
+    if (std::optional<Measurement> m = pipeline.AddFrame(*frame)) {
+      if (m->status == Measurement::Status::kCameraError) throw std::runtime_error(m->message);
+      record(*m);
+    }
+  }
+  if (rows.size() < groups) record(pipeline.Finish());
+  WriteBoardPosesCsv(args.out_path, rows);
+  progress << "wrote " << rows.size() << " row(s), " << with_pose << " with a pose, to "
+           << args.out_path << "\n";
+  return with_pose;
+}
+
+void AddMeasureCommand(CLI::App& app) {
+  auto args = std::make_shared<MeasureArgs>();
+  CLI::App* command = app.add_subcommand(
+      "measure", "Board poses X_CT from image files (groups of N images averaged)");
+  command->add_option("--board", args->board_path, "Board YAML")->required()->check(
+      CLI::ExistingFile);
+  command->add_option("--camera", args->camera_path, "Camera intrinsics YAML (OpenCV)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--group", args->group, "Images averaged per measurement")
+      ->default_val(args->group)
+      ->check(CLI::PositiveNumber);
+  command->add_option("--max-spread", args->max_spread_px,
+                      "Motion threshold: largest per-frame corner spread in a group, px")
+      ->default_val(args->max_spread_px)
+      ->check(CLI::PositiveNumber);
+  command->add_option("--out", args->out_path, "Output CSV (image,x,y,z,qw,qx,qy,qz,...)")
+      ->required();
+  command->add_option("images", args->images, "Image files or directories, in order")
+      ->required();
+  command->callback([args] { RunMeasure(*args, std::cerr); });
+}
+
+}  // namespace h4::cam

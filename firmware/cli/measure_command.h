@@ -1,0 +1,33 @@
+// `h4cam measure --board B.yaml --camera camera.yaml [--group 10] IMAGES... --out
+// poses.csv`: offline board poses (formats.md "Offline board poses") from image files,
+// each group of N consecutive images averaged into one measurement, one row per group
+// (empty pose fields when the group gives no usable pose). Progress on stderr.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace h4::cam {
+
+struct MeasureArgs {
+  std::string board_path;
+  std::string camera_path;
+  std::vector<std::string> images;  ///< files and/or directories, in order
+  int group = 10;                   ///< images averaged per measurement
+  double max_spread_px = 0.1;       ///< motion threshold
+  std::string out_path;
+};
+
+void AddMeasureCommand(CLI::App& app);
+
+/// Runs the measurement; returns the number of rows with a pose. Throws (std::runtime_error
+/// or h4::FormatError) naming the file at fault: an unreadable or 16-bit image, an image
+/// of another size than the camera file says, an unwritable output.
+int RunMeasure(const MeasureArgs& args, std::ostream& progress);
+
+}  // namespace h4::cam

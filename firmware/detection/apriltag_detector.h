@@ -1,0 +1,69 @@
+// libapriltag behind a small RAII wrapper: detects tags in an 8-bit image and returns
+// each tag's 4 corners in OpenCV's pixel convention ((0, 0) = centre of the top-left
+// pixel). libapriltag 3.3 reports corners shifted from that convention (measured on
+// rendered images with known truth, tests/firmware/apriltag_detector_test.cpp); the shift
+// is removed here, at the boundary, and nowhere else.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include "firmware/detection/tag_family.h"
+
+struct apriltag_detector;
+
+namespace h4::cam {
+
+struct AprilTagOptions {
+  std::string family = "tag36h11";
+  /// Quad search on an image decimated by this factor (speed); the edges are then
+  /// refined on the full image (refine_edges), so the corners keep full resolution.
+  float quad_decimate = 2.0f;
+  float quad_sigma = 0.0f;         ///< Gaussian blur before quad search, px (0 = none)
+  bool refine_edges = true;        ///< snap quad edges to strong gradients, full resolution
+  double decode_sharpening = 0.25; ///< libapriltag's default
+  int max_bits_corrected = 1;      ///< decoding tolerance; 1 keeps false positives rare
+  int threads = 1;                 ///< one core: the camera module has others to feed
+};
+
+struct TagDetection {
+  int id = -1;
+  int hamming = 0;               ///< bits corrected when decoding
+  double decision_margin = 0;    ///< libapriltag's decoding quality (higher is better)
+  /// Corners in libapriltag's order (board_model.h: bottom-left, bottom-right, top-right,
+  /// top-left as printed), OpenCV pixel convention.
+  std::array<Eigen::Vector2d, 4> corners_px;
+};
+
+class AprilTagDetector {
+ public:
+  /// Offset added to libapriltag's corner output to reach OpenCV's convention, px (both
+  /// axes): its corners sit half a pixel right of and below the truth, i.e. it counts
+  /// pixel centres at +0.5 (measured: mean offset (+0.498, +0.502) px over 144 corners
+  /// at the default options).
+  static constexpr double kCornerOffsetPx = -0.5;
+
+  explicit AprilTagDetector(const AprilTagOptions& options = {});
+  ~AprilTagDetector();
+  AprilTagDetector(const AprilTagDetector&) = delete;
+  AprilTagDetector& operator=(const AprilTagDetector&) = delete;
+
+  bool ok() const { return error_.empty(); }
+  const std::string& error() const { return error_; }
+  /// Width of a tag up to the outer edge of its black border, in cells (8 for tag36h11).
+  int border_cells() const;
+
+  /// Tags found in a CV_8UC1 image (any other type gives no detection).
+  std::vector<TagDetection> Detect(const cv::Mat& gray8) const;
+
+ private:
+  TagFamilyPtr family_;
+  apriltag_detector* detector_ = nullptr;
+  std::string error_;
+};
+
+}  // namespace h4::cam

@@ -1,0 +1,74 @@
+// Finds the calibration board in an (averaged) image and pairs each detected corner with
+// its position on the board: AprilTag grids through libapriltag plus sub-pixel
+// refinement, chessboards through OpenCV. The output feeds the pose estimator.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include "common/board/board_model.h"
+#include "common/camera/camera_intrinsics.h"
+#include "firmware/detection/apriltag_detector.h"
+#include "firmware/detection/corner_observation.h"
+#include "firmware/detection/edge_refinement.h"
+#include "firmware/detection/ideal_pixel_map.h"
+
+namespace h4::cam {
+
+enum class CornerRefinement {
+  kNone,          ///< libapriltag's corners as they come (convention-corrected)
+  kCornerSubPix,  ///< cv::cornerSubPix on the averaged image
+  kEdgeFit,       ///< blurred-step fit of the tag sides (edge_refinement.h): the most
+                  ///< accurate on rendered images (tests/firmware/board_detector_test.cpp)
+};
+
+struct DetectorOptions {
+  AprilTagOptions apriltag;
+  CornerRefinement refinement = CornerRefinement::kEdgeFit;
+  EdgeFitOptions edge_fit;
+  int subpix_half_window = 3;  ///< cornerSubPix window (2n+1)^2, px (chessboard too)
+  /// Fewer corners than this: status kPartial (the pose would be unreliable).
+  int min_corners = 12;
+};
+
+struct BoardDetection {
+  enum class Status { kOk, kPartial, kNoBoard };
+  Status status = Status::kNoBoard;
+  std::vector<CornerObservation> corners;
+  int tags = 0;               ///< AprilTag grid: tags used
+  int tags_rejected = 0;      ///< tags whose refinement failed (dropped)
+};
+
+const char* ToString(BoardDetection::Status status);
+
+class BoardDetector {
+ public:
+  BoardDetector(const BoardSpec& board, const CameraIntrinsics& camera,
+                const DetectorOptions& options = {});
+  ~BoardDetector();
+
+  bool ok() const { return error_.empty(); }
+  const std::string& error() const { return error_; }
+  const BoardModel& board() const { return board_; }
+  const DetectorOptions& options() const { return options_; }
+
+  /// Detects the board in a CV_8UC1 or CV_32FC1 image (grey levels 0..255).
+  BoardDetection Detect(const cv::Mat& image) const;
+
+ private:
+  BoardDetection DetectAprilGrid(const cv::Mat& image8, const cv::Mat& image32) const;
+  BoardDetection DetectChessboard(const cv::Mat& image8, const cv::Mat& image32) const;
+
+  BoardModel board_;
+  DetectorOptions options_;
+  std::unique_ptr<AprilTagDetector> apriltag_;
+  std::unique_ptr<IdealPixelMap> ideal_map_;
+  int width_ = 0, height_ = 0;
+  std::string error_;
+};
+
+}  // namespace h4::cam

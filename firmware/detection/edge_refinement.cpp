@@ -1,0 +1,175 @@
+// Blurred-step edge fitting; see edge_refinement.h.
+#include "firmware/detection/edge_refinement.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+
+namespace h4::cam {
+namespace {
+
+struct Sample {
+  Eigen::Vector2d q;  // ideal coordinates relative to the side's midpoint
+  double value;
+};
+
+struct Line {
+  Eigen::Vector2d mid;  // a point on the side (ideal), origin of the fit
+  double phi = 0;       // normal direction n = (cos phi, sin phi), pointing dark -> bright
+  double c = 0;         // n . (q - mid) = c on the line
+  Eigen::Vector2d n() const { return {std::cos(phi), std::sin(phi)}; }
+  Eigen::Vector2d point() const { return mid + c * n(); }
+};
+
+constexpr double kInvSqrt2 = 0.70710678118654752440;
+constexpr double kInvSqrt2Pi = 0.39894228040143267794;
+
+// Pixels of the band |distance| <= band around the line, between the corners a and b
+// (ideal) minus the clearance.
+std::vector<Sample> SelectBand(const cv::Mat& image, const IdealPixelMap& map, const Line& line,
+                               const Eigen::Vector2d& a_px, const Eigen::Vector2d& b_px,
+                               const Eigen::Vector2d& a, const Eigen::Vector2d& b,
+                               const EdgeFitOptions& options, double band_in) {
+  std::vector<Sample> samples;
+  const Eigen::Vector2d n = line.n();
+  const Eigen::Vector2d along = (b - a).normalized();
+  const double length = (b - a).norm();
+  const double margin = options.band_px + 3.0;
+  const int u0 = std::max(0, static_cast<int>(std::floor(std::min(a_px.x(), b_px.x()) - margin)));
+  const int u1 = std::min(image.cols - 1, static_cast<int>(std::ceil(std::max(a_px.x(), b_px.x()) + margin)));
+  const int v0 = std::max(0, static_cast<int>(std::floor(std::min(a_px.y(), b_px.y()) - margin)));
+  const int v1 = std::min(image.rows - 1, static_cast<int>(std::ceil(std::max(a_px.y(), b_px.y()) + margin)));
+  for (int v = v0; v <= v1; ++v) {
+    const float* row = image.ptr<float>(v);
+    for (int u = u0; u <= u1; ++u) {
+      const Eigen::Vector2d q = map.At(u, v) - line.mid;
+      const double d = n.dot(q) - line.c;
+      if (d > options.band_px || d < -band_in) continue;
+      const double t = along.dot(map.At(u, v) - a);
+      if (t < options.corner_clearance_px || t > length - options.corner_clearance_px) continue;
+      samples.push_back({q, static_cast<double>(row[u])});
+    }
+  }
+  return samples;
+}
+
+// Gauss-Newton on (phi, c, a, b, s) for I = a + b Phi((n . q - c) / s).
+bool FitEdge(const std::vector<Sample>& samples, int iterations, Line* line, double* a,
+             double* b, double* s) {
+  for (int it = 0; it < iterations; ++it) {
+    Eigen::Matrix<double, 5, 5> H = Eigen::Matrix<double, 5, 5>::Zero();
+    Eigen::Matrix<double, 5, 1> g = Eigen::Matrix<double, 5, 1>::Zero();
+    const Eigen::Vector2d n = line->n();
+    const Eigen::Vector2d n_perp(-n.y(), n.x());
+    for (const Sample& sample : samples) {
+      const double d = n.dot(sample.q) - line->c;
+      const double z = d / *s;
+      const double Phi = 0.5 * (1.0 + std::erf(z * kInvSqrt2));
+      const double pdf = kInvSqrt2Pi * std::exp(-0.5 * z * z);
+      const double r = *a + *b * Phi - sample.value;
+      const double dI_dd = *b * pdf / *s;
+      Eigen::Matrix<double, 5, 1> J;
+      J << dI_dd * n_perp.dot(sample.q), -dI_dd, 1.0, Phi, -dI_dd * z;
+      H.noalias() += J * J.transpose();
+      g.noalias() += J * r;
+    }
+    H.diagonal() *= 1.0 + 1e-9;
+    const Eigen::Matrix<double, 5, 1> step = H.ldlt().solve(-g);
+    if (!step.allFinite()) return false;
+    line->phi += step[0];
+    line->c += step[1];
+    *a += step[2];
+    *b += step[3];
+    *s = std::clamp(*s + step[4], 0.2, 5.0);
+    if (std::abs(step[1]) < 1e-6 && std::abs(step[0]) < 1e-8) break;
+  }
+  return std::isfinite(line->c) && *b > 0;
+}
+
+bool Intersect(const Line& l1, const Line& l2, Eigen::Vector2d* p) {
+  Eigen::Matrix2d A;
+  A.row(0) = l1.n().transpose();
+  A.row(1) = l2.n().transpose();
+  const Eigen::Vector2d rhs(l1.n().dot(l1.point()), l2.n().dot(l2.point()));
+  if (std::abs(A.determinant()) < 1e-6) return false;
+  *p = A.inverse() * rhs;
+  return true;
+}
+
+}  // namespace
+
+bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
+                       const EdgeFitOptions& options, std::array<Eigen::Vector2d, 4>* corners) {
+  if (image32f.type() != CV_32FC1 || image32f.cols != map.width() ||
+      image32f.rows != map.height()) {
+    return false;
+  }
+  std::array<Eigen::Vector2d, 4> ideal;
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+  for (size_t k = 0; k < 4; ++k) {
+    ideal[k] = map.IdealFromPixel((*corners)[k]);
+    centre += 0.25 * ideal[k];
+  }
+  std::array<Line, 4> lines;
+  for (size_t k = 0; k < 4; ++k) {
+    const Eigen::Vector2d& a = ideal[k];
+    const Eigen::Vector2d& b = ideal[(k + 1) % 4];
+    Line& line = lines[k];
+    line.mid = 0.5 * (a + b);
+    Eigen::Vector2d n(-(b - a).y(), (b - a).x());
+    n.normalize();
+    if (n.dot(line.mid - centre) < 0) n = -n;  // outward: from the dark border to the white
+    line.phi = std::atan2(n.y(), n.x());
+    double band_in = options.band_px;
+    if (options.border_cells > 0) {
+      // Border thickness: distance to the opposite side over the cell count.
+      const Eigen::Vector2d& c = ideal[(k + 2) % 4];
+      const Eigen::Vector2d& d = ideal[(k + 3) % 4];
+      Eigen::Vector2d n_opposite(-(d - c).y(), (d - c).x());
+      n_opposite.normalize();
+      const double thickness = std::abs(n_opposite.dot(line.mid - c)) / options.border_cells;
+      band_in = std::clamp(thickness - 2.5, 1.0, options.band_px);
+    }
+    double level_a = 0, level_b = 0, s = 1.0;
+    bool levels_set = false;
+    for (int pass = 0; pass < options.passes; ++pass) {
+      const std::vector<Sample> samples = SelectBand(image32f, map, line, (*corners)[k],
+                                                     (*corners)[(k + 1) % 4], a, b, options, band_in);
+      if (static_cast<int>(samples.size()) < options.min_pixels) return false;
+      if (!levels_set) {
+        // Start from the darkest and brightest sides of the band.
+        double dark = 0, bright = 0;
+        int n_dark = 0, n_bright = 0;
+        const Eigen::Vector2d nn = line.n();
+        for (const Sample& sample : samples) {
+          const double d = nn.dot(sample.q) - line.c;
+          if (d < -0.8) dark += sample.value, ++n_dark;
+          if (d > 1.0) bright += sample.value, ++n_bright;
+        }
+        if (n_dark == 0 || n_bright == 0) return false;
+        level_a = dark / n_dark;
+        level_b = bright / n_bright - level_a;
+        if (!(level_b > 1.0)) return false;
+        levels_set = true;
+      }
+      if (!FitEdge(samples, options.iterations, &line, &level_a, &level_b, &s)) return false;
+    }
+  }
+  std::array<Eigen::Vector2d, 4> refined;
+  for (size_t k = 0; k < 4; ++k) {
+    // Corner k joins side k-1 (from corner k-1 to k) and side k (from k to k+1).
+    Eigen::Vector2d p;
+    if (!Intersect(lines[(k + 3) % 4], lines[k], &p)) return false;
+    refined[k] = map.PixelFromIdeal(p);
+    if (!refined[k].allFinite() || (refined[k] - (*corners)[k]).norm() > options.max_shift_px) {
+      return false;
+    }
+  }
+  *corners = refined;
+  return true;
+}
+
+}  // namespace h4::cam

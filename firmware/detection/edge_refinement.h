@@ -1,0 +1,38 @@
+// Sub-pixel refinement of a dark quadrilateral's corners (an AprilTag's outer black
+// border on its white quiet zone) by fitting each side as a blurred step edge,
+//   I(q) = a + b * Phi((n . q - c) / s),
+// to the pixels of a band around the side, in ideal (undistorted) coordinates where the
+// side is a straight line; the corners are the intersections of adjacent sides. Unlike
+// a gradient-based corner detector this is not pulled inward by the rounding of a
+// blurred L-shaped corner: the pixels next to the corners are left out.
+#pragma once
+
+#include <array>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include "firmware/detection/ideal_pixel_map.h"
+
+namespace h4::cam {
+
+struct EdgeFitOptions {
+  double band_px = 2.5;            ///< half width of the pixel band fitted around a side
+  /// Width of the quad in cells (libapriltag's width_at_border: 8 for tag36h11): the dark
+  /// side of the band stays 2.5 px clear of the black border's inner edge (one cell in),
+  /// where a white data cell would bias the fit. 0 = no such limit.
+  int border_cells = 0;
+  double corner_clearance_px = 3.0;///< pixels this close to a corner (along the side) skipped
+  int passes = 3;                  ///< re-select the band around the new line this many times
+  int iterations = 5;              ///< Gauss-Newton iterations per pass
+  double max_shift_px = 2.0;       ///< a corner moving farther than this fails the refinement
+  int min_pixels = 12;             ///< fewer pixels in a side's band fails the refinement
+};
+
+/// Refines `corners` (distorted pixels, OpenCV convention, in order around the quad) in
+/// place from a CV_32FC1 image. Returns false and leaves them untouched when a side
+/// cannot be fitted (too few pixels, no contrast, corner moved too far).
+bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
+                       const EdgeFitOptions& options, std::array<Eigen::Vector2d, 4>* corners);
+
+}  // namespace h4::cam

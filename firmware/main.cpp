@@ -1,0 +1,31 @@
+// h4cam: the camera module's program. One subcommand per file in firmware/cli/; this
+// file only lists them, and reports any error once.
+#include <exception>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "firmware/cli/calibrate_intrinsics_command.h"
+#include "firmware/cli/list_cameras_command.h"
+#include "firmware/cli/make_board_command.h"
+#include "firmware/cli/measure_command.h"
+#include "firmware/cli/render_command.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"h4cam: camera module of the H4 calibration (measure the board pose X_CT)"};
+  app.require_subcommand(1);
+  h4::cam::AddListCamerasCommand(app);
+  h4::cam::AddCalibrateIntrinsicsCommand(app);
+  h4::cam::AddMakeBoardCommand(app);
+  h4::cam::AddRenderCommand(app);
+  h4::cam::AddMeasureCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::cerr << "h4cam: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,149 @@
+// Average -> detect -> pose; see measure_pipeline.h.
+#include "firmware/pose/measure_pipeline.h"
+
+namespace h4::cam {
+
+const char* ToString(Measurement::Status status) {
+  switch (status) {
+    case Measurement::Status::kOk:
+      return "ok";
+    case Measurement::Status::kNoBoard:
+      return "no board";
+    case Measurement::Status::kMoved:
+      return "moved";
+    case Measurement::Status::kPartial:
+      return "partial";
+    case Measurement::Status::kCameraError:
+      return "camera error";
+  }
+  return "?";
+}
+
+bool PipelineOptions::IsValid(std::string* why) const {
+  if (frames < 1) {
+    if (why != nullptr) *why = "frames per measurement must be >= 1";
+    return false;
+  }
+  if (!(motion.max_spread_px > 0)) {
+    if (why != nullptr) *why = "motion threshold must be > 0 px";
+    return false;
+  }
+  return true;
+}
+
+MeasurePipeline::MeasurePipeline(const BoardSpec& board, const CameraIntrinsics& camera,
+                                 const PipelineOptions& options)
+    : options_(options),
+      camera_(camera),
+      detector_(board, camera, options.detector),
+      averager_(options.frames) {
+  if (!options_.IsValid(&error_)) return;
+  if (!detector_.ok()) error_ = detector_.error();
+}
+
+std::optional<Measurement> MeasurePipeline::AddFrame(const Frame& frame) {
+  if (!averager_.Add(frame)) {
+    Measurement m;
+    m.status = Measurement::Status::kCameraError;
+    m.message = averager_.error();
+    m.utime = frame.utime;
+    m.origin = frame.origin;
+    averager_.Reset();
+    return m;
+  }
+  if (!averager_.complete()) return std::nullopt;
+  return MeasureGroup();
+}
+
+Measurement MeasurePipeline::Finish() {
+  if (averager_.count() == 0) {
+    Measurement m;
+    m.message = "no frame";
+    return m;
+  }
+  return MeasureGroup();
+}
+
+Measurement MeasurePipeline::MeasureFrames(const std::vector<Frame>& frames) {
+  averager_.Reset();
+  for (const Frame& frame : frames) {
+    if (!averager_.Add(frame)) {
+      Measurement m;
+      m.status = Measurement::Status::kCameraError;
+      m.message = averager_.error();
+      m.origin = frames.front().origin;
+      averager_.Reset();
+      return m;
+    }
+  }
+  return Finish();
+}
+
+Measurement MeasurePipeline::MeasureImage(const cv::Mat& image, int frames_averaged) const {
+  Measurement m;
+  m.frames_averaged = frames_averaged;
+  if (!ok()) {
+    m.status = Measurement::Status::kCameraError;
+    m.message = error_;
+    return m;
+  }
+  const BoardDetection detection = detector_.Detect(image);
+  m.corners_used = static_cast<int>(detection.corners.size());
+  if (detection.status == BoardDetection::Status::kNoBoard) {
+    m.status = Measurement::Status::kNoBoard;
+    m.message = "no board corner found";
+    return m;
+  }
+  if (detection.status == BoardDetection::Status::kPartial) {
+    m.status = Measurement::Status::kPartial;
+    m.message = std::to_string(m.corners_used) + " corners, need " +
+                std::to_string(options_.detector.min_corners);
+    return m;
+  }
+  const PoseEstimate pose = EstimatePose(detection.corners, camera_, options_.pose);
+  if (!pose.ok()) {
+    m.status = pose.status == PoseEstimate::Status::kTooFewCorners ? Measurement::Status::kPartial
+                                                                    : Measurement::Status::kNoBoard;
+    m.message = pose.message;
+    return m;
+  }
+  m.status = Measurement::Status::kOk;
+  m.X_CT = pose.X_CT;
+  m.covariance = pose.covariance;
+  m.sigma_t = pose.sigma_t;
+  m.sigma_r = pose.sigma_r;
+  m.rms_px = pose.rms_px;
+  return m;
+}
+
+Measurement MeasurePipeline::MeasureGroup() {
+  const cv::Mat mean = averager_.Mean();
+  Measurement m = MeasureImage(mean, averager_.count());
+  m.utime = averager_.first_utime();
+  m.origin = averager_.first_origin();
+  if (m.status == Measurement::Status::kOk && averager_.count() > 1) {
+    // Corners re-projected from the fitted pose: all board corners that fall in the image,
+    // not only those detected, so the spread covers the whole board.
+    std::vector<Eigen::Vector2d> corners_px;
+    for (const Eigen::Vector3d& p_TQ : detector_.board().corners()) {
+      Eigen::Vector2d uv;
+      if (camera_.Project(m.X_CT * p_TQ, &uv) && uv.x() >= 0 && uv.y() >= 0 &&
+          uv.x() <= mean.cols - 1 && uv.y() <= mean.rows - 1) {
+        corners_px.push_back(uv);
+      }
+    }
+    const MotionEstimate motion =
+        EstimateFrameSpread(averager_.frames(), mean, corners_px, options_.motion);
+    m.frame_spread_px = motion.spread_px;
+    if (motion.moved) {
+      m.status = Measurement::Status::kMoved;
+      m.message = "board moved during the group: corner spread " +
+                  std::to_string(motion.spread_px) + " px > " +
+                  std::to_string(options_.motion.max_spread_px) + " px";
+    }
+  }
+  averager_.Reset();
+  return m;
+}
+
+}  // namespace h4::cam

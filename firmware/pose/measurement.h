@@ -1,0 +1,38 @@
+// One measurement of the board by the camera module: the pose X_CT with its covariance
+// and quality figures, or the reason there is none. The camera service turns it into a
+// board_pose_t (messages/), `h4cam measure` into a row of the offline board poses CSV.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "common/geometry/rigid_transform.h"
+
+namespace h4::cam {
+
+struct Measurement {
+  /// Same meanings as board_pose_t's STATUS_ constants.
+  enum class Status { kOk, kNoBoard, kMoved, kPartial, kCameraError };
+  Status status = Status::kNoBoard;
+  std::string message;  ///< why, when not kOk
+
+  RigidTransform X_CT;  ///< board in camera (valid for kOk and kMoved)
+  /// 6x6 covariance, order of messages/README.md: (p_CT in C, right rotation vector in T).
+  Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
+  double sigma_t = 0;          ///< per-axis position sigma from the fit, m
+  double sigma_r = 0;          ///< per-axis rotation sigma from the fit, rad
+  int corners_used = 0;
+  double rms_px = 0;           ///< reprojection RMS of the fit
+  double frame_spread_px = 0;  ///< max per-corner spread between the group's frames
+  int frames_averaged = 0;
+  int64_t utime = 0;           ///< time of the group's first frame
+  std::string origin;          ///< file name of the group's first frame (file sources)
+
+  bool ok() const { return status == Status::kOk; }
+};
+
+const char* ToString(Measurement::Status status);
+
+}  // namespace h4::cam

@@ -1,0 +1,121 @@
+// Image files as frames; see image_file_source.h.
+#include "firmware/sources/image_file_source.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <set>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+namespace h4::cam {
+namespace fs = std::filesystem;
+
+namespace {
+
+bool IsImageName(const fs::path& path) {
+  static const std::set<std::string> kExtensions = {".png", ".jpg",  ".jpeg", ".pgm", ".ppm",
+                                                    ".pnm", ".bmp", ".tif",  ".tiff"};
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return kExtensions.count(ext) > 0;
+}
+
+}  // namespace
+
+ImageFileSource::ImageFileSource(std::vector<std::string> paths) : paths_(std::move(paths)) {}
+
+bool ImageFileSource::Open() {
+  files_.clear();
+  next_ = 0;
+  error_.clear();
+  for (const std::string& path : paths_) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) {
+      std::vector<std::string> found;
+      for (const auto& entry : fs::directory_iterator(path, ec)) {
+        if (entry.is_regular_file() && IsImageName(entry.path())) {
+          found.push_back(entry.path().string());
+        }
+      }
+      std::sort(found.begin(), found.end());
+      files_.insert(files_.end(), found.begin(), found.end());
+    } else if (fs::is_regular_file(path, ec)) {
+      files_.push_back(path);
+    } else {
+      error_ = path + ": no such file or directory";
+      return false;
+    }
+  }
+  if (files_.empty()) {
+    error_ = "no image file (png, jpg, pgm, ...) in the given paths";
+    return false;
+  }
+  opened_ = true;
+  return true;
+}
+
+cv::Mat ImageFileSource::ReadGrey(const std::string& path, std::string* why) {
+  cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  if (image.empty()) {
+    *why = path + ": cannot read the image (missing, unreadable or not an image format)";
+    return {};
+  }
+  if (image.depth() != CV_8U) {
+    *why = path + ": " + std::to_string(8 * image.elemSize1()) +
+           "-bit image; expected 8-bit (convert it, e.g. with a tool that scales to 8 bits)";
+    return {};
+  }
+  cv::Mat grey;
+  switch (image.channels()) {
+    case 1:
+      grey = image;
+      break;
+    case 3:
+      cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
+      break;
+    case 4:
+      cv::cvtColor(image, grey, cv::COLOR_BGRA2GRAY);
+      break;
+    default:
+      *why = path + ": " + std::to_string(image.channels()) + " channels; expected 1, 3 or 4";
+      return {};
+  }
+  return grey;
+}
+
+std::optional<Frame> ImageFileSource::Next(std::chrono::milliseconds /*timeout*/) {
+  if (next_ >= files_.size()) return std::nullopt;
+  const std::string& path = files_[next_];
+  const int64_t sequence = static_cast<int64_t>(next_);
+  ++next_;
+  std::string why;
+  cv::Mat grey = ReadGrey(path, &why);
+  if (grey.empty()) {
+    error_ = why;
+    return std::nullopt;
+  }
+  error_.clear();
+  Frame frame;
+  frame.image = grey;
+  frame.sequence = sequence;
+  frame.origin = path;
+  std::error_code ec;
+  const auto written = fs::last_write_time(path, ec);
+  if (!ec) {
+    const auto system = std::chrono::file_clock::to_sys(written);
+    frame.utime =
+        std::chrono::duration_cast<std::chrono::microseconds>(system.time_since_epoch()).count();
+  }
+  return frame;
+}
+
+std::string ImageFileSource::Describe() const {
+  std::string text = "files:";
+  for (const std::string& path : paths_) text += " " + path;
+  return text;
+}
+
+}  // namespace h4::cam

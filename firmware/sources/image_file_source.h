@@ -1,0 +1,47 @@
+// Frames from image files (PNG, JPEG, PGM...): a list of files and/or directories (a
+// directory gives its image files sorted by name). Colour images are converted to grey;
+// 16-bit images are refused with a message naming the file (the pipeline measures 8-bit
+// frames, and silently scaling would change the noise model).
+#pragma once
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "firmware/sources/frame_source.h"
+
+namespace h4::cam {
+
+class ImageFileSource final : public FrameSource {
+ public:
+  explicit ImageFileSource(std::vector<std::string> paths);
+
+  /// Expands directories and checks that every file exists; false with error() otherwise
+  /// (including when no image file is found).
+  bool Open() override;
+  bool Configure() override { return true; }
+  bool Start() override { return true; }
+  /// The next file as a grey frame (utime = file modification time, origin = path).
+  /// nullopt with error() set on an unreadable/unsupported file (the source then moves
+  /// on to the next file), nullopt with finished() at the end.
+  std::optional<Frame> Next(std::chrono::milliseconds timeout) override;
+  void Stop() override {}
+  void Close() override {}
+
+  std::string Describe() const override;
+  bool finished() const override { return next_ >= files_.size() && opened_; }
+  /// The files, in the order they are delivered (after Open()).
+  const std::vector<std::string>& files() const { return files_; }
+
+  /// Reads one image file as CV_8UC1; empty with `why` set when it cannot.
+  static cv::Mat ReadGrey(const std::string& path, std::string* why);
+
+ private:
+  std::vector<std::string> paths_;
+  std::vector<std::string> files_;
+  size_t next_ = 0;
+  bool opened_ = false;
+};
+
+}  // namespace h4::cam

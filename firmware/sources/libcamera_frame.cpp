@@ -1,0 +1,78 @@
+// Luma copy and timestamp mapping of the libcamera frame source (see libcamera_frame.h).
+#include "firmware/sources/libcamera_frame.h"
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+
+#include <time.h>
+
+namespace h4::cam {
+namespace {
+
+int64_t ReadClockNs(clockid_t clock) {
+  timespec ts{};
+  clock_gettime(clock, &ts);
+  return static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
+}
+
+// Floor division: a timestamp before the epoch must not round towards zero.
+int64_t FloorDiv(int64_t a, int64_t b) {
+  const int64_t q = a / b;
+  return (a % b != 0 && (a < 0) != (b < 0)) ? q - 1 : q;
+}
+
+}  // namespace
+
+bool CopyLumaPlane(const uint8_t* plane, size_t plane_bytes, int width, int height,
+                   int stride_bytes, cv::Mat* image, std::string* error) {
+  if (plane == nullptr || width <= 0 || height <= 0) {
+    *error = "luma plane: expected a mapped plane and a positive size, got " +
+             std::to_string(width) + "x" + std::to_string(height);
+    return false;
+  }
+  if (stride_bytes < width) {
+    *error = "luma plane: stride " + std::to_string(stride_bytes) +
+             " bytes is shorter than a row of " + std::to_string(width) + " pixels";
+    return false;
+  }
+  const size_t needed = static_cast<size_t>(stride_bytes) * static_cast<size_t>(height - 1) +
+                        static_cast<size_t>(width);
+  if (plane_bytes < needed) {
+    *error = "luma plane: " + std::to_string(plane_bytes) + " bytes, expected at least " +
+             std::to_string(needed) + " for " + std::to_string(width) + "x" +
+             std::to_string(height) + " with stride " + std::to_string(stride_bytes);
+    return false;
+  }
+  cv::Mat out(height, width, CV_8UC1);
+  for (int row = 0; row < height; ++row) {
+    std::memcpy(out.ptr<uint8_t>(row), plane + static_cast<size_t>(row) * stride_bytes,
+                static_cast<size_t>(width));
+  }
+  *image = std::move(out);
+  return true;
+}
+
+ClockOffset MeasureClockOffset(SensorClock clock, int samples) {
+  const clockid_t sensor_clock = clock == SensorClock::kBoottime ? CLOCK_BOOTTIME : CLOCK_MONOTONIC;
+  ClockOffset best;
+  int64_t best_bracket = std::numeric_limits<int64_t>::max();
+  for (int i = 0; i < std::max(samples, 1); ++i) {
+    const int64_t before = ReadClockNs(sensor_clock);
+    const int64_t realtime = ReadClockNs(CLOCK_REALTIME);
+    const int64_t after = ReadClockNs(sensor_clock);
+    const int64_t bracket = after - before;
+    if (bracket < best_bracket) {
+      best_bracket = bracket;
+      best.realtime_minus_sensor_ns = realtime - (before + bracket / 2);
+      best.uncertainty_ns = (bracket + 1) / 2;
+    }
+  }
+  return best;
+}
+
+int64_t SensorNsToUtime(int64_t sensor_ns, const ClockOffset& offset) {
+  return FloorDiv(sensor_ns + offset.realtime_minus_sensor_ns, 1000);
+}
+
+}  // namespace h4::cam

@@ -1,0 +1,56 @@
+// The synthetic camera: frames of a board rendered at a settable pose X_CT (the camera
+// service's `--source sim`, the tests and benchmarks). The noise-free image is rendered
+// once per pose; each frame adds fresh sensor noise seeded by (seed, sequence), so a run
+// is reproducible.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "common/board/board_spec.h"
+#include "common/camera/camera_intrinsics.h"
+#include "common/geometry/rigid_transform.h"
+#include "firmware/render/board_renderer.h"
+#include "firmware/sources/frame_source.h"
+
+namespace h4::cam {
+
+struct SimSourceOptions {
+  RenderOptions render;
+  uint64_t seed = 1;
+  double frame_rate_hz = 30.0;  ///< spacing of the synthetic timestamps
+  int64_t start_utime = 0;      ///< utime of frame 0
+};
+
+class SimSource final : public FrameSource {
+ public:
+  SimSource(const BoardSpec& board, const CameraIntrinsics& camera, SimSourceOptions options);
+
+  /// Places the board (thread-safe: may be called from a message handler); std::nullopt
+  /// takes it out of view.
+  void SetPose(const std::optional<RigidTransform>& X_CT);
+  std::optional<RigidTransform> pose() const;
+
+  bool Open() override;
+  bool Configure() override { return true; }
+  bool Start() override { return true; }
+  /// A new noisy frame of the current scene; never waits.
+  std::optional<Frame> Next(std::chrono::milliseconds timeout) override;
+  void Stop() override {}
+  void Close() override {}
+  std::string Describe() const override { return "sim"; }
+
+ private:
+  SimSourceOptions options_;
+  BoardRenderer renderer_;
+  int width_, height_;
+  mutable std::mutex mutex_;
+  std::optional<RigidTransform> X_CT_;
+  cv::Mat clean_;  // CV_32F noise-free image of the current scene
+  int64_t sequence_ = 0;
+};
+
+}  // namespace h4::cam

@@ -1,0 +1,107 @@
+// `h4cal fk`: forward kinematics of joint readings (formats.md "Joints CSV and poses CSV"):
+// the end-effector pose in B and the board pose X_CT = inv(X_BC) X_BE inv(X_TE) it implies.
+// With --compare, the board poses are scored against reference ones (e.g. a simulation's
+// truth): the figure of issue "Host solver".
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include <spdlog/spdlog.h>
+
+#include "common/formats/joints_csv.h"
+#include "common/formats/poses_csv.h"
+#include "common/geometry/rotation.h"
+#include "host/cli/commands.h"
+#include "host/cli/robot_source.h"
+#include "host/kinematics/forward_kinematics.h"
+#include "host/kinematics/measurement_chain.h"
+
+namespace h4::host::cli {
+namespace {
+
+struct FkCommandOptions {
+  RobotSourceOptions robot;
+  std::string joints_path;
+  std::string out_path;
+  std::string compare_path;
+};
+
+void Compare(const std::vector<FkRow>& predicted, const std::string& reference_path) {
+  std::map<int64_t, RigidTransform> reference;
+  for (const FkRow& row : ReadFkCsv(reference_path)) reference[row.pose.pose_id] = row.X_CT;
+  double sum_p2 = 0.0, sum_r2 = 0.0;
+  int n = 0;
+  for (const FkRow& row : predicted) {
+    const auto it = reference.find(row.pose.pose_id);
+    if (it == reference.end()) continue;
+    const auto e = PoseError(it->second, row.X_CT);
+    sum_r2 += e.head<3>().squaredNorm();
+    sum_p2 += e.tail<3>().squaredNorm();
+    ++n;
+  }
+  if (n == 0) {
+    throw std::runtime_error(reference_path + ": no pose_id in common with the predicted poses");
+  }
+  // RMS of the 3-D error norms: position in mm, rotation angle in deg.
+  std::printf("board pose error vs %s over %d poses: position RMS %.4f mm, rotation RMS %.4f deg\n",
+              reference_path.c_str(), n, 1e3 * std::sqrt(sum_p2 / n),
+              180.0 / std::numbers::pi * std::sqrt(sum_r2 / n));
+}
+
+void Run(const FkCommandOptions& options) {
+  std::string description;
+  const IdentifiedRobot robot = LoadRobot(options.robot, &description);
+  const std::vector<JointsRow> joints = ReadJointsCsv(options.joints_path);
+  std::vector<FkRow> rows;
+  std::vector<int64_t> failed;
+  std::optional<EePose> guess;
+  for (const JointsRow& j : joints) {
+    const JointVector q(j.q[0], j.q[1], j.q[2], j.q[3]);
+    FkResult fk = ForwardKinematics(*robot.model, q, guess);
+    if (!fk.ok() && guess) fk = ForwardKinematics(*robot.model, q);  // from the centre
+    if (!fk.ok()) {
+      spdlog::warn("{}: pose_id {}: forward kinematics failed ({}): {}", options.joints_path,
+                   j.pose_id, ToString(fk.status), fk.message);
+      failed.push_back(j.pose_id);
+      continue;
+    }
+    guess = fk.x;  // neighbouring rows are usually close: start the next one here
+    FkRow row;
+    row.pose = {j.pose_id, fk.x[0], fk.x[1], fk.x[2], fk.x[3]};
+    row.X_CT = PredictedBoardPose(robot.X_BC, fk.x, robot.X_TE);
+    rows.push_back(row);
+  }
+  WriteFkCsv(options.out_path, rows);
+  spdlog::info("fk with {}: {} of {} rows written to {}", description, rows.size(), joints.size(),
+               options.out_path);
+  if (!options.compare_path.empty()) Compare(rows, options.compare_path);
+  if (!failed.empty()) {
+    spdlog::error("{} rows had no forward kinematic solution (not written)", failed.size());
+    SetExitCode(3);
+  }
+}
+
+}  // namespace
+
+void AddFkCommand(CLI::App& app) {
+  auto options = std::make_shared<FkCommandOptions>();
+  CLI::App* command = app.add_subcommand(
+      "fk", "Forward kinematics: joints CSV -> end-effector poses and board poses X_CT");
+  AddRobotSourceOptions(command, &options->robot);
+  command->add_option("--joints", options->joints_path, "Joints CSV: pose_id,q1,q2,q3,q4 (rad)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command
+      ->add_option("--out", options->out_path, "Output CSV: pose_id,X,Y,Z,theta,x,y,z,qw,qx,qy,qz")
+      ->required();
+  command
+      ->add_option("--compare", options->compare_path,
+                   "Reference board poses in the same layout (e.g. a simulation's "
+                   "heldout_truth.csv): print the RMS position and rotation error")
+      ->check(CLI::ExistingFile);
+  command->footer(
+      "Rows without a solution are reported and left out (exit code 3), never written as NaN.");
+  command->callback([options] { Run(*options); });
+}
+
+}  // namespace h4::host::cli

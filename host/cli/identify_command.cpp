@@ -1,0 +1,158 @@
+// `h4cal identify`: Model 12 or Model 31 identification from a robot.yaml and a paired
+// dataset (paper II-III; the solver is host/identification), writing the result JSON of
+// formats.md. `--from result12.json` starts Model 31 from a Model 12 result (paper IV.C).
+#include <cmath>
+#include <numbers>
+
+#include <spdlog/spdlog.h>
+
+#include "common/formats/dataset_csv.h"
+#include "common/formats/identification_result.h"
+#include "common/formats/robot_yaml.h"
+#include "host/cli/commands.h"
+#include "host/cli/progress.h"
+#include "host/identification/identification.h"
+
+namespace h4::host::cli {
+namespace {
+
+struct IdentifyCommandOptions {
+  std::string robot_path;
+  std::string data_path;
+  std::string model = "12";
+  int validation = 10;
+  uint64_t seed = 1;
+  std::string from_path;
+  std::string out_path;
+  std::string estimator = "measurement";
+  std::string algorithm = "LD_LBFGS";
+  std::vector<std::string> fix;
+  bool no_outliers = false;
+  bool no_polish = false;
+};
+
+void PrintHeadline(const IdentificationOutcome& outcome) {
+  const IdentificationResult& r = outcome.result;
+  std::printf("Model %s, %s estimator: %s\n", r.model.c_str(), r.estimator.c_str(),
+              outcome.summary.usable ? "usable" : "NOT usable");
+  std::printf("  poses: %zu calibration, %zu validation, %zu rejected\n", r.calib_poses.size(),
+              r.valid_poses.size(), r.rejected_poses.size());
+  if (r.condition_number) std::printf("  condition number (scaled): %.3g\n", *r.condition_number);
+  for (const FixedParameter& f : r.fixed)
+    std::printf("  fixed %s: %s\n", f.name.c_str(), f.reason.c_str());
+  std::printf("  joint residual RMS (rad) calib: %.2e %.2e %.2e %.2e\n", r.calib_rms_rad[0],
+              r.calib_rms_rad[1], r.calib_rms_rad[2], r.calib_rms_rad[3]);
+  if (!r.valid_poses.empty()) {
+    std::printf("  joint residual RMS (rad) valid: %.2e %.2e %.2e %.2e\n", r.valid_rms_rad[0],
+                r.valid_rms_rad[1], r.valid_rms_rad[2], r.valid_rms_rad[3]);
+  }
+  if (r.valid_position_rms_m && r.valid_rotation_rms_rad) {
+    std::printf("  held-out board pose vs measured: %.4f mm, %.4f deg RMS\n",
+                1e3 * *r.valid_position_rms_m,
+                *r.valid_rotation_rms_rad * 180.0 / std::numbers::pi);
+  }
+  if (r.predicted_position_accuracy_m) {
+    std::printf("  predicted position accuracy (1 sigma, calibration poses): %.4f mm\n",
+                1e3 * *r.predicted_position_accuracy_m);
+  }
+  for (const CorrelatedPair& c : r.correlations) {
+    std::printf("  correlated: %s ~ %s (%.3f)\n", c.a.c_str(), c.b.c_str(), c.correlation);
+  }
+  std::printf("  %d iterations, %.3f s\n", outcome.summary.iterations, outcome.summary.seconds);
+}
+
+void Run(const IdentifyCommandOptions& options) {
+  const RobotDescription robot = ReadRobotYaml(options.robot_path);
+  const std::vector<DatasetRow> rows = ReadDatasetCsv(options.data_path);
+  IdentificationOptions id_options;
+  if (!ParseCostKind(options.estimator, &id_options.estimator)) {
+    throw std::invalid_argument("--estimator: expected measurement, joint or implicit, got '" +
+                                options.estimator + "'");
+  }
+  id_options.nlopt.algorithm = options.algorithm;
+  id_options.fixed_parameters = options.fix;
+  id_options.reject_outliers = !options.no_outliers;
+  id_options.lm_polish = !options.no_polish;
+  Progress progress("identify Model " + options.model, 0);
+  int iterations = 0;
+  id_options.progress = [&](const std::string& stage, int iteration, double cost) {
+    char status[96];
+    std::snprintf(status, sizeof status, "%s it %d cost %.4g", stage.c_str(), iteration, cost);
+    progress.Update(++iterations, status);
+    return true;
+  };
+  std::string why;
+  if (!id_options.IsValid(&why)) throw std::invalid_argument(why);
+
+  const IdentificationOutcome outcome = [&] {
+    if (!options.from_path.empty()) {
+      if (options.model != "31") {
+        throw std::invalid_argument(
+            "--from starts a Model 31 identification: use it with --model 31");
+      }
+      const IdentificationResult from = ReadIdentificationResult(options.from_path);
+      if (from.model != "12") {
+        throw std::invalid_argument(
+            options.from_path + ": --from needs a Model 12 result, this is Model " + from.model);
+      }
+      return IdentifyModel31FromModel12(robot, from, rows, id_options);
+    }
+    return IdentifyRobot(robot, options.model, rows, id_options, options.validation, options.seed);
+  }();
+  progress.Finish(outcome.summary.message);
+  WriteIdentificationResult(options.out_path, outcome.result);
+  spdlog::debug("{}", outcome.summary.FullReport());
+  PrintHeadline(outcome);
+  spdlog::info("result written to {}", options.out_path);
+  if (!outcome.summary.usable) {
+    spdlog::error("the identification is not usable: {}", outcome.summary.message);
+    SetExitCode(3);
+  }
+}
+
+}  // namespace
+
+void AddIdentifyCommand(CLI::App& app) {
+  auto options = std::make_shared<IdentifyCommandOptions>();
+  CLI::App* command = app.add_subcommand(
+      "identify", "Identify the robot's geometry (Model 12 or 31) from a paired dataset");
+  command->add_option("--robot", options->robot_path, "A priori robot.yaml")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--data", options->data_path, "Paired dataset CSV")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--model", options->model, "Kinematic model")
+      ->check(CLI::IsMember({"12", "31"}))
+      ->capture_default_str();
+  command
+      ->add_option("--validation", options->validation,
+                   "Poses held out for validation when the dataset has no 'set' column")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--seed", options->seed, "Seed of that split")->capture_default_str();
+  command
+      ->add_option("--from", options->from_path,
+                   "Model 12 result to start Model 31 from; parameters Model 31 must fix "
+                   "take its values (paper IV.C)")
+      ->check(CLI::ExistingFile);
+  command
+      ->add_option("--estimator", options->estimator,
+                   "Cost: measurement (6-DoF board pose, weighted; default), joint (the "
+                   "paper's eq. (3)), implicit (eq. (5))")
+      ->check(CLI::IsMember({"measurement", "joint", "implicit"}))
+      ->capture_default_str();
+  command
+      ->add_option("--algorithm", options->algorithm,
+                   "NLopt algorithm (LD_LBFGS, LD_SLSQP, LD_MMA, LN_BOBYQA, ..., or none)")
+      ->capture_default_str();
+  command->add_option("--fix", options->fix, "Parameters to keep at their a priori value")
+      ->delimiter(',');
+  command->add_flag("--no-outlier-rejection", options->no_outliers, "Keep every pose");
+  command->add_flag("--no-polish", options->no_polish, "Skip the Levenberg-Marquardt polish");
+  command->add_option("--out", options->out_path, "Result JSON")->required();
+  command->footer("Exit code 3: the result was written but is not usable (see the log).");
+  command->callback([options] { Run(*options); });
+}
+
+}  // namespace h4::host::cli

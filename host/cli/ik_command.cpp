@@ -1,0 +1,64 @@
+// `h4cal ik`: closed-form inverse kinematics (paper eq. (2)) of end-effector poses
+// (formats.md poses CSV) to joint readings; unreachable rows are reported, not NaN.
+#include <spdlog/spdlog.h>
+
+#include "common/formats/joints_csv.h"
+#include "common/formats/poses_csv.h"
+#include "host/cli/commands.h"
+#include "host/cli/robot_source.h"
+
+namespace h4::host::cli {
+namespace {
+
+struct IkCommandOptions {
+  RobotSourceOptions robot;
+  std::string poses_path;
+  std::string out_path;
+};
+
+void Run(const IkCommandOptions& options) {
+  std::string description;
+  const IdentifiedRobot robot = LoadRobot(options.robot, &description);
+  const std::vector<EndEffectorPoseRow> poses = ReadPosesCsv(options.poses_path);
+  std::vector<JointsRow> rows;
+  int unreachable = 0;
+  for (const EndEffectorPoseRow& p : poses) {
+    const IkResult ik = robot.model->InverseKinematics(EePose(p.X, p.Y, p.Z, p.theta));
+    if (!ik.ok()) {
+      std::string legs;
+      for (int i = 0; i < 4; ++i) {
+        if (!ik.reachable[static_cast<size_t>(i)])
+          legs += (legs.empty() ? "" : ", ") + std::to_string(i + 1);
+      }
+      spdlog::warn("{}: pose_id {}: out of reach (leg {})", options.poses_path, p.pose_id, legs);
+      ++unreachable;
+      continue;
+    }
+    rows.push_back({p.pose_id, {ik.q[0], ik.q[1], ik.q[2], ik.q[3]}});
+  }
+  WriteJointsCsv(options.out_path, rows);
+  spdlog::info("ik with {}: {} of {} rows written to {}", description, rows.size(), poses.size(),
+               options.out_path);
+  if (unreachable > 0) {
+    spdlog::error("{} poses are out of reach (not written)", unreachable);
+    SetExitCode(3);
+  }
+}
+
+}  // namespace
+
+void AddIkCommand(CLI::App& app) {
+  auto options = std::make_shared<IkCommandOptions>();
+  CLI::App* command =
+      app.add_subcommand("ik", "Inverse kinematics: end-effector poses CSV -> joints CSV");
+  AddRobotSourceOptions(command, &options->robot);
+  command->add_option("--poses", options->poses_path, "Poses CSV: pose_id,X,Y,Z,theta (m, rad)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--out", options->out_path, "Output joints CSV: pose_id,q1,q2,q3,q4")
+      ->required();
+  command->footer("Unreachable rows are reported and left out (exit code 3).");
+  command->callback([options] { Run(*options); });
+}
+
+}  // namespace h4::host::cli

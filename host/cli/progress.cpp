@@ -1,0 +1,54 @@
+// Progress reporting; see progress.h.
+#include "host/cli/progress.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include <unistd.h>
+
+namespace h4::host::cli {
+
+Progress::Progress(std::string what, int total)
+    : what_(std::move(what)),
+      total_(total),
+      tty_(isatty(fileno(stderr)) != 0),
+      start_(std::chrono::steady_clock::now()) {}
+
+Progress::~Progress() {
+  if (!finished_ && tty_) std::fputc('\n', stderr);
+}
+
+void Progress::Update(int done, const std::string& status) {
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const int percent = total_ > 0 ? std::clamp(100 * done / total_, 0, 100) : 0;
+  if (tty_) {
+    constexpr int kWidth = 30;
+    const int filled = kWidth * percent / 100;
+    std::fprintf(stderr, "\r%s [%.*s%*s] %d/%d %5.1fs %-40.40s", what_.c_str(), filled,
+                 "##############################", kWidth - filled, "", done, total_, seconds,
+                 status.c_str());
+    std::fflush(stderr);
+  } else if (total_ > 0 ? (percent >= last_percent_logged_ + 10 || done == total_)
+                        : (seconds >= last_log_seconds_ + 1.0)) {
+    // Not a terminal: a line every 10 % (or every second when the total is unknown).
+    last_percent_logged_ = percent;
+    last_log_seconds_ = seconds;
+    if (total_ > 0) {
+      std::fprintf(stderr, "%s: %d/%d (%.1fs) %s\n", what_.c_str(), done, total_, seconds,
+                   status.c_str());
+    } else {
+      std::fprintf(stderr, "%s: %.1fs %s\n", what_.c_str(), seconds, status.c_str());
+    }
+  }
+}
+
+void Progress::Finish(const std::string& message) {
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (tty_) std::fputc('\n', stderr);
+  std::fprintf(stderr, "%s: %s (%.1fs)\n", what_.c_str(), message.c_str(), seconds);
+  finished_ = true;
+}
+
+}  // namespace h4::host::cli

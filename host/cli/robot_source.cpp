@@ -1,0 +1,47 @@
+// Loading the robot of fk / ik / validate from --result or --robot; see robot_source.h.
+#include "host/cli/robot_source.h"
+
+#include "common/formats/identification_result.h"
+#include "common/formats/robot_yaml.h"
+#include "host/kinematics/model12.h"
+
+namespace h4::host::cli {
+
+void AddRobotSourceOptions(CLI::App* command, RobotSourceOptions* options) {
+  auto* result = command
+                     ->add_option("--result", options->result_path,
+                                  "Identification result JSON (h4cal identify --out)")
+                     ->check(CLI::ExistingFile);
+  auto* robot = command
+                    ->add_option("--robot", options->robot_path,
+                                 "A priori robot.yaml (its Model 12 and X_BC, X_TE)")
+                    ->check(CLI::ExistingFile);
+  result->excludes(robot);
+  robot->excludes(result);
+  command
+      ->add_option("--assembly-from", options->assembly_robot_path,
+                   "robot.yaml whose assembly signs (bar, elbow) go with --result "
+                   "(default: the standard H4 assembly)")
+      ->check(CLI::ExistingFile)
+      ->needs(result);
+}
+
+IdentifiedRobot LoadRobot(const RobotSourceOptions& options, std::string* description) {
+  if (options.result_path.empty() == options.robot_path.empty()) {
+    throw std::invalid_argument("give exactly one of --result and --robot");
+  }
+  if (!options.result_path.empty()) {
+    const IdentificationResult result = ReadIdentificationResult(options.result_path);
+    const Assembly assembly = options.assembly_robot_path.empty()
+                                  ? Assembly{}
+                                  : ReadRobotYaml(options.assembly_robot_path).assembly;
+    if (description) *description = "Model " + result.model + " result " + options.result_path;
+    return RebuildFromResult(result, assembly);
+  }
+  const RobotDescription robot = ReadRobotYaml(options.robot_path);
+  if (description) *description = "a priori Model 12 of " + options.robot_path;
+  return IdentifiedRobot{std::make_unique<Model12>(robot.model12, robot.assembly), robot.X_BC,
+                         robot.X_TE};
+}
+
+}  // namespace h4::host::cli

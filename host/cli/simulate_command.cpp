@@ -1,0 +1,140 @@
+// `h4cal simulate`: a simulated calibration campaign (issue "Host solver", item 6): a true
+// robot drawn around an a priori (or the paper's Table 2), the paper's 81-pose grid (or a
+// poses CSV), measurement noise; writes the dataset, the a priori robot.yaml, the truth,
+// and the held-out poses' true joints and board poses for scoring with `h4cal fk --compare`.
+#include <filesystem>
+#include <numbers>
+
+#include <spdlog/spdlog.h>
+
+#include "common/formats/dataset_csv.h"
+#include "common/formats/joints_csv.h"
+#include "common/formats/poses_csv.h"
+#include "common/formats/robot_yaml.h"
+#include "host/cli/commands.h"
+#include "host/kinematics/measurement_chain.h"
+#include "host/simulation/dataset_simulator.h"
+#include "host/simulation/paper_scenario.h"
+#include "host/simulation/pose_plan.h"
+#include "host/simulation/true_robot.h"
+#include "host/simulation/truth_file.h"
+
+namespace h4::host::cli {
+namespace {
+
+struct SimulateOptions {
+  bool paper = false;
+  std::string truth = "12";
+  std::string robot_path;
+  std::string plan_path;
+  uint64_t seed = 1;
+  uint64_t robot_seed = 1;
+  double sigma_t_mm = 0.2;
+  double sigma_r_deg = 0.03;
+  double sigma_q = 2e-5;
+  int valid = 10;
+  std::string out_dir;
+};
+
+void Run(const SimulateOptions& options) {
+  namespace fs = std::filesystem;
+  const RobotDescription apriori =
+      options.robot_path.empty() ? PaperAprioriRobot() : ReadRobotYaml(options.robot_path);
+  TrueGeometry geometry = TrueGeometry::kPerturbedModel12;
+  if (options.paper || options.truth == "paper") {
+    geometry = TrueGeometry::kPaperTable2;
+  } else if (options.truth == "31") {
+    geometry = TrueGeometry::kPerturbedModel31;
+  }
+  PerturbationOptions perturbation;
+  perturbation.seed = options.robot_seed;
+  const SimulatedRobot robot = MakeTrueRobot(apriori, geometry, perturbation);
+
+  const PosePlan plan = options.plan_path.empty()
+                            ? GridPosePlan()
+                            : PosePlanFromRows(ReadPosesCsv(options.plan_path));
+  DatasetOptions dataset_options;
+  dataset_options.seed = options.seed;
+  dataset_options.valid_count = options.valid;
+  dataset_options.noise.sigma_t = options.sigma_t_mm * 1e-3;
+  dataset_options.noise.sigma_r = options.sigma_r_deg * std::numbers::pi / 180.0;
+  dataset_options.noise.sigma_q = options.sigma_q;
+  const SimulatedDataset dataset = SimulateDataset(robot, plan, dataset_options);
+  if (dataset.rows.empty()) {
+    throw std::runtime_error("no planned pose is reachable by the true robot");
+  }
+
+  fs::create_directories(options.out_dir);
+  const fs::path dir(options.out_dir);
+  WriteDatasetCsv((dir / "dataset.csv").string(), dataset.rows);
+  WriteRobotYaml((dir / "robot.yaml").string(), apriori);
+  SimulationTruth truth{robot, dataset_options.noise, options.robot_seed, options.seed};
+  WriteTruthYaml((dir / "truth.yaml").string(), truth);
+
+  // The held-out poses' true joints and true board poses: `h4cal fk --result R
+  // --joints heldout_joints.csv --compare heldout_truth.csv` scores an identification.
+  std::vector<JointsRow> heldout_joints;
+  std::vector<FkRow> heldout_truth;
+  for (size_t i = 0; i < dataset.rows.size(); ++i) {
+    if (dataset.rows[i].set != PoseSet::kValid) continue;
+    const SimulatedPose& t = dataset.truth[i];
+    heldout_joints.push_back({t.pose_id, {t.q[0], t.q[1], t.q[2], t.q[3]}});
+    heldout_truth.push_back({{t.pose_id, t.x_B[0], t.x_B[1], t.x_B[2], t.x_B[3]}, t.X_CT});
+  }
+  WriteJointsCsv((dir / "heldout_joints.csv").string(), heldout_joints);
+  WriteFkCsv((dir / "heldout_truth.csv").string(), heldout_truth);
+
+  spdlog::info("simulated Model {} truth{}: {} poses ({} held out), {} out of reach",
+               robot.truth_model(),
+               geometry == TrueGeometry::kPaperTable2 ? " (paper Table 2)" : "",
+               dataset.rows.size(), heldout_joints.size(), dataset.unreachable.size());
+  spdlog::info(
+      "wrote {}/{{dataset.csv, robot.yaml, truth.yaml, heldout_joints.csv, heldout_truth.csv}}",
+      options.out_dir);
+}
+
+}  // namespace
+
+void AddSimulateCommand(CLI::App& app) {
+  auto options = std::make_shared<SimulateOptions>();
+  CLI::App* command = app.add_subcommand(
+      "simulate", "Simulate a calibration campaign: dataset, a priori robot.yaml and truth");
+  command->add_flag("--paper", options->paper,
+                    "The paper's scenario: Table 2 'Identified' as the true robot, Table 2 a "
+                    "priori in robot.yaml (same as --truth paper)");
+  command
+      ->add_option("--truth", options->truth,
+                   "True geometry: 12 (a priori Model 12 perturbed), 31 (perturbed joint "
+                   "positions, axes and lengths), paper (Table 2)")
+      ->check(CLI::IsMember({"12", "31", "paper"}))
+      ->capture_default_str();
+  command
+      ->add_option("--robot", options->robot_path,
+                   "A priori robot.yaml to draw the truth around (default: the paper's a priori)")
+      ->check(CLI::ExistingFile);
+  command
+      ->add_option("--plan", options->plan_path,
+                   "Poses CSV pose_id,X,Y,Z,theta (default: the paper's 81-pose grid, "
+                   "200x200x150 mm at (0,0,-0.45) m, theta -20/0/20 deg)")
+      ->check(CLI::ExistingFile);
+  command->add_option("--seed", options->seed, "Seed of the noise and of the calib/valid split")
+      ->capture_default_str();
+  command->add_option("--robot-seed", options->robot_seed, "Seed of the true robot's perturbation")
+      ->capture_default_str();
+  command->add_option("--sigma-t-mm", options->sigma_t_mm, "Camera translation noise per axis, mm")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--sigma-r-deg", options->sigma_r_deg, "Camera rotation noise per axis, deg")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--sigma-q", options->sigma_q, "Encoder noise, rad")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--validation", options->valid, "Poses held out for validation")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--out-dir", options->out_dir, "Output folder")->required();
+  command->callback([options] { Run(*options); });
+}
+
+}  // namespace h4::host::cli

@@ -1,0 +1,367 @@
+// The staged identification pipeline; see identification.h. Result filling and the
+// validation figures live in identification_report.cpp.
+#include "host/identification/identification.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <set>
+#include <stdexcept>
+
+#include "host/identification/identification_report.h"
+#include "host/kinematics/model12.h"
+#include "host/kinematics/model31.h"
+
+namespace h4::host {
+namespace {
+
+std::string Printf(const char* fmt, double a, double b = 0.0, double c = 0.0) {
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer, fmt, a, b, c);
+  return buffer;
+}
+
+double Rms(const Eigen::VectorXd& r) {
+  return r.size() > 0 ? std::sqrt(r.squaredNorm() / static_cast<double>(r.size())) : 0.0;
+}
+
+void FixUserParameters(const IdentificationOptions& options, ParameterVector* p,
+                       std::vector<std::string>* log) {
+  for (const std::string& name : options.fixed_parameters) {
+    const int index = p->IndexOf(name);
+    if (index < 0) {
+      log->push_back("ignored unknown fixed parameter " + name);
+      continue;
+    }
+    p->Fix(index, "fixed by the user");
+  }
+}
+
+// One cost stage: identifiability at the start, NLopt, LM polish. `p` carries the values
+// in and out; its mask on return is this stage's. `placement_only` fixes the kinematics.
+StageSummary RunStage(CostKind kind, bool placement_only, const KinematicModel& model,
+                      const std::vector<DatasetRow>& rows, const IdentificationOptions& options,
+                      ParameterVector* p, IdentifiabilityReport* identifiability) {
+  StageSummary stage;
+  stage.cost = kind;
+  stage.name = std::string(ToString(kind)) + (placement_only ? " (placement)" : "");
+  stage.poses = static_cast<int>(rows.size());
+  const IdentificationCost cost(kind, model, rows, options.cost);
+  p->FreeAll();
+  std::vector<std::string> ignored;
+  FixUserParameters(options, p, &ignored);
+  if (placement_only) {
+    for (int k = 0; k < p->kinematic_count(); ++k) p->Fix(k, "placement stage");
+  }
+  Eigen::VectorXd r;
+  Eigen::MatrixXd J;
+  std::string why;
+  if (!cost.Evaluate(*p, &r, &J, &why)) {
+    stage.evaluable = false;
+    stage.message = "cannot evaluate the " + std::string(ToString(kind)) + " cost at the start: " + why;
+    return stage;
+  }
+  stage.rms_before = Rms(r);
+  IdentifiabilityReport report = AnalyzeIdentifiability(
+      J, model.name(), AnalysisOptionsFor(kind, options.identifiability), p);
+  for (const FixedByAnalysis& f : report.fixed) stage.fixed.push_back(f.name + ": " + f.reason);
+  if (identifiability != nullptr) *identifiability = report;
+
+  const ParameterVector base = *p;
+  const ResidualFunction f = [&](const Eigen::VectorXd& v, Eigen::VectorXd* res,
+                                 Eigen::MatrixXd* J_free) {
+    ParameterVector q = base;
+    q.SetFreeValues(v);
+    if (J_free == nullptr) return cost.Evaluate(q, res, nullptr);
+    Eigen::MatrixXd J_all;
+    if (!cost.Evaluate(q, res, &J_all)) return false;
+    *J_free = FreeColumns(J_all, q);
+    return true;
+  };
+  Eigen::VectorXd v = p->FreeValues();
+  bool converged = false;
+  if (options.nlopt.algorithm != "none") {
+    stage.minimizers.push_back(MinimizeWithNlopt(f, options.nlopt, &v, options.progress));
+    converged = stage.minimizers.back().converged;
+  }
+  if (options.lm_polish) {
+    stage.minimizers.push_back(
+        MinimizeWithLevenbergMarquardt(f, options.lm, &v, options.progress));
+    converged = stage.minimizers.back().converged;
+  }
+  p->SetFreeValues(v);
+  if (!cost.Evaluate(*p, &r, nullptr, &why)) {
+    stage.evaluable = false;
+    stage.message = "cannot evaluate the cost at the solution: " + why;
+    return stage;
+  }
+  stage.rms_after = Rms(r);
+  stage.ok = converged;
+  stage.message = converged ? "converged" : "did not converge: " + stage.minimizers.back().stop_reason;
+  return stage;
+}
+
+// Per-pose residual norms of `kind` at p over rows.
+std::vector<double> PoseResidualNorms(CostKind kind, const KinematicModel& model,
+                                      const std::vector<DatasetRow>& rows,
+                                      const IdentificationOptions& options,
+                                      const ParameterVector& p) {
+  const IdentificationCost cost(kind, model, rows, options.cost);
+  Eigen::VectorXd r;
+  std::vector<double> norms;
+  if (!cost.Evaluate(p, &r, nullptr)) return norms;
+  const int m = cost.residuals_per_pose();
+  for (size_t j = 0; j < rows.size(); ++j) {
+    norms.push_back(r.segment(static_cast<Eigen::Index>(j) * m, m).norm());
+  }
+  return norms;
+}
+
+}  // namespace
+
+IdentifiabilityOptions AnalysisOptionsFor(CostKind kind, const IdentifiabilityOptions& base) {
+  IdentifiabilityOptions analysis = base;
+  if (kind != CostKind::kMeasurement && analysis.second_order_candidates.empty()) {
+    analysis.second_order_candidates = {"X_TE.rx", "X_TE.ry"};
+  }
+  return analysis;
+}
+
+bool IdentificationOptions::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& message) {
+    if (why != nullptr) *why = "identification options: " + message;
+    return false;
+  };
+  if (nlopt.algorithm == "none" && !lm_polish) return fail("no minimiser (nlopt none, no LM)");
+  if (nlopt.max_evaluations <= 0) return fail("nlopt.max_evaluations must be positive");
+  if (lm.max_iterations <= 0) return fail("lm.max_iterations must be positive");
+  if (!(cost.default_sigma_t > 0) || !(cost.default_sigma_r > 0)) {
+    return fail("default sigmas must be positive");
+  }
+  if (!(identifiability.relative_singular_value_threshold > 0 &&
+        identifiability.relative_singular_value_threshold < 1)) {
+    return fail("identifiability threshold must be in (0, 1)");
+  }
+  if (reject_outliers && !(outlier_factor > 1.0)) return fail("outlier_factor must exceed 1");
+  if (!(max_rejected_fraction >= 0 && max_rejected_fraction < 1)) {
+    return fail("max_rejected_fraction must be in [0, 1)");
+  }
+  if (!(correlation_threshold > 0 && correlation_threshold < 1)) {
+    return fail("correlation_threshold must be in (0, 1)");
+  }
+  return true;
+}
+
+IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const ParameterVector& apriori,
+                                        const ParameterVector& start,
+                                        const std::vector<DatasetRow>& calib,
+                                        const std::vector<DatasetRow>& valid,
+                                        const IdentificationOptions& options) {
+  const auto clock_start = std::chrono::steady_clock::now();
+  IdentificationOutcome out{{}, {}, start, {}, {}, {}};
+  IdentificationSummary& summary = out.summary;
+  std::vector<std::string>& log = out.result.log;
+  std::string why;
+  if (!options.IsValid(&why)) {
+    summary.message = why;
+    FillResult(model, apriori, out.parameters, calib, valid, {}, options, &out);
+    return out;
+  }
+  ParameterVector p = start;
+  std::vector<DatasetRow> rows = calib;
+  std::vector<int64_t> rejected;
+
+  // Warm-up stages, then the estimator; the first stage may fit the placement alone first.
+  std::vector<std::pair<CostKind, bool>> plan;
+  for (CostKind kind : options.warmup_stages) plan.emplace_back(kind, false);
+  plan.emplace_back(options.estimator, false);
+  if (options.placement_first) plan.insert(plan.begin(), {plan.front().first, true});
+  bool final_ok = false;
+  for (size_t s = 0; s < plan.size(); ++s) {
+    const bool is_final = s + 1 == plan.size();
+    StageSummary stage = RunStage(plan[s].first, plan[s].second, model, rows, options, &p,
+                                  is_final ? &out.identifiability : nullptr);
+    log.push_back("stage " + stage.name + ": " + stage.message +
+                  Printf(", residual RMS %.4g -> %.4g", stage.rms_before, stage.rms_after));
+    summary.stages.push_back(stage);
+    if (!stage.evaluable) {
+      summary.message = "stage " + stage.name + " failed: " + stage.message;
+      FillResult(model, apriori, p, calib, valid, rejected, options, &out);
+      return out;
+    }
+    final_ok = stage.ok;
+  }
+
+  // Outlier rejection on the estimator's per-pose residuals, then refits.
+  for (int round = 0; options.reject_outliers && round < options.max_outlier_rounds; ++round) {
+    const std::vector<double> norms = PoseResidualNorms(options.estimator, model, rows, options, p);
+    if (norms.empty()) break;
+    std::vector<double> sorted = norms;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2), sorted.end());
+    const double limit = options.outlier_factor * sorted[sorted.size() / 2];
+    std::vector<DatasetRow> kept;
+    std::vector<int64_t> newly;
+    for (size_t j = 0; j < rows.size(); ++j) {
+      (norms[j] > limit ? newly.push_back(rows[j].pose_id), void() : kept.push_back(rows[j]));
+    }
+    if (newly.empty()) break;
+    const double max_rejected = options.max_rejected_fraction * static_cast<double>(calib.size());
+    if (static_cast<double>(rejected.size() + newly.size()) > max_rejected) {
+      log.push_back("outlier rejection stopped: it would reject more than " +
+                    Printf("%.0f%% of the poses", 100.0 * options.max_rejected_fraction));
+      break;
+    }
+    std::string ids;
+    for (int64_t id : newly) ids += (ids.empty() ? "" : " ") + std::to_string(id);
+    log.push_back("rejected poses " + ids + Printf(" (residual norm above %.3g)", limit));
+    rejected.insert(rejected.end(), newly.begin(), newly.end());
+    rows = kept;
+    StageSummary stage = RunStage(options.estimator, false, model, rows, options, &p, &out.identifiability);
+    stage.name += " (after rejection)";
+    log.push_back("stage " + stage.name + ": " + stage.message +
+                  Printf(", residual RMS %.4g -> %.4g", stage.rms_before, stage.rms_after));
+    summary.stages.push_back(stage);
+    final_ok = stage.ok;
+  }
+
+  for (const StageSummary& stage : summary.stages) {
+    for (const MinimizerReport& m : stage.minimizers) summary.iterations += m.iterations;
+  }
+  if (!summary.stages.empty() && !summary.stages.back().minimizers.empty()) {
+    summary.final_cost = summary.stages.back().minimizers.back().final_cost;
+  }
+  std::vector<DatasetRow> used;
+  for (const DatasetRow& row : calib) {
+    if (std::find(rejected.begin(), rejected.end(), row.pose_id) == rejected.end()) used.push_back(row);
+  }
+  out.parameters = p;
+  FillResult(model, apriori, p, used, valid, rejected, options, &out);
+  summary.chi2_per_dof = out.uncertainty.chi2_per_dof;
+  summary.usable = final_ok && out.uncertainty.ok;
+  if (summary.message.empty()) {
+    summary.message = summary.usable ? "converged" :
+                      !final_ok ? "the final stage did not converge" :
+                                  "no covariance at the solution (rank-deficient Jacobian)";
+  }
+  summary.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
+  return out;
+}
+
+IdentificationOutcome Identify(const KinematicModel& apriori_model,
+                               const RigidTransform& X_BC_apriori,
+                               const RigidTransform& X_TE_apriori,
+                               const std::vector<DatasetRow>& calib,
+                               const std::vector<DatasetRow>& valid,
+                               const IdentificationOptions& options) {
+  const ParameterVector apriori(apriori_model, X_BC_apriori, X_TE_apriori);
+  ParameterVector start = apriori;
+  PriorAnalysis prior;
+  if (options.prior_analysis) {
+    prior = AnalyzeRotationAxis(calib, X_BC_apriori, X_TE_apriori);
+    if (prior.ok) {
+      start.set_X_BC(prior.X_BC);
+      start.set_X_TE(prior.X_TE);
+    }
+  }
+  IdentificationOutcome out = IdentifyFromStart(apriori_model, apriori, start, calib, valid, options);
+  if (options.prior_analysis) {
+    out.result.log.insert(out.result.log.begin(), "prior analysis: " + prior.message);
+  }
+  out.prior = prior;
+  return out;
+}
+
+DatasetSplit SplitDataset(const std::vector<DatasetRow>& rows, int valid_count, uint64_t seed) {
+  DatasetSplit split;
+  const bool has_set = std::any_of(rows.begin(), rows.end(), [](const DatasetRow& r) { return r.set.has_value(); });
+  if (has_set) {
+    for (const DatasetRow& row : rows) {
+      (row.set == PoseSet::kValid ? split.valid : split.calib).push_back(row);
+    }
+    split.how = "split by the dataset's set column";
+    return split;
+  }
+  std::vector<size_t> order(rows.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::mt19937_64 rng(seed);
+  std::shuffle(order.begin(), order.end(), rng);
+  const size_t n_valid = std::min(rows.size() / 2, static_cast<size_t>(std::max(0, valid_count)));
+  std::set<size_t> valid_index(order.begin(), order.begin() + static_cast<long>(n_valid));
+  for (size_t i = 0; i < rows.size(); ++i) {
+    (valid_index.count(i) ? split.valid : split.calib).push_back(rows[i]);
+  }
+  split.how = std::to_string(n_valid) + " validation poses drawn at random (seed " +
+              std::to_string(seed) + ")";
+  return split;
+}
+
+ParameterVector AprioriParameters(const RobotDescription& robot, const std::string& model_name,
+                                  std::unique_ptr<KinematicModel>* model) {
+  if (model_name == "12") {
+    *model = std::make_unique<Model12>(robot.model12, robot.assembly);
+    return ParameterVector(**model, robot.X_BC, robot.X_TE);
+  }
+  if (model_name == "31") {
+    *model = std::make_unique<Model31>(Model31Of(robot), robot.assembly);
+    return ParameterVector(**model, NominalX_B31B(robot.model12) * robot.X_BC, robot.X_TE);
+  }
+  throw std::invalid_argument("unknown model \"" + model_name + "\": expected 12 or 31");
+}
+
+IdentificationOutcome IdentifyRobot(const RobotDescription& robot, const std::string& model_name,
+                                    const std::vector<DatasetRow>& rows,
+                                    const IdentificationOptions& options, int valid_count,
+                                    uint64_t seed) {
+  std::unique_ptr<KinematicModel> model;
+  const ParameterVector apriori = AprioriParameters(robot, model_name, &model);
+  const DatasetSplit split = SplitDataset(rows, valid_count, seed);
+  IdentificationOutcome out =
+      Identify(*model, apriori.X_BC(), apriori.X_TE(), split.calib, split.valid, options);
+  out.result.log.insert(out.result.log.begin(), split.how);
+  return out;
+}
+
+IdentificationOutcome IdentifyModel31FromModel12(const RobotDescription& robot,
+                                                 const IdentificationResult& model12_result,
+                                                 const std::vector<DatasetRow>& rows,
+                                                 const IdentificationOptions& options) {
+  if (model12_result.model != "12") {
+    throw std::invalid_argument("--from expects a Model 12 result, got model " +
+                                model12_result.model);
+  }
+  std::unique_ptr<KinematicModel> model31;
+  const ParameterVector apriori = AprioriParameters(robot, "31", &model31);
+  // The Model 12 result as a parameter vector, then its nominal Model 31.
+  Model12 model12(robot.model12, robot.assembly);
+  ParameterVector p12(model12, model12_result.X_BC, model12_result.X_TE);
+  for (const ResultParameter& rp : model12_result.parameters) {
+    const int index = p12.IndexOf(rp.name);
+    if (index >= 0 && index < p12.kinematic_count()) {
+      Eigen::VectorXd v = p12.values();
+      v[index] = rp.value;
+      p12.set_values(v);
+    }
+  }
+  const ParameterVector start = ConvertModel12To31(p12, model31.get());
+  // Reuse the Model 12 split unless the rows say otherwise.
+  DatasetSplit split;
+  const bool has_set = std::any_of(rows.begin(), rows.end(), [](const DatasetRow& r) { return r.set.has_value(); });
+  if (has_set || model12_result.valid_poses.empty()) {
+    split = SplitDataset(rows);
+  } else {
+    for (const DatasetRow& row : rows) {
+      const auto& v = model12_result.valid_poses;
+      (std::find(v.begin(), v.end(), row.pose_id) != v.end() ? split.valid : split.calib).push_back(row);
+    }
+    split.how = "split as the Model 12 result";
+  }
+  IdentificationOutcome out =
+      IdentifyFromStart(*model31, apriori, start, split.calib, split.valid, options);
+  out.result.log.insert(out.result.log.begin(), "started from the Model 12 result; " + split.how);
+  return out;
+}
+
+}  // namespace h4::host

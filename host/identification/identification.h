@@ -1,0 +1,148 @@
+// Kinematic identification of an H4 (paper II-III, kinematics.md "Identification"): from a
+// rough a priori robot and a paired dataset to a filled IdentificationResult. Stages:
+//  1. prior analysis of the rotation axis (paper III.B) turns the a priori X_BC / X_TE so
+//     that their z axes agree with the measured axis;
+//  2. warm-up stages (default: the implicit cost eq. (5), which any pose can evaluate)
+//     bring the parameters close enough for the IK / FK based costs;
+//  3. the estimator's cost (default: measurement space; or eq. (3), or eq. (5)), each stage
+//     preceded by the identifiability analysis at its start point, solved by NLopt then a
+//     Levenberg-Marquardt polish; then outlier rejection and refits;
+//  4. covariance, condition number, correlations, joint residuals, held-out pose error.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/formats/dataset_csv.h"
+#include "common/formats/identification_result.h"
+#include "common/robot/robot_description.h"
+#include "host/identification/identifiability.h"
+#include "host/identification/identification_cost.h"
+#include "host/identification/least_squares.h"
+#include "host/identification/parameter_vector.h"
+#include "host/identification/prior_analysis.h"
+#include "host/identification/uncertainty.h"
+
+namespace h4::host {
+
+struct IdentificationOptions {
+  /// The final cost: kMeasurement (default, statistically efficient), kJointSpace (the
+  /// paper's eq. (3)) or kImplicit (the paper's eq. (5) for Model 31).
+  CostKind estimator = CostKind::kMeasurement;
+  /// Costs solved before the estimator, in order. The implicit cost needs neither IK nor
+  /// FK, so it converges from an a priori whose poses may be out of the model's reach.
+  std::vector<CostKind> warmup_stages = {CostKind::kImplicit};
+  /// Turn the a priori X_BC / X_TE onto the measured rotation axis first (paper III.B).
+  bool prior_analysis = true;
+  /// In the first stage, fit X_BC and X_TE alone (kinematics at the a priori) before
+  /// freeing everything: a camera off by centimetres and degrees is mostly placement.
+  bool placement_first = true;
+  /// NLopt stage of each cost (the engine); its algorithm "none" skips it.
+  NloptOptions nlopt;
+  /// Levenberg-Marquardt polish after NLopt (see the benchmark for why it is the default).
+  bool lm_polish = true;
+  LmOptions lm;
+  CostOptions cost;
+  IdentifiabilityOptions identifiability;
+  /// Parameters the user fixes at their start value (kinematics.md names).
+  std::vector<std::string> fixed_parameters;
+  /// Outlier rejection: a pose whose residual norm exceeds outlier_factor times the median
+  /// pose residual norm is rejected and the estimator refitted, at most max_outlier_rounds
+  /// times and never more than max_rejected_fraction of the poses.
+  bool reject_outliers = true;
+  double outlier_factor = 3.0;
+  int max_outlier_rounds = 3;
+  double max_rejected_fraction = 0.2;
+  /// Parameter pairs with |correlation| above this are reported.
+  double correlation_threshold = 0.9;
+  /// Called after every solver iteration; return false to stop.
+  ProgressCallback progress;
+
+  bool IsValid(std::string* why) const;
+};
+
+struct StageSummary {
+  std::string name;  ///< e.g. "implicit (placement)", "measurement"
+  CostKind cost = CostKind::kImplicit;
+  int poses = 0;
+  std::vector<MinimizerReport> minimizers;
+  std::vector<std::string> fixed;  ///< fixed during this stage, with reasons
+  double rms_before = 0.0;         ///< RMS of the residuals (rad, m, or sigma units)
+  double rms_after = 0.0;
+  bool ok = false;         ///< converged
+  bool evaluable = true;   ///< false: the cost could not be evaluated (poses out of reach)
+  std::string message;
+};
+
+struct IdentificationSummary {
+  std::vector<StageSummary> stages;
+  bool usable = false;  ///< the final stage converged and the covariance exists
+  std::string message;  ///< why it is not usable, or how it ended
+  double final_cost = 0.0;
+  double chi2_per_dof = 0.0;
+  int iterations = 0;  ///< over all stages and minimisers
+  double seconds = 0.0;
+  /// A human-readable account, one stage per paragraph.
+  std::string FullReport() const;
+};
+
+struct IdentificationOutcome {
+  IdentificationResult result;  ///< filled entirely (formats.md)
+  IdentificationSummary summary;
+  ParameterVector parameters;  ///< the final vector with its fixed mask
+  Uncertainty uncertainty;
+  PriorAnalysis prior;
+  IdentifiabilityReport identifiability;  ///< of the final stage, at its start point
+};
+
+/// The identifiability options a cost stage uses: `base`, plus for eq. (3) / (5) the board
+/// tilt X_TE.rx, X_TE.ry as second-order candidates (paper III.C).
+IdentifiabilityOptions AnalysisOptionsFor(CostKind kind, const IdentifiabilityOptions& base);
+
+/// Identification from an a priori: `apriori_model` (12 or 31) with X_BC / X_TE in its base
+/// frame; `calib` for identification, `valid` held out (may be empty).
+IdentificationOutcome Identify(const KinematicModel& apriori_model,
+                               const RigidTransform& X_BC_apriori,
+                               const RigidTransform& X_TE_apriori,
+                               const std::vector<DatasetRow>& calib,
+                               const std::vector<DatasetRow>& valid,
+                               const IdentificationOptions& options);
+
+/// The same from an explicit start (e.g. a converted Model 12 result) with `apriori` only
+/// reported; parameters fixed by the analysis keep the start's values. No prior analysis.
+IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const ParameterVector& apriori,
+                                        const ParameterVector& start,
+                                        const std::vector<DatasetRow>& calib,
+                                        const std::vector<DatasetRow>& valid,
+                                        const IdentificationOptions& options);
+
+/// Calibration / validation split: the `set` column when any row has one; else
+/// `valid_count` rows drawn with `seed` (reported in `how`).
+struct DatasetSplit {
+  std::vector<DatasetRow> calib, valid;
+  std::string how;
+};
+DatasetSplit SplitDataset(const std::vector<DatasetRow>& rows, int valid_count = 10,
+                          uint64_t seed = 1);
+
+/// The robot's a priori model: "12" (Model12) or "31" (its model31 block or the nominal
+/// Model 31, X_BC mapped to B31). Throws std::invalid_argument for another name.
+ParameterVector AprioriParameters(const RobotDescription& robot, const std::string& model_name,
+                                  std::unique_ptr<KinematicModel>* model);
+
+/// `h4cal identify --model 12|31`: split, a priori from the robot, Identify.
+IdentificationOutcome IdentifyRobot(const RobotDescription& robot, const std::string& model_name,
+                                    const std::vector<DatasetRow>& rows,
+                                    const IdentificationOptions& options, int valid_count = 10,
+                                    uint64_t seed = 1);
+
+/// `h4cal identify --model 31 --from result12.json` (paper III.C): Model 31 starts from the
+/// nominal Model 31 of the Model 12 result, and parameters it must fix keep that result's
+/// values. The Model 12 result's pose split is reused when the rows carry no `set`.
+IdentificationOutcome IdentifyModel31FromModel12(const RobotDescription& robot,
+                                                 const IdentificationResult& model12_result,
+                                                 const std::vector<DatasetRow>& rows,
+                                                 const IdentificationOptions& options);
+
+}  // namespace h4::host

@@ -1,0 +1,208 @@
+// The identification costs, eq. (3), eq. (5) and measurement space; see
+// identification_cost.h. Derivatives of q (IK) and x (FK) by the parameters come from
+// f(q, x, xi) = 0: dq_i = -(J_f_x dx + J_f_xi dxi)_i / J_f_q_i and dx = -J_f_x^-1 J_f_xi dxi.
+#include "host/identification/identification_cost.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "common/geometry/rotation.h"
+#include "host/identification/pose_chain.h"
+#include "host/kinematics/forward_kinematics.h"
+#include "host/kinematics/measurement_chain.h"
+
+namespace h4::host {
+namespace {
+
+std::string PoseName(const DatasetRow& row) { return "pose " + std::to_string(row.pose_id); }
+
+}  // namespace
+
+const char* ToString(CostKind kind) {
+  switch (kind) {
+    case CostKind::kJointSpace:
+      return "joint";
+    case CostKind::kImplicit:
+      return "implicit";
+    case CostKind::kMeasurement:
+      return "measurement";
+  }
+  return "unknown";
+}
+
+bool ParseCostKind(const std::string& text, CostKind* kind) {
+  for (CostKind k : {CostKind::kJointSpace, CostKind::kImplicit, CostKind::kMeasurement}) {
+    if (text == ToString(k)) {
+      *kind = k;
+      return true;
+    }
+  }
+  return false;
+}
+
+IdentificationCost::IdentificationCost(CostKind kind, const KinematicModel& model,
+                                       std::vector<DatasetRow> rows, const CostOptions& options)
+    : kind_(kind), model_(model.Clone()), rows_(std::move(rows)), options_(options) {
+  const std::vector<std::string>& names = model_->parameter_names();
+  for (int leg = 0; leg < 4; ++leg) {
+    int index = -1;
+    for (size_t k = 0; k < names.size(); ++k) {
+      if (names[k] == "forearm" || names[k] == "forearm" + std::to_string(leg + 1)) {
+        index = static_cast<int>(k);
+      }
+    }
+    if (index < 0) throw std::invalid_argument("IdentificationCost: model has no forearm length");
+    forearm_index_.push_back(index);
+  }
+}
+
+IdentificationCost::IdentificationCost(const IdentificationCost& other)
+    : kind_(other.kind_),
+      model_(other.model_->Clone()),
+      rows_(other.rows_),
+      options_(other.options_),
+      forearm_index_(other.forearm_index_) {}
+
+double IdentificationCost::RotationWeight(const DatasetRow& row) const {
+  const double s = options_.use_dataset_sigmas && row.sigma_r && *row.sigma_r > 0
+                       ? *row.sigma_r
+                       : options_.default_sigma_r;
+  return 1.0 / s;
+}
+
+double IdentificationCost::TranslationWeight(const DatasetRow& row) const {
+  const double s = options_.use_dataset_sigmas && row.sigma_t && *row.sigma_t > 0
+                       ? *row.sigma_t
+                       : options_.default_sigma_t;
+  return 1.0 / s;
+}
+
+bool IdentificationCost::Evaluate(const ParameterVector& p, Eigen::VectorXd* r, Eigen::MatrixXd* J,
+                                  std::string* why) const {
+  p.ApplyTo(model_.get());
+  const int m = residuals_per_pose();
+  r->resize(residual_count());
+  if (J != nullptr) J->setZero(residual_count(), p.size());
+  for (size_t j = 0; j < rows_.size(); ++j) {
+    const Eigen::Index row0 = static_cast<Eigen::Index>(j) * m;
+    auto r_j = r->segment(row0, m);
+    bool ok = false;
+    switch (kind_) {
+      case CostKind::kJointSpace:
+        ok = EvaluateJoint(p, rows_[j], r_j, J, row0, why);
+        break;
+      case CostKind::kImplicit:
+        ok = EvaluateImplicit(p, rows_[j], r_j, J, row0, why);
+        break;
+      case CostKind::kMeasurement:
+        ok = EvaluateMeasurement(p, rows_[j], r_j, J, row0, why);
+        break;
+    }
+    if (!ok) return false;
+  }
+  if (!r->allFinite() || (J != nullptr && !J->allFinite())) {
+    if (why != nullptr) *why = "non-finite residual or Jacobian";
+    return false;
+  }
+  return true;
+}
+
+bool IdentificationCost::EvaluateJoint(const ParameterVector& p, const DatasetRow& row,
+                                       Eigen::Ref<Eigen::VectorXd> r, Eigen::MatrixXd* J,
+                                       Eigen::Index row0, std::string* why) const {
+  const MeasuredEePoseJacobians chain =
+      EePoseFromMeasurementWithJacobians(p.X_BC(), row.X_CT, p.X_TE());
+  const IkResult ik = model_->InverseKinematics(chain.x);
+  if (!ik.ok()) {
+    if (why != nullptr) *why = PoseName(row) + " is out of reach of the model (IK)";
+    return false;
+  }
+  for (int i = 0; i < 4; ++i) r[i] = WrapAngle(ik.q[i] - row.q[static_cast<size_t>(i)]);
+  if (J == nullptr) return true;
+  Eigen::Matrix4d J_f_x;
+  Eigen::Vector4d J_f_q;
+  Eigen::MatrixXd J_f_xi;
+  model_->ConstraintJacobians(ik.q, chain.x, &J_f_x, &J_f_q, &J_f_xi);
+  const int n_kin = p.kinematic_count();
+  for (int i = 0; i < 4; ++i) {
+    if (std::abs(J_f_q[i]) < 1e-12) {
+      if (why != nullptr) *why = PoseName(row) + ": leg " + std::to_string(i + 1) + " singular";
+      return false;
+    }
+    const double s = -1.0 / J_f_q[i];
+    auto J_row = J->row(row0 + i);
+    J_row.head(n_kin) = s * J_f_xi.row(i);
+    J_row.segment<6>(p.bc_offset()) = s * J_f_x.row(i) * chain.J_x_bc;
+    J_row.segment<6>(p.te_offset()) = s * J_f_x.row(i) * chain.J_x_te;
+  }
+  return true;
+}
+
+bool IdentificationCost::EvaluateImplicit(const ParameterVector& p, const DatasetRow& row,
+                                          Eigen::Ref<Eigen::VectorXd> r, Eigen::MatrixXd* J,
+                                          Eigen::Index row0, std::string* why) const {
+  (void)why;  // always evaluable: no IK, no FK
+  const JointVector q(row.q[0], row.q[1], row.q[2], row.q[3]);
+  const MeasuredEePoseJacobians chain =
+      EePoseFromMeasurementWithJacobians(p.X_BC(), row.X_CT, p.X_TE());
+  const Eigen::Vector4d f = model_->Constraints(q, chain.x);
+  Eigen::Vector4d length;  // |closing vector_i| = sqrt(f_i + forearm_i^2)
+  for (int i = 0; i < 4; ++i) {
+    const double F = p.values()[forearm_index_[static_cast<size_t>(i)]];
+    length[i] = std::sqrt(std::max(f[i] + F * F, 1e-24));
+    r[i] = F - length[i];
+  }
+  if (J == nullptr) return true;
+  Eigen::Matrix4d J_f_x;
+  Eigen::MatrixXd J_f_xi;
+  model_->ConstraintJacobians(q, chain.x, &J_f_x, nullptr, &J_f_xi);
+  const int n_kin = p.kinematic_count();
+  for (int i = 0; i < 4; ++i) {
+    const int k_F = forearm_index_[static_cast<size_t>(i)];
+    const double F = p.values()[k_F];
+    const double s = -0.5 / length[i];  // d(-|c|)/df
+    auto J_row = J->row(row0 + i);
+    J_row.head(n_kin) = s * J_f_xi.row(i);
+    // |c|^2 = f + F^2, so F enters |c| directly besides through f.
+    J_row[k_F] += 1.0 + s * 2.0 * F;
+    J_row.segment<6>(p.bc_offset()) = s * J_f_x.row(i) * chain.J_x_bc;
+    J_row.segment<6>(p.te_offset()) = s * J_f_x.row(i) * chain.J_x_te;
+  }
+  return true;
+}
+
+bool IdentificationCost::EvaluateMeasurement(const ParameterVector& p, const DatasetRow& row,
+                                             Eigen::Ref<Eigen::VectorXd> r, Eigen::MatrixXd* J,
+                                             Eigen::Index row0, std::string* why) const {
+  const JointVector q(row.q[0], row.q[1], row.q[2], row.q[3]);
+  const RigidTransform X_BC = p.X_BC();
+  const RigidTransform X_TE = p.X_TE();
+  // The measured pose through the chain is the natural start of Newton's method.
+  const EePose guess = EePoseFromMeasurement(X_BC, row.X_CT, X_TE).x;
+  const FkResult fk = ForwardKinematics(*model_, q, guess);
+  if (!fk.ok()) {
+    if (why != nullptr) *why = PoseName(row) + ": forward kinematics " + ToString(fk.status);
+    return false;
+  }
+  const BoardPoseError err = BoardPoseErrorOf(X_BC, fk.x, X_TE, row.X_CT, J != nullptr);
+  const double w_r = RotationWeight(row);
+  const double w_t = TranslationWeight(row);
+  r.head<3>() = w_r * err.e.head<3>();
+  r.tail<3>() = w_t * err.e.tail<3>();
+  if (J == nullptr) return true;
+  Eigen::MatrixXd J_x_xi;
+  if (!ForwardKinematicsJacobians(*model_, q, fk.x, nullptr, &J_x_xi)) {
+    if (why != nullptr) *why = PoseName(row) + ": forward kinematics singular";
+    return false;
+  }
+  const int n_kin = p.kinematic_count();
+  auto block = J->middleRows(row0, 6);
+  block.leftCols(n_kin) = err.J_e_x * J_x_xi;
+  block.middleCols<6>(p.bc_offset()) = err.J_e_bc;
+  block.middleCols<6>(p.te_offset()) = err.J_e_te;
+  block.topRows<3>() *= w_r;
+  block.bottomRows<3>() *= w_t;
+  return true;
+}
+
+}  // namespace h4::host

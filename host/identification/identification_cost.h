@@ -1,0 +1,83 @@
+// The identification costs (kinematics.md, "Identification") as residual vectors with
+// analytic Jacobians by the whole parameter vector (kinematic parameters, X_BC, X_TE):
+//  - kJointSpace, paper eq. (3): wrap(q_i(xi, x_j) - q~_ij), x_j from the measured X_CT
+//    through X_BE = X_BC X_CT X_TE, q_i by the closed-form IK (Model 12 and 31 alike);
+//  - kImplicit, paper eq. (5): forearm_i - |closing vector_i| (for Model 12 too);
+//  - kMeasurement: log(X_CT_measured^-1 X_CT_predicted) / sigma, six per pose, with
+//    X_CT_predicted = inv(X_BC) X_BE(FK(q~)) inv(X_TE).
+// The IK and FK derivatives come from the implicit function theorem on the closure
+// equations f(q, x, xi) = 0 of KinematicModel.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "common/formats/dataset_csv.h"
+#include "host/identification/parameter_vector.h"
+#include "host/kinematics/kinematic_model.h"
+
+namespace h4::host {
+
+enum class CostKind { kJointSpace, kImplicit, kMeasurement };
+
+/// "joint", "implicit", "measurement" (the estimator names of IdentificationResult).
+const char* ToString(CostKind kind);
+/// Parses those names; false when unknown.
+bool ParseCostKind(const std::string& text, CostKind* kind);
+
+struct CostOptions {
+  /// Translation std of a measured X_CT when the dataset has no sigma_t, m (paper: 0.2 mm).
+  double default_sigma_t = 0.2e-3;
+  /// Rotation std when the dataset has no sigma_r, rad (paper: 0.03 deg).
+  double default_sigma_r = 0.03 * 3.14159265358979323846 / 180.0;
+  /// Use the dataset's per-pose sigma_t / sigma_r when present.
+  bool use_dataset_sigmas = true;
+};
+
+class IdentificationCost {
+ public:
+  /// `model` gives the kind of model (it is cloned); `rows` the calibration poses.
+  IdentificationCost(CostKind kind, const KinematicModel& model, std::vector<DatasetRow> rows,
+                     const CostOptions& options = CostOptions{});
+  IdentificationCost(const IdentificationCost& other);
+  IdentificationCost& operator=(const IdentificationCost&) = delete;
+
+  CostKind kind() const { return kind_; }
+  const std::vector<DatasetRow>& rows() const { return rows_; }
+  /// 4 (joint, implicit) or 6 (measurement).
+  int residuals_per_pose() const { return kind_ == CostKind::kMeasurement ? 6 : 4; }
+  int residual_count() const { return residuals_per_pose() * static_cast<int>(rows_.size()); }
+
+  /// Residuals at the parameter values of `p` and, when J is non-null, their Jacobian by
+  /// every parameter (residual_count x p.size()). Rows of pose j start at
+  /// j * residuals_per_pose(). Returns false when a pose cannot be evaluated (IK out of
+  /// reach, FK failure, singular leg); `why` then names the pose. Never returns NaN.
+  /// Not thread-safe (it reuses one model copy).
+  bool Evaluate(const ParameterVector& p, Eigen::VectorXd* r, Eigen::MatrixXd* J,
+                std::string* why = nullptr) const;
+
+  /// The per-pose 1/sigma weights of the measurement cost (rotation, translation).
+  double RotationWeight(const DatasetRow& row) const;
+  double TranslationWeight(const DatasetRow& row) const;
+
+ private:
+  bool EvaluateJoint(const ParameterVector& p, const DatasetRow& row, Eigen::Ref<Eigen::VectorXd> r,
+                     Eigen::MatrixXd* J, Eigen::Index row0, std::string* why) const;
+  bool EvaluateImplicit(const ParameterVector& p, const DatasetRow& row,
+                        Eigen::Ref<Eigen::VectorXd> r, Eigen::MatrixXd* J, Eigen::Index row0,
+                        std::string* why) const;
+  bool EvaluateMeasurement(const ParameterVector& p, const DatasetRow& row,
+                           Eigen::Ref<Eigen::VectorXd> r, Eigen::MatrixXd* J, Eigen::Index row0,
+                           std::string* why) const;
+
+  CostKind kind_;
+  std::unique_ptr<KinematicModel> model_;  // parameters set at each Evaluate
+  std::vector<DatasetRow> rows_;
+  CostOptions options_;
+  std::vector<int> forearm_index_;  // per leg, index of its forearm length in xi
+};
+
+}  // namespace h4::host

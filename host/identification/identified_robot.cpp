@@ -1,0 +1,98 @@
+// Identified robot rebuilt from a result, and its figures on a dataset; see identified_robot.h.
+#include "host/identification/identified_robot.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "common/geometry/rotation.h"
+#include "host/kinematics/forward_kinematics.h"
+#include "host/kinematics/measurement_chain.h"
+#include "host/kinematics/model12.h"
+#include "host/kinematics/model31.h"
+
+namespace h4::host {
+
+IdentifiedRobot RebuildFromResult(const IdentificationResult& result, const Assembly& assembly) {
+  IdentifiedRobot robot;
+  if (result.model == "12") {
+    robot.model = std::make_unique<Model12>(Model12Parameters{}, assembly);
+  } else if (result.model == "31") {
+    robot.model = std::make_unique<Model31>(Model31Parameters{}, assembly);
+  } else {
+    throw std::invalid_argument("identification result: unknown model \"" + result.model +
+                                "\" (expected 12 or 31)");
+  }
+  const std::vector<std::string>& names = robot.model->parameter_names();
+  Eigen::VectorXd xi(static_cast<Eigen::Index>(names.size()));
+  for (size_t k = 0; k < names.size(); ++k) {
+    const ResultParameter* p = result.Find(names[k]);
+    if (p == nullptr) {
+      throw std::invalid_argument("identification result: Model " + result.model +
+                                  " parameter \"" + names[k] + "\" is missing");
+    }
+    xi[static_cast<Eigen::Index>(k)] = p->value;
+  }
+  robot.model->set_parameters(xi);
+  robot.X_BC = result.X_BC;
+  robot.X_TE = result.X_TE;
+  return robot;
+}
+
+std::optional<RigidTransform> PredictBoardPose(const KinematicModel& model,
+                                               const RigidTransform& X_BC,
+                                               const RigidTransform& X_TE, const JointVector& q,
+                                               const std::optional<EePose>& guess) {
+  const FkResult fk = ForwardKinematics(model, q, guess);
+  if (!fk.ok()) return std::nullopt;
+  return PredictedBoardPose(X_BC, fk.x, X_TE);
+}
+
+std::array<double, 4> JointResidualRms(const KinematicModel& model, const RigidTransform& X_BC,
+                                       const RigidTransform& X_TE,
+                                       const std::vector<DatasetRow>& rows, int* unreachable) {
+  std::array<double, 4> sum{};
+  int used = 0, out_of_reach = 0;
+  for (const DatasetRow& row : rows) {
+    const IkResult ik = model.InverseKinematics(EePoseFromMeasurement(X_BC, row.X_CT, X_TE).x);
+    if (!ik.ok()) {
+      ++out_of_reach;
+      continue;
+    }
+    for (size_t i = 0; i < 4; ++i) {
+      const double e = WrapAngle(ik.q[static_cast<Eigen::Index>(i)] - row.q[i]);
+      sum[i] += e * e;
+    }
+    ++used;
+  }
+  if (unreachable != nullptr) *unreachable = out_of_reach;
+  std::array<double, 4> rms{};
+  for (size_t i = 0; i < 4; ++i) rms[i] = used > 0 ? std::sqrt(sum[i] / used) : 0.0;
+  return rms;
+}
+
+BoardPoseErrors BoardPoseErrorsOf(const KinematicModel& model, const RigidTransform& X_BC,
+                                  const RigidTransform& X_TE, const std::vector<DatasetRow>& rows) {
+  BoardPoseErrors out;
+  double sum_p = 0.0, sum_r = 0.0;
+  for (const DatasetRow& row : rows) {
+    const JointVector q(row.q[0], row.q[1], row.q[2], row.q[3]);
+    // The measured pose through the chain is a good start for Newton's method.
+    const EePose guess = EePoseFromMeasurement(X_BC, row.X_CT, X_TE).x;
+    const std::optional<RigidTransform> X_CT = PredictBoardPose(model, X_BC, X_TE, q, guess);
+    if (!X_CT) {
+      ++out.failed;
+      continue;
+    }
+    const Eigen::Matrix<double, 6, 1> e = PoseError(row.X_CT, *X_CT);
+    sum_r += e.head<3>().squaredNorm();
+    sum_p += e.tail<3>().squaredNorm();
+    ++out.poses;
+  }
+  if (out.poses > 0) {
+    out.position_rms = std::sqrt(sum_p / out.poses);
+    out.rotation_rms = std::sqrt(sum_r / out.poses);
+  }
+  return out;
+}
+
+}  // namespace h4::host

@@ -1,0 +1,55 @@
+// An identified robot as the later programs use it (fk, ik, validate): a KinematicModel
+// with X_BC and X_TE rebuilt from an IdentificationResult, and the figures computed from a
+// model and a dataset: joint residuals (IK of the measured pose minus the reading, wrapped)
+// and board-pose prediction errors (FK of the readings through the chain).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "common/formats/dataset_csv.h"
+#include "common/formats/identification_result.h"
+#include "common/geometry/rigid_transform.h"
+#include "host/kinematics/kinematic_model.h"
+
+namespace h4::host {
+
+struct IdentifiedRobot {
+  std::unique_ptr<KinematicModel> model;
+  RigidTransform X_BC;  ///< camera in the model's base frame
+  RigidTransform X_TE;
+};
+
+/// Rebuilds the model named by result.model ("12" or "31") from the result's parameters
+/// (every kinematic parameter must be present) with `assembly`. Throws
+/// std::invalid_argument naming the missing parameter or unknown model.
+IdentifiedRobot RebuildFromResult(const IdentificationResult& result,
+                                  const Assembly& assembly = Assembly{});
+
+/// The board pose X_CT predicted from joint readings: FK (started from the model's
+/// workspace centre or `guess`) through X_CT = inv(X_BC) X_BE inv(X_TE); empty when FK fails.
+std::optional<RigidTransform> PredictBoardPose(const KinematicModel& model,
+                                               const RigidTransform& X_BC,
+                                               const RigidTransform& X_TE, const JointVector& q,
+                                               const std::optional<EePose>& guess = std::nullopt);
+
+/// Per-joint RMS (rad) of wrap(IK(X_BC X_CT X_TE) - q~) over the rows; rows out of reach
+/// are skipped and counted in *unreachable.
+std::array<double, 4> JointResidualRms(const KinematicModel& model, const RigidTransform& X_BC,
+                                       const RigidTransform& X_TE,
+                                       const std::vector<DatasetRow>& rows, int* unreachable);
+
+/// RMS position (m) and rotation (rad) error of PredictBoardPose(q~) against the measured
+/// X_CT over the rows; rows where FK fails are counted in `failed`.
+struct BoardPoseErrors {
+  double position_rms = 0.0;
+  double rotation_rms = 0.0;
+  int poses = 0;
+  int failed = 0;
+};
+BoardPoseErrors BoardPoseErrorsOf(const KinematicModel& model, const RigidTransform& X_BC,
+                                  const RigidTransform& X_TE, const std::vector<DatasetRow>& rows);
+
+}  // namespace h4::host

@@ -1,0 +1,128 @@
+// Prior kinematic analysis of the rotation axis (paper III.B); see prior_analysis.h.
+#include "host/identification/prior_analysis.h"
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include <Eigen/Geometry>
+
+#include "common/geometry/rotation.h"
+
+namespace h4::host {
+namespace {
+
+constexpr double kDeg = 180.0 / std::numbers::pi;
+
+struct AxisEstimate {
+  bool ok = false;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  double spread_deg = 0.0;
+  int used = 0;
+};
+
+// For each pose, the rotation to the pose farthest from it in angle gives one axis
+// estimate (sign-aligned with `reference`); the mean is their angle-weighted sum.
+// `relative(j, k)` is the relative rotation whose axis is sought.
+template <typename Relative>
+AxisEstimate EstimateAxis(size_t n, const Relative& relative, const Eigen::Vector3d& reference,
+                          double min_rotation) {
+  AxisEstimate out;
+  std::vector<Eigen::Vector3d> w_per_pose;
+  for (size_t j = 0; j < n; ++j) {
+    Eigen::Vector3d best = Eigen::Vector3d::Zero();
+    for (size_t k = 0; k < n; ++k) {
+      const Eigen::Vector3d w = So3Log(relative(j, k));
+      if (w.norm() > best.norm()) best = w;
+    }
+    if (best.norm() < min_rotation) continue;
+    if (best.dot(reference) < 0) best = -best;
+    w_per_pose.push_back(best);
+  }
+  if (w_per_pose.size() < 2) return out;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& w : w_per_pose) sum += w;
+  out.axis = sum.normalized();
+  double sum_sq = 0.0;
+  for (const Eigen::Vector3d& w : w_per_pose) {
+    const double angle = std::atan2(w.normalized().cross(out.axis).norm(), w.normalized().dot(out.axis));
+    sum_sq += angle * angle;
+  }
+  out.spread_deg = std::sqrt(sum_sq / static_cast<double>(w_per_pose.size())) * kDeg;
+  out.used = static_cast<int>(w_per_pose.size());
+  out.ok = true;
+  return out;
+}
+
+double AngleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+}  // namespace
+
+PriorAnalysis AnalyzeRotationAxis(const std::vector<DatasetRow>& rows,
+                                  const RigidTransform& X_BC_apriori,
+                                  const RigidTransform& X_TE_apriori,
+                                  const PriorAnalysisOptions& options) {
+  PriorAnalysis out;
+  out.X_BC = X_BC_apriori;
+  out.X_TE = X_TE_apriori;
+  if (rows.size() < 3) {
+    out.message = "prior analysis needs at least 3 poses, got " + std::to_string(rows.size());
+    return out;
+  }
+  const Eigen::Matrix3d& R_BC0 = X_BC_apriori.rotation();
+  const Eigen::Matrix3d& R_TE0 = X_TE_apriori.rotation();
+  const auto R = [&](size_t j) -> const Eigen::Matrix3d& { return rows[j].X_CT.rotation(); };
+  // R_CT_j R_CT_k^T = R_CB Rz(theta_j - theta_k) R_BC turns about R_CB z_B.
+  const AxisEstimate in_C = EstimateAxis(
+      rows.size(), [&](size_t j, size_t k) { return Eigen::Matrix3d(R(j) * R(k).transpose()); },
+      R_BC0.transpose() * Eigen::Vector3d::UnitZ(), options.min_rotation);
+  // R_CT_j^T R_CT_k = R_TE Rz(theta_k - theta_j) R_TE^T turns about R_TE z_E.
+  const AxisEstimate in_T = EstimateAxis(
+      rows.size(), [&](size_t j, size_t k) { return Eigen::Matrix3d(R(j).transpose() * R(k)); },
+      R_TE0 * Eigen::Vector3d::UnitZ(), options.min_rotation);
+  if (!in_C.ok || !in_T.ok) {
+    out.message = "prior analysis: the poses do not turn enough about the axis (need pairs "
+                  "turned by more than " +
+                  std::to_string(options.min_rotation * kDeg) + " deg)";
+    return out;
+  }
+  out.axis_C = in_C.axis;
+  out.axis_T = in_T.axis;
+  out.axis_spread_deg = in_C.spread_deg;
+  out.axis_spread_T_deg = in_T.spread_deg;
+  out.poses_used = in_C.used;
+  for (size_t j = 0; j < rows.size(); ++j) {
+    out.relative_theta.push_back(So3Log(R(j) * R(0).transpose()).dot(out.axis_C));
+  }
+
+  // Turn the a priori camera so that its view of z_B is the measured axis, and move it so
+  // that the mean board position in B stays where the a priori placed it.
+  const Eigen::Vector3d b = R_BC0 * out.axis_C;
+  const Eigen::Matrix3d R_fix =
+      Eigen::Quaterniond::FromTwoVectors(b, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d R_BC = R_fix * R_BC0;
+  Eigen::Vector3d p_CE_mean = Eigen::Vector3d::Zero();
+  for (const DatasetRow& row : rows) p_CE_mean += row.X_CT * X_TE_apriori.translation();
+  p_CE_mean /= static_cast<double>(rows.size());
+  out.X_BC = RigidTransform(R_BC, X_BC_apriori.translation() + (R_BC0 - R_BC) * p_CE_mean);
+  out.camera_axis_correction_deg = AngleBetween(b, Eigen::Vector3d::UnitZ()) * kDeg;
+
+  const Eigen::Vector3d c = R_TE0 * Eigen::Vector3d::UnitZ();
+  const Eigen::Matrix3d R_fix_T = Eigen::Quaterniond::FromTwoVectors(c, out.axis_T).toRotationMatrix();
+  out.X_TE = RigidTransform(R_fix_T * R_TE0, X_TE_apriori.translation());
+  out.board_axis_correction_deg = AngleBetween(c, out.axis_T) * kDeg;
+
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "rotation axis from %d poses: spread %.3f deg in C, %.3f deg in T; a priori "
+                "camera axis off by %.2f deg, board axis by %.2f deg",
+                out.poses_used, out.axis_spread_deg, out.axis_spread_T_deg,
+                out.camera_axis_correction_deg, out.board_axis_correction_deg);
+  out.message = line;
+  out.ok = true;
+  return out;
+}
+
+}  // namespace h4::host

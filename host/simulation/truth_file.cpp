@@ -1,0 +1,81 @@
+// The simulation truth file; see truth_file.h.
+#include "host/simulation/truth_file.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "common/formats/format_error.h"
+#include "common/formats/number_text.h"
+#include "common/formats/robot_yaml.h"
+#include "common/formats/yaml_map.h"
+
+namespace h4::host {
+namespace {
+
+std::string List3(const Eigen::Vector3d& v, const std::string& field) {
+  return "[" + FormatDouble(v[0], field) + ", " + FormatDouble(v[1], field) + ", " +
+         FormatDouble(v[2], field) + "]";
+}
+
+}  // namespace
+
+std::string FormatTruthYaml(const SimulationTruth& truth) {
+  const RigidTransform X_B31C = truth.robot.X_B31C();
+  std::string text = FormatRobotYaml(truth.robot.Description());
+  text += "simulation:  # the truth behind a simulated dataset (h4cal simulate)\n";
+  text += std::string("  truth_model: \"") + truth.robot.truth_model() + "\"\n";
+  text += "  robot_seed: " + std::to_string(truth.robot_seed) + "\n";
+  text += "  dataset_seed: " + std::to_string(truth.dataset_seed) + "\n";
+  text += "  X_B31C:  # true camera pose in B31, the frame of Model 31\n";
+  text += "    translation: " + List3(X_B31C.translation(), "X_B31C.translation") + "\n";
+  text += "    rpy: " + List3(X_B31C.rpy(), "X_B31C.rpy") + "\n";
+  text += "  noise:  # one sigma per axis\n";
+  text += "    sigma_t: " + FormatDouble(truth.noise.sigma_t, "noise.sigma_t") + "  # m\n";
+  text += "    sigma_r: " + FormatDouble(truth.noise.sigma_r, "noise.sigma_r") + "  # rad\n";
+  text += "    sigma_q: " + FormatDouble(truth.noise.sigma_q, "noise.sigma_q") + "  # rad\n";
+  return text;
+}
+
+void WriteTruthYaml(const std::string& path, const SimulationTruth& truth) {
+  const std::string text = FormatTruthYaml(truth);
+  std::ofstream out(path);
+  out << text;
+  if (!out) throw FormatError(path, 0, "", "cannot write the truth file");
+}
+
+SimulationTruth ParseTruthYaml(const std::string& text, const std::string& source_name) {
+  SimulationTruth truth;
+  const RobotDescription robot = ParseRobotYaml(text, source_name);
+  truth.robot.model12 = robot.model12;
+  truth.robot.model31 = robot.model31;
+  truth.robot.assembly = robot.assembly;
+  truth.robot.X_BC = robot.X_BC;
+  truth.robot.X_TE = robot.X_TE;
+  const YamlMap root(LoadYaml(text, source_name), source_name, "", 0);
+  const YamlMap simulation = root.Map("simulation");
+  const std::string model = simulation.String("truth_model");
+  if (model != "12" && model != "31") {
+    simulation.Fail("truth_model", "expected \"12\" or \"31\", got \"" + model + "\"");
+  }
+  if (model == "31" && !truth.robot.model31) {
+    simulation.Fail("truth_model", "\"31\" needs a model31 block holding the true geometry");
+  }
+  if (model == "12") truth.robot.model31.reset();
+  truth.robot_seed = static_cast<uint64_t>(simulation.Int("robot_seed"));
+  truth.dataset_seed = static_cast<uint64_t>(simulation.Int("dataset_seed"));
+  const YamlMap noise = simulation.Map("noise");
+  truth.noise.sigma_t = noise.Double("sigma_t");
+  truth.noise.sigma_r = noise.Double("sigma_r");
+  truth.noise.sigma_q = noise.Double("sigma_q");
+  return truth;
+}
+
+SimulationTruth ReadTruthYaml(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw FormatError(path, 0, "", "cannot open the truth file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParseTruthYaml(text.str(), path);
+}
+
+}  // namespace h4::host

@@ -1,0 +1,156 @@
+// Board YAML: formats.md's aprilgrid example, Kalibr-style checkerboard, defaults,
+// round trip, and every kind of malformed value with its line and field.
+#include "common/formats/board_yaml.h"
+
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+#include "tests/common/format_error_helpers.h"
+
+namespace h4 {
+namespace {
+
+const std::string kAprilGrid = R"(target_type: aprilgrid
+tagFamily: tag36h11        # optional, default tag36h11
+tagCols: 6
+tagRows: 6
+tagSize: 0.024             # m, outer edge of the black border
+tagSpacing: 0.25           # gap between tags = tagSpacing * tagSize
+firstId: 0                 # optional, default 0
+)";
+
+const std::string kCheckerboard = R"(target_type: checkerboard
+targetCols: 9
+targetRows: 6
+colSpacingMeters: 0.025
+rowSpacingMeters: 0.03
+)";
+
+TEST(BoardYaml, ReadsTheAprilGridExampleOfFormatsMd) {
+  const BoardSpec board = ParseBoardYaml(kAprilGrid, "board.yaml");
+  const auto* grid = std::get_if<AprilGridSpec>(&board);
+  ASSERT_NE(grid, nullptr);
+  EXPECT_EQ(grid->tag_family, "tag36h11");
+  EXPECT_EQ(grid->cols, 6);
+  EXPECT_EQ(grid->rows, 6);
+  EXPECT_EQ(grid->tag_size, 0.024);
+  EXPECT_EQ(grid->tag_spacing, 0.25);
+  EXPECT_EQ(grid->first_id, 0);
+}
+
+TEST(BoardYaml, OptionalKeysTakeTheirDefaults) {
+  const BoardSpec board = ParseBoardYaml(
+      "target_type: aprilgrid\ntagCols: 4\ntagRows: 3\ntagSize: 0.05\ntagSpacing: 0.3\n"
+      "codeOffset: 0  # Kalibr's, ignored\n",
+      "b.yaml");
+  const AprilGridSpec grid = std::get<AprilGridSpec>(board);
+  EXPECT_EQ(grid.tag_family, "tag36h11");
+  EXPECT_EQ(grid.first_id, 0);
+  EXPECT_EQ(grid.cols, 4);
+  EXPECT_EQ(grid.rows, 3);
+  const AprilGridSpec other = std::get<AprilGridSpec>(
+      ParseBoardYaml("target_type: aprilgrid\ntagFamily: tagStandard41h12\ntagCols: 4\ntagRows: 3\n"
+                     "tagSize: 0.05\ntagSpacing: 0.3\nfirstId: 100\n",
+                     "b.yaml"));
+  EXPECT_EQ(other.tag_family, "tagStandard41h12");
+  EXPECT_EQ(other.first_id, 100);
+}
+
+TEST(BoardYaml, ReadsACheckerboard) {
+  const BoardSpec board = ParseBoardYaml(kCheckerboard, "c.yaml");
+  const auto* chess = std::get_if<CheckerboardSpec>(&board);
+  ASSERT_NE(chess, nullptr);
+  EXPECT_EQ(chess->cols, 9);
+  EXPECT_EQ(chess->rows, 6);
+  EXPECT_EQ(chess->col_spacing, 0.025);
+  EXPECT_EQ(chess->row_spacing, 0.03);
+}
+
+TEST(BoardYaml, FamiliesAreThoseAprilTagShips) {
+  for (const std::string& family : AprilTagFamilies()) {
+    EXPECT_TRUE(std::filesystem::exists("/usr/include/apriltag/" + family + ".h") ||
+                !std::filesystem::exists("/usr/include/apriltag"))
+        << family;
+  }
+}
+
+TEST(BoardYaml, RoundTripIsExact) {
+  AprilGridSpec grid;
+  grid.tag_family = "tag25h9";
+  grid.cols = 7;
+  grid.rows = 5;
+  grid.tag_size = 0.1 / 3;
+  grid.tag_spacing = 0.3;
+  grid.first_id = 12;
+  const auto back = std::get<AprilGridSpec>(ParseBoardYaml(FormatBoardYaml(grid), "mem"));
+  EXPECT_EQ(back.tag_family, grid.tag_family);
+  EXPECT_EQ(back.cols, grid.cols);
+  EXPECT_EQ(back.rows, grid.rows);
+  EXPECT_EQ(back.tag_size, grid.tag_size);
+  EXPECT_EQ(back.tag_spacing, grid.tag_spacing);
+  EXPECT_EQ(back.first_id, grid.first_id);
+  CheckerboardSpec chess{11, 8, 0.0251, 0.0249};
+  const std::string path = TempPath("board.yaml");
+  WriteBoardYaml(path, chess);
+  const auto chess_back = std::get<CheckerboardSpec>(ReadBoardYaml(path));
+  EXPECT_EQ(chess_back.cols, 11);
+  EXPECT_EQ(chess_back.rows, 8);
+  EXPECT_EQ(chess_back.col_spacing, 0.0251);
+  EXPECT_EQ(chess_back.row_spacing, 0.0249);
+}
+
+TEST(BoardYamlErrors, UnknownTargetTypeNamesTheAcceptedOnes) {
+  EXPECT_TRUE(FailsWith([] { ParseBoardYaml("# board\ntarget_type: charuco\n", "b.yaml"); },
+                        "b.yaml", 2, "target_type",
+                        "unknown target type 'charuco', expected 'aprilgrid' or 'checkerboard'"));
+  EXPECT_TRUE(FailsWith([] { ParseBoardYaml("tagCols: 6\n", "b.yaml"); }, "b.yaml", 0,
+                        "target_type", "missing key"));
+}
+
+TEST(BoardYamlErrors, KnownKeyInOtherCaseIsNotIgnored) {
+  std::string text = kAprilGrid;
+  text.replace(text.find("firstId: 0"), 10, "firstID: 5");
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(text, "b.yaml"); }, "b.yaml", 7, "firstID",
+                        "case-sensitive: 'firstId'"));
+}
+
+TEST(BoardYamlErrors, UnknownTagFamily) {
+  std::string text = kAprilGrid;
+  text.replace(text.find("tag36h11"), 8, "tag36h12");
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(text, "b.yaml"); }, "b.yaml", 2, "tagFamily",
+                        "unknown tag family 'tag36h12', expected one of: tag36h11"));
+}
+
+TEST(BoardYamlErrors, NonPositiveCountsAndSizes) {
+  const auto with = [](const std::string& from, const std::string& to) {
+    std::string text = kAprilGrid;
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(with("tagCols: 6", "tagCols: 0"), "b.yaml"); },
+                        "b.yaml", 3, "tagCols", "expected an integer >= 1, got 0"));
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(with("tagRows: 6", "tagRows: 6.5"), "b.yaml"); },
+                        "b.yaml", 4, "tagRows", "expected an integer"));
+  EXPECT_TRUE(
+      FailsWith([&] { ParseBoardYaml(with("tagSize: 0.024", "tagSize: -0.024"), "b.yaml"); },
+                "b.yaml", 5, "tagSize", "positive"));
+  EXPECT_TRUE(
+      FailsWith([&] { ParseBoardYaml(with("tagSpacing: 0.25", "tagSpacing: 0"), "b.yaml"); },
+                "b.yaml", 6, "tagSpacing", "positive"));
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(with("firstId: 0", "firstId: -1"), "b.yaml"); },
+                        "b.yaml", 7, "firstId", ">= 0"));
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(with("tagSize: 0.024", "tagSize: 24mm"), "b.yaml"); },
+                        "b.yaml", 5, "tagSize", "expected a number, got '24mm'"));
+  std::string chess = kCheckerboard;
+  chess.replace(chess.find("targetRows: 6"), 13, "targetRows: 1");
+  EXPECT_TRUE(
+      FailsWith([&] { ParseBoardYaml(chess, "c.yaml"); }, "c.yaml", 3, "targetRows", ">= 2"));
+  chess = kCheckerboard;
+  chess.erase(chess.find("rowSpacingMeters"));
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(chess, "c.yaml"); }, "c.yaml", 0, "rowSpacingMeters",
+                        "missing key"));
+}
+
+}  // namespace
+}  // namespace h4

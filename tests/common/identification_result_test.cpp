@@ -1,0 +1,190 @@
+// Identification result JSON: formats.md's keys read with known values, exact round
+// trip, and malformed documents with the JSON path and the line of a syntax error.
+#include "common/formats/identification_result.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "common/geometry/rotation.h"
+#include "tests/common/format_error_helpers.h"
+
+namespace h4 {
+namespace {
+
+const std::string kResult = R"({
+  "model": "12",
+  "parameters": [
+    {"name": "h", "value": 0.0610, "apriori": 0.06, "std": 0.0001, "status": "identified"},
+    {"name": "d", "value": 0.0, "apriori": 0.0, "std": null, "status": "fixed"},
+    {"name": "X_TE.tz", "value": 0.025, "apriori": 0.025, "std": null, "status": "fixed"}
+  ],
+  "X_BC": {"translation": [0, 0, -1.05], "rpy": [0, 0, 0.5]},
+  "X_TE": {"translation": [0.09, 0.09, 0.025], "rpy": [0, 0, 0]},
+  "fixed": [{"name": "X_TE.tz", "reason": "acts only through X_BC.tz + X_TE.tz"}],
+  "residuals": {"calib_rms_rad": [0.001, 0.002, 0.003, 0.004],
+                "valid_rms_rad": [0.0011, 0.0021, 0.0031, 0.0041]},
+  "poses": {"calib": [1, 2, 3], "valid": [4], "rejected": []}
+}
+)";
+
+// kResult with `from` replaced by `to`.
+std::string With(const std::string& from, const std::string& to) {
+  std::string text = kResult;
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+TEST(IdentificationResult, ReadsFormatsMdKeys) {
+  const IdentificationResult r = ParseIdentificationResult(kResult, "r.json");
+  EXPECT_EQ(r.model, "12");
+  ASSERT_EQ(r.parameters.size(), 3u);
+  EXPECT_EQ(r.parameters[0].name, "h");
+  EXPECT_EQ(r.parameters[0].value, 0.0610);
+  EXPECT_EQ(r.parameters[0].apriori, 0.06);
+  EXPECT_EQ(r.parameters[0].std, 0.0001);
+  EXPECT_FALSE(r.parameters[0].fixed);
+  EXPECT_TRUE(r.parameters[1].fixed);
+  EXPECT_FALSE(r.parameters[1].std.has_value());
+  ASSERT_NE(r.Find("X_TE.tz"), nullptr);
+  EXPECT_EQ(r.Find("X_TE.tz")->value, 0.025);
+  EXPECT_EQ(r.Find("alpha1"), nullptr);
+  EXPECT_EQ(r.X_BC.translation(), Eigen::Vector3d(0, 0, -1.05));
+  EXPECT_TRUE(r.X_BC.rotation().isApprox(RotZ(0.5), 1e-15));
+  ASSERT_EQ(r.fixed.size(), 1u);
+  EXPECT_EQ(r.fixed[0].name, "X_TE.tz");
+  EXPECT_EQ(r.calib_rms_rad, (std::array<double, 4>{0.001, 0.002, 0.003, 0.004}));
+  EXPECT_EQ(r.valid_rms_rad[3], 0.0041);
+  EXPECT_EQ(r.calib_poses, (std::vector<int64_t>{1, 2, 3}));
+  EXPECT_EQ(r.valid_poses, (std::vector<int64_t>{4}));
+  EXPECT_TRUE(r.rejected_poses.empty());
+  // The extra keys are optional.
+  EXPECT_TRUE(r.estimator.empty());
+  EXPECT_FALSE(r.condition_number.has_value());
+  EXPECT_TRUE(r.correlations.empty());
+  EXPECT_TRUE(r.log.empty());
+}
+
+IdentificationResult FullResult() {
+  IdentificationResult r = ParseIdentificationResult(kResult, "r.json");
+  r.model = "31";
+  r.parameters[0].value = 0.1 / 3;
+  r.parameters[0].std = 2.0 / 7 * 1e-4;
+  r.X_BC = RigidTransform::FromTranslationRpy({0.001, -0.002, -1.05}, {0.01, -0.02, 3.0});
+  r.calib_rms_rad = {1.0 / 3 * 1e-3, 2e-3, 3e-3, 4e-3};
+  r.rejected_poses = {-7, 9000000000};
+  r.estimator = "measurement";
+  r.condition_number = 1234.5;
+  r.correlations = {{"h", "R", -0.97}};
+  r.valid_position_rms_m = 0.00012;
+  r.valid_rotation_rms_rad = 0.0003;
+  r.predicted_position_accuracy_m = 0.0001;
+  r.log = {"stage 1: \"quoted\"", "stage 2"};
+  return r;
+}
+
+TEST(IdentificationResult, RoundTripIsExact) {
+  const IdentificationResult r = FullResult();
+  const std::string path = TempPath("result.json");
+  WriteIdentificationResult(path, r);
+  const IdentificationResult b = ReadIdentificationResult(path);
+  EXPECT_EQ(b.model, r.model);
+  ASSERT_EQ(b.parameters.size(), r.parameters.size());
+  for (size_t i = 0; i < r.parameters.size(); ++i) {
+    EXPECT_EQ(b.parameters[i].name, r.parameters[i].name);
+    EXPECT_EQ(b.parameters[i].value, r.parameters[i].value);
+    EXPECT_EQ(b.parameters[i].apriori, r.parameters[i].apriori);
+    EXPECT_EQ(b.parameters[i].std, r.parameters[i].std);
+    EXPECT_EQ(b.parameters[i].fixed, r.parameters[i].fixed);
+  }
+  EXPECT_EQ(b.X_BC.translation(), r.X_BC.translation());
+  EXPECT_LT((b.X_BC.rotation() - r.X_BC.rotation()).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_EQ(b.fixed[0].reason, r.fixed[0].reason);
+  EXPECT_EQ(b.calib_rms_rad, r.calib_rms_rad);
+  EXPECT_EQ(b.valid_rms_rad, r.valid_rms_rad);
+  EXPECT_EQ(b.calib_poses, r.calib_poses);
+  EXPECT_EQ(b.rejected_poses, r.rejected_poses);
+  EXPECT_EQ(b.estimator, r.estimator);
+  EXPECT_EQ(b.condition_number, r.condition_number);
+  ASSERT_EQ(b.correlations.size(), 1u);
+  EXPECT_EQ(b.correlations[0].a, "h");
+  EXPECT_EQ(b.correlations[0].b, "R");
+  EXPECT_EQ(b.correlations[0].correlation, -0.97);
+  EXPECT_EQ(b.valid_position_rms_m, r.valid_position_rms_m);
+  EXPECT_EQ(b.valid_rotation_rms_rad, r.valid_rotation_rms_rad);
+  EXPECT_EQ(b.predicted_position_accuracy_m, r.predicted_position_accuracy_m);
+  EXPECT_EQ(b.log, r.log);
+}
+
+TEST(IdentificationResult, WritesKeysInFormatsMdOrderAndNullStdForFixed) {
+  const std::string text = FormatIdentificationResult(FullResult());
+  size_t last = 0;
+  for (const char* key :
+       {"model", "parameters", "X_BC", "X_TE", "fixed", "residuals", "poses", "estimator", "log"}) {
+    const size_t at = text.find("\n  \"" + std::string(key) + "\": ");  // a top-level key
+    ASSERT_NE(at, std::string::npos) << key;
+    EXPECT_GT(at, last) << key;
+    last = at;
+  }
+  EXPECT_NE(text.find("\"std\": null,\n      \"status\": \"fixed\""), std::string::npos) << text;
+  IdentificationResult bad = FullResult();
+  bad.parameters[0].value = std::nan("");
+  EXPECT_THROW(FormatIdentificationResult(bad), std::invalid_argument);
+}
+
+TEST(IdentificationResultErrors, NameTheJsonPath) {
+  const auto fails = [](const std::string& text, const std::string& field,
+                        const std::string& expected) {
+    return FailsWith([&] { ParseIdentificationResult(text, "r.json"); }, "r.json", 0, field,
+                     expected);
+  };
+  EXPECT_TRUE(fails(With("\"12\"", "\"13\""), "model", "expected \"12\" or \"31\", got \"13\""));
+  EXPECT_TRUE(fails(With("\"12\"", "12"), "model", "expected a string"));
+  EXPECT_TRUE(fails(With("\"value\": 0.0610", "\"value\": \"0.0610\""), "parameters[0].value",
+                    "expected a number"));
+  EXPECT_TRUE(fails(With("\"apriori\": 0.06, ", ""), "parameters[0].apriori", "missing key"));
+  EXPECT_TRUE(fails(With("\"status\": \"identified\"", "\"status\": \"free\""),
+                    "parameters[0].status", "expected \"identified\" or \"fixed\""));
+  EXPECT_TRUE(
+      fails(With("\"std\": null, \"status\": \"fixed\"}", "\"std\": 0.1, \"status\": \"fixed\"}"),
+            "parameters[1].std", "null for a fixed parameter"));
+  EXPECT_TRUE(
+      fails(With("\"std\": 0.0001", "\"std\": -0.0001"), "parameters[0].std", "non-negative"));
+  EXPECT_TRUE(
+      fails(With("{\"name\": \"d\"", "{\"name\": \"h\""), "parameters[1].name", "given twice"));
+  EXPECT_TRUE(
+      fails(With("[0, 0, -1.05]", "[0, -1.05]"), "X_BC.translation", "expected an array of 3"));
+  EXPECT_TRUE(fails(With("\"rpy\": [0, 0, 0]}", "\"rpy\": [0, 0, null]}"), "X_TE.rpy[2]",
+                    "expected a number, got null"));
+  EXPECT_TRUE(fails(With("{\"name\": \"X_TE.tz\", \"reason\"", "{\"name\": \"h\", \"reason\""),
+                    "fixed[0].name", "status \"fixed\""));
+  EXPECT_TRUE(fails(With("0.003, 0.004]", "0.003]"), "residuals.calib_rms_rad", "array of 4"));
+  EXPECT_TRUE(fails(With("0.0011,", "-0.0011,"), "residuals.valid_rms_rad[0]", "non-negative"));
+  EXPECT_TRUE(
+      fails(With("\"valid\": [4]", "\"valid\": [4.5]"), "poses.valid[0]", "expected an integer"));
+  EXPECT_TRUE(fails(With(", \"rejected\": []", ""), "poses.rejected", "missing key"));
+  EXPECT_TRUE(fails(With("\"model\": \"12\",", "\"model\": \"12\", \"log\": [1],"), "log[0]",
+                    "expected a string"));
+  EXPECT_TRUE(fails(With("\"model\": \"12\",",
+                         "\"model\": \"12\", \"correlations\": [{\"a\": \"h\", \"b\": \"R\", "
+                         "\"correlation\": 1.5}],"),
+                    "correlations[0].correlation", "[-1, 1]"));
+  EXPECT_TRUE(fails("[1, 2]", "", "expected an object"));
+}
+
+TEST(IdentificationResultErrors, SyntaxErrorNamesTheLine) {
+  EXPECT_TRUE(FailsWith(
+      [] { ParseIdentificationResult(With("\"valid\": [4]", "\"valid\": [4,]"), "r.json"); },
+      "r.json", 13, "", "invalid JSON"));
+  EXPECT_TRUE(FailsWith([] { ParseIdentificationResult(With("0.0610,", "0.0610,,"), "r.json"); },
+                        "r.json", 4, "", "invalid JSON"));
+  EXPECT_TRUE(
+      FailsWith([] { ParseIdentificationResult("", "r.json"); }, "r.json", 1, "", "invalid JSON"));
+  const std::string path = TempPath("absent.json");
+  EXPECT_TRUE(FailsWith([&] { ReadIdentificationResult(path); }, path, 0, "", "cannot open"));
+}
+
+}  // namespace
+}  // namespace h4

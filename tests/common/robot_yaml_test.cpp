@@ -1,0 +1,222 @@
+// Robot description YAML: formats.md's example, the optional blocks, exact round trip,
+// and every kind of malformed value with its line and field.
+#include "common/formats/robot_yaml.h"
+
+#include <gtest/gtest.h>
+
+#include "common/geometry/rotation.h"
+#include "tests/common/format_error_helpers.h"
+
+namespace h4 {
+namespace {
+
+// formats.md's example, line for line (line 1 is the comment).
+const std::string kExample =
+    R"(# a priori description of the H4 and of the measurement set-up (SI units)
+model12:
+  h: 0.06
+  arm: 0.26
+  forearm: 0.48
+  R: 0.14
+  d: 0.0
+  alpha: [0, 3.1416, 4.7124, 4.7124]
+  q0: [0, 0, 0, 0]
+assembly:
+  bar: [1, -1, 1, -1]        # s_i
+  elbow: [-1, -1, -1, -1]    # eps_i
+X_BC:                        # a priori camera pose in base
+  translation: [0, 0, -1.05]
+  rpy: [0, 0, 0]
+X_TE:                        # a priori end-effector pose in board frame
+  translation: [0.09, 0.09, 0.025]
+  rpy: [0, 0, 0]
+)";
+
+// The example with line `line` (1-based) replaced.
+std::string Replace(int line, const std::string& text) {
+  std::string out;
+  size_t start = 0;
+  for (int n = 1; start < kExample.size(); ++n) {
+    const size_t end = kExample.find('\n', start);
+    out += (n == line ? text : kExample.substr(start, end - start)) + "\n";
+    start = end + 1;
+  }
+  return out;
+}
+
+const std::string kModel31 = R"(model31:
+  x2: 0.28
+  y2: 0.001
+  z2: -0.002
+  x3: 0.14
+  y3: 0.14
+  z3: 0
+  x4: 0.14
+  y4: 0.14
+  z4: 0.003
+  psi: [0, 3.14, 4.71, 4.71]
+  beta: [-1.5708, -1.57, -1.571, -1.5707]
+  q0: [0.01, 0, 0, -0.01]
+  arm: [0.26, 0.261, 0.259, 0.26]
+  forearm: [0.48, 0.48, 0.481, 0.479]
+  h: 0.061
+  d: 0.001
+)";
+
+TEST(RobotYaml, ReadsTheExampleOfFormatsMd) {
+  const RobotDescription robot = ParseRobotYaml(kExample, "robot.yaml");
+  EXPECT_EQ(robot.model12.h, 0.06);
+  EXPECT_EQ(robot.model12.arm, 0.26);
+  EXPECT_EQ(robot.model12.forearm, 0.48);
+  EXPECT_EQ(robot.model12.R, 0.14);
+  EXPECT_EQ(robot.model12.d, 0.0);
+  EXPECT_EQ(robot.model12.alpha, (std::array<double, 4>{0, 3.1416, 4.7124, 4.7124}));
+  EXPECT_EQ(robot.model12.q0, (std::array<double, 4>{0, 0, 0, 0}));
+  EXPECT_EQ(robot.assembly.bar, (std::array<int, 4>{1, -1, 1, -1}));
+  EXPECT_EQ(robot.assembly.elbow, (std::array<int, 4>{-1, -1, -1, -1}));
+  EXPECT_EQ(robot.X_BC.translation(), Eigen::Vector3d(0, 0, -1.05));
+  EXPECT_EQ(robot.X_BC.rotation(), Eigen::Matrix3d::Identity());
+  EXPECT_EQ(robot.X_TE.translation(), Eigen::Vector3d(0.09, 0.09, 0.025));
+  EXPECT_FALSE(robot.model31.has_value());
+}
+
+TEST(RobotYaml, AssemblyIsOptionalAndExtraTopLevelKeysAreIgnored) {
+  std::string text = kExample;
+  const size_t a = text.find("assembly:");
+  text.erase(a, text.find("X_BC:") - a);
+  text += "comment: robot of the lab\nserial: 12\n";
+  const RobotDescription robot = ParseRobotYaml(text, "robot.yaml");
+  EXPECT_EQ(robot.assembly.bar, Assembly{}.bar);
+  EXPECT_EQ(robot.assembly.elbow, Assembly{}.elbow);
+  // A partial assembly block keeps the default for what it omits.
+  const RobotDescription partial = ParseRobotYaml(Replace(12, "  # no elbow"), "robot.yaml");
+  EXPECT_EQ(partial.assembly.elbow, Assembly{}.elbow);
+}
+
+TEST(RobotYaml, ReadsTheModel31Block) {
+  const RobotDescription robot = ParseRobotYaml(kExample + kModel31, "robot.yaml");
+  ASSERT_TRUE(robot.model31.has_value());
+  const Model31Parameters& m = *robot.model31;
+  EXPECT_EQ(m.P[0], Eigen::Vector3d(0.28, 0.001, -0.002));
+  EXPECT_EQ(m.P[1], Eigen::Vector3d(0.14, 0.14, 0));
+  EXPECT_EQ(m.P[2], Eigen::Vector3d(0.14, 0.14, 0.003));
+  EXPECT_EQ(m.psi[1], 3.14);
+  EXPECT_EQ(m.beta[3], -1.5707);
+  EXPECT_EQ(m.q0[3], -0.01);
+  EXPECT_EQ(m.arm[1], 0.261);
+  EXPECT_EQ(m.forearm[3], 0.479);
+  EXPECT_EQ(m.h, 0.061);
+  EXPECT_EQ(m.d, 0.001);
+}
+
+TEST(RobotYaml, RoundTripIsExact) {
+  RobotDescription robot = ParseRobotYaml(kExample + kModel31, "robot.yaml");
+  robot.model12.h = 1.0 / 3 * 0.18;
+  robot.model12.alpha = {-0.0015, 3.1016, 4.6807, 4.6859};
+  robot.assembly.elbow = {1, -1, 1, -1};
+  robot.X_BC = RigidTransform::FromTranslationRpy({0.001, -0.002, -1.05}, {0.01, -0.02, 3.0});
+  const RobotDescription back = ParseRobotYaml(FormatRobotYaml(robot), "mem");
+  EXPECT_EQ(back.model12.h, robot.model12.h);
+  EXPECT_EQ(back.model12.alpha, robot.model12.alpha);
+  EXPECT_EQ(back.assembly.bar, robot.assembly.bar);
+  EXPECT_EQ(back.assembly.elbow, robot.assembly.elbow);
+  EXPECT_EQ(back.X_BC.translation(), robot.X_BC.translation());
+  // The rotation travels as roll-pitch-yaw: a few ulp.
+  EXPECT_LT((back.X_BC.rotation() - robot.X_BC.rotation()).cwiseAbs().maxCoeff(), 1e-15);
+  ASSERT_TRUE(back.model31.has_value());
+  EXPECT_EQ(back.model31->P[2], robot.model31->P[2]);
+  EXPECT_EQ(back.model31->beta, robot.model31->beta);
+  EXPECT_EQ(back.model31->forearm, robot.model31->forearm);
+  EXPECT_EQ(back.model31->d, robot.model31->d);
+  // Through a file, without model31.
+  robot.model31.reset();
+  const std::string path = TempPath("robot.yaml");
+  WriteRobotYaml(path, robot);
+  const RobotDescription from_file = ReadRobotYaml(path);
+  EXPECT_FALSE(from_file.model31.has_value());
+  EXPECT_EQ(from_file.model12.q0, robot.model12.q0);
+}
+
+TEST(RobotYaml, WriterStartsWithAComment) {
+  EXPECT_EQ(FormatRobotYaml(RobotDescription{}).rfind("# ", 0), 0u);
+}
+
+TEST(RobotYamlErrors, MissingKeyNamesTheBlockLine) {
+  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(5, "  # no forearm"), "r.yaml"); }, "r.yaml", 2,
+                        "model12.forearm", "missing key"));
+  // A missing top-level block is on no line.
+  std::string text = kExample;
+  text.erase(text.find("X_TE:"));
+  EXPECT_TRUE(FailsWith([&] { ParseRobotYaml(text, "r.yaml"); }, "r.yaml", 0, "X_TE", "missing"));
+}
+
+TEST(RobotYamlErrors, UnknownKeyInABlockIsAnError) {
+  // A misspelt key is never matched to the intended one, nor ignored in favour of a default.
+  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(5, "  forarm: 0.48"), "r.yaml"); }, "r.yaml", 5,
+                        "model12.forarm", "unknown key, expected one of: h, arm, forearm"));
+  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(12, "  elbows: [1, 1, 1, 1]"), "r.yaml"); },
+                        "r.yaml", 12, "assembly.elbows", "unknown key"));
+  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(15, "  RPY: [0, 0, 0]"), "r.yaml"); }, "r.yaml",
+                        15, "X_BC.RPY", "unknown key"));
+  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(kExample + "Model31:\n  h: 1\n", "r.yaml"); }, "r.yaml",
+                        19, "Model31", "case-sensitive: 'model31'"));
+}
+
+TEST(RobotYamlErrors, NonNumber) {
+  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(4, "  arm: 0.26m"), "r.yaml"); }, "r.yaml", 4,
+                        "model12.arm", "expected a number, got '0.26m'"));
+  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(7, "  d: .nan"), "r.yaml"); }, "r.yaml", 7,
+                        "model12.d", "expected a number"));
+  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(3, "  h:"), "r.yaml"); }, "r.yaml", 3,
+                        "model12.h", "got nothing"));
+  EXPECT_TRUE(
+      FailsWith([] { ParseRobotYaml(Replace(8, "  alpha: [0, pi, 4.7124, 4.7124]"), "r.yaml"); },
+                "r.yaml", 8, "model12.alpha[1]", "got 'pi'"));
+}
+
+TEST(RobotYamlErrors, WrongListLength) {
+  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(9, "  q0: [0, 0, 0]"), "r.yaml"); }, "r.yaml",
+                        9, "model12.q0", "list of 4 numbers, got a list of 3"));
+  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(14, "  translation: 0"), "r.yaml"); }, "r.yaml",
+                        14, "X_BC.translation", "list of 3"));
+}
+
+TEST(RobotYamlErrors, NonPositiveLength) {
+  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(6, "  R: -0.14"), "r.yaml"); }, "r.yaml", 6,
+                        "model12.R", "positive"));
+  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(3, "  h: 0"), "r.yaml"); }, "r.yaml", 3,
+                        "model12.h", "positive"));
+  std::string text = kExample + kModel31;
+  text.replace(text.find("arm: [0.26, 0.261"), 17, "arm: [0.26, -0.26");
+  // model31 starts on line 19; arm is its 13th key.
+  EXPECT_TRUE(FailsWith([&] { ParseRobotYaml(text, "r.yaml"); }, "r.yaml", 32, "model31.arm[1]",
+                        "positive"));
+}
+
+TEST(RobotYamlErrors, AssemblySignMustBePlusOrMinusOne) {
+  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(11, "  bar: [1, -1, 2, -1]"), "r.yaml"); },
+                        "r.yaml", 11, "assembly.bar[2]", "expected 1 or -1, got 2"));
+  EXPECT_TRUE(
+      FailsWith([] { ParseRobotYaml(Replace(12, "  elbow: [-1, -1, -1, -1.0]"), "r.yaml"); },
+                "r.yaml", 12, "assembly.elbow[3]", "expected an integer"));
+}
+
+TEST(RobotYamlErrors, IncompleteModel31Block) {
+  std::string text = kExample + kModel31;
+  text.erase(text.find("  y3: 0.14\n"), 11);
+  EXPECT_TRUE(FailsWith([&] { ParseRobotYaml(text, "r.yaml"); }, "r.yaml", 19, "model31.y3",
+                        "missing key"));
+}
+
+TEST(RobotYamlErrors, DuplicateKeyAndBadSyntax) {
+  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(7, "  h: 0.07"), "r.yaml"); }, "r.yaml", 7,
+                        "model12.h", "key given twice (first on line 3)"));
+  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(8, "  alpha: [0, 3.1416"), "r.yaml"); },
+                        "r.yaml", 9, "", "invalid YAML"));
+  EXPECT_TRUE(FailsWith([] { ParseRobotYaml("", "r.yaml"); }, "r.yaml", 0, "", "mapping"));
+  EXPECT_TRUE(FailsWith([] { ParseRobotYaml("# robot\nmodel12: [1, 2]\n", "r.yaml"); }, "r.yaml", 2,
+                        "model12", "expected a mapping of keys to values, got a list"));
+}
+
+}  // namespace
+}  // namespace h4

@@ -1,0 +1,188 @@
+// Intrinsics calibration: OpenCV's own sample images give OpenCV's published intrinsics;
+// exact synthetic correspondences give back the camera that made them; an outlier view
+// is named by the 3 x median rule and dropped; rendered AprilTag grid views calibrate too.
+#include "firmware/calibration/intrinsics_calibration.h"
+
+#include <filesystem>
+#include <sstream>
+
+#include <gtest/gtest.h>
+#include <opencv2/calib3d.hpp>
+
+#include "common/formats/camera_yaml.h"
+#include "common/geometry/rigid_transform.h"
+#include "common/geometry/rotation.h"
+#include "firmware/calibration/board_views.h"
+#include "firmware/cli/calibrate_intrinsics_command.h"
+#include "firmware/render/board_renderer.h"
+
+namespace h4::cam {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kOpenCvSamples = "/usr/share/doc/opencv-doc/examples/data";
+
+// A camera and board poses all seeing a 9 x 6 chessboard of 25 mm squares, tilted up to
+// about 30 degrees, 0.4-0.6 m away.
+cv::Matx33d TrueK() { return {800.0, 0.0, 330.0, 0.0, 790.0, 245.0, 0.0, 0.0, 1.0}; }
+cv::Mat TrueDistortion() { return (cv::Mat_<double>(5, 1) << -0.2, 0.1, 0.001, -0.0005, 0.0); }
+
+std::vector<CalibrationView> SyntheticViews(int count) {
+  std::vector<cv::Point3f> board;
+  for (int row = 0; row < 6; ++row) {
+    for (int col = 0; col < 9; ++col) board.emplace_back(col * 0.025f, row * 0.025f, 0.0f);
+  }
+  std::vector<CalibrationView> views;
+  for (int i = 0; i < count; ++i) {
+    const double a = 0.5 * std::sin(1.7 * i), b = 0.5 * std::cos(1.3 * i);
+    const cv::Vec3d rvec(a, b, 0.1 * i);
+    const cv::Vec3d tvec(-0.1 + 0.01 * (i % 3), -0.06 + 0.01 * (i % 2), 0.4 + 0.02 * i);
+    CalibrationView view;
+    view.name = "view" + std::to_string(i);
+    view.object_points = board;
+    cv::projectPoints(board, rvec, tvec, TrueK(), TrueDistortion(), view.image_points);
+    views.push_back(view);
+  }
+  return views;
+}
+
+TEST(IntrinsicsCalibration, RecoversTheCameraFromExactCorrespondences) {
+  const auto result = CalibrateIntrinsics(SyntheticViews(10), cv::Size(640, 480), {});
+  ASSERT_TRUE(result.ok()) << result.message;
+  EXPECT_NEAR(result.camera.K(0, 0), 800.0, 1e-3);
+  EXPECT_NEAR(result.camera.K(1, 1), 790.0, 1e-3);
+  EXPECT_NEAR(result.camera.K(0, 2), 330.0, 1e-3);
+  EXPECT_NEAR(result.camera.K(1, 2), 245.0, 1e-3);
+  EXPECT_NEAR(result.camera.distortion(0), -0.2, 1e-5);
+  EXPECT_NEAR(result.camera.distortion(2), 0.001, 1e-6);
+  EXPECT_LT(result.rms_px, 1e-3);
+  EXPECT_EQ(result.views_used, 10);
+  EXPECT_EQ(result.camera.width, 640);
+  ASSERT_TRUE(result.camera.avg_reprojection_error.has_value());
+  EXPECT_DOUBLE_EQ(*result.camera.avg_reprojection_error, result.rms_px);
+}
+
+TEST(IntrinsicsCalibration, RefusesFewerViewsThanTheMinimum) {
+  const auto result = CalibrateIntrinsics(SyntheticViews(7), cv::Size(640, 480), {});
+  EXPECT_EQ(result.status, IntrinsicsCalibrationResult::Status::kTooFewViews);
+  EXPECT_NE(result.message.find("7 view(s) with the board, expected at least 8"), std::string::npos)
+      << result.message;
+}
+
+TEST(IntrinsicsCalibration, NamesAnOutlierViewAndDropsItWhenAsked) {
+  auto views = SyntheticViews(11);
+  cv::RNG rng(7);
+  for (auto& view : views) {  // every view: 0.1 px noise
+    for (auto& p : view.image_points) {
+      p +=
+          cv::Point2f(static_cast<float>(rng.gaussian(0.1)), static_cast<float>(rng.gaussian(0.1)));
+    }
+  }
+  for (auto& p : views[4].image_points) {  // one view: 2 px noise (a blurred image)
+    p += cv::Point2f(static_cast<float>(rng.gaussian(2.0)), static_cast<float>(rng.gaussian(2.0)));
+  }
+  IntrinsicsCalibrationOptions options;
+  const auto kept = CalibrateIntrinsics(views, cv::Size(640, 480), options);
+  ASSERT_TRUE(kept.ok()) << kept.message;
+  for (size_t i = 0; i < views.size(); ++i) EXPECT_EQ(kept.views[i].outlier, i == 4) << i;
+  EXPECT_EQ(kept.views_used, 11);
+  EXPECT_NE(kept.Report().find("view4: 54 points"), std::string::npos);
+
+  options.drop_outliers = true;
+  const auto dropped = CalibrateIntrinsics(views, cv::Size(640, 480), options);
+  ASSERT_TRUE(dropped.ok()) << dropped.message;
+  EXPECT_EQ(dropped.views_used, 10);
+  EXPECT_FALSE(dropped.views[4].used);
+  EXPECT_LT(dropped.rms_px, 0.5 * kept.rms_px);
+  // The bad view pulls the principal point away from the truth; without it, it comes back.
+  const auto principal_point_error = [](const IntrinsicsCalibrationResult& r) {
+    return std::hypot(r.camera.K(0, 2) - 330.0, r.camera.K(1, 2) - 245.0);
+  };
+  EXPECT_LT(principal_point_error(dropped), 0.5 * principal_point_error(kept));
+}
+
+TEST(IntrinsicsCalibration, FixedAspectRatioGivesEqualFocalLengths) {
+  IntrinsicsCalibrationOptions options;
+  options.fix_aspect_ratio = true;
+  const auto result = CalibrateIntrinsics(SyntheticViews(10), cv::Size(640, 480), options);
+  ASSERT_TRUE(result.ok()) << result.message;
+  EXPECT_DOUBLE_EQ(result.camera.K(0, 0), result.camera.K(1, 1));
+  EXPECT_GT(result.rms_px, 0.1);  // the true camera has fx != fy: the fit cannot be exact
+}
+
+TEST(IntrinsicsCalibration, OpenCvSampleImagesGiveOpenCvsPublishedIntrinsics) {
+  if (!fs::exists(kOpenCvSamples / "left01.jpg")) {
+    GTEST_SKIP() << "OpenCV sample images missing: apt-get install opencv-doc (scripts/setup)";
+  }
+  CalibrateIntrinsicsArgs args;
+  args.board_path = std::string(H4_SOURCE_DIR) + "/boards/checkerboard_9x6_25mm.yaml";
+  for (int i = 1; i <= 14; ++i) {  // left10.jpg is missing from some versions: use what is there
+    const fs::path image = kOpenCvSamples / cv::format("left%02d.jpg", i);
+    if (fs::exists(image)) args.images.push_back(image.string());
+  }
+  ASSERT_GE(args.images.size(), 13u);
+  args.out_path = (fs::temp_directory_path() / "h4_opencv_sample_camera.yaml").string();
+  args.options.fix_aspect_ratio = true;
+  std::ostringstream report;
+  const auto result = RunCalibrateIntrinsics(args, report);
+  ASSERT_TRUE(result.ok()) << report.str();
+
+  // OpenCV's left_intrinsics.yml (same images, 9x6, 25 mm, aspect ratio fixed to 1).
+  const CameraIntrinsics camera = ReadCameraYaml(args.out_path);
+  EXPECT_DOUBLE_EQ(camera.K(0, 0), camera.K(1, 1));
+  EXPECT_NEAR(camera.K(0, 0), 535.9, 0.005 * 535.9);
+  EXPECT_NEAR(camera.K(0, 2), 342.3, 0.005 * 342.3);
+  EXPECT_NEAR(camera.K(1, 2), 235.6, 0.005 * 235.6);
+  ASSERT_TRUE(camera.avg_reprojection_error.has_value());
+  EXPECT_GT(*camera.avg_reprojection_error, 0.38);
+  EXPECT_LT(*camera.avg_reprojection_error, 0.42);
+  EXPECT_EQ(camera.width, 640);
+  EXPECT_EQ(camera.height, 480);
+  // left02.jpg is OpenCV's own worst view (1.18 px there): the only one above 3 x median.
+  for (const auto& view : result.views) {
+    EXPECT_EQ(view.outlier, view.name.ends_with("left02.jpg")) << view.name;
+  }
+  fs::remove(args.out_path);
+}
+
+TEST(IntrinsicsCalibration, RenderedAprilGridViewsGiveBackTheRenderingCamera) {
+  AprilGridSpec grid;  // 6 x 6 tag36h11, 30 mm, spacing 0.25 (boards/aprilgrid_6x6_30mm.yaml)
+  CameraIntrinsics truth;
+  truth.width = 640;
+  truth.height = 480;
+  truth.K << 500.0, 0.0, 322.0, 0.0, 500.0, 236.0, 0.0, 0.0, 1.0;
+  truth.distortion = Eigen::VectorXd::Zero(5);
+  truth.distortion(0) = -0.1;
+  RenderOptions render;
+  render.samples_per_pixel = 34;
+  const BoardRenderer renderer(grid, truth, render);
+  ASSERT_TRUE(renderer.ok()) << renderer.error();
+  const BoardViewFinder finder(grid);
+  ASSERT_TRUE(finder.ok()) << finder.error();
+
+  std::vector<CalibrationView> views;
+  for (int i = 0; i < 9; ++i) {
+    // Board centre (0.109 m) roughly on the optical axis, 0.45-0.6 m away, tilted.
+    const Eigen::Vector3d rpy(0.35 * std::sin(2.1 * i), 0.35 * std::cos(1.3 * i), 0.2 * i);
+    const Eigen::Matrix3d R_CT = RotationFromRpy(rpy);
+    const Eigen::Vector3d centre(0.04 * std::sin(i), 0.03 * std::cos(i), 0.45 + 0.02 * i);
+    const Eigen::Vector3d p_CT = centre - R_CT * Eigen::Vector3d(0.10875, 0.10875, 0);
+    const cv::Mat image = renderer.Render(RigidTransform(R_CT, p_CT), 100 + i);
+    std::string why;
+    auto view = finder.Find(image, "render" + std::to_string(i), &why);
+    ASSERT_TRUE(view.has_value()) << i << ": " << why;
+    EXPECT_EQ(view->image_points.size(), 144u) << i;
+    views.push_back(*view);
+  }
+  const auto result = CalibrateIntrinsics(views, cv::Size(640, 480), {});
+  ASSERT_TRUE(result.ok()) << result.message;
+  EXPECT_NEAR(result.camera.K(0, 0), 500.0, 0.005 * 500.0) << result.Report();
+  EXPECT_NEAR(result.camera.K(1, 1), 500.0, 0.005 * 500.0);
+  EXPECT_NEAR(result.camera.K(0, 2), 322.0, 2.0);
+  EXPECT_NEAR(result.camera.K(1, 2), 236.0, 2.0);
+  EXPECT_NEAR(result.camera.distortion(0), -0.1, 0.02);
+  EXPECT_LT(result.rms_px, 0.3);
+}
+
+}  // namespace
+}  // namespace h4::cam

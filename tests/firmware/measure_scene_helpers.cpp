@@ -1,0 +1,67 @@
+// Paper-like scenes for the measuring pipeline's tests; see measure_scene_helpers.h.
+#include "measure_scene_helpers.h"
+
+#include <cmath>
+
+#include "common/board/board_model.h"
+#include "common/geometry/rotation.h"
+
+namespace h4::cam::testing {
+
+CameraIntrinsics PaperCamera() {
+  CameraIntrinsics camera;
+  camera.width = 1024;
+  camera.height = 768;
+  camera.K << 817.0, 0.0, 515.3, 0.0, 816.2, 380.7, 0.0, 0.0, 1.0;
+  camera.distortion = Eigen::VectorXd(5);
+  camera.distortion << -0.12, 0.08, 0.0004, -0.0003, -0.01;
+  return camera;
+}
+
+AprilGridSpec PaperBoard() {
+  AprilGridSpec board;
+  board.cols = 6;
+  board.rows = 6;
+  board.tag_size = 0.03;
+  board.tag_spacing = 0.3;  // 9 mm gaps: the board is 0.219 m wide
+  return board;
+}
+
+RigidTransform BoardPose(const AprilGridSpec& board, double depth, double tilt,
+                         double axis_angle, double roll, double dx, double dy) {
+  const BoardModel model(board);
+  const Eigen::Vector2d mid = 0.5 * (model.pattern_min() + model.pattern_max());
+  const Eigen::Vector3d p_TM(mid.x(), mid.y(), 0.0);  // board centre in T
+  const Eigen::Vector3d axis(std::cos(axis_angle), std::sin(axis_angle), 0.0);
+  const Eigen::Matrix3d R_CT = So3Exp(tilt * axis) * RotZ(roll);
+  // Centre of the board at (dx, dy, depth) in C.
+  return {R_CT, Eigen::Vector3d(dx, dy, depth) - R_CT * p_TM};
+}
+
+std::vector<RigidTransform> RandomPoses(int count, uint64_t seed) {
+  cv::RNG rng(seed);
+  std::vector<RigidTransform> poses;
+  const AprilGridSpec board = PaperBoard();
+  for (int i = 0; i < count; ++i) {
+    const double depth = rng.uniform(0.45, 0.65);
+    const double tilt = rng.uniform(0.0, 25.0) * M_PI / 180.0;
+    poses.push_back(BoardPose(board, depth, tilt, rng.uniform(-M_PI, M_PI),
+                              rng.uniform(-M_PI, M_PI), rng.uniform(-0.04, 0.04),
+                              rng.uniform(-0.03, 0.03)));
+  }
+  return poses;
+}
+
+cv::Mat AveragedFrames(const BoardRenderer& renderer, const cv::Mat& clean, int frames,
+                       uint64_t seed) {
+  cv::RNG rng(seed);
+  cv::Mat sum = cv::Mat::zeros(clean.size(), CV_32F);
+  for (int k = 0; k < frames; ++k) {
+    cv::Mat frame32;
+    renderer.Expose(clean, rng).convertTo(frame32, CV_32F);
+    sum += frame32;
+  }
+  return sum / static_cast<double>(frames);
+}
+
+}  // namespace h4::cam::testing

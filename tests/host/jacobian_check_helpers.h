@@ -1,0 +1,33 @@
+// The one shared check of analytic Jacobians (style.md item 7): compares J_analytic with
+// central finite differences of f at x0, entry by entry, and names the worst entries on
+// failure. Used by the kinematics and identification tests alike.
+#pragma once
+
+#include <functional>
+
+#include <Eigen/Core>
+#include <gtest/gtest.h>
+
+namespace h4::host::testing {
+
+/// A function R^n -> R^m whose Jacobian is checked. Outputs that are angles must be
+/// continuous around x0 (wrap differences inside f, e.g. WrapAngle(q(x) - q(x0))).
+using VectorFunction = std::function<Eigen::VectorXd(const Eigen::VectorXd&)>;
+
+/// Central finite-difference Jacobian of f at x0: column j is
+/// (f(x0 + step e_j) - f(x0 - step e_j)) / (2 step). Error O(step^2).
+Eigen::MatrixXd FiniteDifferenceJacobian(const VectorFunction& f, const Eigen::VectorXd& x0,
+                                         double step);
+
+/// Success when J_analytic has the shape m x n of f at x0 and every entry satisfies
+///   |J_analytic(i,j) - J_fd(i,j)| <= tolerance * max(1, |J_fd(i,j)|)
+/// (absolute below 1, relative above), with J_fd = FiniteDifferenceJacobian(f, x0, step).
+/// Typical use: step 1e-6, tolerance 1e-6 for metre/radian-scaled functions. On failure the
+/// message lists the worst entries (row, column, analytic, numeric) and any non-finite entry.
+///   EXPECT_TRUE(JacobianMatchesFiniteDifferences(f, x0, J, 1e-6, 1e-6));
+::testing::AssertionResult JacobianMatchesFiniteDifferences(const VectorFunction& f,
+                                                            const Eigen::VectorXd& x0,
+                                                            const Eigen::MatrixXd& J_analytic,
+                                                            double step, double tolerance);
+
+}  // namespace h4::host::testing
