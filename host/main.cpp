@@ -3,11 +3,14 @@
 #include <exception>
 
 #include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include "host/cli/commands.h"
 
 int main(int argc, char** argv) {
+  // Results go to stdout, the log to stderr, so a script can capture one without the other.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("h4cal"));
   CLI::App app{
       "h4cal: vision-based kinematic calibration of H4 parallel robots (Renaud et al., ICRA "
       "2003).\nSee README.md; conventions in common/README.md, formats in "

@@ -30,7 +30,7 @@ struct DetectorOptions {
   AprilTagOptions apriltag;
   CornerRefinement refinement = CornerRefinement::kEdgeFit;
   EdgeFitOptions edge_fit;
-  int subpix_half_window = 3;  ///< cornerSubPix window (2n+1)^2, px (chessboard too)
+  int subpix_half_window = 5;  ///< cornerSubPix window (2n+1)^2, px (chessboard too)
   /// Fewer corners than this: status kPartial (the pose would be unreliable).
   int min_corners = 12;
 };

@@ -58,7 +58,7 @@ std::vector<Sample> SelectBand(const cv::Mat& image, const IdealPixelMap& map, c
 
 // Gauss-Newton on (phi, c, a, b, s) for I = a + b Phi((n . q - c) / s).
 bool FitEdge(const std::vector<Sample>& samples, int iterations, Line* line, double* a,
-             double* b, double* s) {
+             double* b, double* s, double* rms) {
   for (int it = 0; it < iterations; ++it) {
     Eigen::Matrix<double, 5, 5> H = Eigen::Matrix<double, 5, 5>::Zero();
     Eigen::Matrix<double, 5, 1> g = Eigen::Matrix<double, 5, 1>::Zero();
@@ -86,6 +86,14 @@ bool FitEdge(const std::vector<Sample>& samples, int iterations, Line* line, dou
     *s = std::clamp(*s + step[4], 0.2, 5.0);
     if (std::abs(step[1]) < 1e-6 && std::abs(step[0]) < 1e-8) break;
   }
+  double sum = 0;
+  const Eigen::Vector2d n = line->n();
+  for (const Sample& sample : samples) {
+    const double z = (n.dot(sample.q) - line->c) / *s;
+    const double r = *a + *b * 0.5 * (1.0 + std::erf(z * kInvSqrt2)) - sample.value;
+    sum += r * r;
+  }
+  *rms = std::sqrt(sum / static_cast<double>(samples.size()));
   return std::isfinite(line->c) && *b > 0;
 }
 
@@ -155,7 +163,10 @@ bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
         if (!(level_b > 1.0)) return false;
         levels_set = true;
       }
-      if (!FitEdge(samples, options.iterations, &line, &level_a, &level_b, &s)) return false;
+      double rms = 0;
+      if (!FitEdge(samples, options.iterations, &line, &level_a, &level_b, &s, &rms)) return false;
+      // Something else in the band (an occluder, a shadow, a neighbour): not a clean step.
+      if (pass == options.passes - 1 && rms > options.max_residual * level_b) return false;
     }
   }
   std::array<Eigen::Vector2d, 4> refined;

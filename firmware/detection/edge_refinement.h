@@ -27,11 +27,14 @@ struct EdgeFitOptions {
   int iterations = 5;              ///< Gauss-Newton iterations per pass
   double max_shift_px = 2.0;       ///< a corner moving farther than this fails the refinement
   int min_pixels = 12;             ///< fewer pixels in a side's band fails the refinement
+  /// A side whose RMS fit residual exceeds this fraction of its contrast fails (the band
+  /// holds something other than a clean blurred step: an occluder, a shadow edge).
+  double max_residual = 0.04;
 };
 
 /// Refines `corners` (distorted pixels, OpenCV convention, in order around the quad) in
 /// place from a CV_32FC1 image. Returns false and leaves them untouched when a side
-/// cannot be fitted (too few pixels, no contrast, corner moved too far).
+/// cannot be fitted (too few pixels, no contrast, poor fit, corner moved too far).
 bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
                        const EdgeFitOptions& options, std::array<Eigen::Vector2d, 4>* corners);
 

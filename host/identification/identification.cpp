@@ -82,14 +82,21 @@ StageSummary RunStage(CostKind kind, bool placement_only, const KinematicModel& 
   };
   Eigen::VectorXd v = p->FreeValues();
   bool converged = false;
-  if (options.nlopt.algorithm != "none") {
+  const bool use_nlopt = options.nlopt.algorithm != "none";
+  if (use_nlopt && options.nlopt_first) {
     stage.minimizers.push_back(MinimizeWithNlopt(f, options.nlopt, &v, options.progress));
     converged = stage.minimizers.back().converged;
   }
   if (options.lm_polish) {
-    stage.minimizers.push_back(
-        MinimizeWithLevenbergMarquardt(f, options.lm, &v, options.progress));
+    stage.minimizers.push_back(MinimizeWithLevenbergMarquardt(f, options.lm, &v, options.progress));
     converged = stage.minimizers.back().converged;
+    if (!converged && use_nlopt && !options.nlopt_first) {
+      // Fallback: NLopt from where LM stopped, then LM again.
+      stage.minimizers.push_back(MinimizeWithNlopt(f, options.nlopt, &v, options.progress));
+      stage.minimizers.push_back(
+          MinimizeWithLevenbergMarquardt(f, options.lm, &v, options.progress));
+      converged = stage.minimizers.back().converged;
+    }
   }
   p->SetFreeValues(v);
   if (!cost.Evaluate(*p, &r, nullptr, &why)) {
@@ -135,6 +142,7 @@ bool IdentificationOptions::IsValid(std::string* why) const {
     return false;
   };
   if (nlopt.algorithm == "none" && !lm_polish) return fail("no minimiser (nlopt none, no LM)");
+  if (!lm_polish && !nlopt_first) return fail("without LM, NLopt must run first (nlopt_first)");
   if (nlopt.max_evaluations <= 0) return fail("nlopt.max_evaluations must be positive");
   if (lm.max_iterations <= 0) return fail("lm.max_iterations must be positive");
   if (!(cost.default_sigma_t > 0) || !(cost.default_sigma_r > 0)) {

@@ -40,7 +40,9 @@ TEST(PoseEstimatorTest, ExactCornersGiveTheExactPose) {
 }
 
 TEST(PoseEstimatorTest, NearFrontalBoardPicksTheTrueOfTheTwoPlanarSolutions) {
-  // A small board seen almost frontally: the two IPPE solutions are mirror tilts.
+  // A small board (2 x 2 tags, 69 mm) at 1 m tilted by 8 degrees: the two IPPE solutions
+  // are mirror tilts ~16 degrees apart, and both are local minima of the reprojection
+  // error (measured: in about half the trials LM keeps them apart).
   AprilGridSpec spec = testing::PaperBoard();
   spec.cols = 2;
   spec.rows = 2;
@@ -49,11 +51,11 @@ TEST(PoseEstimatorTest, NearFrontalBoardPicksTheTrueOfTheTwoPlanarSolutions) {
   cv::RNG rng(5);
   int ambiguous = 0;
   for (int trial = 0; trial < 20; ++trial) {
-    const RigidTransform X_CT = testing::BoardPose(spec, 0.6, 3.0 * M_PI / 180, trial * 0.3, 0.2);
-    const PoseEstimate estimate = EstimatePose(Project(board, camera, X_CT, 0.02, &rng), camera);
+    const RigidTransform X_CT = testing::BoardPose(spec, 1.0, 8.0 * M_PI / 180, trial * 0.3, 0.2);
+    const PoseEstimate estimate = EstimatePose(Project(board, camera, X_CT, 0.05, &rng), camera);
     ASSERT_TRUE(estimate.ok());
     EXPECT_LT(So3Log(estimate.X_CT.rotation().transpose() * X_CT.rotation()).norm(),
-              1.0 * M_PI / 180)
+              4.0 * M_PI / 180)
         << trial;
     EXPECT_LE(estimate.rms_px, estimate.alternative_rms_px);
     if (std::isfinite(estimate.alternative_rms_px) &&

@@ -4,6 +4,7 @@
 // held out, the paper's noise) for Model 12 and Model 31 data.
 #include "host/identification/identification.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <numbers>
@@ -13,6 +14,8 @@
 #include "common/geometry/rotation.h"
 #include "host/identification/identified_robot.h"
 #include "host/kinematics/measurement_chain.h"
+#include "host/kinematics/model12.h"
+#include "host/kinematics/model31.h"
 #include "host/simulation/dataset_simulator.h"
 #include "host/simulation/paper_scenario.h"
 #include "host/simulation/true_robot.h"
@@ -73,25 +76,218 @@ IdentificationOutcome IdentifyScenario(const Scenario& s, const std::string& mod
   return Identify(*model, apriori.X_BC(), apriori.X_TE(), s.calib, s.valid, options);
 }
 
-TEST(IdentificationTest, Explore) {
-  for (const char* m : {"12", "31"}) {
-    for (CostKind kind : {CostKind::kMeasurement, CostKind::kJointSpace}) {
-     for (std::string algo : {"LD_LBFGS", "none"}) {
-      for (uint64_t seed : {1, 2, 3}) {
-        const Scenario s = MakeScenario(std::string(m) == "12" ? TrueGeometry::kPerturbedModel12 : TrueGeometry::kPerturbedModel31, seed, true);
-        IdentificationOptions options;
-        options.estimator = kind;
-        options.nlopt.algorithm = algo;
-        const IdentificationOutcome out12 = IdentifyScenario(s, "12", options);
-        const IdentificationOutcome out31 = IdentifyScenario(s, "31", options);
-        const auto e12 = HeldOutTruthError(out12, s);
-        const auto e31 = HeldOutTruthError(out31, s);
-        std::cout << "data " << m << " " << ToString(kind) << " " << algo << " seed " << seed << ": M12 " << e12.first * 1e3 << " mm " << e12.second * kDeg << " deg (" << out12.summary.seconds*1e3 << " ms, " << out12.summary.message << ")  M31 " << e31.first * 1e3 << " mm " << e31.second * kDeg << " deg (" << out31.summary.seconds*1e3 << " ms, " << out31.summary.message << ")\n";
-        if (seed == 2 && kind == CostKind::kJointSpace && algo == "none") { std::cout << out12.summary.FullReport() << out31.summary.FullReport(); for (auto& l : out31.result.log) std::cout << l << "\n"; }
-      }
-     }
+// Held-out error averaged over seeds (never a loosened threshold: the mean is what the
+// paper's protocol measures, one seed's ten poses are a small sample).
+struct Accuracy {
+  double position_m = 0.0, rotation_rad = 0.0;
+};
+Accuracy MeanHeldOutError(TrueGeometry geometry, const std::string& model_name, CostKind estimator,
+                          const std::vector<uint64_t>& seeds) {
+  Accuracy mean;
+  for (uint64_t seed : seeds) {
+    const Scenario s = MakeScenario(geometry, seed, true);
+    IdentificationOptions options;
+    options.estimator = estimator;
+    const IdentificationOutcome out = IdentifyScenario(s, model_name, options);
+    EXPECT_TRUE(out.summary.usable) << out.summary.FullReport();
+    const auto [p, r] = HeldOutTruthError(out, s);
+    std::cout << "  seed " << seed << ": Model " << model_name << " (" << ToString(estimator)
+              << ") held-out error " << p * 1e3 << " mm, " << r * kDeg << " deg, "
+              << out.summary.seconds * 1e3 << " ms\n";
+    mean.position_m += p / static_cast<double>(seeds.size());
+    mean.rotation_rad += r / static_cast<double>(seeds.size());
+  }
+  return mean;
+}
+
+const std::vector<uint64_t> kSeeds = {1, 2, 3};
+
+TEST(IdentificationTest, NoiseFreeModel12DataGivesBackTheTrueParameters) {
+  const Scenario s = MakeScenario(TrueGeometry::kPerturbedModel12, 7, false);
+  // The parameters the analysis fixes (X_TE.tz, d) must hold their true values for the
+  // others to be exactly recoverable; everything else starts from the rough a priori.
+  RobotDescription robot = PaperAprioriRobot();
+  robot.X_TE = RigidTransform(robot.X_TE.rotation(),
+                              Eigen::Vector3d(robot.X_TE.translation().x(),
+                                              robot.X_TE.translation().y(),
+                                              s.truth.X_TE.translation().z()));
+  Model12 apriori(robot.model12);
+  IdentificationOptions options;
+  options.reject_outliers = false;
+  const IdentificationOutcome out =
+      Identify(apriori, robot.X_BC, robot.X_TE, s.calib, s.valid, options);
+  ASSERT_TRUE(out.summary.usable) << out.summary.FullReport();
+  Model12 truth_model(s.truth.model12);
+  const ParameterVector truth(truth_model, s.truth.X_BC, s.truth.X_TE);
+  for (int k = 0; k < truth.size(); ++k) {
+    if (truth.names()[static_cast<size_t>(k)] == "d") continue;  // no effect on Model 12
+    EXPECT_NEAR(out.parameters.values()[k], truth.values()[k], 1e-8) << truth.names()[static_cast<size_t>(k)];
+  }
+  std::vector<std::string> fixed;
+  for (const FixedParameter& f : out.result.fixed) fixed.push_back(f.name);
+  EXPECT_EQ(fixed, (std::vector<std::string>{"d", "X_TE.tz"}));
+}
+
+TEST(IdentificationTest, NoiseFreeModel31DataGivesBackTheIdentifiableParameters) {
+  const Scenario s = MakeScenario(TrueGeometry::kPerturbedModel31, 7, false);
+  IdentificationOptions options;
+  options.reject_outliers = false;
+  const IdentificationOutcome out = IdentifyScenario(s, "31", options);
+  ASSERT_TRUE(out.summary.usable) << out.summary.FullReport();
+  // A common rotation about z_B (fixed through X_BC.rz) and the X_BC.tz / X_TE.tz and
+  // X_BC.ty / d sums are not identifiable: compare what is invariant under them.
+  const Model31Parameters t = s.truth.TrueModel31();
+  const Model31Parameters e = Model31::FromVector(out.parameters.kinematic_values());
+  for (size_t i = 0; i < 4; ++i) {
+    EXPECT_NEAR(e.q0[i], t.q0[i], 1e-8) << "q0" << i + 1;
+    EXPECT_NEAR(e.arm[i], t.arm[i], 1e-8) << "arm" << i + 1;
+    EXPECT_NEAR(e.forearm[i], t.forearm[i], 1e-8) << "forearm" << i + 1;
+    EXPECT_NEAR(e.beta[i], t.beta[i], 1e-8) << "beta" << i + 1;
+    EXPECT_NEAR(WrapAngle((e.psi[i] - e.psi[0]) - (t.psi[i] - t.psi[0])), 0.0, 1e-8) << "psi" << i + 1;
+  }
+  EXPECT_NEAR(e.h, t.h, 1e-8);
+  for (size_t j = 0; j < 3; ++j) {
+    EXPECT_NEAR(e.P[j].z(), t.P[j].z(), 1e-8);
+    EXPECT_NEAR(e.P[j].head<2>().norm(), t.P[j].head<2>().norm(), 1e-8);
+  }
+  // And the model predicts every true board pose exactly.
+  const auto [p, r] = HeldOutTruthError(out, s);
+  EXPECT_LT(p, 1e-8);
+  EXPECT_LT(r, 1e-8);
+}
+
+TEST(IdentificationTest, ConvergesFromTheRoughAprioriForEveryEstimator) {
+  // The true camera is centimetres and degrees away from the a priori (PerturbationOptions).
+  const Scenario s = MakeScenario(TrueGeometry::kPerturbedModel12, 4, true);
+  const Vector6d error = TransformToParameters(s.truth.X_BC) - TransformToParameters(PaperX_BC());
+  ASSERT_GT(error.head<3>().norm(), 0.01);
+  for (CostKind estimator : {CostKind::kMeasurement, CostKind::kJointSpace, CostKind::kImplicit}) {
+    IdentificationOptions options;
+    options.estimator = estimator;
+    const IdentificationOutcome out = IdentifyScenario(s, "12", options);
+    EXPECT_TRUE(out.summary.usable) << ToString(estimator) << "\n" << out.summary.FullReport();
+    EXPECT_LT(HeldOutTruthError(out, s).first, 0.5e-3) << ToString(estimator);
+  }
+}
+
+TEST(IdentificationTest, PaperProtocolModel12HeldOutAccuracy) {
+  const Accuracy a = MeanHeldOutError(TrueGeometry::kPerturbedModel12, "12", CostKind::kMeasurement, kSeeds);
+  std::cout << "Model 12 data, Model 12 measurement-space: " << a.position_m * 1e3 << " mm, "
+            << a.rotation_rad * kDeg << " deg\n";
+  EXPECT_LE(a.position_m, 0.10e-3);
+  EXPECT_LE(a.rotation_rad * kDeg, 0.02);
+}
+
+TEST(IdentificationTest, PaperProtocolModel12JointSpaceIsLessAccurate) {
+  const Accuracy joint = MeanHeldOutError(TrueGeometry::kPerturbedModel12, "12", CostKind::kJointSpace, kSeeds);
+  const Accuracy measurement = MeanHeldOutError(TrueGeometry::kPerturbedModel12, "12", CostKind::kMeasurement, kSeeds);
+  std::cout << "Model 12 data, eq. (3): " << joint.position_m * 1e3 << " mm, "
+            << joint.rotation_rad * kDeg << " deg\n";
+  EXPECT_LE(joint.position_m, 0.30e-3);
+  EXPECT_GT(joint.position_m, measurement.position_m);
+}
+
+TEST(IdentificationTest, PaperProtocolModel31HeldOutAccuracyAndModel12IsWorse) {
+  const Accuracy a31 = MeanHeldOutError(TrueGeometry::kPerturbedModel31, "31", CostKind::kMeasurement, kSeeds);
+  const Accuracy a12 = MeanHeldOutError(TrueGeometry::kPerturbedModel31, "12", CostKind::kMeasurement, kSeeds);
+  std::cout << "Model 31 data: Model 31 " << a31.position_m * 1e3 << " mm, " << a31.rotation_rad * kDeg
+            << " deg; Model 12 " << a12.position_m * 1e3 << " mm, " << a12.rotation_rad * kDeg << " deg\n";
+  EXPECT_LE(a31.position_m, 0.20e-3);
+  EXPECT_LE(a31.rotation_rad * kDeg, 0.04);
+  EXPECT_GT(a12.position_m, 3.0 * a31.position_m);
+}
+
+TEST(IdentificationTest, ResultIsFilledAndRebuildsTheSameRobot) {
+  const Scenario s = MakeScenario(TrueGeometry::kPerturbedModel12, 5, true);
+  const IdentificationOutcome out = IdentifyScenario(s, "12", IdentificationOptions{});
+  const IdentificationResult& r = out.result;
+  EXPECT_EQ(r.model, "12");
+  EXPECT_EQ(r.estimator, "measurement");
+  EXPECT_EQ(r.parameters.size(), 13u + 12u);
+  for (const ResultParameter& p : r.parameters) {
+    EXPECT_EQ(p.std.has_value(), !p.fixed) << p.name;
+    if (p.std) EXPECT_GT(*p.std, 0.0) << p.name;
+  }
+  ASSERT_NE(r.Find("X_TE.tz"), nullptr);
+  EXPECT_TRUE(r.Find("X_TE.tz")->fixed);
+  EXPECT_DOUBLE_EQ(r.Find("X_TE.tz")->value, PaperX_TE().translation().z());  // a priori kept
+  for (const FixedParameter& f : r.fixed) EXPECT_FALSE(f.reason.empty()) << f.name;
+  EXPECT_EQ(r.calib_poses.size() + r.rejected_poses.size(), s.calib.size());
+  EXPECT_EQ(r.valid_poses.size(), s.valid.size());
+  ASSERT_TRUE(r.condition_number.has_value());
+  ASSERT_TRUE(r.valid_position_rms_m.has_value());
+  ASSERT_TRUE(r.predicted_position_accuracy_m.has_value());
+  // Joint residuals of an identified model are at the noise level (2e-5 rad encoders plus
+  // the pose noise through the IK), far below the a priori's 0.1 rad.
+  for (double rms : r.calib_rms_rad) EXPECT_LT(rms, 2e-3);
+  for (double rms : r.valid_rms_rad) EXPECT_LT(rms, 2e-3);
+  // The covariance-predicted board accuracy agrees in size with the noise (0.2 mm / sqrt(n)).
+  EXPECT_LT(*r.predicted_position_accuracy_m, 0.2e-3);
+  // Rebuilt from the result, the model predicts what the identification's vector predicts.
+  const IdentifiedRobot robot = RebuildFromResult(r);
+  const BoardPoseErrors rebuilt = BoardPoseErrorsOf(*robot.model, robot.X_BC, robot.X_TE, s.valid);
+  EXPECT_NEAR(rebuilt.position_rms, *r.valid_position_rms_m, 1e-12);
+}
+
+TEST(IdentificationTest, OutliersAreRejectedAndReported) {
+  Scenario s = MakeScenario(TrueGeometry::kPerturbedModel12, 6, true);
+  // Two poses measured 3 mm off: the board slipped, say.
+  const std::vector<int64_t> bad = {s.calib[10].pose_id, s.calib[40].pose_id};
+  for (DatasetRow& row : s.calib) {
+    if (row.pose_id == bad[0] || row.pose_id == bad[1]) {
+      row.X_CT = RigidTransform(row.X_CT.rotation(), row.X_CT.translation() + Eigen::Vector3d(0.003, 0, 0));
     }
   }
+  const IdentificationOutcome out = IdentifyScenario(s, "12", IdentificationOptions{});
+  std::vector<int64_t> rejected = out.result.rejected_poses;
+  std::sort(rejected.begin(), rejected.end());
+  EXPECT_EQ(rejected, bad);
+  EXPECT_LT(HeldOutTruthError(out, s).first, 0.15e-3);
+}
+
+TEST(IdentificationTest, Model31FromModel12ResultKeepsItsFixedValues) {
+  const Scenario s = MakeScenario(TrueGeometry::kPerturbedModel31, 2, true);
+  std::vector<DatasetRow> rows = s.calib;
+  rows.insert(rows.end(), s.valid.begin(), s.valid.end());
+  const IdentificationOutcome out12 = IdentifyRobot(PaperAprioriRobot(), "12", rows, {});
+  ASSERT_TRUE(out12.summary.usable);
+  const IdentificationOutcome out31 =
+      IdentifyModel31FromModel12(PaperAprioriRobot(), out12.result, rows, {});
+  EXPECT_TRUE(out31.summary.usable) << out31.summary.FullReport();
+  EXPECT_EQ(out31.result.model, "31");
+  // X_TE.tz is fixed in both; Model 31 keeps the Model 12 result's value.
+  ASSERT_TRUE(out31.result.Find("X_TE.tz")->fixed);
+  EXPECT_DOUBLE_EQ(out31.result.Find("X_TE.tz")->value, out12.result.Find("X_TE.tz")->value);
+  // The a priori column is the robot's nominal Model 31, not the Model 12 result.
+  EXPECT_DOUBLE_EQ(out31.result.Find("arm1")->apriori, PaperAprioriRobot().model12.arm);
+  EXPECT_EQ(out31.result.valid_poses, out12.result.valid_poses);
+  EXPECT_LT(HeldOutTruthError(out31, s).first, 0.25e-3);
+}
+
+TEST(IdentificationOptionsTest, InvalidOptionsAreRejectedWithAReason) {
+  IdentificationOptions options;
+  std::string why;
+  EXPECT_TRUE(options.IsValid(&why));
+  options.nlopt.algorithm = "none";
+  options.lm_polish = false;
+  EXPECT_FALSE(options.IsValid(&why));
+  EXPECT_NE(why.find("minimiser"), std::string::npos);
+  options = IdentificationOptions{};
+  options.outlier_factor = 0.5;
+  EXPECT_FALSE(options.IsValid(&why));
+}
+
+TEST(DatasetSplitTest, UsesTheSetColumnElseASeededDraw) {
+  const Scenario s = MakeScenario(TrueGeometry::kPaperTable2, 1, true);
+  const DatasetSplit by_set = SplitDataset(s.data.rows);
+  EXPECT_EQ(by_set.valid.size(), 10u);
+  EXPECT_EQ(by_set.calib.size(), s.data.rows.size() - 10);
+  std::vector<DatasetRow> no_set = s.data.rows;
+  for (DatasetRow& row : no_set) row.set.reset();
+  const DatasetSplit a = SplitDataset(no_set, 10, 3), b = SplitDataset(no_set, 10, 3);
+  ASSERT_EQ(a.valid.size(), 10u);
+  for (size_t k = 0; k < a.valid.size(); ++k) EXPECT_EQ(a.valid[k].pose_id, b.valid[k].pose_id);
+  EXPECT_NE(a.how.find("seed 3"), std::string::npos);
 }
 
 }  // namespace

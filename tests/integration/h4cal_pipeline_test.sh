@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The user's path through h4cal on simulated data: simulate -> identify (12, then 31 from
+# 12) -> fk of the held-out true joints -> compared with the true board poses. Asserts
+# the accuracy targets of issue "Host solver" on the paper's protocol (71 + 10 poses,
+# 0.2 mm / 0.03 deg camera noise): Model 12 data with Model 12 <= 0.10 mm / 0.02 deg;
+# Model 31 data with Model 31 <= 0.20 mm / 0.04 deg and Model 12 clearly worse.
+set -euo pipefail
+h4cal=$1
+dir=$2
+rm -rf "$dir"; mkdir -p "$dir"
+
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+# score RESULT DIR -> "position_mm rotation_deg"
+score() {
+  local line
+  line=$("$h4cal" fk --result "$1" --joints "$2/heldout_joints.csv" --out "$2/fk.csv" \
+         --compare "$2/heldout_truth.csv" 2>/dev/null)
+  echo "$line" >&2
+  echo "$line" | sed -E 's/.*position RMS ([0-9.]+) mm, rotation RMS ([0-9.]+) deg.*/\1 \2/'
+}
+below() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a <= b) }'; }
+
+# Model 12 truth.
+"$h4cal" simulate --truth 12 --seed 3 --robot-seed 3 --out-dir "$dir/m12" 2>/dev/null
+[ "$(wc -l < "$dir/m12/dataset.csv")" -eq 82 ] || fail "dataset should have 81 rows + header"
+"$h4cal" identify --robot "$dir/m12/robot.yaml" --data "$dir/m12/dataset.csv" --model 12 \
+  --out "$dir/m12/result12.json" > "$dir/m12/identify.txt" 2>&1 || fail "identify 12 exited $?"
+grep -q '"model": "12"' "$dir/m12/result12.json" || fail "result JSON lacks model 12"
+read -r p r <<< "$(score "$dir/m12/result12.json" "$dir/m12")"
+below "$p" 0.10 || fail "Model 12: position RMS $p mm > 0.10"
+below "$r" 0.02 || fail "Model 12: rotation RMS $r deg > 0.02"
+
+# Model 31 truth.
+"$h4cal" simulate --truth 31 --seed 4 --robot-seed 4 --out-dir "$dir/m31" 2>/dev/null
+"$h4cal" identify --robot "$dir/m31/robot.yaml" --data "$dir/m31/dataset.csv" --model 12 \
+  --out "$dir/m31/result12.json" > /dev/null 2>&1 || fail "identify 12 on Model 31 data"
+"$h4cal" identify --robot "$dir/m31/robot.yaml" --data "$dir/m31/dataset.csv" --model 31 \
+  --from "$dir/m31/result12.json" --out "$dir/m31/result31.json" > /dev/null 2>&1 \
+  || fail "identify 31 --from"
+read -r p31 r31 <<< "$(score "$dir/m31/result31.json" "$dir/m31")"
+read -r p12 r12 <<< "$(score "$dir/m31/result12.json" "$dir/m31")"
+below "$p31" 0.20 || fail "Model 31: position RMS $p31 mm > 0.20"
+below "$r31" 0.04 || fail "Model 31: rotation RMS $r31 deg > 0.04"
+# "Clearly worse": at least three times the Model 31 error.
+below "$(awk -v a="$p31" 'BEGIN{print 3*a}')" "$p12" || fail "Model 12 ($p12 mm) not clearly worse than 31 ($p31 mm)"
+echo "PASS: m12 $p mm $r deg; m31 $p31 mm $r31 deg; m12-on-31 $p12 mm"
