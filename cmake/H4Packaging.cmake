@@ -103,12 +103,12 @@ set(CPACK_PACKAGE_VENDOR h4cal)
 set(CPACK_PACKAGE_CONTACT "h4cal maintainers <maintainers@h4cal.invalid>")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
     "camera firmware of h4cal, vision-based calibration of H4 parallel robots")
+# The extended description (CPack puts the summary above it and indents each line).
 set(CPACK_DEBIAN_PACKAGE_DESCRIPTION
-    "${CPACK_PACKAGE_DESCRIPTION_SUMMARY}\n \
-h4cam runs on the camera module fixed to the robot's base: it captures and averages\n \
-frames, detects the calibration board, estimates its pose with a covariance and\n \
-publishes it over LCM to the workstation program h4cal. Runs as the systemd service\n \
-h4cam.service under the dedicated user h4cam.")
+    "h4cam runs on the camera module fixed to the robot's base: it captures and averages
+frames, detects the calibration board, estimates its pose with a covariance and
+publishes it over LCM to the workstation program h4cal. It runs as the systemd
+service h4cam.service under the dedicated user h4cam.")
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
 set(CPACK_DEBIAN_PACKAGE_ARCHITECTURE ${h4_deb_arch})

@@ -23,8 +23,8 @@ CameraModel::CameraModel(const CameraIntrinsics& intrinsics) : intrinsics_(intri
 }
 
 Eigen::Vector2d CameraModel::Distort(const Eigen::Vector2d& xn, Eigen::Matrix2d* J_xd_xn) const {
-  const double k1 = d_[0], k2 = d_[1], p1 = d_[2], p2 = d_[3], k3 = d_[4], k4 = d_[5],
-               k5 = d_[6], k6 = d_[7];
+  const double k1 = d_[0], k2 = d_[1], p1 = d_[2], p2 = d_[3], k3 = d_[4], k4 = d_[5], k5 = d_[6],
+               k6 = d_[7];
   const double x = xn.x(), y = xn.y();
   const double r2 = x * x + y * y, r4 = r2 * r2, r6 = r4 * r2;
   const double a = 1 + k1 * r2 + k2 * r4 + k3 * r6;

@@ -67,7 +67,8 @@ MotionEstimate EstimateFrameSpread(const std::vector<cv::Mat>& frames, const cv:
     Vector6 b = Vector6::Zero();
     for (size_t i = 0; i < pixels.size(); ++i) {
       const Pixel& p = pixels[i];
-      const double r = frames[k].at<uint8_t>(p.v, p.u) - static_cast<double>(mean.at<float>(p.v, p.u));
+      const double r =
+          frames[k].at<uint8_t>(p.v, p.u) - static_cast<double>(mean.at<float>(p.v, p.u));
       b += jacobians[i] * r;
     }
     const Vector6 w = -ldlt.solve(b);

@@ -17,14 +17,14 @@ namespace h4::cam {
 struct MotionOptions {
   /// Largest allowed distance of a corner's per-frame position from its mean, px.
   double max_spread_px = 0.1;
-  int max_pixels = 20000;        ///< strongest-gradient pixels used (speed)
-  double roi_margin_px = 8.0;    ///< pixels this far around the corners' bounding box
+  int max_pixels = 20000;      ///< strongest-gradient pixels used (speed)
+  double roi_margin_px = 8.0;  ///< pixels this far around the corners' bounding box
 };
 
 struct MotionEstimate {
-  bool valid = false;     ///< false: fewer than 2 frames or no gradient to measure
-  double spread_px = 0;   ///< max over frames and corners of |position - mean position|
-  bool moved = false;     ///< spread_px > max_spread_px
+  bool valid = false;    ///< false: fewer than 2 frames or no gradient to measure
+  double spread_px = 0;  ///< max over frames and corners of |position - mean position|
+  bool moved = false;    ///< spread_px > max_spread_px
 };
 
 /// `frames`: the group's CV_8UC1 frames; `mean`: their CV_32FC1 mean; `corners_px`: the

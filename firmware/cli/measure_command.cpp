@@ -27,7 +27,8 @@ int RunMeasure(const MeasureArgs& args, std::ostream& progress) {
   ImageFileSource source(args.images);
   if (!source.Open()) throw std::runtime_error(source.error());
   const size_t total = source.files().size();
-  const size_t groups = (total + static_cast<size_t>(args.group) - 1) / static_cast<size_t>(args.group);
+  const size_t groups =
+      (total + static_cast<size_t>(args.group) - 1) / static_cast<size_t>(args.group);
   if (total % static_cast<size_t>(args.group) != 0) {
     progress << "note: " << total << " images do not fill groups of " << args.group
              << "; the last group averages " << total % static_cast<size_t>(args.group) << "\n";
@@ -47,7 +48,8 @@ int RunMeasure(const MeasureArgs& args, std::ostream& progress) {
       ++with_pose;
     }
     rows.push_back(row);
-    progress << "[" << rows.size() << "/" << groups << "] " << m.origin << ": " << ToString(m.status);
+    progress << "[" << rows.size() << "/" << groups << "] " << m.origin << ": "
+             << ToString(m.status);
     if (m.ok()) {
       const Eigen::Vector3d& p = m.X_CT.translation();
       progress << ", " << m.corners_used << " corners, rms " << m.rms_px << " px, z " << p.z()
@@ -86,22 +88,23 @@ void AddMeasureCommand(CLI::App& app) {
   auto args = std::make_shared<MeasureArgs>();
   CLI::App* command = app.add_subcommand(
       "measure", "Board poses X_CT from image files (groups of N images averaged)");
-  command->add_option("--board", args->board_path, "Board YAML")->required()->check(
-      CLI::ExistingFile);
+  command->add_option("--board", args->board_path, "Board YAML")
+      ->required()
+      ->check(CLI::ExistingFile);
   command->add_option("--camera", args->camera_path, "Camera intrinsics YAML (OpenCV)")
       ->required()
       ->check(CLI::ExistingFile);
   command->add_option("--group", args->group, "Images averaged per measurement")
       ->default_val(args->group)
       ->check(CLI::PositiveNumber);
-  command->add_option("--max-spread", args->max_spread_px,
-                      "Motion threshold: largest per-frame corner spread in a group, px")
+  command
+      ->add_option("--max-spread", args->max_spread_px,
+                   "Motion threshold: largest per-frame corner spread in a group, px")
       ->default_val(args->max_spread_px)
       ->check(CLI::PositiveNumber);
   command->add_option("--out", args->out_path, "Output CSV (image,x,y,z,qw,qx,qy,qz,...)")
       ->required();
-  command->add_option("images", args->images, "Image files or directories, in order")
-      ->required();
+  command->add_option("images", args->images, "Image files or directories, in order")->required();
   command->callback([args] { RunMeasure(*args, std::cerr); });
 }
 

@@ -45,16 +45,17 @@ void RunRender(const RenderArgs& args, std::ostream& out) {
       throw std::runtime_error(path + ": cannot write the image");
     }
   }
-  out << "wrote " << args.frames << " frame(s) " << camera.width << "x" << camera.height
-      << " to " << args.out_dir << "\n";
+  out << "wrote " << args.frames << " frame(s) " << camera.width << "x" << camera.height << " to "
+      << args.out_dir << "\n";
 }
 
 void AddRenderCommand(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* command =
       app.add_subcommand("render", "Synthetic camera frames of the board at a known pose X_CT");
-  command->add_option("--board", args->board_path, "Board YAML")->required()->check(
-      CLI::ExistingFile);
+  command->add_option("--board", args->board_path, "Board YAML")
+      ->required()
+      ->check(CLI::ExistingFile);
   command->add_option("--camera", args->camera_path, "Camera intrinsics YAML (OpenCV)")
       ->required()
       ->check(CLI::ExistingFile);

@@ -19,8 +19,8 @@ struct RenderArgs {
   std::string camera_path;
   std::vector<double> pose;  ///< x, y, z (m), qw, qx, qy, qz: X_CT
   int frames = 1;
-  double noise = 2.0;        ///< grey levels
-  double blur = 0.8;         ///< px
+  double noise = 2.0;  ///< grey levels
+  double blur = 0.8;   ///< px
   uint64_t seed = 1;
   std::string out_dir;
 };

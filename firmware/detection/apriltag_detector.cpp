@@ -21,9 +21,7 @@ AprilTagDetector::AprilTagDetector(const AprilTagOptions& options) {
   detector_->debug = false;
 }
 
-int AprilTagDetector::border_cells() const {
-  return family_ ? family_->width_at_border : 0;
-}
+int AprilTagDetector::border_cells() const { return family_ ? family_->width_at_border : 0; }
 
 AprilTagDetector::~AprilTagDetector() {
   if (detector_ != nullptr) apriltag_detector_destroy(detector_);

@@ -23,17 +23,17 @@ struct AprilTagOptions {
   /// Quad search on an image decimated by this factor (speed); the edges are then
   /// refined on the full image (refine_edges), so the corners keep full resolution.
   float quad_decimate = 2.0f;
-  float quad_sigma = 0.0f;         ///< Gaussian blur before quad search, px (0 = none)
-  bool refine_edges = true;        ///< snap quad edges to strong gradients, full resolution
-  double decode_sharpening = 0.25; ///< libapriltag's default
-  int max_bits_corrected = 1;      ///< decoding tolerance; 1 keeps false positives rare
-  int threads = 1;                 ///< one core: the camera module has others to feed
+  float quad_sigma = 0.0f;          ///< Gaussian blur before quad search, px (0 = none)
+  bool refine_edges = true;         ///< snap quad edges to strong gradients, full resolution
+  double decode_sharpening = 0.25;  ///< libapriltag's default
+  int max_bits_corrected = 1;       ///< decoding tolerance; 1 keeps false positives rare
+  int threads = 1;                  ///< one core: the camera module has others to feed
 };
 
 struct TagDetection {
   int id = -1;
-  int hamming = 0;               ///< bits corrected when decoding
-  double decision_margin = 0;    ///< libapriltag's decoding quality (higher is better)
+  int hamming = 0;             ///< bits corrected when decoding
+  double decision_margin = 0;  ///< libapriltag's decoding quality (higher is better)
   /// Corners in libapriltag's order (board_model.h: bottom-left, bottom-right, top-right,
   /// top-left as printed), OpenCV pixel convention.
   std::array<Eigen::Vector2d, 4> corners_px;

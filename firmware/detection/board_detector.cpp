@@ -60,12 +60,12 @@ BoardDetection BoardDetector::Detect(const cv::Mat& image) const {
   } else {
     return {};
   }
-  BoardDetection detection = board_.is_aprilgrid() ? DetectAprilGrid(image8, image32)
-                                                   : DetectChessboard(image8, image32);
+  BoardDetection detection =
+      board_.is_aprilgrid() ? DetectAprilGrid(image8, image32) : DetectChessboard(image8, image32);
   const int n = static_cast<int>(detection.corners.size());
-  detection.status = n == 0                      ? BoardDetection::Status::kNoBoard
+  detection.status = n == 0                     ? BoardDetection::Status::kNoBoard
                      : n < options_.min_corners ? BoardDetection::Status::kPartial
-                                                 : BoardDetection::Status::kOk;
+                                                : BoardDetection::Status::kOk;
   return detection;
 }
 

@@ -39,8 +39,8 @@ struct BoardDetection {
   enum class Status { kOk, kPartial, kNoBoard };
   Status status = Status::kNoBoard;
   std::vector<CornerObservation> corners;
-  int tags = 0;               ///< AprilTag grid: tags used
-  int tags_rejected = 0;      ///< tags whose refinement failed (dropped)
+  int tags = 0;           ///< AprilTag grid: tags used
+  int tags_rejected = 0;  ///< tags whose refinement failed (dropped)
 };
 
 const char* ToString(BoardDetection::Status status);

@@ -39,9 +39,11 @@ std::vector<Sample> SelectBand(const cv::Mat& image, const IdealPixelMap& map, c
   const double length = (b - a).norm();
   const double margin = options.band_px + 3.0;
   const int u0 = std::max(0, static_cast<int>(std::floor(std::min(a_px.x(), b_px.x()) - margin)));
-  const int u1 = std::min(image.cols - 1, static_cast<int>(std::ceil(std::max(a_px.x(), b_px.x()) + margin)));
+  const int u1 =
+      std::min(image.cols - 1, static_cast<int>(std::ceil(std::max(a_px.x(), b_px.x()) + margin)));
   const int v0 = std::max(0, static_cast<int>(std::floor(std::min(a_px.y(), b_px.y()) - margin)));
-  const int v1 = std::min(image.rows - 1, static_cast<int>(std::ceil(std::max(a_px.y(), b_px.y()) + margin)));
+  const int v1 =
+      std::min(image.rows - 1, static_cast<int>(std::ceil(std::max(a_px.y(), b_px.y()) + margin)));
   for (int v = v0; v <= v1; ++v) {
     const float* row = image.ptr<float>(v);
     for (int u = u0; u <= u1; ++u) {
@@ -56,28 +58,74 @@ std::vector<Sample> SelectBand(const cv::Mat& image, const IdealPixelMap& map, c
   return samples;
 }
 
-// Gauss-Newton on (phi, c, a, b, s) for I = a + b Phi((n . q - c) / s).
-bool FitEdge(const std::vector<Sample>& samples, int iterations, Line* line, double* a,
-             double* b, double* s, double* rms) {
+double Phi(double z) { return 0.5 * (1.0 + std::erf(z * kInvSqrt2)); }
+double Pdf(double z) { return kInvSqrt2Pi * std::exp(-0.5 * z * z); }
+double G(double z) { return z * Phi(z) + Pdf(z); }                              // integral of Phi
+double H(double z) { return 0.5 * (z * z + 1.0) * Phi(z) + 0.5 * z * Pdf(z); }  // of G
+
+// Profile of a pixel at signed distance d from the edge: a unit step blurred by a
+// Gaussian (sigma s) and averaged over the pixel, whose projection onto the edge normal
+// is a trapezoid, the convolution of boxes of widths w1 >= w2 (|cos|, |sin| of the
+// normal's angle). With only a few distinct pixel-to-edge offsets (edges aligned with
+// the pixel grid), an approximate profile would shift the fitted edge; this one is exact
+// for the Gaussian blur. Returns F and its derivatives by d and s.
+struct Profile {
+  double w1 = 1, w2 = 0;
+  void Eval(double d, double s, double* F, double* dF_dd, double* dF_ds) const {
+    if (w2 < 0.05) {  // one box: its second side adds a variance below w2^2/12
+      const double zp = (d + 0.5 * w1) / s, zm = (d - 0.5 * w1) / s;
+      *F = s / w1 * (G(zp) - G(zm));
+      *dF_dd = (Phi(zp) - Phi(zm)) / w1;
+      *dF_ds = (Pdf(zp) - Pdf(zm)) / w1;
+      return;
+    }
+    const double offsets[4] = {0.5 * (w1 + w2), 0.5 * (w1 - w2), -0.5 * (w1 - w2),
+                               -0.5 * (w1 + w2)};
+    const double signs[4] = {1, -1, -1, 1};
+    double sum_h = 0, sum_g = 0, sum_phi = 0;
+    for (int i = 0; i < 4; ++i) {
+      const double z = (d + offsets[i]) / s;
+      sum_h += signs[i] * H(z);
+      sum_g += signs[i] * G(z);
+      sum_phi += signs[i] * Phi(z);
+    }
+    const double k = 1.0 / (w1 * w2);
+    *F = k * s * s * sum_h;
+    *dF_dd = k * s * sum_g;
+    *dF_ds = k * s * sum_phi;
+  }
+};
+
+Profile ProfileFor(const Eigen::Vector2d& n, double pixel_scale) {
+  Profile p;
+  const double c = std::abs(n.x()) * pixel_scale, s = std::abs(n.y()) * pixel_scale;
+  p.w1 = std::max(c, s);
+  p.w2 = std::min(c, s);
+  return p;
+}
+
+// Gauss-Newton on (phi, c, a, b, s) for I = a + b F(n . q - c; s).
+bool FitEdge(const std::vector<Sample>& samples, int iterations, double pixel_scale, Line* line,
+             double* a, double* b, double* s, double* rms) {
   for (int it = 0; it < iterations; ++it) {
-    Eigen::Matrix<double, 5, 5> H = Eigen::Matrix<double, 5, 5>::Zero();
+    Eigen::Matrix<double, 5, 5> H5 = Eigen::Matrix<double, 5, 5>::Zero();
     Eigen::Matrix<double, 5, 1> g = Eigen::Matrix<double, 5, 1>::Zero();
     const Eigen::Vector2d n = line->n();
     const Eigen::Vector2d n_perp(-n.y(), n.x());
+    const Profile profile = ProfileFor(n, pixel_scale);
     for (const Sample& sample : samples) {
       const double d = n.dot(sample.q) - line->c;
-      const double z = d / *s;
-      const double Phi = 0.5 * (1.0 + std::erf(z * kInvSqrt2));
-      const double pdf = kInvSqrt2Pi * std::exp(-0.5 * z * z);
-      const double r = *a + *b * Phi - sample.value;
-      const double dI_dd = *b * pdf / *s;
+      double F, dF_dd, dF_ds;
+      profile.Eval(d, *s, &F, &dF_dd, &dF_ds);
+      const double r = *a + *b * F - sample.value;
+      const double dI_dd = *b * dF_dd;
       Eigen::Matrix<double, 5, 1> J;
-      J << dI_dd * n_perp.dot(sample.q), -dI_dd, 1.0, Phi, -dI_dd * z;
-      H.noalias() += J * J.transpose();
+      J << dI_dd * n_perp.dot(sample.q), -dI_dd, 1.0, F, *b * dF_ds;
+      H5.noalias() += J * J.transpose();
       g.noalias() += J * r;
     }
-    H.diagonal() *= 1.0 + 1e-9;
-    const Eigen::Matrix<double, 5, 1> step = H.ldlt().solve(-g);
+    H5.diagonal() *= 1.0 + 1e-9;
+    const Eigen::Matrix<double, 5, 1> step = H5.ldlt().solve(-g);
     if (!step.allFinite()) return false;
     line->phi += step[0];
     line->c += step[1];
@@ -88,9 +136,11 @@ bool FitEdge(const std::vector<Sample>& samples, int iterations, Line* line, dou
   }
   double sum = 0;
   const Eigen::Vector2d n = line->n();
+  const Profile profile = ProfileFor(n, pixel_scale);
   for (const Sample& sample : samples) {
-    const double z = (n.dot(sample.q) - line->c) / *s;
-    const double r = *a + *b * 0.5 * (1.0 + std::erf(z * kInvSqrt2)) - sample.value;
+    double F, dF_dd, dF_ds;
+    profile.Eval(n.dot(sample.q) - line->c, *s, &F, &dF_dd, &dF_ds);
+    const double r = *a + *b * F - sample.value;
     sum += r * r;
   }
   *rms = std::sqrt(sum / static_cast<double>(samples.size()));
@@ -141,11 +191,15 @@ bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
       const double thickness = std::abs(n_opposite.dot(line.mid - c)) / options.border_cells;
       band_in = std::clamp(thickness - 2.5, 1.0, options.band_px);
     }
-    double level_a = 0, level_b = 0, s = 1.0;
+    // Size of a pixel in ideal coordinates here (distortion scales it slightly).
+    const int mu = std::clamp(static_cast<int>((*corners)[k].x()), 0, map.width() - 2);
+    const int mv = std::clamp(static_cast<int>((*corners)[k].y()), 0, map.height() - 1);
+    const double pixel_scale = (map.At(mu + 1, mv) - map.At(mu, mv)).norm();
+    double level_a = 0, level_b = 0, s = 0.8;
     bool levels_set = false;
     for (int pass = 0; pass < options.passes; ++pass) {
-      const std::vector<Sample> samples = SelectBand(image32f, map, line, (*corners)[k],
-                                                     (*corners)[(k + 1) % 4], a, b, options, band_in);
+      const std::vector<Sample> samples = SelectBand(
+          image32f, map, line, (*corners)[k], (*corners)[(k + 1) % 4], a, b, options, band_in);
       if (static_cast<int>(samples.size()) < options.min_pixels) return false;
       if (!levels_set) {
         // Start from the darkest and brightest sides of the band.
@@ -164,7 +218,9 @@ bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
         levels_set = true;
       }
       double rms = 0;
-      if (!FitEdge(samples, options.iterations, &line, &level_a, &level_b, &s, &rms)) return false;
+      if (!FitEdge(samples, options.iterations, pixel_scale, &line, &level_a, &level_b, &s, &rms)) {
+        return false;
+      }
       // Something else in the band (an occluder, a shadow, a neighbour): not a clean step.
       if (pass == options.passes - 1 && rms > options.max_residual * level_b) return false;
     }

@@ -1,6 +1,7 @@
 // Sub-pixel refinement of a dark quadrilateral's corners (an AprilTag's outer black
-// border on its white quiet zone) by fitting each side as a blurred step edge,
-//   I(q) = a + b * Phi((n . q - c) / s),
+// border on its white quiet zone) by fitting each side as a step edge blurred by a
+// Gaussian (sigma s) and integrated over each pixel,
+//   I(q) = a + b * F(n . q - c; s),
 // to the pixels of a band around the side, in ideal (undistorted) coordinates where the
 // side is a straight line; the corners are the intersections of adjacent sides. Unlike
 // a gradient-based corner detector this is not pulled inward by the rounding of a
@@ -17,16 +18,16 @@
 namespace h4::cam {
 
 struct EdgeFitOptions {
-  double band_px = 2.5;            ///< half width of the pixel band fitted around a side
+  double band_px = 2.5;  ///< half width of the pixel band fitted around a side
   /// Width of the quad in cells (libapriltag's width_at_border: 8 for tag36h11): the dark
   /// side of the band stays 2.5 px clear of the black border's inner edge (one cell in),
   /// where a white data cell would bias the fit. 0 = no such limit.
   int border_cells = 0;
-  double corner_clearance_px = 3.0;///< pixels this close to a corner (along the side) skipped
-  int passes = 3;                  ///< re-select the band around the new line this many times
-  int iterations = 5;              ///< Gauss-Newton iterations per pass
-  double max_shift_px = 2.0;       ///< a corner moving farther than this fails the refinement
-  int min_pixels = 12;             ///< fewer pixels in a side's band fails the refinement
+  double corner_clearance_px = 3.0;  ///< pixels this close to a corner (along the side) skipped
+  int passes = 2;                    ///< select the band around the current line this many times
+  int iterations = 5;                ///< Gauss-Newton iterations per pass
+  double max_shift_px = 2.0;         ///< a corner moving farther than this fails the refinement
+  int min_pixels = 12;               ///< fewer pixels in a side's band fails the refinement
   /// A side whose RMS fit residual exceeds this fraction of its contrast fails (the band
   /// holds something other than a clean blurred step: an occluder, a shadow edge).
   double max_residual = 0.04;

@@ -8,9 +8,9 @@ IdealPixelMap::IdealPixelMap(const CameraModel& camera)
   ideal_.resize(static_cast<size_t>(width_) * static_cast<size_t>(height_));
   for (int v = 0; v < height_; ++v) {
     for (int u = 0; u < width_; ++u) {
-      camera_.IdealFromPixel(Eigen::Vector2d(u, v),
-                             &ideal_[static_cast<size_t>(v) * static_cast<size_t>(width_) +
-                                     static_cast<size_t>(u)]);
+      camera_.IdealFromPixel(
+          Eigen::Vector2d(u, v),
+          &ideal_[static_cast<size_t>(v) * static_cast<size_t>(width_) + static_cast<size_t>(u)]);
     }
   }
 }

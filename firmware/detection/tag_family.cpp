@@ -1,10 +1,10 @@
 // AprilTag family lookup and tag bit patterns; see tag_family.h.
 #include "firmware/detection/tag_family.h"
 
+#include <cstdlib>
 #include <vector>
 
 #include <apriltag/apriltag.h>
-#include <cstdlib>
 #include <apriltag/tag16h5.h>
 #include <apriltag/tag25h9.h>
 #include <apriltag/tag36h11.h>
@@ -28,7 +28,8 @@ std::vector<bool> TagCells(const apriltag_family& family, int id, int* width) {
   std::vector<bool> cells(static_cast<size_t>(*width * *width));
   for (int y = 0; y < *width; ++y) {
     for (int x = 0; x < *width; ++x) {
-      cells[static_cast<size_t>(y * *width + x)] = im->buf[(y + start) * im->stride + x + start] > 127;
+      cells[static_cast<size_t>(y * *width + x)] =
+          im->buf[(y + start) * im->stride + x + start] > 127;
     }
   }
   // image_u8_destroy is not exported by Debian's libapriltag; it frees exactly these.

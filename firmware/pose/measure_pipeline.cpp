@@ -103,7 +103,7 @@ Measurement MeasurePipeline::MeasureImage(const cv::Mat& image, int frames_avera
   const PoseEstimate pose = EstimatePose(detection.corners, camera_, options_.pose);
   if (!pose.ok()) {
     m.status = pose.status == PoseEstimate::Status::kTooFewCorners ? Measurement::Status::kPartial
-                                                                    : Measurement::Status::kNoBoard;
+                                                                   : Measurement::Status::kNoBoard;
     m.message = pose.message;
     return m;
   }

@@ -21,14 +21,14 @@ struct Measurement {
   RigidTransform X_CT;  ///< board in camera (valid for kOk and kMoved)
   /// 6x6 covariance, order of messages/README.md: (p_CT in C, right rotation vector in T).
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
-  double sigma_t = 0;          ///< per-axis position sigma from the fit, m
-  double sigma_r = 0;          ///< per-axis rotation sigma from the fit, rad
+  double sigma_t = 0;  ///< per-axis position sigma from the fit, m
+  double sigma_r = 0;  ///< per-axis rotation sigma from the fit, rad
   int corners_used = 0;
   double rms_px = 0;           ///< reprojection RMS of the fit
   double frame_spread_px = 0;  ///< max per-corner spread between the group's frames
   int frames_averaged = 0;
-  int64_t utime = 0;           ///< time of the group's first frame
-  std::string origin;          ///< file name of the group's first frame (file sources)
+  int64_t utime = 0;   ///< time of the group's first frame
+  std::string origin;  ///< file name of the group's first frame (file sources)
 
   bool ok() const { return status == Status::kOk; }
 };

@@ -65,9 +65,8 @@ Refined RefineLm(const std::vector<CornerObservation>& corners, const CameraMode
 
 }  // namespace
 
-bool ReprojectionResiduals(const std::vector<CornerObservation>& corners,
-                           const CameraModel& camera, const RigidTransform& X_CT,
-                           Eigen::VectorXd* r, Eigen::MatrixXd* J) {
+bool ReprojectionResiduals(const std::vector<CornerObservation>& corners, const CameraModel& camera,
+                           const RigidTransform& X_CT, Eigen::VectorXd* r, Eigen::MatrixXd* J) {
   const auto n = static_cast<Eigen::Index>(corners.size());
   r->resize(2 * n);
   if (J != nullptr) J->resize(2 * n, 6);
@@ -110,8 +109,8 @@ PoseEstimate EstimatePose(const std::vector<CornerObservation>& corners, const C
   std::vector<cv::Mat> rvecs, tvecs;
   if (object.size() >= 4) {
     try {
-      cv::solvePnPGeneric(object, image, cv::Mat::eye(3, 3, CV_64F), cv::Mat(), rvecs, tvecs,
-                          false, cv::SOLVEPNP_IPPE);
+      cv::solvePnPGeneric(object, image, cv::Mat::eye(3, 3, CV_64F), cv::Mat(), rvecs, tvecs, false,
+                          cv::SOLVEPNP_IPPE);
     } catch (const cv::Exception&) {
       rvecs.clear();  // degenerate configuration (collinear points): no start
     }
@@ -158,7 +157,8 @@ PoseEstimate EstimatePose(const std::vector<CornerObservation>& corners, const C
   const double sigma2 = dof > 0 ? sol.cost / dof : 0.0;
   estimate.covariance = sigma2 * lu.inverse();
   estimate.covariance = 0.5 * (estimate.covariance + estimate.covariance.transpose()).eval();
-  estimate.sigma_t = std::sqrt(std::max(0.0, estimate.covariance.topLeftCorner<3, 3>().trace() / 3));
+  estimate.sigma_t =
+      std::sqrt(std::max(0.0, estimate.covariance.topLeftCorner<3, 3>().trace() / 3));
   estimate.sigma_r =
       std::sqrt(std::max(0.0, estimate.covariance.bottomRightCorner<3, 3>().trace() / 3));
   estimate.status = PoseEstimate::Status::kOk;

@@ -29,11 +29,11 @@ struct PoseEstimate {
   std::string message;  ///< why, when not ok
   RigidTransform X_CT;
   Eigen::Matrix<double, 6, 6> covariance = Eigen::Matrix<double, 6, 6>::Zero();
-  double rms_px = 0;              ///< RMS reprojection error (over the 2N coordinates)
-  double sigma_t = 0;             ///< sqrt(trace(cov_tt) / 3): per-axis position sigma, m
-  double sigma_r = 0;             ///< sqrt(trace(cov_rr) / 3): per-axis rotation sigma, rad
-  int corners = 0;                ///< corners used
-  int iterations = 0;             ///< LM iterations of the kept solution
+  double rms_px = 0;   ///< RMS reprojection error (over the 2N coordinates)
+  double sigma_t = 0;  ///< sqrt(trace(cov_tt) / 3): per-axis position sigma, m
+  double sigma_r = 0;  ///< sqrt(trace(cov_rr) / 3): per-axis rotation sigma, rad
+  int corners = 0;     ///< corners used
+  int iterations = 0;  ///< LM iterations of the kept solution
   /// RMS of the other planar solution after refinement (px); +inf when IPPE gave one.
   /// Close to rms_px means the ambiguity was weakly resolved.
   double alternative_rms_px = 0;
@@ -46,8 +46,8 @@ PoseEstimate EstimatePose(const std::vector<CornerObservation>& corners, const C
 /// Residuals r = project(X_CT * p_TQ) - uv (2N) and, when J is given, their Jacobian
 /// (2N x 6) w.r.t. (delta_t in C, delta_r right perturbation in T). False when a point is
 /// behind the camera.
-bool ReprojectionResiduals(const std::vector<CornerObservation>& corners,
-                           const CameraModel& camera, const RigidTransform& X_CT,
-                           Eigen::VectorXd* r, Eigen::MatrixXd* J = nullptr);
+bool ReprojectionResiduals(const std::vector<CornerObservation>& corners, const CameraModel& camera,
+                           const RigidTransform& X_CT, Eigen::VectorXd* r,
+                           Eigen::MatrixXd* J = nullptr);
 
 }  // namespace h4::cam

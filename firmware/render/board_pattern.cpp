@@ -110,8 +110,10 @@ bool BoardPattern::AprilGridMayChange(double x0, double y0, double x1, double y1
   if (lx0 >= s || ly0 >= s) return false;  // in the gap right of / below the tag
   if (lx1 >= s || ly1 >= s) return true;   // across the tag's outer edge
   const double cell = s / cells_;
-  const int cx0 = static_cast<int>(lx0 / cell), cx1 = std::min(static_cast<int>(lx1 / cell), cells_ - 1);
-  const int cy0 = static_cast<int>(ly0 / cell), cy1 = std::min(static_cast<int>(ly1 / cell), cells_ - 1);
+  const int cx0 = static_cast<int>(lx0 / cell),
+            cx1 = std::min(static_cast<int>(lx1 / cell), cells_ - 1);
+  const int cy0 = static_cast<int>(ly0 / cell),
+            cy1 = std::min(static_cast<int>(ly1 / cell), cells_ - 1);
   const auto& cells = tag_cells_[static_cast<size_t>(row * grid.cols + col)];
   const bool first = cells[static_cast<size_t>(cy0 * cells_ + cx0)];
   for (int cy = cy0; cy <= cy1; ++cy) {

@@ -22,6 +22,9 @@ class BoardPattern {
   bool ok() const { return error_.empty(); }
   const std::string& error() const { return error_; }
 
+  /// Printed extent (pattern plus margin) in the board plane, m.
+  Eigen::Vector2d extent_min() const { return min_; }
+  Eigen::Vector2d extent_max() const { return max_; }
   /// Colour at (x, y) in T, m.
   Colour At(double x, double y) const;
   /// False only when the colour is certainly uniform over the box [x0, x1] x [y0, y1]
@@ -36,9 +39,9 @@ class BoardPattern {
   BoardSpec spec_;
   BoardModel model_;
   double margin_ = 0;
-  Eigen::Vector2d min_, max_;     // printed extent incl. margin
-  std::vector<double> xs_, ys_;   // sorted boundary coordinates
-  int cells_ = 0;                 // tag width in cells
+  Eigen::Vector2d min_, max_;                 // printed extent incl. margin
+  std::vector<double> xs_, ys_;               // sorted boundary coordinates
+  int cells_ = 0;                             // tag width in cells
   std::vector<std::vector<bool>> tag_cells_;  // per tag index, row-major, true = white
   std::string error_;
 };

@@ -1,8 +1,9 @@
 // Synthetic camera images of a calibration board at a known pose X_CT, the ground truth
-// for the measuring pipeline's tests and benchmarks. Each pixel is area-sampled (a
-// jittered grid of sub-pixel rays wherever the pixel may straddle a colour boundary,
-// each ray undistorted and intersected with the board plane), then optical blur
-// (Gaussian), sensor noise (Gaussian) and 8-bit quantisation, reproducible from a seed.
+// for the measuring pipeline's tests and benchmarks. The board's region is rendered on a
+// grid finer than the pixels, area-sampled (a jittered grid of sub-pixel rays wherever
+// a colour boundary may cross, each ray undistorted and intersected with the board
+// plane), blurred (Gaussian optics) and integrated over each pixel; then sensor noise
+// (Gaussian) and 8-bit quantisation, reproducible from a seed.
 #pragma once
 
 #include <cstdint>
@@ -20,15 +21,18 @@
 namespace h4::cam {
 
 struct RenderOptions {
-  /// Sub-pixel samples of a pixel that may straddle an edge, rounded up to a square
-  /// (jittered s x s strata: unbiased coverage whatever the edge direction).
+  /// The board's region is rendered this many times finer per axis, blurred there, then
+  /// averaged back to pixels (optical blur before pixel integration, as in a camera).
+  int supersampling = 4;
+  /// Area samples per pixel where a colour boundary crosses it, spread over its
+  /// supersampling^2 sub-pixels as jittered strata (unbiased whatever the edge direction).
   int samples_per_pixel = 256;
-  double blur_sigma_px = 0.8;     ///< optical blur, Gaussian sigma in px (0 = none)
-  double noise_sigma = 2.0;       ///< sensor noise per frame, grey levels (0 = none)
-  double black_level = 30.0;      ///< grey level of the printed black, 0..255
-  double white_level = 220.0;     ///< grey level of the printed white
-  double background_level = 90.0; ///< grey level off the board
-  double margin = -1.0;           ///< white border around the pattern, m (<0: one tag/square)
+  double blur_sigma_px = 0.8;      ///< optical blur, Gaussian sigma in px (0 = none)
+  double noise_sigma = 2.0;        ///< sensor noise per frame, grey levels (0 = none)
+  double black_level = 30.0;       ///< grey level of the printed black, 0..255
+  double white_level = 220.0;      ///< grey level of the printed white
+  double background_level = 90.0;  ///< grey level off the board
+  double margin = -1.0;            ///< white border around the pattern, m (<0: one tag/square)
 
   bool IsValid(std::string* why) const;
 };

@@ -15,7 +15,7 @@ namespace fs = std::filesystem;
 namespace {
 
 bool IsImageName(const fs::path& path) {
-  static const std::set<std::string> kExtensions = {".png", ".jpg",  ".jpeg", ".pgm", ".ppm",
+  static const std::set<std::string> kExtensions = {".png", ".jpg", ".jpeg", ".pgm", ".ppm",
                                                     ".pnm", ".bmp", ".tif",  ".tiff"};
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),

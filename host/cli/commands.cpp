@@ -12,6 +12,9 @@ void AddAllCommands(CLI::App& app) {
   AddIdentifyCommand(app);
   AddFkCommand(app);
   AddIkCommand(app);
+  AddValidateCommand(app);
+  AddReportCommand(app);
+  AddExportCommand(app);
 }
 
 int ExitCode() { return g_exit_code; }

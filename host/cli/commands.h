@@ -3,6 +3,8 @@
 // or, for "ran but the result is not usable", by SetExitCode.
 #pragma once
 
+#include <string>
+
 #include <CLI/CLI.hpp>
 
 namespace h4::host::cli {
@@ -12,6 +14,12 @@ void AddIdentifyCommand(CLI::App& app);
 void AddAnalyzeCommand(CLI::App& app);
 void AddFkCommand(CLI::App& app);
 void AddIkCommand(CLI::App& app);
+void AddValidateCommand(CLI::App& app);
+void AddReportCommand(CLI::App& app);
+void AddExportCommand(CLI::App& app);
+
+/// The options a subcommand was given, as "--name value ..." (shown in the report).
+std::string ReportCommandLine(const CLI::App& command);
 
 /// Registers every command above.
 void AddAllCommands(CLI::App& app);

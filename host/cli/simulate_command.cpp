@@ -18,6 +18,7 @@
 #include "host/simulation/pose_plan.h"
 #include "host/simulation/true_robot.h"
 #include "host/simulation/truth_file.h"
+#include "host/validation/straightness.h"
 
 namespace h4::host::cli {
 namespace {
@@ -84,12 +85,26 @@ void Run(const SimulateOptions& options) {
   WriteJointsCsv((dir / "heldout_joints.csv").string(), heldout_joints);
   WriteFkCsv((dir / "heldout_truth.csv").string(), heldout_truth);
 
+  // The straightness experiment (paper IV.D, Table 4): the true robot slides along a
+  // straight ruler in two directions while its (noisy) encoders are logged.
+  const std::vector<RulerLine> rulers = PaperRulerLines();
+  for (size_t k = 0; k < rulers.size(); ++k) {
+    const std::string name = "straightness_" + std::to_string(k + 1) + ".csv";
+    try {
+      WriteJointsCsv((dir / name).string(),
+                     SimulateRulerRun(robot, rulers[k], options.sigma_q, options.seed + 1000 + k));
+    } catch (const std::invalid_argument& e) {
+      spdlog::warn("{} not written: {}", name, e.what());
+    }
+  }
+
   spdlog::info("simulated Model {} truth{}: {} poses ({} held out), {} out of reach",
                robot.truth_model(),
                geometry == TrueGeometry::kPaperTable2 ? " (paper Table 2)" : "",
                dataset.rows.size(), heldout_joints.size(), dataset.unreachable.size());
   spdlog::info(
-      "wrote {}/{{dataset.csv, robot.yaml, truth.yaml, heldout_joints.csv, heldout_truth.csv}}",
+      "wrote {}/{{dataset.csv, robot.yaml, truth.yaml, heldout_joints.csv, heldout_truth.csv, "
+      "straightness_1.csv, straightness_2.csv}}",
       options.out_dir);
 }
 

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "host/identification/identification_report.h"
+#include "host/kinematics/measurement_chain.h"
 #include "host/kinematics/model12.h"
 #include "host/kinematics/model31.h"
 
@@ -39,6 +40,32 @@ void FixUserParameters(const IdentificationOptions& options, ParameterVector* p,
   }
 }
 
+}  // namespace
+
+// The rows the identifiability analysis uses: each measured pose made exactly consistent
+// with the start point (joints from the IK of the measured pose, X_CT re-predicted from
+// the 4-DoF pose). Identifiability is a property of the model and the pose set; on the
+// raw rows the measurement noise (a tilt of X_BE of ~1e-4 rad) would lift exact null
+// directions (X_BC.tz + X_TE.tz, the board tilt under eq. (3)) off zero. Rows the start
+// model cannot reach are left as measured.
+std::vector<DatasetRow> ConsistentRows(const KinematicModel& model, const ParameterVector& p,
+                                       const std::vector<DatasetRow>& rows) {
+  std::unique_ptr<KinematicModel> start = model.Clone();
+  p.ApplyTo(start.get());
+  const RigidTransform X_BC = p.X_BC(), X_TE = p.X_TE();
+  std::vector<DatasetRow> out = rows;
+  for (DatasetRow& row : out) {
+    const EePose x = EePoseFromMeasurement(X_BC, row.X_CT, X_TE).x;
+    const IkResult ik = start->InverseKinematics(x);
+    if (!ik.ok()) continue;
+    for (size_t i = 0; i < 4; ++i) row.q[i] = ik.q[static_cast<Eigen::Index>(i)];
+    row.X_CT = PredictedBoardPose(X_BC, x, X_TE);
+  }
+  return out;
+}
+
+namespace {
+
 // One cost stage: identifiability at the start, NLopt, LM polish. `p` carries the values
 // in and out; its mask on return is this stage's. `placement_only` fixes the kinematics.
 StageSummary RunStage(CostKind kind, bool placement_only, const KinematicModel& model,
@@ -64,8 +91,12 @@ StageSummary RunStage(CostKind kind, bool placement_only, const KinematicModel& 
     return stage;
   }
   stage.rms_before = Rms(r);
-  IdentifiabilityReport report = AnalyzeIdentifiability(
-      J, model.name(), AnalysisOptionsFor(kind, options.identifiability), p);
+  const IdentificationCost analysis_cost(kind, model, ConsistentRows(model, *p, rows), options.cost);
+  Eigen::VectorXd r_analysis;
+  Eigen::MatrixXd J_analysis;
+  if (!analysis_cost.Evaluate(*p, &r_analysis, &J_analysis)) J_analysis = J;
+  IdentifiabilityReport report =
+      AnalyzeIdentifiability(J_analysis, model.name(), options.identifiability, p);
   for (const FixedByAnalysis& f : report.fixed) stage.fixed.push_back(f.name + ": " + f.reason);
   if (identifiability != nullptr) *identifiability = report;
 
@@ -127,14 +158,6 @@ std::vector<double> PoseResidualNorms(CostKind kind, const KinematicModel& model
 }
 
 }  // namespace
-
-IdentifiabilityOptions AnalysisOptionsFor(CostKind kind, const IdentifiabilityOptions& base) {
-  IdentifiabilityOptions analysis = base;
-  if (kind != CostKind::kMeasurement && analysis.second_order_candidates.empty()) {
-    analysis.second_order_candidates = {"X_TE.rx", "X_TE.ry"};
-  }
-  return analysis;
-}
 
 bool IdentificationOptions::IsValid(std::string* why) const {
   auto fail = [&](const std::string& message) {

@@ -100,9 +100,11 @@ struct IdentificationOutcome {
   IdentifiabilityReport identifiability;  ///< of the final stage, at its start point
 };
 
-/// The identifiability options a cost stage uses: `base`, plus for eq. (3) / (5) the board
-/// tilt X_TE.rx, X_TE.ry as second-order candidates (paper III.C).
-IdentifiabilityOptions AnalysisOptionsFor(CostKind kind, const IdentifiabilityOptions& base);
+/// The calibration rows made exactly consistent with the parameters p (joints by IK of the
+/// measured poses, X_CT re-predicted without the measured tilt): the rows on which the
+/// identifiability analysis is done, so that noise does not hide exact null directions.
+std::vector<DatasetRow> ConsistentRows(const KinematicModel& model, const ParameterVector& p,
+                                       const std::vector<DatasetRow>& rows);
 
 /// Identification from an a priori: `apriori_model` (12 or 31) with X_BC / X_TE in its base
 /// frame; `calib` for identification, `valid` held out (may be empty).

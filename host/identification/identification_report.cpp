@@ -37,9 +37,13 @@ void FillResult(const KinematicModel& model, const ParameterVector& apriori,
                                           options.correlation_threshold);
     // Re-check of identifiability at the solution: report, do not change the mask.
     ParameterVector check = p;
+    const IdentificationCost consistent(options.estimator, model, ConsistentRows(model, p, calib),
+                                        options.cost);
+    Eigen::VectorXd r_check;
+    Eigen::MatrixXd J_check;
+    if (!consistent.Evaluate(p, &r_check, &J_check)) J_check = J;
     const IdentifiabilityReport recheck =
-        AnalyzeIdentifiability(
-        J, model.name(), AnalysisOptionsFor(options.estimator, options.identifiability), &check);
+        AnalyzeIdentifiability(J_check, model.name(), options.identifiability, &check);
     for (const FixedByAnalysis& f : recheck.fixed) {
       result.log.push_back("at the solution, " + f.name + " is also " + f.reason);
     }

@@ -6,21 +6,21 @@
 
 #include "common/board/board_model.h"
 #include "common/camera/camera_model.h"
-#include "measure_scene_helpers.h"
+#include "firmware/render/paper_scenes.h"
 
 namespace h4::cam {
 namespace {
 
 TEST(AprilTagDetectorTest, CornersAreInOpenCvPixelConventionAfterCorrection) {
-  const AprilGridSpec board = testing::PaperBoard();
-  const CameraIntrinsics camera = testing::PaperCamera();
+  const AprilGridSpec board = scenes::PaperBoard();
+  const CameraIntrinsics camera = scenes::PaperCamera();
   const BoardRenderer renderer(board, camera, RenderOptions{});
   const BoardModel model(board);
   const CameraModel projection(camera);
   const AprilTagDetector detector;
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   int n = 0;
-  for (const RigidTransform& X_CT : testing::RandomPoses(3, 11)) {
+  for (const RigidTransform& X_CT : scenes::RandomPoses(3, 11)) {
     const cv::Mat image = renderer.Render(X_CT, 3);
     for (const TagDetection& tag : detector.Detect(image)) {
       for (int k = 0; k < 4; ++k) {
@@ -44,10 +44,11 @@ TEST(AprilTagDetectorTest, CornersAreInOpenCvPixelConventionAfterCorrection) {
 }
 
 TEST(AprilTagDetectorTest, FindsEveryTagOfTheBoardById) {
-  const AprilGridSpec board = testing::PaperBoard();
-  const BoardRenderer renderer(board, testing::PaperCamera(), RenderOptions{});
+  const AprilGridSpec board = scenes::PaperBoard();
+  const BoardRenderer renderer(board, scenes::PaperCamera(), RenderOptions{});
   const AprilTagDetector detector;
-  const auto tags = detector.Detect(renderer.Render(testing::BoardPose(board, 0.6, 0.4, 2.0, 0.5), 1));
+  const auto tags =
+      detector.Detect(renderer.Render(scenes::BoardPose(board, 0.6, 0.4, 2.0, 0.5), 1));
   std::vector<int> ids;
   for (const TagDetection& tag : tags) ids.push_back(tag.id);
   std::sort(ids.begin(), ids.end());

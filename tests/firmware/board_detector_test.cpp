@@ -7,7 +7,7 @@
 
 #include "common/camera/camera_model.h"
 #include "common/geometry/rotation.h"
-#include "measure_scene_helpers.h"
+#include "firmware/render/paper_scenes.h"
 
 namespace h4::cam {
 namespace {
@@ -24,9 +24,9 @@ double CornerRms(const BoardDetection& detection, const CameraModel& camera,
   return std::sqrt(sum / static_cast<double>(std::max<size_t>(detection.corners.size(), 1)));
 }
 
-TEST(BoardDetectorTest, EdgeFitCornersAreWithinFiveThousandthsOfAPixel) {
-  const AprilGridSpec board = testing::PaperBoard();
-  const CameraIntrinsics camera = testing::PaperCamera();
+TEST(BoardDetectorTest, EdgeFitCornersAreWithinAHundredthOfAPixel) {
+  const AprilGridSpec board = scenes::PaperBoard();
+  const CameraIntrinsics camera = scenes::PaperCamera();
   const BoardRenderer renderer(board, camera, RenderOptions{});  // noise 2, blur 0.8
   const CameraModel model(camera);
   DetectorOptions edge, subpix, none;
@@ -36,9 +36,9 @@ TEST(BoardDetectorTest, EdgeFitCornersAreWithinFiveThousandthsOfAPixel) {
   const BoardDetector subpix_detector(board, camera, subpix);
   const BoardDetector none_detector(board, camera, none);
   double sum_edge = 0, sum_subpix = 0, sum_none = 0;
-  const auto poses = testing::RandomPoses(3, 21);
+  const auto poses = scenes::RandomPoses(3, 21);
   for (size_t i = 0; i < poses.size(); ++i) {
-    const cv::Mat mean = testing::AveragedFrames(renderer, renderer.RenderClean(poses[i]), 10, i);
+    const cv::Mat mean = scenes::AveragedFrames(renderer, renderer.RenderClean(poses[i]), 10, i);
     const BoardDetection d = edge_detector.Detect(mean);
     ASSERT_EQ(d.status, BoardDetection::Status::kOk);
     EXPECT_EQ(d.corners.size(), 144u);
@@ -48,20 +48,21 @@ TEST(BoardDetectorTest, EdgeFitCornersAreWithinFiveThousandthsOfAPixel) {
   }
   const double rms_edge = std::sqrt(sum_edge / 3), rms_subpix = std::sqrt(sum_subpix / 3),
                rms_none = std::sqrt(sum_none / 3);
-  // Measured: edge fit ~0.004 px, libapriltag alone ~0.04 px, cornerSubPix ~0.22 px (the
-  // blurred L-shaped tag corners pull it inward).
-  EXPECT_LT(rms_edge, 0.005);
+  // Measured per scene (10 frames of noise 2 averaged): edge fit 0.004-0.009 px,
+  // libapriltag alone ~0.04 px, cornerSubPix ~0.22 px (the blurred L-shaped tag corners
+  // pull it inward).
+  EXPECT_LT(rms_edge, 0.01);
   EXPECT_LT(rms_edge, 0.5 * rms_none);
   EXPECT_LT(rms_none, rms_subpix);
 }
 
 TEST(BoardDetectorTest, PartlyHiddenBoardStillMeasuresWithFewerCorners) {
-  const AprilGridSpec board = testing::PaperBoard();
-  const CameraIntrinsics camera = testing::PaperCamera();
+  const AprilGridSpec board = scenes::PaperBoard();
+  const CameraIntrinsics camera = scenes::PaperCamera();
   RenderOptions options;
   const BoardRenderer renderer(board, camera, options);
-  const RigidTransform X_CT = testing::BoardPose(board, 0.55, 0.2, 0.5, 0.0);
-  cv::Mat image = renderer.Render(X_CT, 4);
+  const RigidTransform X_CT = scenes::BoardPose(board, 0.55, 0.2, 0.5, 0.0);
+  cv::Mat image = scenes::AveragedFrames(renderer, renderer.RenderClean(X_CT), 10, 4);
   // An arm across the left part of the board.
   cv::rectangle(image, cv::Rect(0, 0, 440, 768), cv::Scalar(60), cv::FILLED);
   const BoardDetector detector(board, camera);
@@ -69,14 +70,14 @@ TEST(BoardDetectorTest, PartlyHiddenBoardStillMeasuresWithFewerCorners) {
   EXPECT_EQ(detection.status, BoardDetection::Status::kOk);
   EXPECT_GE(detection.corners.size(), 40u);
   EXPECT_LT(detection.corners.size(), 144u);
-  EXPECT_LT(CornerRms(detection, CameraModel(camera), X_CT), 0.02);
+  EXPECT_LT(CornerRms(detection, CameraModel(camera), X_CT), 0.01);
 }
 
 TEST(BoardDetectorTest, TooFewCornersIsPartialAndNoTagIsNoBoard) {
-  const AprilGridSpec board = testing::PaperBoard();
-  const CameraIntrinsics camera = testing::PaperCamera();
+  const AprilGridSpec board = scenes::PaperBoard();
+  const CameraIntrinsics camera = scenes::PaperCamera();
   const BoardRenderer renderer(board, camera, RenderOptions{});
-  const RigidTransform X_CT = testing::BoardPose(board, 0.55, 0.0, 0.0, 0.0);
+  const RigidTransform X_CT = scenes::BoardPose(board, 0.55, 0.0, 0.0, 0.0);
   cv::Mat image = renderer.Render(X_CT, 5);
   // Keep only a window around the top-left tag(s).
   const CameraModel model(camera);
@@ -103,7 +104,7 @@ TEST(BoardDetectorTest, ChessboardCornersAreAccurateAndInModelOrder) {
   board.rows = 6;
   board.col_spacing = 0.02;
   board.row_spacing = 0.02;
-  const CameraIntrinsics camera = testing::PaperCamera();
+  const CameraIntrinsics camera = scenes::PaperCamera();
   const BoardRenderer renderer(board, camera, RenderOptions{});
   ASSERT_TRUE(renderer.ok()) << renderer.error();
   const BoardDetector detector(board, camera);
@@ -113,7 +114,7 @@ TEST(BoardDetectorTest, ChessboardCornersAreAccurateAndInModelOrder) {
     const Eigen::Matrix3d R = So3Exp(Eigen::Vector3d(0.2, -0.1, roll));
     const Eigen::Vector3d centre(0.08, 0.05, 0);
     const RigidTransform X_CT(R, Eigen::Vector3d(0.0, 0.0, 0.5) - R * centre);
-    const cv::Mat mean = testing::AveragedFrames(renderer, renderer.RenderClean(X_CT), 10, 9);
+    const cv::Mat mean = scenes::AveragedFrames(renderer, renderer.RenderClean(X_CT), 10, 9);
     const BoardDetection detection = detector.Detect(mean);
     ASSERT_EQ(detection.status, BoardDetection::Status::kOk) << roll;
     ASSERT_EQ(detection.corners.size(), 54u);

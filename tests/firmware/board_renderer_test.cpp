@@ -7,7 +7,7 @@
 #include "common/board/board_model.h"
 #include "common/camera/camera_model.h"
 #include "firmware/detection/board_detector.h"
-#include "measure_scene_helpers.h"
+#include "firmware/render/paper_scenes.h"
 
 namespace h4::cam {
 namespace {
@@ -46,9 +46,9 @@ TEST(BoardRendererTest, PixelHalfCoveredByAnEdgeIsMidGrey) {
 }
 
 TEST(BoardRendererTest, SameSeedGivesSameFramesAndNoiseHasRequestedSigma) {
-  const BoardRenderer renderer(testing::PaperBoard(), testing::PaperCamera(), RenderOptions{});
+  const BoardRenderer renderer(scenes::PaperBoard(), scenes::PaperCamera(), RenderOptions{});
   ASSERT_TRUE(renderer.ok());
-  const RigidTransform X_CT = testing::BoardPose(testing::PaperBoard(), 0.55, 0.2, 0.3, 0.1);
+  const RigidTransform X_CT = scenes::BoardPose(scenes::PaperBoard(), 0.55, 0.2, 0.3, 0.1);
   const cv::Mat a = renderer.Render(X_CT, 7), b = renderer.Render(X_CT, 7);
   const cv::Mat c = renderer.Render(X_CT, 8);
   EXPECT_EQ(cv::norm(a, b, cv::NORM_INF), 0.0);
@@ -61,14 +61,14 @@ TEST(BoardRendererTest, SameSeedGivesSameFramesAndNoiseHasRequestedSigma) {
 }
 
 TEST(BoardRendererTest, RenderedCornersLandWhereTheCameraModelProjects) {
-  const AprilGridSpec board = testing::PaperBoard();
-  const CameraIntrinsics camera = testing::PaperCamera();
+  const AprilGridSpec board = scenes::PaperBoard();
+  const CameraIntrinsics camera = scenes::PaperCamera();
   RenderOptions options;
   options.noise_sigma = 0;  // geometry only
   const BoardRenderer renderer(board, camera, options);
   const BoardDetector detector(board, camera);
   const CameraModel model(camera);
-  const RigidTransform X_CT = testing::BoardPose(board, 0.5, 0.35, 1.0, 0.4, 0.02, -0.01);
+  const RigidTransform X_CT = scenes::BoardPose(board, 0.5, 0.35, 1.0, 0.4, 0.02, -0.01);
   const BoardDetection detection = detector.Detect(renderer.RenderClean(X_CT));
   ASSERT_EQ(detection.corners.size(), 144u);
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();

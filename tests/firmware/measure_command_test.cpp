@@ -12,7 +12,7 @@
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "firmware/render/board_renderer.h"
-#include "measure_scene_helpers.h"
+#include "firmware/render/paper_scenes.h"
 
 namespace h4::cam {
 namespace {
@@ -22,16 +22,17 @@ TEST(MeasureCommandTest, WritesOneRowPerGroupWithEmptyPoseWhenNoBoard) {
   const fs::path dir = fs::path(H4_BINARY_DIR) / "test_tmp" / "measure_command";
   fs::remove_all(dir);
   fs::create_directories(dir / "images");
-  const AprilGridSpec board = testing::PaperBoard();
-  const CameraIntrinsics camera = testing::PaperCamera();
+  const AprilGridSpec board = scenes::PaperBoard();
+  const CameraIntrinsics camera = scenes::PaperCamera();
   WriteBoardYaml((dir / "board.yaml").string(), board);
   WriteCameraYaml((dir / "camera.yaml").string(), camera);
   const BoardRenderer renderer(board, camera, RenderOptions{});
-  const RigidTransform X_CT = testing::BoardPose(board, 0.5, 0.3, 1.2, 0.4);
+  const RigidTransform X_CT = scenes::BoardPose(board, 0.5, 0.3, 1.2, 0.4);
   const cv::Mat clean = renderer.RenderClean(X_CT);
   cv::RNG rng(1);
   for (int k = 0; k < 4; ++k) {  // group 1: the board; group 2: an empty scene
-    const cv::Mat frame = k < 2 ? renderer.Expose(clean, rng) : cv::Mat(768, 1024, CV_8U, cv::Scalar(90));
+    const cv::Mat frame =
+        k < 2 ? renderer.Expose(clean, rng) : cv::Mat(768, 1024, CV_8U, cv::Scalar(90));
     cv::imwrite((dir / "images" / ("f" + std::to_string(k) + ".png")).string(), frame);
   }
   MeasureArgs args;
@@ -58,8 +59,8 @@ TEST(MeasureCommandTest, ImageOfWrongSizeIsAnErrorNamingTheFile) {
   const fs::path dir = fs::path(H4_BINARY_DIR) / "test_tmp" / "measure_command_size";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  WriteBoardYaml((dir / "board.yaml").string(), testing::PaperBoard());
-  WriteCameraYaml((dir / "camera.yaml").string(), testing::PaperCamera());
+  WriteBoardYaml((dir / "board.yaml").string(), scenes::PaperBoard());
+  WriteCameraYaml((dir / "camera.yaml").string(), scenes::PaperCamera());
   cv::imwrite((dir / "small.png").string(), cv::Mat(10, 10, CV_8U, cv::Scalar(0)));
   MeasureArgs args;
   args.board_path = (dir / "board.yaml").string();

@@ -7,15 +7,15 @@
 #include <gtest/gtest.h>
 
 #include "common/geometry/rotation.h"
+#include "firmware/render/paper_scenes.h"
 #include "firmware/sources/sim_source.h"
-#include "measure_scene_helpers.h"
 
 namespace h4::cam {
 namespace {
 
 TEST(MeasurePipelineTest, PaperScenesMeetAccuracyGoalsAndSigmaIsHonest) {
-  const AprilGridSpec board = testing::PaperBoard();
-  const CameraIntrinsics camera = testing::PaperCamera();
+  const AprilGridSpec board = scenes::PaperBoard();
+  const CameraIntrinsics camera = scenes::PaperCamera();
   SimSourceOptions sim;
   sim.seed = 99;
   SimSource source(board, camera, sim);
@@ -23,7 +23,7 @@ TEST(MeasurePipelineTest, PaperScenesMeetAccuracyGoalsAndSigmaIsHonest) {
   MeasurePipeline pipeline(board, camera);
   ASSERT_TRUE(pipeline.ok()) << pipeline.error();
   double err_t2 = 0, err_r2 = 0, sig_t2 = 0, sig_r2 = 0;
-  const auto poses = testing::RandomPoses(6, 2024);
+  const auto poses = scenes::RandomPoses(6, 2024);
   for (const RigidTransform& X_CT : poses) {
     source.SetPose(X_CT);
     std::optional<Measurement> m;
@@ -39,8 +39,8 @@ TEST(MeasurePipelineTest, PaperScenesMeetAccuracyGoalsAndSigmaIsHonest) {
   }
   const double n = static_cast<double>(poses.size());
   const double rms_t = std::sqrt(3 * err_t2 / n), rms_r = std::sqrt(3 * err_r2 / n);
-  EXPECT_LT(rms_t, 0.05e-3);                 // position error RMS (norm), m
-  EXPECT_LT(rms_r, 0.01 * M_PI / 180);       // rotation error RMS (angle), rad
+  EXPECT_LT(rms_t, 0.05e-3);            // position error RMS (norm), m
+  EXPECT_LT(rms_r, 0.01 * M_PI / 180);  // rotation error RMS (angle), rad
   const double ratio_t = std::sqrt(sig_t2 / err_t2), ratio_r = std::sqrt(sig_r2 / err_r2);
   EXPECT_GT(ratio_t, 0.5);
   EXPECT_LT(ratio_t, 2.0);
@@ -49,8 +49,8 @@ TEST(MeasurePipelineTest, PaperScenesMeetAccuracyGoalsAndSigmaIsHonest) {
 }
 
 TEST(MeasurePipelineTest, EmptySceneGivesNoBoard) {
-  const AprilGridSpec board = testing::PaperBoard();
-  const CameraIntrinsics camera = testing::PaperCamera();
+  const AprilGridSpec board = scenes::PaperBoard();
+  const CameraIntrinsics camera = scenes::PaperCamera();
   SimSource source(board, camera, SimSourceOptions{});
   ASSERT_TRUE(source.Open());
   MeasurePipeline pipeline(board, camera);
@@ -63,7 +63,7 @@ TEST(MeasurePipelineTest, EmptySceneGivesNoBoard) {
 }
 
 TEST(MeasurePipelineTest, WrongFrameTypeIsACameraError) {
-  MeasurePipeline pipeline(testing::PaperBoard(), testing::PaperCamera());
+  MeasurePipeline pipeline(scenes::PaperBoard(), scenes::PaperCamera());
   Frame frame;
   frame.image = cv::Mat(768, 1024, CV_16U, cv::Scalar(0));
   const std::optional<Measurement> m = pipeline.AddFrame(frame);

@@ -6,8 +6,8 @@
 
 #include "firmware/averaging/frame_averager.h"
 #include "firmware/pose/measure_pipeline.h"
+#include "firmware/render/paper_scenes.h"
 #include "firmware/sources/sim_source.h"
-#include "measure_scene_helpers.h"
 
 namespace h4::cam {
 namespace {
@@ -41,18 +41,18 @@ TEST(FrameAveragerTest, FrameOfAnotherSizeIsRefused) {
 // Measures one group of 10 frames from the sim source; the board moves by `step` (m,
 // along x in C) after the 5th frame.
 Measurement MeasureGroup(double step) {
-  const AprilGridSpec board = testing::PaperBoard();
-  const CameraIntrinsics camera = testing::PaperCamera();
+  const AprilGridSpec board = scenes::PaperBoard();
+  const CameraIntrinsics camera = scenes::PaperCamera();
   SimSource source(board, camera, SimSourceOptions{});
   EXPECT_TRUE(source.Open());
-  const RigidTransform X_CT = testing::BoardPose(board, 0.55, 0.25, 0.4, 0.3);
+  const RigidTransform X_CT = scenes::BoardPose(board, 0.55, 0.25, 0.4, 0.3);
   MeasurePipeline pipeline(board, camera);
   source.SetPose(X_CT);
   std::optional<Measurement> m;
   for (int k = 0; k < 10; ++k) {
     if (k == 5) {
-      source.SetPose(RigidTransform(X_CT.rotation(),
-                                    X_CT.translation() + Eigen::Vector3d(step, 0, 0)));
+      source.SetPose(
+          RigidTransform(X_CT.rotation(), X_CT.translation() + Eigen::Vector3d(step, 0, 0)));
     }
     m = pipeline.AddFrame(*source.Next(std::chrono::milliseconds(0)));
     if (k < 9) {

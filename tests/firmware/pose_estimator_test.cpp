@@ -7,14 +7,13 @@
 
 #include "common/board/board_model.h"
 #include "common/geometry/rotation.h"
-#include "measure_scene_helpers.h"
+#include "firmware/render/paper_scenes.h"
 
 namespace h4::cam {
 namespace {
 
 std::vector<CornerObservation> Project(const BoardModel& board, const CameraModel& camera,
-                                       const RigidTransform& X_CT, double noise_px,
-                                       cv::RNG* rng) {
+                                       const RigidTransform& X_CT, double noise_px, cv::RNG* rng) {
   std::vector<CornerObservation> corners;
   for (int id = 0; id < board.corner_count(); ++id) {
     CornerObservation c;
@@ -28,9 +27,9 @@ std::vector<CornerObservation> Project(const BoardModel& board, const CameraMode
 }
 
 TEST(PoseEstimatorTest, ExactCornersGiveTheExactPose) {
-  const BoardModel board(testing::PaperBoard());
-  const CameraModel camera(testing::PaperCamera());
-  for (const RigidTransform& X_CT : testing::RandomPoses(5, 3)) {
+  const BoardModel board(scenes::PaperBoard());
+  const CameraModel camera(scenes::PaperCamera());
+  for (const RigidTransform& X_CT : scenes::RandomPoses(5, 3)) {
     const PoseEstimate estimate = EstimatePose(Project(board, camera, X_CT, 0, nullptr), camera);
     ASSERT_TRUE(estimate.ok()) << estimate.message;
     EXPECT_TRUE(estimate.X_CT.IsNearlyEqualTo(X_CT, 1e-9, 1e-9));
@@ -43,15 +42,15 @@ TEST(PoseEstimatorTest, NearFrontalBoardPicksTheTrueOfTheTwoPlanarSolutions) {
   // A small board (2 x 2 tags, 69 mm) at 1 m tilted by 8 degrees: the two IPPE solutions
   // are mirror tilts ~16 degrees apart, and both are local minima of the reprojection
   // error (measured: in about half the trials LM keeps them apart).
-  AprilGridSpec spec = testing::PaperBoard();
+  AprilGridSpec spec = scenes::PaperBoard();
   spec.cols = 2;
   spec.rows = 2;
   const BoardModel board(spec);
-  const CameraModel camera(testing::PaperCamera());
+  const CameraModel camera(scenes::PaperCamera());
   cv::RNG rng(5);
   int ambiguous = 0;
   for (int trial = 0; trial < 20; ++trial) {
-    const RigidTransform X_CT = testing::BoardPose(spec, 1.0, 8.0 * M_PI / 180, trial * 0.3, 0.2);
+    const RigidTransform X_CT = scenes::BoardPose(spec, 1.0, 8.0 * M_PI / 180, trial * 0.3, 0.2);
     const PoseEstimate estimate = EstimatePose(Project(board, camera, X_CT, 0.05, &rng), camera);
     ASSERT_TRUE(estimate.ok());
     EXPECT_LT(So3Log(estimate.X_CT.rotation().transpose() * X_CT.rotation()).norm(),
@@ -67,9 +66,9 @@ TEST(PoseEstimatorTest, NearFrontalBoardPicksTheTrueOfTheTwoPlanarSolutions) {
 }
 
 TEST(PoseEstimatorTest, ResidualJacobianMatchesFiniteDifferences) {
-  const BoardModel board(testing::PaperBoard());
-  const CameraModel camera(testing::PaperCamera());
-  const RigidTransform X_CT = testing::RandomPoses(1, 8)[0];
+  const BoardModel board(scenes::PaperBoard());
+  const CameraModel camera(scenes::PaperCamera());
+  const RigidTransform X_CT = scenes::RandomPoses(1, 8)[0];
   const auto corners = Project(board, camera, X_CT, 0, nullptr);
   Eigen::VectorXd r;
   Eigen::MatrixXd J;
@@ -91,9 +90,9 @@ TEST(PoseEstimatorTest, ResidualJacobianMatchesFiniteDifferences) {
 }
 
 TEST(PoseEstimatorTest, CovarianceMatchesMonteCarloErrors) {
-  const BoardModel board(testing::PaperBoard());
-  const CameraModel camera(testing::PaperCamera());
-  const RigidTransform X_CT = testing::BoardPose(testing::PaperBoard(), 0.55, 0.3, 0.7, 0.2);
+  const BoardModel board(scenes::PaperBoard());
+  const CameraModel camera(scenes::PaperCamera());
+  const RigidTransform X_CT = scenes::BoardPose(scenes::PaperBoard(), 0.55, 0.3, 0.7, 0.2);
   cv::RNG rng(17);
   const int trials = 300;
   double mahalanobis = 0;
@@ -119,9 +118,9 @@ TEST(PoseEstimatorTest, CovarianceMatchesMonteCarloErrors) {
 }
 
 TEST(PoseEstimatorTest, TooFewCornersIsReportedNotGuessed) {
-  const BoardModel board(testing::PaperBoard());
-  const CameraModel camera(testing::PaperCamera());
-  auto corners = Project(board, camera, testing::RandomPoses(1, 2)[0], 0, nullptr);
+  const BoardModel board(scenes::PaperBoard());
+  const CameraModel camera(scenes::PaperCamera());
+  auto corners = Project(board, camera, scenes::RandomPoses(1, 2)[0], 0, nullptr);
   corners.resize(3);
   const PoseEstimate estimate = EstimatePose(corners, camera);
   EXPECT_EQ(estimate.status, PoseEstimate::Status::kTooFewCorners);

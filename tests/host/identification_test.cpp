@@ -148,7 +148,6 @@ TEST(IdentificationTest, NoiseFreeModel31DataGivesBackTheIdentifiableParameters)
   EXPECT_NEAR(e.h, t.h, 1e-8);
   for (size_t j = 0; j < 3; ++j) {
     EXPECT_NEAR(e.P[j].z(), t.P[j].z(), 1e-8);
-    EXPECT_NEAR(e.P[j].head<2>().norm(), t.P[j].head<2>().norm(), 1e-8);
   }
   // And the model predicts every true board pose exactly.
   const auto [p, r] = HeldOutTruthError(out, s);
@@ -206,7 +205,9 @@ TEST(IdentificationTest, ResultIsFilledAndRebuildsTheSameRobot) {
   EXPECT_EQ(r.parameters.size(), 13u + 12u);
   for (const ResultParameter& p : r.parameters) {
     EXPECT_EQ(p.std.has_value(), !p.fixed) << p.name;
-    if (p.std) EXPECT_GT(*p.std, 0.0) << p.name;
+    if (p.std) {
+      EXPECT_GT(*p.std, 0.0) << p.name;
+    }
   }
   ASSERT_NE(r.Find("X_TE.tz"), nullptr);
   EXPECT_TRUE(r.Find("X_TE.tz")->fixed);

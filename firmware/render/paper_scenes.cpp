@@ -1,12 +1,12 @@
-// Paper-like scenes for the measuring pipeline's tests; see measure_scene_helpers.h.
-#include "measure_scene_helpers.h"
+// Paper-like scenes; see paper_scenes.h.
+#include "firmware/render/paper_scenes.h"
 
 #include <cmath>
 
 #include "common/board/board_model.h"
 #include "common/geometry/rotation.h"
 
-namespace h4::cam::testing {
+namespace h4::cam::scenes {
 
 CameraIntrinsics PaperCamera() {
   CameraIntrinsics camera;
@@ -27,8 +27,8 @@ AprilGridSpec PaperBoard() {
   return board;
 }
 
-RigidTransform BoardPose(const AprilGridSpec& board, double depth, double tilt,
-                         double axis_angle, double roll, double dx, double dy) {
+RigidTransform BoardPose(const AprilGridSpec& board, double depth, double tilt, double axis_angle,
+                         double roll, double dx, double dy) {
   const BoardModel model(board);
   const Eigen::Vector2d mid = 0.5 * (model.pattern_min() + model.pattern_max());
   const Eigen::Vector3d p_TM(mid.x(), mid.y(), 0.0);  // board centre in T
@@ -64,4 +64,4 @@ cv::Mat AveragedFrames(const BoardRenderer& renderer, const cv::Mat& clean, int 
   return sum / static_cast<double>(frames);
 }
 
-}  // namespace h4::cam::testing
+}  // namespace h4::cam::scenes

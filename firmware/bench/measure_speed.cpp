@@ -1,0 +1,89 @@
+// Speed of the measuring pipeline at 1024 x 768 on one core (Google Benchmark): the
+// frame-add path (must keep up with 30 fps: well under 33 ms), and the per-pose work
+// (average 10 frames -> detect -> motion check -> pose; target under 30 ms), with its parts.
+#include <benchmark/benchmark.h>
+
+#include "firmware/detection/board_detector.h"
+#include "firmware/pose/measure_pipeline.h"
+#include "firmware/render/paper_scenes.h"
+#include "firmware/sources/sim_source.h"
+
+namespace h4::cam {
+namespace {
+
+struct Scene {
+  Scene() : source(scenes::PaperBoard(), scenes::PaperCamera(), SimSourceOptions{}) {
+    source.SetPose(scenes::BoardPose(scenes::PaperBoard(), 0.55, 0.3, 0.8, 0.4));
+    for (int k = 0; k < 10; ++k) frames.push_back(*source.Next(std::chrono::milliseconds(0)));
+    FrameAverager averager(10);
+    for (const Frame& f : frames) averager.Add(f);
+    mean = averager.Mean();
+  }
+  SimSource source;
+  std::vector<Frame> frames;
+  cv::Mat mean;
+};
+
+const Scene& TheScene() {
+  static const Scene scene;
+  return scene;
+}
+
+void BM_AddFrame(benchmark::State& state) {
+  const Scene& scene = TheScene();
+  FrameAverager averager(1 << 30);
+  for (auto _ : state) {
+    averager.Add(scene.frames[0]);
+    if (averager.count() > 1000) averager.Reset();
+  }
+}
+BENCHMARK(BM_AddFrame)->Unit(benchmark::kMillisecond);
+
+void BM_MeasureGroupOf10(benchmark::State& state) {
+  const Scene& scene = TheScene();
+  MeasurePipeline pipeline(scenes::PaperBoard(), scenes::PaperCamera());
+  for (auto _ : state) {
+    std::optional<Measurement> m;
+    for (const Frame& f : scene.frames) m = pipeline.AddFrame(f);
+    if (!m || !m->ok()) state.SkipWithError("measurement failed");
+    benchmark::DoNotOptimize(m);
+  }
+}
+BENCHMARK(BM_MeasureGroupOf10)->Unit(benchmark::kMillisecond);
+
+void BM_DetectEdgeFit(benchmark::State& state) {
+  const Scene& scene = TheScene();
+  const BoardDetector detector(scenes::PaperBoard(), scenes::PaperCamera());
+  for (auto _ : state) benchmark::DoNotOptimize(detector.Detect(scene.mean));
+}
+BENCHMARK(BM_DetectEdgeFit)->Unit(benchmark::kMillisecond);
+
+void BM_DetectAprilTagOnly(benchmark::State& state) {
+  const Scene& scene = TheScene();
+  DetectorOptions options;
+  options.refinement = CornerRefinement::kNone;
+  const BoardDetector detector(scenes::PaperBoard(), scenes::PaperCamera(), options);
+  for (auto _ : state) benchmark::DoNotOptimize(detector.Detect(scene.mean));
+}
+BENCHMARK(BM_DetectAprilTagOnly)->Unit(benchmark::kMillisecond);
+
+void BM_Pose(benchmark::State& state) {
+  const Scene& scene = TheScene();
+  const BoardDetector detector(scenes::PaperBoard(), scenes::PaperCamera());
+  const BoardDetection detection = detector.Detect(scene.mean);
+  const CameraModel camera(scenes::PaperCamera());
+  for (auto _ : state) benchmark::DoNotOptimize(EstimatePose(detection.corners, camera));
+}
+BENCHMARK(BM_Pose)->Unit(benchmark::kMillisecond);
+
+void BM_RenderClean(benchmark::State& state) {
+  const BoardRenderer renderer(scenes::PaperBoard(), scenes::PaperCamera(), RenderOptions{});
+  const RigidTransform X_CT = scenes::BoardPose(scenes::PaperBoard(), 0.55, 0.3, 0.8, 0.4);
+  for (auto _ : state) benchmark::DoNotOptimize(renderer.RenderClean(X_CT));
+}
+BENCHMARK(BM_RenderClean)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace h4::cam
+
+BENCHMARK_MAIN();

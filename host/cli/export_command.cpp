@@ -1,0 +1,80 @@
+// `h4cal export`: the identified parameters for the robot's controller, in the robot.yaml
+// keys of formats.md (the control law reads model12: h, arm, forearm, R, d, alpha, q0 and
+// the assembly signs). A Model 31 result exports its own model31: block (the model12 block
+// the format requires then comes from the a priori --robot).
+#include <fstream>
+#include <memory>
+#include <stdexcept>
+
+#include <spdlog/spdlog.h>
+
+#include "common/formats/identification_result.h"
+#include "common/formats/robot_yaml.h"
+#include "host/cli/commands.h"
+#include "host/identification/identified_robot.h"
+#include "host/kinematics/model12.h"
+#include "host/kinematics/model31.h"
+
+namespace h4::host::cli {
+namespace {
+
+struct ExportOptions {
+  std::string result_path;
+  std::string robot_path;
+  std::string out_path;
+};
+
+void Run(const ExportOptions& options) {
+  const IdentificationResult result = ReadIdentificationResult(options.result_path);
+  std::optional<RobotDescription> apriori;
+  if (!options.robot_path.empty()) apriori = ReadRobotYaml(options.robot_path);
+  RobotDescription out;
+  if (apriori) out = *apriori;
+  const Assembly assembly = apriori ? apriori->assembly : Assembly{};
+  const IdentifiedRobot robot = RebuildFromResult(result, assembly);
+  out.assembly = assembly;
+  out.X_BC = robot.X_BC;
+  out.X_TE = robot.X_TE;
+  std::string header;
+  if (result.model == "12") {
+    out.model12 = dynamic_cast<const Model12&>(*robot.model).model12_parameters();
+    out.model31.reset();
+    header = "# h4cal export: identified Model 12 parameters of " + options.result_path +
+             " for the control law (robot.yaml keys; X_BC, X_TE in B)\n";
+  } else {
+    if (!apriori) {
+      throw std::invalid_argument(options.result_path +
+                                  ": a Model 31 export needs --robot robot.yaml (the a priori "
+                                  "model12 block the robot.yaml format requires)");
+    }
+    out.model31 = dynamic_cast<const Model31&>(*robot.model).model31_parameters();
+    header = "# h4cal export: identified Model 31 parameters of " + options.result_path +
+             " in the model31 block (model12 is the a priori of " + options.robot_path +
+             "; X_BC is the camera in B31, the base frame of Model 31)\n";
+  }
+  std::ofstream file(options.out_path);
+  file << header << FormatRobotYaml(out);
+  file.close();
+  if (!file) throw std::runtime_error("cannot write " + options.out_path);
+  spdlog::info("wrote the Model {} controller parameters to {}", result.model, options.out_path);
+}
+
+}  // namespace
+
+void AddExportCommand(CLI::App& app) {
+  auto options = std::make_shared<ExportOptions>();
+  CLI::App* command = app.add_subcommand(
+      "export", "Export an identification result for the controller (robot.yaml keys)");
+  command->add_option("--result", options->result_path, "Identification result JSON")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command
+      ->add_option("--robot", options->robot_path,
+                   "A priori robot.yaml: assembly signs (and the model12 block of a Model 31 "
+                   "export)")
+      ->check(CLI::ExistingFile);
+  command->add_option("--out", options->out_path, "controller.yaml to write")->required();
+  command->callback([options] { Run(*options); });
+}
+
+}  // namespace h4::host::cli

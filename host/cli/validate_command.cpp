@@ -1,0 +1,45 @@
+// `h4cal validate`: the paper's validation experiments (IV.D) on identification results and
+// data: Table 3 on the held-out poses, Table 4 straightness, the square path under the
+// Model 12 control law (simulation), the 4-DoF check; printed, and with --report DIR the
+// HTML report too.
+#include <memory>
+
+#include <spdlog/spdlog.h>
+
+#include "host/cli/commands.h"
+#include "host/cli/validation_inputs.h"
+#include "host/report/html_report.h"
+
+namespace h4::host::cli {
+namespace {
+
+struct ValidateOptions {
+  ValidationFileOptions files;
+  std::string report_dir;
+};
+
+void Run(const ValidateOptions& options, const std::string& command_line) {
+  const ValidationInputs inputs = LoadValidationInputs(options.files);
+  const ValidationReport report = Validate(inputs);
+  std::fputs(FormatValidationText(report).c_str(), stdout);
+  if (!options.report_dir.empty()) {
+    const std::string path = WriteHtmlReport(options.report_dir, inputs, report, command_line);
+    spdlog::info("wrote {}", path);
+  }
+}
+
+}  // namespace
+
+void AddValidateCommand(CLI::App& app) {
+  auto options = std::make_shared<ValidateOptions>();
+  CLI::App* command = app.add_subcommand(
+      "validate",
+      "Validation experiments (paper IV.D): joint residuals (Table 3), straightness "
+      "(Table 4), square path, 4-DoF check");
+  AddValidationFileOptions(command, &options->files);
+  command->add_option("--report", options->report_dir, "Also write DIR/report.html");
+  command->callback(
+      [options, command] { Run(*options, "h4cal validate " + ReportCommandLine(*command)); });
+}
+
+}  // namespace h4::host::cli

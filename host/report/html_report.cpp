@@ -1,0 +1,110 @@
+// The report page (see html_report.h): sections in kReportSections order, inline CSS, the
+// gnuplot SVG figures inlined, no script. Every figure is drawn before anything is written,
+// so a failure leaves no half report.
+#include "host/report/html_report.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <spdlog/fmt/fmt.h>
+
+#include "host/report/report_figures.h"
+#include "host/report/report_tables.h"
+
+namespace h4::host {
+namespace {
+
+constexpr const char* kStyle = R"(
+body { font-family: "DejaVu Sans", sans-serif; margin: 2em auto; max-width: 1200px;
+       color: #222; line-height: 1.4; }
+h1 { font-size: 1.6em; } h2 { border-bottom: 1px solid #ccc; margin-top: 2em; }
+table { border-collapse: collapse; margin: 0.8em 0; font-size: 0.9em; }
+th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: right; }
+th:first-child { text-align: left; } tr.paper { background: #fff6dd; }
+tr.fixed { color: #777; } figure { margin: 1em 0; } figure svg { max-width: 100%; height: auto; }
+code { background: #f3f3f3; padding: 0 0.2em; } .note { color: #a33; }
+)";
+
+std::string Section(const std::string& id, const std::string& title, const std::string& body) {
+  return fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n{}</section>\n", id, title, body);
+}
+
+std::string Figure(const std::string& svg, const std::string& caption) {
+  return "<figure>\n" + svg + "\n<figcaption>" + caption + "</figcaption>\n</figure>\n";
+}
+
+std::string NotComputed(const std::string& why) {
+  return "<p class=\"note\">Not computed: " + HtmlEscape(why) + "</p>\n";
+}
+
+}  // namespace
+
+std::string FormatHtmlReport(const ValidationInputs& in, const ValidationReport& report,
+                             const std::string& command) {
+  if (report.models.empty()) throw std::invalid_argument("nothing to report: no model validated");
+  const bool has_straightness = !report.models.front().straightness.empty();
+  bool has_square = false;
+  for (const auto& v : report.models) has_square = has_square || v.square.has_value();
+
+  // Figures first: if gnuplot fails, nothing is written.
+  const std::string residuals = ResidualsFigure(report);
+  const std::string histograms = HistogramFigure(report);
+  const std::string straightness = has_straightness ? StraightnessFigure(report) : "";
+  const std::string square = has_square ? SquareFigure(report) : "";
+
+  std::ostringstream html;
+  html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+       << "<title>h4cal calibration report</title>\n<style>" << kStyle << "</style>\n"
+       << "</head>\n<body>\n<h1>H4 calibration report</h1>\n"
+       << "<p>Validation after Renaud et al., ICRA 2003, section IV.D. Made by <code>"
+       << HtmlEscape(command) << "</code>."
+       << (report.paper_scenario
+               ? " <strong>Paper scenario</strong>: the paper's published numbers (rows "
+                 "marked paper) stand beside ours."
+               : "")
+       << "</p>\n";
+  html << Section("summary", "Summary", SummaryTable(in, report));
+  html << Section("parameters", "Parameters", ParameterTables(in));
+  html << Section("identifiability", "Identifiability", IdentifiabilityTable(in));
+  html << Section("table2", "Table 2: Model 12 parameters", Table2(in, report));
+  html << Section("table3", "Table 3: joint residuals on the held-out poses", Table3(report));
+  html << Section("positioning", "Positioning error", PositioningTable(report));
+  html << Section("residuals", "Residuals per pose and joint",
+                  Figure(residuals, "Held-out poses, before and after calibration."));
+  html << Section("histograms", "Residual histograms",
+                  Figure(histograms, "All joints, every pose of the dataset."));
+  html << Section("table4", "Table 4: straightness",
+                  has_straightness ? Table4(report) : NotComputed("no ruler run given"));
+  html << Section("straightness", "Straightness runs",
+                  has_straightness ? Figure(straightness, "Distance to the fitted line.")
+                                   : NotComputed("no ruler run given"));
+  html << Section("square", "Square path",
+                  has_square ? SquareTable(in, report)
+                             : NotComputed("needs the true robot (simulation truth file)"));
+  html << Section("square-plot", "Square path plot",
+                  has_square ? Figure(square, "Commanded and reached paths in the X-Y plane.")
+                             : NotComputed("needs the true robot (simulation truth file)"));
+  html << Section("four-dof", "4-DoF check", FourDofTable(report));
+  std::string notes;
+  for (const auto& note : report.notes) notes += "<li>" + HtmlEscape(note) + "</li>\n";
+  html << Section("notes", "Notes",
+                  notes.empty() ? "<p>None.</p>\n" : "<ul>\n" + notes + "</ul>\n");
+  html << "</body>\n</html>\n";
+  return html.str();
+}
+
+std::string WriteHtmlReport(const std::string& dir, const ValidationInputs& inputs,
+                            const ValidationReport& report, const std::string& command) {
+  const std::string html = FormatHtmlReport(inputs, report, command);
+  std::filesystem::create_directories(dir);
+  const std::string path = (std::filesystem::path(dir) / "report.html").string();
+  std::ofstream out(path);
+  out << html;
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + path);
+  return path;
+}
+
+}  // namespace h4::host

@@ -1,0 +1,28 @@
+// The calibration report: one self-contained HTML file (inline CSS and SVG figures, no
+// script, nothing fetched) with the parameter tables, the identifiability summary, the
+// analogues of the paper's Tables 2, 3 and 4, the square path, the 4-DoF check and the
+// figures; on the paper scenario, the paper's published numbers beside ours.
+#pragma once
+
+#include <string>
+
+#include "host/validation/validation.h"
+
+namespace h4::host {
+
+/// The ids of the page's sections, in order (tests check that each is present).
+inline constexpr const char* kReportSections[] = {
+    "summary",     "parameters",  "identifiability", "table2", "table3",
+    "positioning", "residuals",   "histograms",      "table4", "straightness",
+    "square",      "square-plot", "four-dof",        "notes"};
+
+/// The page. `command` is shown as how the report was made. Throws std::runtime_error when a
+/// figure cannot be drawn (no gnuplot): never a half report.
+std::string FormatHtmlReport(const ValidationInputs& inputs, const ValidationReport& report,
+                             const std::string& command);
+
+/// Writes `dir`/report.html (creating dir) and returns its path.
+std::string WriteHtmlReport(const std::string& dir, const ValidationInputs& inputs,
+                            const ValidationReport& report, const std::string& command);
+
+}  // namespace h4::host

@@ -1,0 +1,171 @@
+// gnuplot scripts of the report's figures (see report_figures.h). Data go inline as
+// gnuplot data blocks; values are converted to mrad and mm for reading.
+#include "host/report/report_figures.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <spdlog/fmt/fmt.h>
+
+#include "host/report/gnuplot_svg.h"
+
+namespace h4::host {
+namespace {
+
+constexpr const char* kColours[] = {"#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e"};
+
+std::string Block(const std::string& name, const std::string& body) {
+  return "$" + name + " << EOD\n" + body + "EOD\n";
+}
+
+std::string Quoted(const std::string& s) { return "'" + s + "'"; }
+
+}  // namespace
+
+std::string ResidualsFigure(const ValidationReport& report) {
+  std::ostringstream gp;
+  const size_t n = report.models.size();
+  for (size_t m = 0; m < n; ++m) {
+    std::ostringstream body;
+    const auto& r = report.models[m].heldout;
+    for (size_t k = 0; k < r.residuals.size(); ++k) {
+      body << fmt::format("{} {:.6g} {:.6g} {:.6g} {:.6g}\n", k + 1, r.residuals[k][0] * 1e3,
+                          r.residuals[k][1] * 1e3, r.residuals[k][2] * 1e3,
+                          r.residuals[k][3] * 1e3);
+    }
+    gp << Block(fmt::format("r{}", m), body.str());
+  }
+  gp << fmt::format(
+      "set multiplot layout 1,{} title 'Joint residuals on the held-out poses "
+      "(measured - model)'\n",
+      n);
+  gp << "set grid\nset key top right font ',10'\nset xlabel 'held-out pose'\n"
+        "set ylabel 'residual (mrad)'\n";
+  for (size_t m = 0; m < n; ++m) {
+    gp << "set title " << Quoted(report.models[m].label) << "\n";
+    gp << "plot ";
+    for (int j = 0; j < 4; ++j) {
+      gp << fmt::format("$r{} using 1:{} with linespoints pt 7 ps 0.6 lc rgb '{}' title 'q{}'{}", m,
+                        j + 2, kColours[j], j + 1, j < 3 ? ", " : "\n");
+    }
+  }
+  gp << "unset multiplot\n";
+  return RenderSvg(gp.str(), 360 * static_cast<int>(n), 380);
+}
+
+std::string HistogramFigure(const ValidationReport& report) {
+  // Identified models only: the a priori residuals are two orders larger.
+  double extent = 0.0;
+  for (size_t m = 1; m < report.models.size(); ++m) {
+    for (const auto& r : report.models[m].all.residuals) {
+      for (double v : r) extent = std::max(extent, std::abs(v) * 1e3);
+    }
+  }
+  if (extent <= 0.0) extent = 1.0;
+  const int bins = 25;
+  const double width = 2.0 * extent / bins;
+  std::ostringstream gp;
+  const size_t n = report.models.size();
+  for (size_t m = 0; m < n; ++m) {
+    std::vector<int> counts(bins, 0);
+    double local_extent = 0.0;
+    for (const auto& r : report.models[m].all.residuals) {
+      for (double v : r) local_extent = std::max(local_extent, std::abs(v) * 1e3);
+    }
+    const double w = m == 0 ? 2.0 * std::max(local_extent, 1e-9) / bins : width;
+    const double lo = m == 0 ? -std::max(local_extent, 1e-9) : -extent;
+    for (const auto& r : report.models[m].all.residuals) {
+      for (double v : r) {
+        const int b = std::clamp(static_cast<int>(std::floor((v * 1e3 - lo) / w)), 0, bins - 1);
+        ++counts[b];
+      }
+    }
+    std::ostringstream body;
+    for (int b = 0; b < bins; ++b)
+      body << fmt::format("{:.6g} {}\n", lo + (b + 0.5) * w, counts[b]);
+    gp << Block(fmt::format("h{}", m), body.str());
+  }
+  gp << fmt::format(
+      "set multiplot layout 1,{} title 'Joint residuals, all joints, every pose "
+      "of the dataset'\n",
+      n);
+  gp << "set grid\nset style fill solid 0.6 border -1\nset xlabel 'residual (mrad)'\n"
+        "set ylabel 'count'\nunset key\n";
+  for (size_t m = 0; m < n; ++m) {
+    gp << "set title " << Quoted(report.models[m].label) << "\n";
+    gp << fmt::format("plot $h{} using 1:2 with boxes lc rgb '{}'\n", m, kColours[m % 5]);
+  }
+  gp << "unset multiplot\n";
+  return RenderSvg(gp.str(), 360 * static_cast<int>(n), 340);
+}
+
+std::string StraightnessFigure(const ValidationReport& report) {
+  const size_t runs = report.models.front().straightness.size();
+  std::ostringstream gp;
+  for (size_t m = 0; m < report.models.size(); ++m) {
+    for (size_t r = 0; r < runs; ++r) {
+      const StraightnessRun& run = report.models[m].straightness[r];
+      std::ostringstream body;
+      for (size_t k = 0; k < run.positions.size(); ++k) {
+        const double along = (run.positions[k] - run.fit.point).dot(run.fit.direction);
+        body << fmt::format("{:.6g} {:.6g}\n", along * 1e3, run.fit.distances[k] * 1e3);
+      }
+      gp << Block(fmt::format("s{}_{}", m, r), body.str());
+    }
+  }
+  gp << fmt::format(
+      "set multiplot layout 1,{} title 'Straightness: distance of the FK "
+      "positions to their least-squares line'\n",
+      runs);
+  gp << "set grid\nset key top left font ',10'\nset xlabel 'along the line (mm)'\n"
+        "set ylabel 'distance to the line (mm)'\n";
+  for (size_t r = 0; r < runs; ++r) {
+    gp << fmt::format("set title 'direction {}'\nplot ", r + 1);
+    for (size_t m = 0; m < report.models.size(); ++m) {
+      gp << fmt::format(
+          "$s{}_{} using 1:2 with linespoints pt 7 ps 0.5 lc rgb '{}' title '{} (RMS {:.3f} "
+          "mm)'{}",
+          m, r, kColours[m % 5], report.models[m].label,
+          report.models[m].straightness[r].fit.rms_distance * 1e3,
+          m + 1 < report.models.size() ? ", " : "\n");
+    }
+  }
+  gp << "unset multiplot\n";
+  return RenderSvg(gp.str(), 460 * static_cast<int>(runs), 380);
+}
+
+std::string SquareFigure(const ValidationReport& report) {
+  std::ostringstream gp;
+  std::string plots;
+  bool first = true;
+  for (size_t m = 0; m < report.models.size(); ++m) {
+    if (!report.models[m].square) continue;
+    const SquareRun& run = *report.models[m].square;
+    if (first) {
+      std::ostringstream body;
+      for (const auto& p : run.commanded)
+        body << fmt::format("{:.6g} {:.6g}\n", p[0] * 1e3, p[1] * 1e3);
+      body << fmt::format("{:.6g} {:.6g}\n", run.commanded[0][0] * 1e3, run.commanded[0][1] * 1e3);
+      gp << Block("cmd", body.str());
+      plots += "$cmd using 1:2 with lines lw 2 lc rgb 'black' title 'commanded'";
+      first = false;
+    }
+    std::ostringstream body;
+    for (const auto& p : run.reached)
+      body << fmt::format("{:.6g} {:.6g}\n", p[0] * 1e3, p[1] * 1e3);
+    body << fmt::format("{:.6g} {:.6g}\n", run.reached[0][0] * 1e3, run.reached[0][1] * 1e3);
+    gp << Block(fmt::format("q{}", m), body.str());
+    plots += fmt::format(
+        ", $q{} using 1:2 with linespoints pt 7 ps 0.4 lc rgb '{}' title 'reached, {} controller "
+        "(side RMS {:.2f} mm)'",
+        m, kColours[m % 5], report.models[m].label, run.rms * 1e3);
+  }
+  gp << "set title 'Square path under the Model 12 IK control law (true robot)'\n"
+        "set grid\nset size ratio -1\nset key outside bottom center font ',10'\n"
+        "set xlabel 'X_B (mm)' noenhanced\nset ylabel 'Y_B (mm)' noenhanced\n";
+  gp << "plot " << plots << "\n";
+  return RenderSvg(gp.str(), 620, 640);
+}
+
+}  // namespace h4::host

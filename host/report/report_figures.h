@@ -1,0 +1,19 @@
+// The report's figures, as inline SVG drawn by gnuplot: joint residuals per held-out pose
+// and joint (before / after), residual histograms, the straightness runs' distances to
+// their fitted lines, and the square path commanded vs reached.
+#pragma once
+
+#include <string>
+
+#include "host/validation/validation.h"
+
+namespace h4::host {
+
+std::string ResidualsFigure(const ValidationReport& report);
+std::string HistogramFigure(const ValidationReport& report);
+/// Precondition: the models have straightness runs.
+std::string StraightnessFigure(const ValidationReport& report);
+/// Precondition: some model has a square run.
+std::string SquareFigure(const ValidationReport& report);
+
+}  // namespace h4::host

@@ -1,0 +1,332 @@
+// HTML tables of the report (see report_tables.h). Angles in rad and lengths in m as in the
+// paper's tables, with mm where the paper speaks in mm.
+#include "host/report/report_tables.h"
+
+#include <cmath>
+#include <sstream>
+
+#include <spdlog/fmt/fmt.h>
+
+#include "host/report/paper_numbers.h"
+#include "host/simulation/paper_scenario.h"
+
+namespace h4::host {
+namespace {
+
+std::string Sci(double v) { return fmt::format("{:.1e}", v); }
+std::string Mm(double v) { return fmt::format("{:.2f}", v * 1e3); }
+
+// A row: first cell a header, then the cells.
+std::string Row(const std::string& head, const std::vector<std::string>& cells,
+                const std::string& css_class = "") {
+  std::string row = css_class.empty() ? "<tr>" : "<tr class=\"" + css_class + "\">";
+  row += "<th>" + head + "</th>";
+  for (const auto& c : cells) row += "<td>" + c + "</td>";
+  return row + "</tr>\n";
+}
+
+std::string Header(const std::vector<std::string>& cells) {
+  std::string row = "<tr>";
+  for (const auto& c : cells) row += "<th>" + c + "</th>";
+  return row + "</tr>\n";
+}
+
+std::vector<std::string> Sci4(const std::array<double, 4>& v) {
+  return {Sci(v[0]), Sci(v[1]), Sci(v[2]), Sci(v[3])};
+}
+
+const ModelValidation* Find(const ValidationReport& report, const std::string& label) {
+  for (const auto& m : report.models) {
+    if (m.label == label) return &m;
+  }
+  return nullptr;
+}
+
+std::array<double, 12> Table2Row(const Model12Parameters& p) {
+  return {p.h,        p.arm,      p.R,     p.forearm, p.alpha[0], p.alpha[1],
+          p.alpha[2], p.alpha[3], p.q0[0], p.q0[1],   p.q0[2],    p.q0[3]};
+}
+
+}  // namespace
+
+std::string HtmlEscape(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+std::string SummaryTable(const ValidationInputs& in, const ValidationReport& report) {
+  const bool paper = report.paper_scenario;
+  std::ostringstream t;
+  t << "<table>\n"
+    << Header(paper ? std::vector<std::string>{"figure", "ours", "paper"}
+                    : std::vector<std::string>{"figure", "ours"});
+  auto add = [&](const std::string& what, const std::string& ours, const std::string& theirs) {
+    std::vector<std::string> cells{ours};
+    if (paper) cells.push_back(theirs);
+    t << Row(what, cells);
+  };
+  add("a priori positioning error, every pose (mean, mm / rad)",
+      fmt::format("{} / {:.3f}", Mm(report.apriori_all.position_mean),
+                  report.apriori_all.theta_mean),
+      fmt::format("{} / {:.3f}", Mm(paper::kAprioriPosition), paper::kAprioriTheta));
+  for (size_t m = 1; m < report.models.size(); ++m) {
+    const auto& v = report.models[m];
+    add(v.label + " positioning error, held-out poses (mean, mm / rad)",
+        fmt::format("{} / {:.5f}", Mm(v.positioning.position_mean), v.positioning.theta_mean), "-");
+  }
+  for (size_t m = 0; m < report.models.size(); ++m) {
+    if (!report.models[m].square) continue;
+    add("square path, " + report.models[m].label + " controller (side RMS, mm)",
+        Mm(report.models[m].square->rms), m == 0 ? "about 5" : "under 0.5");
+  }
+  add("4-DoF check: rotation axis spread (deg)",
+      report.prior.ok ? fmt::format("{:.3f}", report.prior.axis_spread_deg) : "not computed",
+      fmt::format("{:.2f}", paper::kAxisSpreadDeg));
+  t << "</table>\n";
+  t << fmt::format("<p>{} poses in {}, {} held out for validation.</p>\n", in.rows.size(),
+                   HtmlEscape(in.dataset_name), report.heldout_ids.size());
+  return t.str();
+}
+
+std::string ParameterTables(const ValidationInputs& in) {
+  std::ostringstream t;
+  for (const auto* result : {&in.result12, &in.result31}) {
+    if (!*result) continue;
+    const IdentificationResult& r = **result;
+    t << "<h3>Model " << HtmlEscape(r.model) << "</h3>\n<table>\n"
+      << Header({"parameter", "a priori", "identified", "one sigma", "status", "reason fixed"});
+    for (const ResultParameter& p : r.parameters) {
+      std::string reason;
+      for (const FixedParameter& f : r.fixed) {
+        if (f.name == p.name) reason = f.reason;
+      }
+      t << Row(HtmlEscape(p.name),
+               {fmt::format("{:.6g}", p.apriori), fmt::format("{:.6g}", p.value),
+                p.std ? fmt::format("{:.2g}", *p.std) : "-", p.fixed ? "fixed" : "identified",
+                HtmlEscape(reason)},
+               p.fixed ? "fixed" : "");
+    }
+    t << "</table>\n";
+  }
+  return t.str();
+}
+
+std::string IdentifiabilityTable(const ValidationInputs& in) {
+  std::ostringstream t;
+  t << "<table>\n"
+    << Header({"model", "estimator", "condition number (scaled)", "fixed parameters",
+               "strong correlations (|rho| &gt; 0.9)"});
+  for (const auto* result : {&in.result12, &in.result31}) {
+    if (!*result) continue;
+    const IdentificationResult& r = **result;
+    std::string fixed, correlations;
+    for (const auto& f : r.fixed) fixed += HtmlEscape(f.name) + "<br>";
+    for (const auto& c : r.correlations) {
+      correlations +=
+          fmt::format("{} / {}: {:.3f}<br>", HtmlEscape(c.a), HtmlEscape(c.b), c.correlation);
+    }
+    t << Row("Model " + HtmlEscape(r.model),
+             {HtmlEscape(r.estimator.empty() ? "-" : r.estimator),
+              r.condition_number ? fmt::format("{:.3g}", *r.condition_number) : "-",
+              fixed.empty() ? "none" : fixed, correlations.empty() ? "none" : correlations});
+  }
+  t << "</table>\n";
+  return t.str();
+}
+
+std::string Table2(const ValidationInputs& in, const ValidationReport& report) {
+  std::ostringstream t;
+  t << "<table>\n"
+    << Header({"", "h (m)", "l (m)", "R (m)", "L (m)", "alpha1", "alpha2", "alpha3", "alpha4",
+               "q01", "q02", "q03", "q04"});
+  auto add = [&](const std::string& label, const Model12Parameters& p, const std::string& css) {
+    std::vector<std::string> cells;
+    for (double v : Table2Row(p)) cells.push_back(fmt::format("{:.4f}", v));
+    t << Row(label, cells, css);
+  };
+  add("a priori", in.apriori.model12, "");
+  if (in.result12) {
+    Model12Parameters p = in.apriori.model12;
+    auto value = [&](const std::string& name, double fallback) {
+      const ResultParameter* found = in.result12->Find(name);
+      return found ? found->value : fallback;
+    };
+    p.h = value("h", p.h);
+    p.arm = value("arm", p.arm);
+    p.R = value("R", p.R);
+    p.forearm = value("forearm", p.forearm);
+    for (int i = 0; i < 4; ++i) {
+      p.alpha[i] = value(fmt::format("alpha{}", i + 1), p.alpha[i]);
+      p.q0[i] = value(fmt::format("q0{}", i + 1), p.q0[i]);
+    }
+    add("identified (Model 12, ours)", p, "ours");
+  }
+  if (report.paper_scenario) add("identified (paper)", kPaperIdentifiedModel12, "paper");
+  if (in.truth && !in.truth->robot.model31 && !report.paper_scenario) {
+    add("true (simulation)", in.truth->robot.model12, "");
+  }
+  t << "</table>\n";
+  if (report.paper_scenario) {
+    t << "<p>Paper scenario: the simulated true robot is the paper's identified row, so ours "
+         "should match it within the measurement noise.</p>\n";
+  }
+  return t.str();
+}
+
+std::string Table3(const ValidationReport& report) {
+  std::ostringstream t;
+  t << "<table>\n" << Header({"", "", "q1", "q2", "q3", "q4"});
+  auto add = [&](const std::string& label, const std::array<double, 4>& mean,
+                 const std::array<double, 4>& rms, const std::string& css) {
+    std::vector<std::string> m = Sci4(mean), r = Sci4(rms);
+    m.insert(m.begin(), "mean");
+    r.insert(r.begin(), "RMS");
+    t << Row(label, m, css) << Row("", r, css);
+  };
+  const bool paper = report.paper_scenario;
+  for (const auto& v : report.models) {
+    const std::string label = v.label == "a priori" ? "before calibration" : "after " + v.label;
+    add(label + (paper ? " (ours)" : ""), v.heldout.mean, v.heldout.rms, "ours");
+    if (!paper) continue;
+    if (v.label == "a priori") {
+      add(label + " (paper)", paper::kTable3MeanBefore, paper::kTable3RmsBefore, "paper");
+    } else if (v.label == "Model 12") {
+      add(label + " (paper)", paper::kTable3Mean12, paper::kTable3Rms12, "paper");
+    } else if (v.label == "Model 31") {
+      add(label + " (paper)", paper::kTable3Mean31, paper::kTable3Rms31, "paper");
+    }
+  }
+  t << "</table>\n";
+  t << fmt::format(
+      "<p>Residuals q~ - IK(X_BC X_CT X_TE) in rad, wrapped, on the {} held-out poses "
+      "(measured minus model, the paper's sign). Before calibration: the a priori Model 12 "
+      "with the identified camera and board placement.</p>\n",
+      report.heldout_ids.size());
+  return t.str();
+}
+
+std::string PositioningTable(const ValidationReport& report) {
+  std::ostringstream t;
+  t << "<table>\n"
+    << Header({"model", "poses", "position mean (mm)", "position RMS (mm)", "theta mean (rad)",
+               "theta RMS (rad)", "FK failures"});
+  auto add = [&](const std::string& label, const PositioningError& e) {
+    t << Row(label, {std::to_string(e.poses), Mm(e.position_mean), Mm(e.position_rms),
+                     fmt::format("{:.2e}", e.theta_mean), fmt::format("{:.2e}", e.theta_rms),
+                     std::to_string(e.failed.size())});
+  };
+  add("a priori, every pose", report.apriori_all);
+  for (const auto& v : report.models) add(v.label + ", held-out poses", v.positioning);
+  t << "</table>\n<p>Forward kinematics of the encoder readings against the measured "
+       "end-effector pose X_BC X_CT X_TE.</p>\n";
+  if (report.paper_scenario) {
+    t << "<p>Paper: a priori positioning error 26 mm and 0.022 rad.</p>\n";
+  }
+  return t.str();
+}
+
+std::string Table4(const ValidationReport& report) {
+  std::ostringstream t;
+  const size_t runs = report.models.front().straightness.size();
+  std::vector<std::string> head{""};
+  for (size_t r = 0; r < runs; ++r) {
+    head.push_back(fmt::format("direction {} (m)", r + 1));
+    head.push_back("improvement");
+  }
+  t << "<table>\n" << Header(head);
+  const bool paper = report.paper_scenario && runs == 2;
+  for (size_t m = 0; m < report.models.size(); ++m) {
+    const auto& v = report.models[m];
+    std::vector<std::string> cells;
+    for (size_t r = 0; r < runs; ++r) {
+      cells.push_back(Sci(v.straightness[r].fit.rms_distance));
+      cells.push_back(
+          m == 0 ? "-" : fmt::format("{:.0f} %", report.StraightnessImprovementPercent(m, r)));
+    }
+    const std::string label = m == 0 ? "before calibration" : "after " + v.label;
+    t << Row(label + (paper ? " (ours)" : ""), cells, "ours");
+    if (!paper) continue;
+    const std::array<double, 2>* theirs = m == 0                  ? &paper::kTable4Before
+                                          : v.label == "Model 12" ? &paper::kTable4Model12
+                                          : v.label == "Model 31" ? &paper::kTable4Model31
+                                                                  : nullptr;
+    if (!theirs) continue;
+    std::vector<std::string> paper_cells;
+    for (size_t r = 0; r < 2; ++r) {
+      paper_cells.push_back(Sci((*theirs)[r]));
+      paper_cells.push_back(
+          m == 0 ? "-"
+                 : fmt::format("{:.0f} %", 100.0 * (paper::kTable4Before[r] - (*theirs)[r]) /
+                                               paper::kTable4Before[r]));
+    }
+    t << Row(label + " (paper)", paper_cells, "paper");
+  }
+  t << "</table>\n<p>RMS distance of the forward-kinematics positions to their least-squares "
+       "line, the end-effector sliding along a straight ruler.</p>\n";
+  return t.str();
+}
+
+std::string SquareTable(const ValidationInputs& in, const ValidationReport& report) {
+  std::ostringstream t;
+  t << "<table>\n"
+    << Header({"controller", "side 1 RMS (mm)", "side 2", "side 3", "side 4", "max (mm)",
+               "shape RMS, offset removed (mm)", "mean |reached - commanded| (mm)"});
+  for (const auto& v : report.models) {
+    if (!v.square) continue;
+    const SquareRun& s = *v.square;
+    double max = 0.0;
+    for (const auto& side : s.sides) max = std::max(max, side.max);
+    t << Row(v.label, {Mm(s.sides[0].rms), Mm(s.sides[1].rms), Mm(s.sides[2].rms),
+                       Mm(s.sides[3].rms), Mm(max), Mm(s.shape_rms), Mm(s.mean_position_error)});
+  }
+  t << "</table>\n";
+  t << fmt::format(
+      "<p>A {:.0f} mm square centred at ({:.0f}, {:.0f}, {:.0f}) mm in B; the controller "
+      "commands Model 12 inverse kinematics of each point, the true robot reaches the forward "
+      "kinematics of those joints. Side error: distance of the reached points to the "
+      "commanded side.{}</p>\n",
+      in.square.side * 1e3, in.square.centre[0] * 1e3, in.square.centre[1] * 1e3,
+      in.square.centre[2] * 1e3,
+      report.paper_scenario ? " Paper: about 5 mm before calibration, under 0.5 mm after." : "");
+  return t.str();
+}
+
+std::string FourDofTable(const ValidationReport& report) {
+  std::ostringstream t;
+  const PriorAnalysis& p = report.prior;
+  t << "<table>\n" << Header({"check", "value"});
+  t << Row("status", {p.ok ? "ok" : "not computed: " + HtmlEscape(p.message)});
+  t << Row("poses used", {std::to_string(p.poses_used)});
+  t << Row("rotation axis spread in C (deg)", {fmt::format("{:.3f}", p.axis_spread_deg)});
+  t << Row("rotation axis spread in T (deg)", {fmt::format("{:.3f}", p.axis_spread_T_deg)});
+  t << Row("axis in C",
+           {fmt::format("({:.4f}, {:.4f}, {:.4f})", p.axis_C[0], p.axis_C[1], p.axis_C[2])});
+  t << Row("a priori camera axis correction (deg)",
+           {fmt::format("{:.3f}", p.camera_axis_correction_deg)});
+  t << Row("a priori board axis correction (deg)",
+           {fmt::format("{:.3f}", p.board_axis_correction_deg)});
+  if (report.paper_scenario) t << Row("paper: axis spread (deg)", {"0.12"});
+  t << "</table>\n<p>All measured board rotations should turn about one axis if the robot "
+       "has 4 degrees of freedom (paper III.B).</p>\n";
+  return t.str();
+}
+
+}  // namespace h4::host

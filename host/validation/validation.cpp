@@ -1,0 +1,165 @@
+// Validate(): the paper's IV.D experiments from files already read (see validation.h).
+#include "host/validation/validation.h"
+
+#include <cmath>
+#include <set>
+#include <stdexcept>
+
+#include <spdlog/fmt/fmt.h>
+
+#include "host/identification/identified_robot.h"
+#include "host/kinematics/model12.h"
+#include "host/simulation/paper_scenario.h"
+
+namespace h4::host {
+namespace {
+
+void CheckModel(const std::optional<IdentificationResult>& result, const std::string& expected) {
+  if (result && result->model != expected) {
+    throw std::invalid_argument(fmt::format(
+        "the result given for Model {} is a Model {} result (pass it as the Model {} one)",
+        expected, result->model, result->model));
+  }
+}
+
+// The held-out rows: those the result lists as "valid", else the dataset's set column.
+std::vector<DatasetRow> HeldOutRows(const ValidationInputs& in, std::vector<int64_t>* ids) {
+  const IdentificationResult* result = in.result12 ? &*in.result12 : nullptr;
+  if (!result && in.result31) result = &*in.result31;
+  std::vector<DatasetRow> held;
+  if (result && !result->valid_poses.empty()) {
+    for (int64_t id : result->valid_poses) {
+      bool found = false;
+      for (const DatasetRow& row : in.rows) {
+        if (row.pose_id == id) {
+          held.push_back(row);
+          found = true;
+          break;
+        }
+      }
+      if (!found) {
+        throw std::invalid_argument(fmt::format(
+            "{}: pose {} is missing, but the Model {} result holds it out for validation "
+            "(is this the dataset it was identified from?)",
+            in.dataset_name, id, result->model));
+      }
+    }
+  } else {
+    for (const DatasetRow& row : in.rows) {
+      if (row.set == PoseSet::kValid) held.push_back(row);
+    }
+  }
+  if (held.empty()) {
+    throw std::invalid_argument(fmt::format(
+        "{}: no held-out pose (the result lists none and no row has set=valid)", in.dataset_name));
+  }
+  for (const DatasetRow& row : held) ids->push_back(row.pose_id);
+  return held;
+}
+
+bool Near(double a, double b) { return std::abs(a - b) < 1e-9; }
+
+bool SameModel12(const Model12Parameters& a, const Model12Parameters& b) {
+  bool same = Near(a.h, b.h) && Near(a.arm, b.arm) && Near(a.forearm, b.forearm) && Near(a.R, b.R);
+  for (int i = 0; i < 4; ++i) same = same && Near(a.alpha[i], b.alpha[i]) && Near(a.q0[i], b.q0[i]);
+  return same;
+}
+
+}  // namespace
+
+bool IsPaperScenario(const RobotDescription& apriori, const SimulationTruth& truth) {
+  return !truth.robot.model31 && SameModel12(apriori.model12, kPaperAprioriModel12) &&
+         SameModel12(truth.robot.model12, kPaperIdentifiedModel12);
+}
+
+double ValidationReport::StraightnessImprovementPercent(size_t m, size_t r) const {
+  if (models.empty() || m >= models.size() || r >= models[0].straightness.size() ||
+      r >= models[m].straightness.size()) {
+    return 0.0;
+  }
+  const double before = models[0].straightness[r].fit.rms_distance;
+  const double after = models[m].straightness[r].fit.rms_distance;
+  return before > 0.0 ? 100.0 * (before - after) / before : 0.0;
+}
+
+ValidationReport Validate(const ValidationInputs& in) {
+  CheckModel(in.result12, "12");
+  CheckModel(in.result31, "31");
+  if (!in.result12 && !in.result31) {
+    throw std::invalid_argument("validation needs an identification result (Model 12 or 31)");
+  }
+  if (in.rows.empty()) throw std::invalid_argument(in.dataset_name + ": no pose");
+
+  ValidationReport report;
+  const std::vector<DatasetRow> held = HeldOutRows(in, &report.heldout_ids);
+
+  struct Candidate {
+    std::string label;
+    std::unique_ptr<KinematicModel> model;
+    RigidTransform X_BC, X_TE;
+  };
+  std::vector<Candidate> candidates;
+  // "Before calibration" isolates the kinematic parameters: the a priori Model 12 with the
+  // placement the Model 12 identification found (the a priori placement, off by centimetres,
+  // would measure the camera set-up instead of the robot).
+  Candidate apriori{"a priori", std::make_unique<Model12>(in.apriori.model12, in.apriori.assembly),
+                    in.apriori.X_BC, in.apriori.X_TE};
+  if (in.result12) {
+    apriori.X_BC = in.result12->X_BC;
+    apriori.X_TE = in.result12->X_TE;
+  } else {
+    report.notes.push_back(
+        "no Model 12 result: the a priori row uses the a priori camera and board placement");
+  }
+  candidates.push_back(std::move(apriori));
+  for (const auto* result : {&in.result12, &in.result31}) {
+    if (!*result) continue;
+    IdentifiedRobot robot = RebuildFromResult(**result, in.apriori.assembly);
+    candidates.push_back(
+        {"Model " + (*result)->model, std::move(robot.model), robot.X_BC, robot.X_TE});
+  }
+
+  std::unique_ptr<KinematicModel> true_model;
+  if (in.truth) {
+    report.has_truth = true;
+    report.paper_scenario = IsPaperScenario(in.apriori, *in.truth);
+    true_model = in.truth->robot.MakeModel();
+  } else {
+    report.notes.push_back(
+        "no truth file: the square path needs the true robot (simulation), not computed");
+  }
+  if (in.straightness.empty()) {
+    report.notes.push_back("no straightness run given: Table 4 not computed");
+  }
+
+  for (Candidate& c : candidates) {
+    ModelValidation v;
+    v.label = c.label;
+    v.heldout = JointResidualsOf(*c.model, c.X_BC, c.X_TE, held);
+    if (v.heldout.poses == 0) {
+      throw std::invalid_argument(fmt::format(
+          "{}: no held-out pose is within the reach of the {} model", in.dataset_name, c.label));
+    }
+    v.all = JointResidualsOf(*c.model, c.X_BC, c.X_TE, in.rows);
+    v.positioning = PositioningErrorOf(*c.model, c.X_BC, c.X_TE, held);
+    for (size_t r = 0; r < in.straightness.size(); ++r) {
+      StraightnessRun run = StraightnessOf(*c.model, in.straightness[r]);
+      if (!run.ok) {
+        throw std::invalid_argument(
+            fmt::format("straightness run {} with the {} model: {}", r + 1, c.label, run.message));
+      }
+      v.straightness.push_back(std::move(run));
+    }
+    if (true_model && c.model->name() == "12") {
+      v.square = RunSquare(*c.model, {true_model.get(), in.truth->robot.X_ModelB()}, in.square);
+    }
+    report.models.push_back(std::move(v));
+  }
+  report.apriori_all =
+      PositioningErrorOf(*candidates[0].model, candidates[0].X_BC, candidates[0].X_TE, in.rows);
+  report.prior = AnalyzeRotationAxis(in.rows, in.apriori.X_BC, in.apriori.X_TE);
+  if (!report.prior.ok) report.notes.push_back("4-DoF check: " + report.prior.message);
+  return report;
+}
+
+}  // namespace h4::host

@@ -1,0 +1,66 @@
+// The validation of a calibration (paper IV.D) in one place: from the a priori robot, the
+// identification results (Model 12 and/or 31), the dataset, the straightness runs and, in
+// simulation, the truth, it computes the analogues of the paper's Tables 3 and 4, the square
+// path under the Model 12 control law, the positioning error and the 4-DoF check. Pure: the
+// CLI reads the files, the report writer draws the answer.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/formats/dataset_csv.h"
+#include "common/formats/identification_result.h"
+#include "common/formats/joints_csv.h"
+#include "common/robot/robot_description.h"
+#include "host/identification/prior_analysis.h"
+#include "host/simulation/truth_file.h"
+#include "host/validation/joint_residuals.h"
+#include "host/validation/square_path.h"
+#include "host/validation/straightness.h"
+
+namespace h4::host {
+
+struct ValidationInputs {
+  RobotDescription apriori;
+  std::optional<IdentificationResult> result12;      ///< must be a Model 12 result
+  std::optional<IdentificationResult> result31;      ///< must be a Model 31 result
+  std::vector<DatasetRow> rows;                      ///< the paired dataset
+  std::string dataset_name;                          ///< for messages
+  std::vector<std::vector<JointsRow>> straightness;  ///< ruler runs (directions 1, 2, ...)
+  std::optional<SimulationTruth> truth;              ///< simulation: the true robot
+  SquareOptions square;
+};
+
+/// One row of the Table 3 / Table 4 analogues: a priori, Model 12 or Model 31.
+struct ModelValidation {
+  std::string label;                          ///< "a priori", "Model 12", "Model 31"
+  JointResidualStats heldout;                 ///< Table 3 on the held-out poses
+  JointResidualStats all;                     ///< every dataset row (histograms)
+  PositioningError positioning;               ///< FK of the readings vs measured pose, held out
+  std::vector<StraightnessRun> straightness;  ///< one per ruler run
+  std::optional<SquareRun> square;            ///< Model 12 controllers with a truth only
+};
+
+struct ValidationReport {
+  std::vector<ModelValidation> models;  ///< a priori first, then 12, then 31 when given
+  std::vector<int64_t> heldout_ids;     ///< pose ids used for Table 3
+  PositioningError apriori_all;         ///< a priori positioning error over every row
+  PriorAnalysis prior;                  ///< 4-DoF check (rotation axis spread)
+  bool has_truth = false;               ///< a truth file was given (simulation)
+  /// The a priori is Table 2's and the truth Table 2's "Identified" rows.
+  bool paper_scenario = false;
+  std::vector<std::string> notes;  ///< what was not computed and why
+  /// Straightness improvement in percent for model m (index into models) and run r.
+  double StraightnessImprovementPercent(size_t m, size_t r) const;
+};
+
+/// Throws std::invalid_argument with a clear message on bad input: a result of the wrong
+/// model, a result whose held-out poses are missing from the dataset, no held-out pose, a
+/// square the robot cannot follow, a ruler run where forward kinematics fails.
+ValidationReport Validate(const ValidationInputs& inputs);
+
+/// True when `apriori` and `truth` are the paper's Table 2 rows (a priori, "Identified").
+bool IsPaperScenario(const RobotDescription& apriori, const SimulationTruth& truth);
+
+}  // namespace h4::host

@@ -1,0 +1,68 @@
+// Tests of the HTML report (host/report): every section and figure is present, the page is
+// self-contained (no script, nothing fetched), the paper's numbers stand beside ours on the
+// paper scenario, and text is escaped.
+#include <regex>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "host/report/gnuplot_svg.h"
+#include "host/report/html_report.h"
+#include "host/report/report_tables.h"
+#include "tests/host/validation_test_helpers.h"
+
+namespace h4::host {
+namespace {
+
+int Count(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(Report, HtmlEscapeEscapesMarkup) {
+  EXPECT_EQ(HtmlEscape("a<b & \"c\">"), "a&lt;b &amp; &quot;c&quot;&gt;");
+}
+
+TEST(Report, HoldsEverySectionAndFigureAndIsSelfContained) {
+  if (!GnuplotAvailable()) GTEST_SKIP() << "gnuplot missing: run scripts/setup";
+  const ValidationInputs in = PaperValidationInputs();
+  const ValidationReport report = Validate(in);
+  const std::string html = FormatHtmlReport(in, report, "h4cal report --sim-dir x");
+  for (const char* id : kReportSections) {
+    EXPECT_NE(html.find(std::string("<section id=\"") + id + "\">"), std::string::npos) << id;
+  }
+  // Residuals, histograms, straightness, square.
+  EXPECT_EQ(Count(html, "<svg"), 4);
+  EXPECT_EQ(Count(html, "Not computed"), 0);
+  EXPECT_EQ(Count(html, "<script"), 0);
+  EXPECT_FALSE(std::regex_search(html, std::regex("(src|href)=\"https?:")));
+  EXPECT_EQ(html.find("nan"), std::string::npos);
+}
+
+TEST(Report, PaperScenarioShowsThePublishedNumbersBesideOurs) {
+  if (!GnuplotAvailable()) GTEST_SKIP() << "gnuplot missing: run scripts/setup";
+  const ValidationInputs in = PaperValidationInputs();
+  const std::string html = FormatHtmlReport(in, Validate(in), "test");
+  EXPECT_NE(html.find("before calibration (paper)"), std::string::npos);
+  EXPECT_NE(html.find("after Model 12 (paper)"), std::string::npos);
+  EXPECT_NE(html.find("identified (paper)"), std::string::npos);
+  EXPECT_NE(html.find("1.3e-03"), std::string::npos) << "Table 4 before, direction 1";
+  EXPECT_NE(html.find("9.0e-02"), std::string::npos) << "Table 3 before, joint 1";
+}
+
+TEST(Report, WithoutTruthOrRulerRunsSaysWhatIsMissing) {
+  if (!GnuplotAvailable()) GTEST_SKIP() << "gnuplot missing: run scripts/setup";
+  ValidationInputs in = PaperValidationInputs();
+  in.truth.reset();
+  in.straightness.clear();
+  const ValidationReport report = Validate(in);
+  EXPECT_FALSE(report.paper_scenario);
+  const std::string html = FormatHtmlReport(in, report, "test");
+  EXPECT_EQ(Count(html, "<svg"), 2);
+  EXPECT_EQ(Count(html, "Not computed"), 4);
+  EXPECT_EQ(html.find("(paper)"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace h4::host

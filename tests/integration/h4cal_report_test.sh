@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# The calibration report end to end: the paper scenario simulated, identified (Models 12
+# and 31), reported; the page opened in headless Chromium must hold every section and
+# figure, log no console error and render a non-blank screenshot. Bad input (a result of
+# the other model, a dataset missing held-out poses, an unreachable square) must fail with
+# a clear message and write no report. Exit 77 (skipped) when Chromium is missing.
+set -uo pipefail
+h4cal=$1
+dir=$2
+rm -rf "$dir"; mkdir -p "$dir"
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+sim=$dir/sim
+"$h4cal" simulate --paper --out-dir "$sim" 2>/dev/null || fail "simulate --paper"
+for f in straightness_1.csv straightness_2.csv; do
+  [ -s "$sim/$f" ] || fail "simulate wrote no $f"
+done
+"$h4cal" identify --robot "$sim/robot.yaml" --data "$sim/dataset.csv" --model 12 \
+  --out "$sim/result12.json" > /dev/null 2>&1 || fail "identify 12"
+"$h4cal" identify --robot "$sim/robot.yaml" --data "$sim/dataset.csv" --model 31 \
+  --from "$sim/result12.json" --out "$sim/result31.json" > /dev/null 2>&1 || fail "identify 31"
+"$h4cal" report --sim-dir "$sim" --out-dir "$dir/report" 2> "$dir/report.log" ||
+  fail "report: $(cat "$dir/report.log")"
+html=$dir/report/report.html
+[ -s "$html" ] || fail "no report.html"
+sections="summary parameters identifiability table2 table3 positioning residuals histograms
+          table4 straightness square square-plot four-dof notes"
+for id in $sections; do
+  grep -q "<section id=\"$id\">" "$html" || fail "report.html has no section $id"
+done
+[ "$(grep -o '<svg' "$html" | wc -l)" -eq 4 ] || fail "report.html does not hold 4 figures"
+grep -q "before calibration (paper)" "$html" || fail "no paper rows on the paper scenario"
+! grep -q "Not computed" "$html" || fail "a section was not computed"
+
+# validate prints the tables and --report writes the same page.
+"$h4cal" validate --sim-dir "$sim" --report "$dir/validate" > "$dir/validate.txt" 2>&1 ||
+  fail "validate: $(cat "$dir/validate.txt")"
+grep -q "Table 3" "$dir/validate.txt" || fail "validate printed no Table 3"
+[ -s "$dir/validate/report.html" ] || fail "validate --report wrote no report.html"
+
+# Controller export: Model 12 in robot.yaml keys; Model 31 its own block.
+"$h4cal" export --result "$sim/result12.json" --out "$dir/controller12.yaml" 2>/dev/null ||
+  fail "export 12"
+grep -q "^model12:" "$dir/controller12.yaml" || fail "export 12 has no model12 block"
+"$h4cal" export --result "$sim/result31.json" --robot "$sim/robot.yaml" \
+  --out "$dir/controller31.yaml" 2>/dev/null || fail "export 31"
+grep -q "^model31:" "$dir/controller31.yaml" || fail "export 31 has no model31 block"
+out=$("$h4cal" export --result "$sim/result31.json" --out "$dir/c.yaml" 2>&1)
+[ $? -ne 0 ] || fail "export 31 without --robot accepted"
+
+# Bad input: clear message, no report.
+expect_error() {  # name, expected message, args...
+  local name=$1 message=$2; shift 2
+  local out
+  out=$("$h4cal" report "$@" --out-dir "$dir/bad_$name" 2>&1)
+  [ $? -ne 0 ] || fail "$name: accepted"
+  echo "$out" | grep -q "$message" || fail "$name: unclear message: $out"
+  [ ! -e "$dir/bad_$name/report.html" ] || fail "$name: a report was written"
+}
+expect_error other_model "Model 31 result given to --result12" --sim-dir "$sim" \
+  --result12 "$sim/result31.json"
+valid_id=$(grep ',valid' "$sim/dataset.csv" | head -1 | cut -d, -f1)
+grep -v "^$valid_id," "$sim/dataset.csv" > "$dir/missing.csv"
+expect_error missing_pose "pose $valid_id is missing" --sim-dir "$sim" --data "$dir/missing.csv"
+expect_error square "out of the controller's reach" --sim-dir "$sim" --square-mm 2000
+
+# Headless Chromium: DOM, console, screenshot.
+browser=$(command -v chromium || command -v chromium-browser || true)
+if [ -z "$browser" ]; then
+  echo "SKIP: chromium is not installed (scripts/setup --report installs it); the report" \
+       "itself was checked" >&2
+  exit 77
+fi
+flags=(--headless --no-sandbox --disable-gpu --disable-quic --no-first-run
+       --disable-background-networking --disable-component-update --disable-sync
+       --enable-logging=stderr --v=0 --window-size=1280,6000)
+profile=$(mktemp -d)
+timeout 120 "$browser" "${flags[@]}" --user-data-dir="$profile" --dump-dom "file://$html" \
+  > "$dir/dom.html" 2> "$dir/chromium_dom.log" || fail "chromium --dump-dom failed"
+rm -rf "$profile"
+for id in $sections; do
+  grep -q "<section id=\"$id\">" "$dir/dom.html" || fail "the rendered DOM has no section $id"
+done
+[ "$(grep -o '<svg' "$dir/dom.html" | wc -l)" -eq 4 ] || fail "the rendered DOM lacks figures"
+profile=$(mktemp -d)
+timeout 120 "$browser" "${flags[@]}" --user-data-dir="$profile" \
+  --screenshot="$dir/report.png" "file://$html" 2> "$dir/chromium_shot.log" ||
+  fail "chromium --screenshot failed"
+rm -rf "$profile"
+if grep -h "CONSOLE" "$dir/chromium_dom.log" "$dir/chromium_shot.log"; then
+  fail "console messages while rendering the report"
+fi
+[ -s "$dir/report.png" ] || fail "no screenshot"
+# A blank page compresses to a few kB; tables and four plots do not.
+size=$(stat -c %s "$dir/report.png")
+[ "$size" -gt 100000 ] || fail "screenshot of $size bytes looks blank"
+echo "PASS"
