@@ -58,10 +58,24 @@ std::vector<Sample> SelectBand(const cv::Mat& image, const IdealPixelMap& map, c
   return samples;
 }
 
-double Phi(double z) { return 0.5 * (1.0 + std::erf(z * kInvSqrt2)); }
-double Pdf(double z) { return kInvSqrt2Pi * std::exp(-0.5 * z * z); }
-double G(double z) { return z * Phi(z) + Pdf(z); }                              // integral of Phi
-double H(double z) { return 0.5 * (z * z + 1.0) * Phi(z) + 0.5 * z * Pdf(z); }  // of G
+// Phi(z) and pdf(z) from one exponential: Abramowitz & Stegun 7.1.26 for erf (absolute
+// error below 1.5e-7, i.e. 3e-5 grey levels on a 200-level edge), twice as fast as
+// std::erf plus std::exp in the fit's inner loop.
+struct PhiPdf {
+  double phi, pdf;
+};
+PhiPdf PhiAndPdf(double z) {
+  const double x = std::abs(z) * kInvSqrt2;
+  const double e = std::exp(-x * x);  // = exp(-z^2 / 2)
+  const double t = 1.0 / (1.0 + 0.3275911 * x);
+  const double poly =
+      t *
+      (0.254829592 + t * (-0.284496736 + t * (1.421413741 + t * (-1.453152027 + t * 1.061405429))));
+  const double erf_abs = 1.0 - poly * e;
+  return {0.5 * (1.0 + (z < 0 ? -erf_abs : erf_abs)), kInvSqrt2Pi * e};
+}
+// G(z) = z Phi(z) + pdf(z) is the integral of Phi, H(z) = ((z^2 + 1) Phi(z) + z pdf(z)) / 2
+// the integral of G.
 
 // Profile of a pixel at signed distance d from the edge: a unit step blurred by a
 // Gaussian (sigma s) and averaged over the pixel, whose projection onto the edge normal
@@ -74,9 +88,11 @@ struct Profile {
   void Eval(double d, double s, double* F, double* dF_dd, double* dF_ds) const {
     if (w2 < 0.05) {  // one box: its second side adds a variance below w2^2/12
       const double zp = (d + 0.5 * w1) / s, zm = (d - 0.5 * w1) / s;
-      *F = s / w1 * (G(zp) - G(zm));
-      *dF_dd = (Phi(zp) - Phi(zm)) / w1;
-      *dF_ds = (Pdf(zp) - Pdf(zm)) / w1;
+      const PhiPdf p = PhiAndPdf(zp), m = PhiAndPdf(zm);
+      const double phi_p = p.phi, phi_m = m.phi, pdf_p = p.pdf, pdf_m = m.pdf;
+      *F = s / w1 * (zp * phi_p + pdf_p - zm * phi_m - pdf_m);
+      *dF_dd = (phi_p - phi_m) / w1;
+      *dF_ds = (pdf_p - pdf_m) / w1;
       return;
     }
     const double offsets[4] = {0.5 * (w1 + w2), 0.5 * (w1 - w2), -0.5 * (w1 - w2),
@@ -85,9 +101,11 @@ struct Profile {
     double sum_h = 0, sum_g = 0, sum_phi = 0;
     for (int i = 0; i < 4; ++i) {
       const double z = (d + offsets[i]) / s;
-      sum_h += signs[i] * H(z);
-      sum_g += signs[i] * G(z);
-      sum_phi += signs[i] * Phi(z);
+      const PhiPdf pp = PhiAndPdf(z);
+      const double phi = pp.phi, pdf = pp.pdf;
+      sum_h += signs[i] * (0.5 * (z * z + 1.0) * phi + 0.5 * z * pdf);  // H(z)
+      sum_g += signs[i] * (z * phi + pdf);                              // G(z)
+      sum_phi += signs[i] * phi;
     }
     const double k = 1.0 / (w1 * w2);
     *F = k * s * s * sum_h;
@@ -132,7 +150,8 @@ bool FitEdge(const std::vector<Sample>& samples, int iterations, double pixel_sc
     *a += step[2];
     *b += step[3];
     *s = std::clamp(*s + step[4], 0.2, 5.0);
-    if (std::abs(step[1]) < 1e-6 && std::abs(step[0]) < 1e-8) break;
+    // Converged well below the noise of a line (~1e-3 px).
+    if (std::abs(step[1]) < 1e-5 && std::abs(step[0]) < 1e-7) break;
   }
   double sum = 0;
   const Eigen::Vector2d n = line->n();

@@ -1,6 +1,7 @@
 // Synthetic frames; see sim_source.h.
 #include "firmware/sources/sim_source.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace h4::cam {

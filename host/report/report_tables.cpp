@@ -35,13 +35,6 @@ std::vector<std::string> Sci4(const std::array<double, 4>& v) {
   return {Sci(v[0]), Sci(v[1]), Sci(v[2]), Sci(v[3])};
 }
 
-const ModelValidation* Find(const ValidationReport& report, const std::string& label) {
-  for (const auto& m : report.models) {
-    if (m.label == label) return &m;
-  }
-  return nullptr;
-}
-
 std::array<double, 12> Table2Row(const Model12Parameters& p) {
   return {p.h,        p.arm,      p.R,     p.forearm, p.alpha[0], p.alpha[1],
           p.alpha[2], p.alpha[3], p.q0[0], p.q0[1],   p.q0[2],    p.q0[3]};
