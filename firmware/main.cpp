@@ -10,6 +10,7 @@
 #include "firmware/cli/make_board_command.h"
 #include "firmware/cli/measure_command.h"
 #include "firmware/cli/render_command.h"
+#include "firmware/cli/run_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"h4cam: camera module of the H4 calibration (measure the board pose X_CT)"};
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
   h4::cam::AddMakeBoardCommand(app);
   h4::cam::AddRenderCommand(app);
   h4::cam::AddMeasureCommand(app);
+  h4::cam::AddRunCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

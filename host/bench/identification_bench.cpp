@@ -3,10 +3,10 @@
 // default LM engine and with NLopt first; and the final measurement-space stage alone,
 // solved from the same start by this project's Levenberg-Marquardt and by Ceres (an
 // analytic CostFunction wrapping the same residuals and Jacobian).
-#include <benchmark/benchmark.h>
-
 #include <memory>
 #include <string>
+
+#include <benchmark/benchmark.h>
 
 #include "host/identification/identification.h"
 #include "host/simulation/dataset_simulator.h"
@@ -30,9 +30,9 @@ struct Problem {
 
 Problem MakeProblem(const std::string& model_name) {
   const RobotDescription apriori_robot = PaperAprioriRobot();
-  const SimulatedRobot truth = MakeTrueRobot(
-      apriori_robot,
-      model_name == "31" ? TrueGeometry::kPerturbedModel31 : TrueGeometry::kPerturbedModel12);
+  const SimulatedRobot truth =
+      MakeTrueRobot(apriori_robot, model_name == "31" ? TrueGeometry::kPerturbedModel31
+                                                      : TrueGeometry::kPerturbedModel12);
   DatasetOptions data_options;
   data_options.valid_count = 0;
   std::vector<DatasetRow> rows = SimulateDataset(truth, GridPosePlan(), data_options).rows;
@@ -167,8 +167,8 @@ void StageWithCeres(benchmark::State& state, const std::string& model_name) {
     Eigen::VectorXd v = p.stage_start.FreeValues();
     ceres::Problem problem;
     problem.AddResidualBlock(
-        new MeasurementCostFunction(f, cost.residual_count(), static_cast<int>(v.size())),
-        nullptr, v.data());
+        new MeasurementCostFunction(f, cost.residual_count(), static_cast<int>(v.size())), nullptr,
+        v.data());
     ceres::Solver::Options options;
     options.linear_solver_type = ceres::DENSE_QR;
     options.function_tolerance = 1e-14;  // as LmOptions: run to the same minimum

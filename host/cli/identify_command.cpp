@@ -11,7 +11,9 @@
 #include "common/formats/robot_yaml.h"
 #include "host/cli/commands.h"
 #include "host/cli/progress.h"
+#include "host/cli/validation_inputs.h"
 #include "host/identification/identification.h"
+#include "host/report/html_report.h"
 
 namespace h4::host::cli {
 namespace {
@@ -29,6 +31,8 @@ struct IdentifyCommandOptions {
   std::vector<std::string> fix;
   bool no_outliers = false;
   bool no_polish = false;
+  bool nlopt_first = false;
+  std::string report_dir;
 };
 
 void PrintHeadline(const IdentificationOutcome& outcome) {
@@ -61,7 +65,7 @@ void PrintHeadline(const IdentificationOutcome& outcome) {
   std::printf("  %d iterations, %.3f s\n", outcome.summary.iterations, outcome.summary.seconds);
 }
 
-void Run(const IdentifyCommandOptions& options) {
+void Run(const IdentifyCommandOptions& options, const std::string& command_line) {
   const RobotDescription robot = ReadRobotYaml(options.robot_path);
   const std::vector<DatasetRow> rows = ReadDatasetCsv(options.data_path);
   IdentificationOptions id_options;
@@ -73,6 +77,7 @@ void Run(const IdentifyCommandOptions& options) {
   id_options.fixed_parameters = options.fix;
   id_options.reject_outliers = !options.no_outliers;
   id_options.lm_polish = !options.no_polish;
+  id_options.nlopt_first = options.nlopt_first;
   Progress progress("identify Model " + options.model, 0);
   int iterations = 0;
   id_options.progress = [&](const std::string& stage, int iteration, double cost) {
@@ -107,6 +112,20 @@ void Run(const IdentifyCommandOptions& options) {
   if (!outcome.summary.usable) {
     spdlog::error("the identification is not usable: {}", outcome.summary.message);
     SetExitCode(3);
+    if (!options.report_dir.empty()) spdlog::error("no report written for an unusable result");
+    return;
+  }
+  if (!options.report_dir.empty()) {
+    // The report of this result: validation on its held-out poses, with the Model 12
+    // result it started from when there is one.
+    ValidationFileOptions files;
+    files.robot_path = options.robot_path;
+    files.data_path = options.data_path;
+    (options.model == "12" ? files.result12_path : files.result31_path) = options.out_path;
+    if (!options.from_path.empty()) files.result12_path = options.from_path;
+    const ValidationInputs inputs = LoadValidationInputs(files);
+    const ValidationReport report = Validate(inputs);
+    spdlog::info("wrote {}", WriteHtmlReport(options.report_dir, inputs, report, command_line));
   }
 }
 
@@ -149,10 +168,16 @@ void AddIdentifyCommand(CLI::App& app) {
   command->add_option("--fix", options->fix, "Parameters to keep at their a priori value")
       ->delimiter(',');
   command->add_flag("--no-outlier-rejection", options->no_outliers, "Keep every pose");
+  command->add_flag("--nlopt-first", options->nlopt_first,
+                    "Solve every stage with NLopt (--algorithm) first, then polish with "
+                    "Levenberg-Marquardt (default: LM, NLopt only when LM fails; see README)");
   command->add_flag("--no-polish", options->no_polish, "Skip the Levenberg-Marquardt polish");
   command->add_option("--out", options->out_path, "Result JSON")->required();
+  command->add_option("--report", options->report_dir,
+                      "Also validate on the held-out poses and write DIR/report.html");
   command->footer("Exit code 3: the result was written but is not usable (see the log).");
-  command->callback([options] { Run(*options); });
+  command->callback(
+      [options, command] { Run(*options, "h4cal identify " + ReportCommandLine(*command)); });
 }
 
 }  // namespace h4::host::cli

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include <Eigen/QR>
 #include <Eigen/SVD>
 
 #include "host/identification/least_squares.h"
@@ -30,10 +31,25 @@ std::vector<std::string> DefaultFixPreferences(const std::string& model_name) {
   return {"X_TE.tz", "X_TE.rx", "X_TE.ry", "d"};
 }
 
+void TallSvd(const Eigen::MatrixXd& J, Eigen::VectorXd* singular_values, Eigen::MatrixXd* V) {
+  const Eigen::Index n = J.cols();
+  Eigen::MatrixXd R;
+  if (J.rows() > n) {
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(J);
+    R = qr.matrixQR().topRows(n).triangularView<Eigen::Upper>();
+  } else {
+    R = J;
+  }
+  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(R, Eigen::ComputeFullV);
+  *singular_values = svd.singularValues();
+  *V = svd.matrixV();
+}
+
 Eigen::MatrixXd FreeColumns(const Eigen::MatrixXd& J_full, const ParameterVector& p) {
   const std::vector<int> free = p.FreeIndices();
   Eigen::MatrixXd J(J_full.rows(), static_cast<Eigen::Index>(free.size()));
-  for (size_t k = 0; k < free.size(); ++k) J.col(static_cast<Eigen::Index>(k)) = J_full.col(free[k]);
+  for (size_t k = 0; k < free.size(); ++k)
+    J.col(static_cast<Eigen::Index>(k)) = J_full.col(free[k]);
   return J;
 }
 
@@ -71,8 +87,8 @@ IdentifiabilityReport AnalyzeIdentifiability(const Eigen::MatrixXd& J_full,
       if (!(norms[k] > kNoEffect * norms.maxCoeff())) J.col(k).setZero();
     }
     J = J * ColumnScale(J).cwiseInverse().asDiagonal();
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeThinV);
-    report.singular_values = svd.singularValues();
+    Eigen::MatrixXd V;
+    TallSvd(J, &report.singular_values, &V);
     const Eigen::Index last = report.singular_values.size() - 1;
     const double largest = report.singular_values[0];
     const double smallest = report.singular_values[last];
@@ -81,7 +97,7 @@ IdentifiabilityReport AnalyzeIdentifiability(const Eigen::MatrixXd& J_full,
     if (ratio >= options.relative_singular_value_threshold) break;
 
     // The null direction's make-up; fix the preferred parameter among its main components.
-    const Eigen::VectorXd v = svd.matrixV().col(last);
+    const Eigen::VectorXd v = V.col(last);
     const double v_max = v.cwiseAbs().maxCoeff();
     int chosen = -1;
     for (const std::string& name : preferences) {

@@ -87,11 +87,13 @@ StageSummary RunStage(CostKind kind, bool placement_only, const KinematicModel& 
   std::string why;
   if (!cost.Evaluate(*p, &r, &J, &why)) {
     stage.evaluable = false;
-    stage.message = "cannot evaluate the " + std::string(ToString(kind)) + " cost at the start: " + why;
+    stage.message =
+        "cannot evaluate the " + std::string(ToString(kind)) + " cost at the start: " + why;
     return stage;
   }
   stage.rms_before = Rms(r);
-  const IdentificationCost analysis_cost(kind, model, ConsistentRows(model, *p, rows), options.cost);
+  const IdentificationCost analysis_cost(kind, model, ConsistentRows(model, *p, rows),
+                                         options.cost);
   Eigen::VectorXd r_analysis;
   Eigen::MatrixXd J_analysis;
   if (!analysis_cost.Evaluate(*p, &r_analysis, &J_analysis)) J_analysis = J;
@@ -137,7 +139,8 @@ StageSummary RunStage(CostKind kind, bool placement_only, const KinematicModel& 
   }
   stage.rms_after = Rms(r);
   stage.ok = converged;
-  stage.message = converged ? "converged" : "did not converge: " + stage.minimizers.back().stop_reason;
+  stage.message =
+      converged ? "converged" : "did not converge: " + stage.minimizers.back().stop_reason;
   return stage;
 }
 
@@ -230,7 +233,8 @@ IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const Param
     const std::vector<double> norms = PoseResidualNorms(options.estimator, model, rows, options, p);
     if (norms.empty()) break;
     std::vector<double> sorted = norms;
-    std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2), sorted.end());
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2),
+                     sorted.end());
     const double limit = options.outlier_factor * sorted[sorted.size() / 2];
     std::vector<DatasetRow> kept;
     std::vector<int64_t> newly;
@@ -249,7 +253,8 @@ IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const Param
     log.push_back("rejected poses " + ids + Printf(" (residual norm above %.3g)", limit));
     rejected.insert(rejected.end(), newly.begin(), newly.end());
     rows = kept;
-    StageSummary stage = RunStage(options.estimator, false, model, rows, options, &p, &out.identifiability);
+    StageSummary stage =
+        RunStage(options.estimator, false, model, rows, options, &p, &out.identifiability);
     stage.name += " (after rejection)";
     log.push_back("stage " + stage.name + ": " + stage.message +
                   Printf(", residual RMS %.4g -> %.4g", stage.rms_before, stage.rms_after));
@@ -265,16 +270,17 @@ IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const Param
   }
   std::vector<DatasetRow> used;
   for (const DatasetRow& row : calib) {
-    if (std::find(rejected.begin(), rejected.end(), row.pose_id) == rejected.end()) used.push_back(row);
+    if (std::find(rejected.begin(), rejected.end(), row.pose_id) == rejected.end())
+      used.push_back(row);
   }
   out.parameters = p;
   FillResult(model, apriori, p, used, valid, rejected, options, &out);
   summary.chi2_per_dof = out.uncertainty.chi2_per_dof;
   summary.usable = final_ok && out.uncertainty.ok;
   if (summary.message.empty()) {
-    summary.message = summary.usable ? "converged" :
-                      !final_ok ? "the final stage did not converge" :
-                                  "no covariance at the solution (rank-deficient Jacobian)";
+    summary.message = summary.usable ? "converged"
+                      : !final_ok    ? "the final stage did not converge"
+                                     : "no covariance at the solution (rank-deficient Jacobian)";
   }
   summary.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock_start).count();
@@ -297,7 +303,8 @@ IdentificationOutcome Identify(const KinematicModel& apriori_model,
       start.set_X_TE(prior.X_TE);
     }
   }
-  IdentificationOutcome out = IdentifyFromStart(apriori_model, apriori, start, calib, valid, options);
+  IdentificationOutcome out =
+      IdentifyFromStart(apriori_model, apriori, start, calib, valid, options);
   if (options.prior_analysis) {
     out.result.log.insert(out.result.log.begin(), "prior analysis: " + prior.message);
   }
@@ -307,7 +314,8 @@ IdentificationOutcome Identify(const KinematicModel& apriori_model,
 
 DatasetSplit SplitDataset(const std::vector<DatasetRow>& rows, int valid_count, uint64_t seed) {
   DatasetSplit split;
-  const bool has_set = std::any_of(rows.begin(), rows.end(), [](const DatasetRow& r) { return r.set.has_value(); });
+  const bool has_set =
+      std::any_of(rows.begin(), rows.end(), [](const DatasetRow& r) { return r.set.has_value(); });
   if (has_set) {
     for (const DatasetRow& row : rows) {
       (row.set == PoseSet::kValid ? split.valid : split.calib).push_back(row);
@@ -379,13 +387,15 @@ IdentificationOutcome IdentifyModel31FromModel12(const RobotDescription& robot,
   const ParameterVector start = ConvertModel12To31(p12, model31.get());
   // Reuse the Model 12 split unless the rows say otherwise.
   DatasetSplit split;
-  const bool has_set = std::any_of(rows.begin(), rows.end(), [](const DatasetRow& r) { return r.set.has_value(); });
+  const bool has_set =
+      std::any_of(rows.begin(), rows.end(), [](const DatasetRow& r) { return r.set.has_value(); });
   if (has_set || model12_result.valid_poses.empty()) {
     split = SplitDataset(rows);
   } else {
     for (const DatasetRow& row : rows) {
       const auto& v = model12_result.valid_poses;
-      (std::find(v.begin(), v.end(), row.pose_id) != v.end() ? split.valid : split.calib).push_back(row);
+      (std::find(v.begin(), v.end(), row.pose_id) != v.end() ? split.valid : split.calib)
+          .push_back(row);
     }
     split.how = "split as the Model 12 result";
   }

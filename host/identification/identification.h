@@ -74,8 +74,8 @@ struct StageSummary {
   std::vector<std::string> fixed;  ///< fixed during this stage, with reasons
   double rms_before = 0.0;         ///< RMS of the residuals (rad, m, or sigma units)
   double rms_after = 0.0;
-  bool ok = false;         ///< converged
-  bool evaluable = true;   ///< false: the cost could not be evaluated (poses out of reach)
+  bool ok = false;        ///< converged
+  bool evaluable = true;  ///< false: the cost could not be evaluated (poses out of reach)
   std::string message;
 };
 

@@ -93,18 +93,23 @@ void FillResult(const KinematicModel& model, const ParameterVector& apriori,
   std::unique_ptr<KinematicModel> identified = model.Clone();
   p.ApplyTo(identified.get());
   int unreachable = 0;
-  result.calib_rms_rad = JointResidualRms(*identified, result.X_BC, result.X_TE, calib, &unreachable);
-  if (unreachable > 0) result.log.push_back(std::to_string(unreachable) + " calibration poses out of reach");
-  result.valid_rms_rad = JointResidualRms(*identified, result.X_BC, result.X_TE, valid, &unreachable);
-  if (unreachable > 0) result.log.push_back(std::to_string(unreachable) + " validation poses out of reach");
+  result.calib_rms_rad =
+      JointResidualRms(*identified, result.X_BC, result.X_TE, calib, &unreachable);
+  if (unreachable > 0)
+    result.log.push_back(std::to_string(unreachable) + " calibration poses out of reach");
+  result.valid_rms_rad =
+      JointResidualRms(*identified, result.X_BC, result.X_TE, valid, &unreachable);
+  if (unreachable > 0)
+    result.log.push_back(std::to_string(unreachable) + " validation poses out of reach");
   if (!valid.empty()) {
-    const BoardPoseErrors held_out = BoardPoseErrorsOf(*identified, result.X_BC, result.X_TE, valid);
+    const BoardPoseErrors held_out =
+        BoardPoseErrorsOf(*identified, result.X_BC, result.X_TE, valid);
     if (held_out.poses > 0) {
       result.valid_position_rms_m = held_out.position_rms;
       result.valid_rotation_rms_rad = held_out.rotation_rms;
       result.log.push_back(Printf("held-out board pose error RMS %.4f mm, %.4f deg over %.0f poses",
-                                  held_out.position_rms * 1e3, held_out.rotation_rms * 57.29577951308232,
-                                  held_out.poses));
+                                  held_out.position_rms * 1e3,
+                                  held_out.rotation_rms * 57.29577951308232, held_out.poses));
     }
   }
   result.calib_poses.clear();
@@ -124,8 +129,8 @@ std::string IdentificationSummary::FullReport() const {
     for (const std::string& f : stage.fixed) s << "  fixed " << f << "\n";
     for (const MinimizerReport& m : stage.minimizers) {
       s << "  " << m.name << ": " << m.iterations << " iterations, " << m.evaluations
-        << " evaluations, cost " << Printf("%.6g -> %.6g", m.initial_cost, m.final_cost)
-        << ", " << m.stop_reason << Printf(", %.2f ms\n", m.seconds * 1e3);
+        << " evaluations, cost " << Printf("%.6g -> %.6g", m.initial_cost, m.final_cost) << ", "
+        << m.stop_reason << Printf(", %.2f ms\n", m.seconds * 1e3);
     }
   }
   s << Printf("final cost %.6g, chi2/dof %.4g\n", final_cost, chi2_per_dof);

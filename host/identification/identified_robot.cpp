@@ -27,8 +27,8 @@ IdentifiedRobot RebuildFromResult(const IdentificationResult& result, const Asse
   for (size_t k = 0; k < names.size(); ++k) {
     const ResultParameter* p = result.Find(names[k]);
     if (p == nullptr) {
-      throw std::invalid_argument("identification result: Model " + result.model +
-                                  " parameter \"" + names[k] + "\" is missing");
+      throw std::invalid_argument("identification result: Model " + result.model + " parameter \"" +
+                                  names[k] + "\" is missing");
     }
     xi[static_cast<Eigen::Index>(k)] = p->value;
   }

@@ -111,8 +111,8 @@ MinimizerReport MinimizeWithNlopt(const ResidualFunction& f, const NloptOptions&
   return report;
 }
 
-MinimizerReport MinimizeWithLevenbergMarquardt(const ResidualFunction& f,
-                                               const LmOptions& options, Eigen::VectorXd* v,
+MinimizerReport MinimizeWithLevenbergMarquardt(const ResidualFunction& f, const LmOptions& options,
+                                               Eigen::VectorXd* v,
                                                const ProgressCallback& progress) {
   const auto start = std::chrono::steady_clock::now();
   MinimizerReport report;

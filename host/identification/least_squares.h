@@ -23,7 +23,7 @@ struct NloptOptions {
   /// NLopt algorithm name without the "NLOPT_" prefix, e.g. LD_LBFGS, LD_SLSQP, LD_MMA,
   /// LD_TNEWTON_PRECOND_RESTART, LN_BOBYQA; "none" skips the NLopt stage.
   std::string algorithm = "LD_LBFGS";
-  int max_evaluations = 300;             ///< per call
+  int max_evaluations = 300;               ///< per call
   double relative_cost_tolerance = 1e-12;  ///< NLopt ftol_rel
   double relative_step_tolerance = 1e-12;  ///< NLopt xtol_rel (scaled variables)
 };
@@ -55,8 +55,8 @@ MinimizerReport MinimizeWithNlopt(const ResidualFunction& f, const NloptOptions&
                                   Eigen::VectorXd* v, const ProgressCallback& progress = {});
 
 /// Levenberg-Marquardt with Moré's column scaling (running maximum of the column norms).
-MinimizerReport MinimizeWithLevenbergMarquardt(const ResidualFunction& f,
-                                               const LmOptions& options, Eigen::VectorXd* v,
+MinimizerReport MinimizeWithLevenbergMarquardt(const ResidualFunction& f, const LmOptions& options,
+                                               Eigen::VectorXd* v,
                                                const ProgressCallback& progress = {});
 
 /// Column norms of J, with zero columns given 1 (a parameter with no effect stays put).

@@ -11,9 +11,9 @@
 namespace h4::host {
 
 const std::vector<std::string>& TransformParameterNames() {
-  static const std::vector<std::string> names = {
-      "X_BC.tx", "X_BC.ty", "X_BC.tz", "X_BC.rx", "X_BC.ry", "X_BC.rz",
-      "X_TE.tx", "X_TE.ty", "X_TE.tz", "X_TE.rx", "X_TE.ry", "X_TE.rz"};
+  static const std::vector<std::string> names = {"X_BC.tx", "X_BC.ty", "X_BC.tz", "X_BC.rx",
+                                                 "X_BC.ry", "X_BC.rz", "X_TE.tx", "X_TE.ty",
+                                                 "X_TE.tz", "X_TE.rx", "X_TE.ry", "X_TE.rz"};
   return names;
 }
 

@@ -75,8 +75,8 @@ class ParameterVector {
 
 /// The nominal Model 31 parameter vector equivalent to a Model 12 one (paper III.C: Model
 /// 31 starts from the Model 12 result): kinematics from NominalModel31, X_BC mapped to
-/// B31, X_TE unchanged, all free (X_B31C = NominalX_B31B * X_BC). `model31` supplies the Model 31 implementation (its
-/// parameters are overwritten). Precondition: p12 is a Model 12 vector.
+/// B31, X_TE unchanged, all free (X_B31C = NominalX_B31B * X_BC). `model31` supplies the Model 31
+/// implementation (its parameters are overwritten). Precondition: p12 is a Model 12 vector.
 ParameterVector ConvertModel12To31(const ParameterVector& p12, KinematicModel* model31);
 
 }  // namespace h4::host

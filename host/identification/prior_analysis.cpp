@@ -45,7 +45,8 @@ AxisEstimate EstimateAxis(size_t n, const Relative& relative, const Eigen::Vecto
   out.axis = sum.normalized();
   double sum_sq = 0.0;
   for (const Eigen::Vector3d& w : w_per_pose) {
-    const double angle = std::atan2(w.normalized().cross(out.axis).norm(), w.normalized().dot(out.axis));
+    const double angle =
+        std::atan2(w.normalized().cross(out.axis).norm(), w.normalized().dot(out.axis));
     sum_sq += angle * angle;
   }
   out.spread_deg = std::sqrt(sum_sq / static_cast<double>(w_per_pose.size())) * kDeg;
@@ -83,9 +84,10 @@ PriorAnalysis AnalyzeRotationAxis(const std::vector<DatasetRow>& rows,
       rows.size(), [&](size_t j, size_t k) { return Eigen::Matrix3d(R(j).transpose() * R(k)); },
       R_TE0 * Eigen::Vector3d::UnitZ(), options.min_rotation);
   if (!in_C.ok || !in_T.ok) {
-    out.message = "prior analysis: the poses do not turn enough about the axis (need pairs "
-                  "turned by more than " +
-                  std::to_string(options.min_rotation * kDeg) + " deg)";
+    out.message =
+        "prior analysis: the poses do not turn enough about the axis (need pairs "
+        "turned by more than " +
+        std::to_string(options.min_rotation * kDeg) + " deg)";
     return out;
   }
   out.axis_C = in_C.axis;
@@ -110,7 +112,8 @@ PriorAnalysis AnalyzeRotationAxis(const std::vector<DatasetRow>& rows,
   out.camera_axis_correction_deg = AngleBetween(b, Eigen::Vector3d::UnitZ()) * kDeg;
 
   const Eigen::Vector3d c = R_TE0 * Eigen::Vector3d::UnitZ();
-  const Eigen::Matrix3d R_fix_T = Eigen::Quaterniond::FromTwoVectors(c, out.axis_T).toRotationMatrix();
+  const Eigen::Matrix3d R_fix_T =
+      Eigen::Quaterniond::FromTwoVectors(c, out.axis_T).toRotationMatrix();
   out.X_TE = RigidTransform(R_fix_T * R_TE0, X_TE_apriori.translation());
   out.board_axis_correction_deg = AngleBetween(c, out.axis_T) * kDeg;
 

@@ -23,7 +23,7 @@ struct PriorAnalysisOptions {
 
 struct PriorAnalysis {
   bool ok = false;
-  std::string message;  ///< why not ok, or a one-line account
+  std::string message;                                ///< why not ok, or a one-line account
   Eigen::Vector3d axis_C = Eigen::Vector3d::UnitZ();  ///< z_B in C, unit
   Eigen::Vector3d axis_T = Eigen::Vector3d::UnitZ();  ///< z_E (= z_B) in T, unit
   /// RMS angle between each pose's axis estimate and the mean axis, deg (the 4-DoF check).

@@ -23,25 +23,24 @@ Uncertainty ComputeUncertainty(const ParameterVector& p, const Eigen::VectorXd& 
   if (n == 0 || m <= n) return u;
   const Eigen::MatrixXd J = FreeColumns(J_full, p);
   const Eigen::VectorXd scale = ColumnScale(J);
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(J * scale.cwiseInverse().asDiagonal(),
-                                              Eigen::ComputeThinV);
-  const Eigen::VectorXd s = svd.singularValues();
+  Eigen::VectorXd s;
+  Eigen::MatrixXd V;
+  TallSvd(J * scale.cwiseInverse().asDiagonal(), &s, &V);
   if (!(s[n - 1] > 1e-12 * s[0])) return u;  // rank deficient: no meaningful covariance
   u.condition_number = s[0] / s[n - 1];
   u.chi2_per_dof = r.squaredNorm() / static_cast<double>(m - n);
   u.sigma2 = weighted ? 1.0 : u.chi2_per_dof;
-  const Eigen::MatrixXd V = svd.matrixV();
   const Eigen::MatrixXd C_scaled = V * s.cwiseAbs2().cwiseInverse().asDiagonal() * V.transpose();
-  u.covariance = u.sigma2 * scale.cwiseInverse().asDiagonal() * C_scaled *
-                 scale.cwiseInverse().asDiagonal();
+  u.covariance =
+      u.sigma2 * scale.cwiseInverse().asDiagonal() * C_scaled * scale.cwiseInverse().asDiagonal();
   u.std = u.covariance.diagonal().cwiseSqrt();
   for (Eigen::Index a = 0; a < n; ++a) {
     for (Eigen::Index b = a + 1; b < n; ++b) {
       const double rho = u.covariance(a, b) / (u.std[a] * u.std[b]);
       if (std::abs(rho) > correlation_threshold) {
-        u.correlations.push_back({p.names()[static_cast<size_t>(u.free_indices[static_cast<size_t>(a)])],
-                                  p.names()[static_cast<size_t>(u.free_indices[static_cast<size_t>(b)])],
-                                  rho});
+        u.correlations.push_back(
+            {p.names()[static_cast<size_t>(u.free_indices[static_cast<size_t>(a)])],
+             p.names()[static_cast<size_t>(u.free_indices[static_cast<size_t>(b)])], rho});
       }
     }
   }

@@ -17,12 +17,12 @@ namespace h4::host {
 
 struct Uncertainty {
   bool ok = false;
-  std::vector<int> free_indices;  ///< parameter indices of the rows/columns below
-  Eigen::MatrixXd covariance;     ///< of the free parameters, SI units squared
-  Eigen::VectorXd std;            ///< one sigma per free parameter
-  double chi2_per_dof = 0.0;      ///< |r|^2 / (residuals - free parameters)
-  double sigma2 = 1.0;            ///< the residual variance scaling the covariance
-  double condition_number = 0.0;  ///< of the column-scaled Jacobian
+  std::vector<int> free_indices;             ///< parameter indices of the rows/columns below
+  Eigen::MatrixXd covariance;                ///< of the free parameters, SI units squared
+  Eigen::VectorXd std;                       ///< one sigma per free parameter
+  double chi2_per_dof = 0.0;                 ///< |r|^2 / (residuals - free parameters)
+  double sigma2 = 1.0;                       ///< the residual variance scaling the covariance
+  double condition_number = 0.0;             ///< of the column-scaled Jacobian
   std::vector<CorrelatedPair> correlations;  ///< |rho| above the threshold, largest first
 };
 

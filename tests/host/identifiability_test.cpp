@@ -28,7 +28,8 @@ std::vector<std::string> FixedNames(const IdentifiabilityReport& report) {
 // (untilted) board placement, on rows made consistent with it as the pipeline does.
 IdentifiabilityReport Analyze(const testing::TrueSetup& setup, CostKind kind) {
   ParameterVector p(*setup.model, setup.X_BC, PaperX_TE());
-  const std::vector<DatasetRow> rows = ConsistentRows(*setup.model, p, testing::NoiseFreeRows(setup));
+  const std::vector<DatasetRow> rows =
+      ConsistentRows(*setup.model, p, testing::NoiseFreeRows(setup));
   const IdentificationCost cost(kind, *setup.model, rows);
   Eigen::VectorXd r;
   Eigen::MatrixXd J;
@@ -57,7 +58,8 @@ TEST(IdentifiabilityTest, Model31FixesDAndAnAngleAboutZbNotTheBoardAngle) {
   for (CostKind kind : {CostKind::kJointSpace, CostKind::kImplicit, CostKind::kMeasurement}) {
     const std::vector<std::string> fixed = FixedNames(Analyze(testing::TrueModel31Setup(), kind));
     for (const char* name : {"X_BC.rz", "X_TE.tz", "d"}) {
-      EXPECT_NE(std::find(fixed.begin(), fixed.end(), name), fixed.end()) << ToString(kind) << " " << name;
+      EXPECT_NE(std::find(fixed.begin(), fixed.end(), name), fixed.end())
+          << ToString(kind) << " " << name;
     }
     EXPECT_EQ(std::find(fixed.begin(), fixed.end(), "X_TE.rz"), fixed.end()) << ToString(kind);
   }

@@ -27,8 +27,8 @@ Eigen::VectorXd Perturbed(const Eigen::VectorXd& v, double amount) {
 }
 
 TEST(PoseChainTest, MeasuredPoseJacobiansMatchFiniteDifferences) {
-  const RigidTransform X_CT = RigidTransform::FromTranslationRpy(
-      Eigen::Vector3d(0.02, -0.05, 0.55), Eigen::Vector3d(0.05, -0.03, 0.3));
+  const RigidTransform X_CT = RigidTransform::FromTranslationRpy(Eigen::Vector3d(0.02, -0.05, 0.55),
+                                                                 Eigen::Vector3d(0.05, -0.03, 0.3));
   Eigen::VectorXd v0(12);
   v0 << 0.01, -0.02, -1.05, 0.02, -0.03, 0.1, 0.09, 0.08, 0.025, 0.01, 0.02, -0.05;
   auto chain = [&](const Eigen::VectorXd& v) {
@@ -120,9 +120,8 @@ TEST_P(CostTest, JacobianMatchesFiniteDifferencesOffTheTruth) {
 INSTANTIATE_TEST_SUITE_P(
     AllCosts, CostTest,
     ::testing::Values(CostCase{"12", CostKind::kJointSpace}, CostCase{"12", CostKind::kImplicit},
-                      CostCase{"12", CostKind::kMeasurement},
-                      CostCase{"31", CostKind::kJointSpace}, CostCase{"31", CostKind::kImplicit},
-                      CostCase{"31", CostKind::kMeasurement}),
+                      CostCase{"12", CostKind::kMeasurement}, CostCase{"31", CostKind::kJointSpace},
+                      CostCase{"31", CostKind::kImplicit}, CostCase{"31", CostKind::kMeasurement}),
     [](const ::testing::TestParamInfo<CostCase>& param_info) {
       return std::string("Model") + param_info.param.model + "_" + ToString(param_info.param.kind);
     });

@@ -107,10 +107,10 @@ TEST(IdentificationTest, NoiseFreeModel12DataGivesBackTheTrueParameters) {
   // The parameters the analysis fixes (X_TE.tz, d) must hold their true values for the
   // others to be exactly recoverable; everything else starts from the rough a priori.
   RobotDescription robot = PaperAprioriRobot();
-  robot.X_TE = RigidTransform(robot.X_TE.rotation(),
-                              Eigen::Vector3d(robot.X_TE.translation().x(),
-                                              robot.X_TE.translation().y(),
-                                              s.truth.X_TE.translation().z()));
+  robot.X_TE =
+      RigidTransform(robot.X_TE.rotation(),
+                     Eigen::Vector3d(robot.X_TE.translation().x(), robot.X_TE.translation().y(),
+                                     s.truth.X_TE.translation().z()));
   Model12 apriori(robot.model12);
   IdentificationOptions options;
   options.reject_outliers = false;
@@ -121,7 +121,8 @@ TEST(IdentificationTest, NoiseFreeModel12DataGivesBackTheTrueParameters) {
   const ParameterVector truth(truth_model, s.truth.X_BC, s.truth.X_TE);
   for (int k = 0; k < truth.size(); ++k) {
     if (truth.names()[static_cast<size_t>(k)] == "d") continue;  // no effect on Model 12
-    EXPECT_NEAR(out.parameters.values()[k], truth.values()[k], 1e-8) << truth.names()[static_cast<size_t>(k)];
+    EXPECT_NEAR(out.parameters.values()[k], truth.values()[k], 1e-8)
+        << truth.names()[static_cast<size_t>(k)];
   }
   std::vector<std::string> fixed;
   for (const FixedParameter& f : out.result.fixed) fixed.push_back(f.name);
@@ -143,7 +144,8 @@ TEST(IdentificationTest, NoiseFreeModel31DataGivesBackTheIdentifiableParameters)
     EXPECT_NEAR(e.arm[i], t.arm[i], 1e-8) << "arm" << i + 1;
     EXPECT_NEAR(e.forearm[i], t.forearm[i], 1e-8) << "forearm" << i + 1;
     EXPECT_NEAR(e.beta[i], t.beta[i], 1e-8) << "beta" << i + 1;
-    EXPECT_NEAR(WrapAngle((e.psi[i] - e.psi[0]) - (t.psi[i] - t.psi[0])), 0.0, 1e-8) << "psi" << i + 1;
+    EXPECT_NEAR(WrapAngle((e.psi[i] - e.psi[0]) - (t.psi[i] - t.psi[0])), 0.0, 1e-8)
+        << "psi" << i + 1;
   }
   EXPECT_NEAR(e.h, t.h, 1e-8);
   for (size_t j = 0; j < 3; ++j) {
@@ -170,7 +172,8 @@ TEST(IdentificationTest, ConvergesFromTheRoughAprioriForEveryEstimator) {
 }
 
 TEST(IdentificationTest, PaperProtocolModel12HeldOutAccuracy) {
-  const Accuracy a = MeanHeldOutError(TrueGeometry::kPerturbedModel12, "12", CostKind::kMeasurement, kSeeds);
+  const Accuracy a =
+      MeanHeldOutError(TrueGeometry::kPerturbedModel12, "12", CostKind::kMeasurement, kSeeds);
   std::cout << "Model 12 data, Model 12 measurement-space: " << a.position_m * 1e3 << " mm, "
             << a.rotation_rad * kDeg << " deg\n";
   EXPECT_LE(a.position_m, 0.10e-3);
@@ -178,8 +181,10 @@ TEST(IdentificationTest, PaperProtocolModel12HeldOutAccuracy) {
 }
 
 TEST(IdentificationTest, PaperProtocolModel12JointSpaceIsLessAccurate) {
-  const Accuracy joint = MeanHeldOutError(TrueGeometry::kPerturbedModel12, "12", CostKind::kJointSpace, kSeeds);
-  const Accuracy measurement = MeanHeldOutError(TrueGeometry::kPerturbedModel12, "12", CostKind::kMeasurement, kSeeds);
+  const Accuracy joint =
+      MeanHeldOutError(TrueGeometry::kPerturbedModel12, "12", CostKind::kJointSpace, kSeeds);
+  const Accuracy measurement =
+      MeanHeldOutError(TrueGeometry::kPerturbedModel12, "12", CostKind::kMeasurement, kSeeds);
   std::cout << "Model 12 data, eq. (3): " << joint.position_m * 1e3 << " mm, "
             << joint.rotation_rad * kDeg << " deg\n";
   EXPECT_LE(joint.position_m, 0.30e-3);
@@ -187,10 +192,13 @@ TEST(IdentificationTest, PaperProtocolModel12JointSpaceIsLessAccurate) {
 }
 
 TEST(IdentificationTest, PaperProtocolModel31HeldOutAccuracyAndModel12IsWorse) {
-  const Accuracy a31 = MeanHeldOutError(TrueGeometry::kPerturbedModel31, "31", CostKind::kMeasurement, kSeeds);
-  const Accuracy a12 = MeanHeldOutError(TrueGeometry::kPerturbedModel31, "12", CostKind::kMeasurement, kSeeds);
-  std::cout << "Model 31 data: Model 31 " << a31.position_m * 1e3 << " mm, " << a31.rotation_rad * kDeg
-            << " deg; Model 12 " << a12.position_m * 1e3 << " mm, " << a12.rotation_rad * kDeg << " deg\n";
+  const Accuracy a31 =
+      MeanHeldOutError(TrueGeometry::kPerturbedModel31, "31", CostKind::kMeasurement, kSeeds);
+  const Accuracy a12 =
+      MeanHeldOutError(TrueGeometry::kPerturbedModel31, "12", CostKind::kMeasurement, kSeeds);
+  std::cout << "Model 31 data: Model 31 " << a31.position_m * 1e3 << " mm, "
+            << a31.rotation_rad * kDeg << " deg; Model 12 " << a12.position_m * 1e3 << " mm, "
+            << a12.rotation_rad * kDeg << " deg\n";
   EXPECT_LE(a31.position_m, 0.20e-3);
   EXPECT_LE(a31.rotation_rad * kDeg, 0.04);
   EXPECT_GT(a12.position_m, 3.0 * a31.position_m);
@@ -236,7 +244,8 @@ TEST(IdentificationTest, OutliersAreRejectedAndReported) {
   const std::vector<int64_t> bad = {s.calib[10].pose_id, s.calib[40].pose_id};
   for (DatasetRow& row : s.calib) {
     if (row.pose_id == bad[0] || row.pose_id == bad[1]) {
-      row.X_CT = RigidTransform(row.X_CT.rotation(), row.X_CT.translation() + Eigen::Vector3d(0.003, 0, 0));
+      row.X_CT = RigidTransform(row.X_CT.rotation(),
+                                row.X_CT.translation() + Eigen::Vector3d(0.003, 0, 0));
     }
   }
   const IdentificationOutcome out = IdentifyScenario(s, "12", IdentificationOptions{});

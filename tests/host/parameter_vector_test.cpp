@@ -4,6 +4,7 @@
 
 #include <numbers>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "host/kinematics/measurement_chain.h"

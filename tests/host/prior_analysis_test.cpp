@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numbers>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "host/simulation/dataset_simulator.h"
@@ -28,7 +29,8 @@ SimulatedDataset Simulate(const SimulatedRobot& truth, bool noise) {
 
 TEST(PriorAnalysisTest, FindsTheTrueAxisInCameraAndBoardFramesFromNoiseFreeRotations) {
   const SimulatedRobot truth = MakeTrueRobot(PaperAprioriRobot(), TrueGeometry::kPerturbedModel12);
-  const PriorAnalysis a = AnalyzeRotationAxis(Simulate(truth, false).rows, PaperX_BC(), PaperX_TE());
+  const PriorAnalysis a =
+      AnalyzeRotationAxis(Simulate(truth, false).rows, PaperX_BC(), PaperX_TE());
   ASSERT_TRUE(a.ok) << a.message;
   const Eigen::Vector3d z_B_in_C = truth.X_BC.rotation().transpose() * Eigen::Vector3d::UnitZ();
   const Eigen::Vector3d z_E_in_T = truth.X_TE.rotation() * Eigen::Vector3d::UnitZ();
@@ -63,7 +65,8 @@ TEST(PriorAnalysisTest, TooFewOrUnturnedPosesAreReportedNotGuessed) {
   EXPECT_FALSE(few.ok);
   EXPECT_FALSE(few.message.empty());
   // Poses 1, 4, 7 of the grid share theta = -20 deg: no rotation between them.
-  const PriorAnalysis flat = AnalyzeRotationAxis({rows[0], rows[3], rows[6]}, PaperX_BC(), PaperX_TE());
+  const PriorAnalysis flat =
+      AnalyzeRotationAxis({rows[0], rows[3], rows[6]}, PaperX_BC(), PaperX_TE());
   EXPECT_FALSE(flat.ok);
   EXPECT_TRUE(flat.X_BC.IsNearlyEqualTo(PaperX_BC(), 0.0, 0.0));  // a priori returned
 }

@@ -1,0 +1,171 @@
+// `h4cam run`; see run_command.h.
+#include "firmware/cli/run_command.h"
+
+#include <csignal>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+
+#include "common/formats/board_yaml.h"
+#include "common/formats/camera_yaml.h"
+#include "firmware/service/camera_service.h"
+#include "firmware/service/lcm_bus.h"
+#include "firmware/service/sd_notify.h"
+#include "firmware/service/service_node.h"
+#include "firmware/sources/image_file_source.h"
+#include "firmware/sources/libcamera_source.h"
+#include "firmware/sources/sim_source.h"
+#include "messages/channels.h"
+
+namespace h4::cam {
+namespace {
+
+std::atomic<bool> g_stop_requested{false};
+
+// Only sets the flag: the main loop polls it at least every 100 ms.
+extern "C" void OnStopSignal(int) { g_stop_requested.store(true); }
+
+LibcameraSourceOptions LibcameraOptions(const ServiceConfig& config) {
+  LibcameraSourceOptions o;
+  o.camera_id = config.camera_id;
+  o.width = config.width_px;
+  o.height = config.height_px;
+  o.rotate_180 = config.rotate_180;
+  o.auto_exposure = config.exposure_time_us == 0;
+  o.exposure_time = std::chrono::microseconds(static_cast<int64_t>(config.exposure_time_us));
+  o.analogue_gain = static_cast<float>(config.analogue_gain);
+  o.frame_rate_hz = 1e6 / config.frame_duration_us;
+  return o;
+}
+
+// Fails before the service runs: the reason on stderr and in a STATE_ERROR status.
+int Fail(LcmBus* bus, const ServiceConfig& config, const std::string& why, std::ostream& err) {
+  err << "h4cam run: " << why << "\n";
+  if (bus != nullptr && bus->good()) {
+    h4msgs::camera_status_t status{};
+    status.utime = NowUtime();
+    status.camera_id = config.MessageCameraId();
+    status.state = h4msgs::camera_status_t::STATE_ERROR;
+    status.exposure_us = config.exposure_time_us;
+    status.analogue_gain = config.analogue_gain;
+    status.last_error = why;
+    bus->Publish(channels::kCameraStatus, status);
+  }
+  NotifyStatus("error: " + why);
+  return 1;
+}
+
+}  // namespace
+
+ServiceConfig ResolveRunConfig(const RunArgs& args) {
+  ServiceConfig config;
+  if (!args.config_path.empty()) config = ReadServiceConfig(args.config_path);
+  if (args.source) config.source = *args.source;
+  if (args.board_path) config.board_path = *args.board_path;
+  if (args.camera_path) config.camera_intrinsics_path = *args.camera_path;
+  if (args.lcm_url) config.lcm_url = *args.lcm_url;
+  if (args.camera_id) config.camera_id = *args.camera_id;
+  if (args.frames) config.frames_averaged = *args.frames;
+  if (args.free_run_hz) config.free_run_hz = *args.free_run_hz;
+  std::string why;
+  if (!config.IsValid(&why)) throw std::runtime_error("run: " + why);
+  return config;
+}
+
+int RunService(const ServiceConfig& config, std::ostream& err, const std::atomic<bool>& stop) {
+  LcmBus bus(config.lcm_url);
+  if (!bus.good()) return Fail(nullptr, config, bus.error(), err);
+
+  std::unique_ptr<FrameSource> source;
+  SimSource* sim = nullptr;
+  if (config.source == "libcamera") {
+    // The camera first: on a machine without one, that is the error to report, whatever
+    // the state of the board and intrinsics files.
+    auto camera = std::make_unique<LibcameraSource>(LibcameraOptions(config));
+    if (!camera->Open()) return Fail(&bus, config, camera->error(), err);
+    camera->Close();
+    source = std::move(camera);
+  }
+  if (config.board_path.empty()) return Fail(&bus, config, "no board file (--board)", err);
+  if (config.camera_intrinsics_path.empty()) {
+    return Fail(&bus, config, "no camera intrinsics file (--camera)", err);
+  }
+  BoardSpec board;
+  CameraIntrinsics intrinsics;
+  try {
+    board = ReadBoardYaml(config.board_path);
+    intrinsics = ReadCameraYaml(config.camera_intrinsics_path);
+  } catch (const std::exception& e) {
+    return Fail(&bus, config, e.what(), err);
+  }
+  if (config.source == "sim") {
+    SimSourceOptions sim_options;
+    sim_options.frame_rate_hz = 1e6 / config.frame_duration_us;
+    sim_options.start_utime = NowUtime();
+    auto sim_source = std::make_unique<SimSource>(board, intrinsics, sim_options);
+    sim = sim_source.get();
+    source = std::move(sim_source);
+  } else if (config.source.rfind("dir:", 0) == 0) {
+    source = std::make_unique<ImageFileSource>(std::vector<std::string>{config.source.substr(4)});
+  }
+
+  CameraServiceOptions options;
+  options.camera_id = config.MessageCameraId();
+  options.board_id = std::filesystem::path(config.board_path).stem().string();
+  options.default_frames = config.frames_averaged;
+  options.free_run_hz = config.free_run_hz;
+  options.max_spread_px = config.max_spread_px;
+  options.exposure_us = config.exposure_time_us;
+  options.analogue_gain = config.analogue_gain;
+  options.drain_when_idle = config.source == "libcamera";
+  CameraService service(options, *source, board, intrinsics);
+  if (!service.Start()) return Fail(&bus, config, service.last_error(), err);
+
+  ServiceNode node(bus, service, sim, std::chrono::duration<double>(config.heartbeat_period_s));
+  NotifyReady();
+  NotifyStatus("running: " + source->Describe() + " on " + bus.url());
+  err << "h4cam run: " << source->Describe() << ", board " << options.board_id << ", LCM "
+      << bus.url() << "\n";
+  while (!stop.load()) node.Poll(std::chrono::milliseconds(100));
+
+  NotifyStopping();
+  service.Stop();
+  node.PublishStatus();  // STATE_STOPPING
+  err << "h4cam run: stopped after " << service.measurements_total() << " measurement(s)\n";
+  return 0;
+}
+
+void AddRunCommand(CLI::App& app) {
+  auto args = std::make_shared<RunArgs>();
+  CLI::App* command = app.add_subcommand(
+      "run", "Camera service: answer capture requests on LCM with board poses (h4cam.service)");
+  command->add_option("--config", args->config_path, "Service configuration YAML")
+      ->check(CLI::ExistingFile);
+  command->add_option("--source", args->source, "Frames: libcamera (default), sim or dir:PATH");
+  command->add_option("--board", args->board_path, "Board YAML");
+  command->add_option("--camera", args->camera_path, "Camera intrinsics YAML (OpenCV)");
+  command->add_option("--frames", args->frames, "Frames averaged per measurement (default 10)")
+      ->check(CLI::Range(1, kMaxFramesPerRequest));
+  command->add_option("--free-run", args->free_run_hz, "Measure continuously at this rate, Hz")
+      ->check(CLI::Range(0.0, 100.0));
+  command->add_option("--lcm-url", args->lcm_url, "LCM URL (default $LCM_DEFAULT_URL, ttl=0)");
+  command->add_option(
+      "--camera-id", args->camera_id,
+      "libcamera camera id (also the name in the messages unless camera.name is set)");
+  command->callback([args] {
+    const ServiceConfig config = ResolveRunConfig(*args);
+    struct sigaction action {};
+    action.sa_handler = OnStopSignal;
+    sigemptyset(&action.sa_mask);
+    sigaction(SIGINT, &action, nullptr);
+    sigaction(SIGTERM, &action, nullptr);
+    if (const int code = RunService(config, std::cerr, g_stop_requested); code != 0) {
+      throw CLI::RuntimeError(code);
+    }
+  });
+}
+
+}  // namespace h4::cam

@@ -1,0 +1,264 @@
+// The camera service state machine; see camera_service.h.
+#include "firmware/service/camera_service.h"
+
+#include <cmath>
+
+#include <spdlog/spdlog.h>
+
+namespace h4::cam {
+namespace {
+
+PipelineOptions MakePipelineOptions(const CameraServiceOptions& options) {
+  PipelineOptions p;
+  // The service ends each group itself (Finish() after the request's N frames), so the
+  // pipeline's own group size is the largest a request may ask for.
+  p.frames = kMaxFramesPerRequest;
+  p.motion.max_spread_px = options.max_spread_px;
+  return p;
+}
+
+}  // namespace
+
+const char* ToString(CameraService::State state) {
+  switch (state) {
+    case CameraService::State::kStarting:
+      return "starting";
+    case CameraService::State::kIdle:
+      return "idle";
+    case CameraService::State::kCapturing:
+      return "capturing";
+    case CameraService::State::kError:
+      return "error";
+    case CameraService::State::kStopping:
+      return "stopping";
+  }
+  return "?";
+}
+
+int8_t BoardPoseStatus(Measurement::Status status) {
+  switch (status) {
+    case Measurement::Status::kOk:
+      return h4msgs::board_pose_t::STATUS_OK;
+    case Measurement::Status::kNoBoard:
+      return h4msgs::board_pose_t::STATUS_NO_BOARD;
+    case Measurement::Status::kMoved:
+      return h4msgs::board_pose_t::STATUS_MOVED;
+    case Measurement::Status::kPartial:
+      return h4msgs::board_pose_t::STATUS_PARTIAL;
+    case Measurement::Status::kCameraError:
+      return h4msgs::board_pose_t::STATUS_CAMERA_ERROR;
+  }
+  return h4msgs::board_pose_t::STATUS_CAMERA_ERROR;
+}
+
+CameraService::CameraService(CameraServiceOptions options, FrameSource& source,
+                             const BoardSpec& board, const CameraIntrinsics& camera)
+    : options_(std::move(options)),
+      source_(source),
+      pipeline_(board, camera, MakePipelineOptions(options_)) {
+  if (!pipeline_.ok()) RecordError("measuring pipeline: " + pipeline_.error());
+}
+
+bool CameraService::Start() {
+  state_ = State::kStarting;
+  if (!pipeline_.ok()) {
+    state_ = State::kError;
+    return false;
+  }
+  if (!source_.Open() || !source_.Configure() || !source_.Start()) {
+    RecordError(source_.error().empty() ? source_.Describe() + ": cannot start" : source_.error());
+    state_ = State::kError;
+    source_.Close();
+    return false;
+  }
+  state_ = State::kIdle;
+  spdlog::info("camera service started: {}", source_.Describe());
+  return true;
+}
+
+void CameraService::Stop() {
+  if (capture_ || !queue_.empty()) {
+    spdlog::warn("stopping with {} request(s) unanswered", queue_.size() + (capture_ ? 1 : 0));
+  }
+  capture_.reset();
+  queue_.clear();
+  source_.Stop();
+  source_.Close();
+  state_ = State::kStopping;
+}
+
+bool CameraService::SubmitRequest(const h4msgs::capture_request_t& request) {
+  std::string why;
+  if (request.pose_id < 0) {
+    why = "pose_id " + std::to_string(request.pose_id) + " < 0";
+  } else if (request.frame_count < 0 || request.frame_count > kMaxFramesPerRequest) {
+    why = "frame_count " + std::to_string(request.frame_count) + " outside 0.." +
+          std::to_string(kMaxFramesPerRequest);
+  } else if (queue_.size() >= options_.max_queued_requests) {
+    why = "queue full (" + std::to_string(queue_.size()) + " requests waiting)";
+  } else if (state_ == State::kError || state_ == State::kStopping) {
+    why = std::string("camera ") + ToString(state_);
+  }
+  if (!why.empty()) {
+    ++rejected_requests_;
+    spdlog::warn("capture request for pose {} rejected: {} ({} rejected so far)", request.pose_id,
+                 why, rejected_requests_);
+    return false;
+  }
+  queue_.push_back(request);
+  return true;
+}
+
+bool CameraService::WantsFrames() const {
+  if (state_ != State::kIdle && state_ != State::kCapturing) return false;
+  return capture_.has_value() || !queue_.empty() || options_.drain_when_idle;
+}
+
+void CameraService::BeginCapture(int64_t pose_id, int frames, Clock::time_point now) {
+  pipeline_.Reset();
+  capture_ = Capture{pose_id, frames, 0, now};
+  state_ = State::kCapturing;
+}
+
+std::optional<h4msgs::board_pose_t> CameraService::Step(Clock::time_point now) {
+  if (state_ != State::kIdle && state_ != State::kCapturing) return std::nullopt;
+  if (!capture_) {
+    if (!queue_.empty()) {
+      const h4msgs::capture_request_t request = queue_.front();
+      queue_.pop_front();
+      BeginCapture(request.pose_id,
+                   request.frame_count == 0 ? options_.default_frames : request.frame_count, now);
+    } else if (options_.free_run_hz > 0) {
+      const auto period = std::chrono::duration_cast<Clock::duration>(
+          std::chrono::duration<double>(1.0 / options_.free_run_hz));
+      if (!next_free_run_) next_free_run_ = now;
+      if (now >= *next_free_run_) {
+        // Skip missed slots rather than bursting to catch up.
+        while (*next_free_run_ <= now) *next_free_run_ += period;
+        BeginCapture(-1, options_.default_frames, now);
+      }
+    }
+  }
+  if (!capture_ && !options_.drain_when_idle) return std::nullopt;
+
+  std::optional<Frame> frame = source_.Next(options_.frame_timeout);
+  if (!frame) {
+    if (!source_.error().empty()) RecordError(source_.error());
+    if (capture_ && source_.finished()) {
+      return FailCapture(source_.Describe() + ": no more frames after " +
+                         std::to_string(capture_->received));
+    }
+    if (capture_ && now - capture_->last_progress > options_.capture_timeout) {
+      return FailCapture("no frame for " +
+                         std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(
+                                            now - capture_->last_progress)
+                                            .count()) +
+                         " ms" + (last_error_.empty() ? "" : ": " + last_error_));
+    }
+    return std::nullopt;
+  }
+  CountFrame(Clock::now());
+  if (!capture_) return std::nullopt;  // draining a streaming camera while idle
+
+  capture_->last_progress = now;
+  ++capture_->received;
+  std::optional<Measurement> m = pipeline_.AddFrame(*frame);
+  if (!m && capture_->received >= capture_->frames) m = pipeline_.Finish();
+  if (!m) return std::nullopt;
+  if (m->status == Measurement::Status::kCameraError) RecordError(m->message);
+  return Finish(*m, capture_->pose_id);
+}
+
+h4msgs::board_pose_t CameraService::FailCapture(const std::string& why) {
+  RecordError(why);
+  Measurement m;
+  m.status = Measurement::Status::kCameraError;
+  m.message = why;
+  m.frames_averaged = capture_ ? capture_->received : 0;
+  return Finish(m, capture_ ? capture_->pose_id : -1);
+}
+
+h4msgs::board_pose_t CameraService::Finish(const Measurement& m, int64_t pose_id) {
+  pipeline_.Reset();
+  capture_.reset();
+  state_ = State::kIdle;
+  h4msgs::board_pose_t msg{};
+  msg.utime = m.utime;
+  msg.pose_id = pose_id;
+  msg.camera_id = options_.camera_id;
+  msg.board_id = options_.board_id;
+  msg.status = BoardPoseStatus(m.status);
+  msg.frames_averaged = m.frames_averaged;
+  msg.corners_used = m.corners_used;
+  // Only a pose that exists is sent; the others keep zero pose fields (board_pose_t.lcm).
+  const bool has_pose =
+      m.status == Measurement::Status::kOk || m.status == Measurement::Status::kMoved;
+  const bool finite = m.X_CT.translation().allFinite() && m.X_CT.rotation().allFinite() &&
+                      m.covariance.allFinite() && std::isfinite(m.rms_px) &&
+                      std::isfinite(m.frame_spread_px);
+  if (has_pose && finite) {
+    const Eigen::Vector4d q = m.X_CT.quaternion_wxyz();
+    for (int i = 0; i < 3; ++i) msg.translation[i] = m.X_CT.translation()[i];
+    for (int i = 0; i < 4; ++i) msg.quaternion[i] = q[i];
+    for (int r = 0; r < 6; ++r) {
+      for (int c = 0; c < 6; ++c) msg.covariance[6 * r + c] = m.covariance(r, c);
+    }
+    msg.reprojection_rms_px = m.rms_px;
+    msg.frame_spread_px = m.frame_spread_px;
+  } else {
+    msg.quaternion[0] = 1;  // identity rather than an invalid all-zero quaternion
+    if (has_pose) msg.status = h4msgs::board_pose_t::STATUS_CAMERA_ERROR;
+  }
+  ++measurements_total_;
+  spdlog::info("pose {}: {}{}", pose_id, ToString(m.status),
+               m.message.empty() ? "" : " (" + m.message + ")");
+  return msg;
+}
+
+void CameraService::CountFrame(Clock::time_point now) {
+  ++frames_total_;
+  recent_frames_.push_back(now);
+  while (!recent_frames_.empty() && now - recent_frames_.front() > std::chrono::seconds(1)) {
+    recent_frames_.pop_front();
+  }
+}
+
+void CameraService::RecordError(const std::string& error) {
+  if (error != last_error_) spdlog::warn("camera: {}", error);
+  last_error_ = error;
+}
+
+h4msgs::camera_status_t CameraService::Status(int64_t utime) const {
+  h4msgs::camera_status_t s{};
+  s.utime = utime;
+  s.camera_id = options_.camera_id;
+  switch (state_) {
+    case State::kStarting:
+      s.state = h4msgs::camera_status_t::STATE_STARTING;
+      break;
+    case State::kIdle:
+      s.state = h4msgs::camera_status_t::STATE_IDLE;
+      break;
+    case State::kCapturing:
+      s.state = h4msgs::camera_status_t::STATE_CAPTURING;
+      break;
+    case State::kError:
+      s.state = h4msgs::camera_status_t::STATE_ERROR;
+      break;
+    case State::kStopping:
+      s.state = h4msgs::camera_status_t::STATE_STOPPING;
+      break;
+  }
+  const auto now = Clock::now();
+  int64_t recent = 0;
+  for (const auto& t : recent_frames_) recent += (now - t <= std::chrono::seconds(1)) ? 1 : 0;
+  s.frame_rate_hz = static_cast<double>(recent);
+  s.exposure_us = options_.exposure_us;
+  s.analogue_gain = options_.analogue_gain;
+  s.frames_total = frames_total_;
+  s.measurements_total = measurements_total_;
+  s.last_error = last_error_;
+  return s;
+}
+
+}  // namespace h4::cam

@@ -1,0 +1,151 @@
+// The camera service configuration file; see service_config.h.
+#include "firmware/service/service_config.h"
+
+#include <cmath>
+#include <limits>
+
+#include "common/formats/csv_table.h"
+#include "common/formats/format_error.h"
+#include "common/formats/yaml_map.h"
+
+namespace h4::cam {
+namespace {
+
+// A scalar string that may be empty (camera.id "" means "the first camera").
+std::string OptionalString(const YamlMap& map, const std::string& key,
+                           const std::string& fallback) {
+  if (!map.Has(key)) return fallback;
+  const YAML::Node value = map.Get(key);
+  if (value.IsNull()) return "";
+  if (!value.IsScalar()) map.Fail(key, "expected a string");
+  return value.Scalar();
+}
+
+bool OptionalBool(const YamlMap& map, const std::string& key, bool fallback) {
+  if (!map.Has(key)) return fallback;
+  const YAML::Node value = map.Get(key);
+  if (value.IsScalar()) {
+    if (value.Scalar() == "true") return true;
+    if (value.Scalar() == "false") return false;
+  }
+  map.Fail(key, "expected true or false");
+}
+
+double OptionalDouble(const YamlMap& map, const std::string& key, double fallback) {
+  return map.Has(key) ? map.Double(key) : fallback;
+}
+
+int OptionalInt(const YamlMap& map, const std::string& key, int fallback) {
+  if (!map.Has(key)) return fallback;
+  const int64_t value = map.Int(key);
+  if (value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max()) {
+    map.Fail(key, "integer out of range");
+  }
+  return static_cast<int>(value);
+}
+
+// Range checks on the values read, so that the error names the line.
+void CheckPositive(const YamlMap& map, const std::string& key, double value) {
+  if (map.Has(key) && !(value > 0)) map.Fail(key, "expected a positive number");
+}
+void CheckNonNegative(const YamlMap& map, const std::string& key, double value) {
+  if (map.Has(key) && !(value >= 0)) map.Fail(key, "expected a number >= 0");
+}
+
+}  // namespace
+
+std::string ServiceConfig::MessageCameraId() const {
+  if (!camera_name.empty()) return camera_name;
+  return camera_id.empty() ? "h4cam" : camera_id;
+}
+
+bool ServiceConfig::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& text) {
+    if (why) *why = text;
+    return false;
+  };
+  if (source != "libcamera" && source != "sim" && source.rfind("dir:", 0) != 0) {
+    return fail("source '" + source + "': expected libcamera, sim or dir:PATH");
+  }
+  if (source.rfind("dir:", 0) == 0 && source.size() == 4)
+    return fail("source 'dir:' names no folder");
+  if (frames_averaged < 1 || frames_averaged > 1000) {
+    return fail("frames averaged " + std::to_string(frames_averaged) + ": expected 1..1000");
+  }
+  if (!(free_run_hz >= 0) || free_run_hz > 100) return fail("free-run rate: expected 0..100 Hz");
+  if (!(heartbeat_period_s > 0) || heartbeat_period_s > 3600) {
+    return fail("heartbeat period: expected (0, 3600] s");
+  }
+  if (!(exposure_time_us >= 0) || !(analogue_gain >= 1) || !(max_spread_px > 0) ||
+      !(frame_duration_us > 0) || width_px <= 0 || height_px <= 0) {
+    return fail("camera/measurement values out of range");
+  }
+  return true;
+}
+
+ServiceConfig ParseServiceConfig(const std::string& text, const std::string& source_name) {
+  ServiceConfig config;
+  const YAML::Node root = LoadYaml(text, source_name);
+  if (!root.IsDefined() || root.IsNull()) return config;  // empty file: every default
+  if (!root.IsMap()) throw FormatError(source_name, 1, "", "expected a YAML mapping");
+  const YamlMap top(root, source_name, "", 1);
+  top.RejectUnknownKeys(
+      {"source", "board", "camera_intrinsics", "camera", "measurement", "service", "lcm"});
+  config.source = OptionalString(top, "source", config.source);
+  config.board_path = OptionalString(top, "board", "");
+  config.camera_intrinsics_path = OptionalString(top, "camera_intrinsics", "");
+
+  if (top.Has("camera")) {
+    const YamlMap camera = top.Map("camera");
+    camera.RejectUnknownKeys({"id", "name", "width", "height", "rotate_180", "exposure_time_us",
+                              "analogue_gain", "frame_duration_us"});
+    config.camera_id = OptionalString(camera, "id", "");
+    config.camera_name = OptionalString(camera, "name", "");
+    config.width_px = OptionalInt(camera, "width", config.width_px);
+    CheckPositive(camera, "width", config.width_px);
+    config.height_px = OptionalInt(camera, "height", config.height_px);
+    CheckPositive(camera, "height", config.height_px);
+    config.rotate_180 = OptionalBool(camera, "rotate_180", config.rotate_180);
+    config.exposure_time_us = OptionalDouble(camera, "exposure_time_us", config.exposure_time_us);
+    CheckNonNegative(camera, "exposure_time_us", config.exposure_time_us);
+    config.analogue_gain = OptionalDouble(camera, "analogue_gain", config.analogue_gain);
+    if (camera.Has("analogue_gain") && !(config.analogue_gain >= 1)) {
+      camera.Fail("analogue_gain", "expected a gain >= 1");
+    }
+    config.frame_duration_us =
+        OptionalDouble(camera, "frame_duration_us", config.frame_duration_us);
+    CheckPositive(camera, "frame_duration_us", config.frame_duration_us);
+  }
+  if (top.Has("measurement")) {
+    const YamlMap m = top.Map("measurement");
+    m.RejectUnknownKeys({"frames_averaged", "max_spread_px", "free_run_hz"});
+    config.frames_averaged = OptionalInt(m, "frames_averaged", config.frames_averaged);
+    if (m.Has("frames_averaged") && (config.frames_averaged < 1 || config.frames_averaged > 1000)) {
+      m.Fail("frames_averaged", "expected 1..1000 frames");
+    }
+    config.max_spread_px = OptionalDouble(m, "max_spread_px", config.max_spread_px);
+    CheckPositive(m, "max_spread_px", config.max_spread_px);
+    config.free_run_hz = OptionalDouble(m, "free_run_hz", config.free_run_hz);
+    CheckNonNegative(m, "free_run_hz", config.free_run_hz);
+  }
+  if (top.Has("service")) {
+    const YamlMap s = top.Map("service");
+    s.RejectUnknownKeys({"heartbeat_period_s"});
+    config.heartbeat_period_s = OptionalDouble(s, "heartbeat_period_s", config.heartbeat_period_s);
+    CheckPositive(s, "heartbeat_period_s", config.heartbeat_period_s);
+  }
+  if (top.Has("lcm")) {
+    const YamlMap l = top.Map("lcm");
+    l.RejectUnknownKeys({"url"});
+    config.lcm_url = OptionalString(l, "url", "");
+  }
+  std::string why;
+  if (!config.IsValid(&why)) throw FormatError(source_name, 0, "", why);
+  return config;
+}
+
+ServiceConfig ReadServiceConfig(const std::string& path) {
+  return ParseServiceConfig(ReadTextFile(path), path);
+}
+
+}  // namespace h4::cam

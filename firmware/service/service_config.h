@@ -1,0 +1,49 @@
+// Configuration of the camera service (`h4cam run --config /etc/h4cam/h4cam.yaml`): the
+// YAML file of firmware/packaging/h4cam.yaml, then command-line overrides. Every error
+// names the file, the line and the field (h4::FormatError).
+#pragma once
+
+#include <string>
+
+namespace h4::cam {
+
+struct ServiceConfig {
+  /// "libcamera" (default), "sim" (renders H4_SIM_BOARD_TRUTH) or "dir:PATH" (image files
+  /// of a folder, in name order). YAML key `source`.
+  std::string source = "libcamera";
+  std::string board_path;              ///< board YAML (`board`)
+  std::string camera_intrinsics_path;  ///< OpenCV camera YAML (`camera_intrinsics`)
+
+  // camera: block
+  std::string camera_id;    ///< libcamera id (`camera.id`); "" = the first camera
+  std::string camera_name;  ///< id put in messages (`camera.name`); "" = camera_id or "h4cam"
+  int width_px = 2028;
+  int height_px = 1520;
+  bool rotate_180 = false;
+  double exposure_time_us = 10000;  ///< 0 = automatic exposure
+  double analogue_gain = 1.0;
+  double frame_duration_us = 100000;  ///< 10 frames per second
+
+  // measurement: block
+  int frames_averaged = 10;    ///< default frames per capture request (paper: 10)
+  double max_spread_px = 0.5;  ///< motion threshold of the group
+  double free_run_hz = 0;      ///< `measurement.free_run_hz`: > 0 measures continuously
+
+  // service: block
+  double heartbeat_period_s = 1.0;  ///< camera_status_t period
+
+  // lcm: block
+  std::string lcm_url;  ///< "" = $LCM_DEFAULT_URL, else udpm with ttl=0
+
+  /// The camera name the messages carry.
+  std::string MessageCameraId() const;
+  /// False with `why` set when a value is out of range (checked after the overrides).
+  bool IsValid(std::string* why) const;
+};
+
+/// Parses the YAML text; `source_name` names it in errors. Missing keys keep their
+/// defaults; unknown keys and wrong types throw h4::FormatError (file:line: field 'x': ...).
+ServiceConfig ParseServiceConfig(const std::string& text, const std::string& source_name);
+ServiceConfig ReadServiceConfig(const std::string& path);
+
+}  // namespace h4::cam

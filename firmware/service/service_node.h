@@ -1,0 +1,58 @@
+// The camera service on the bus: wires a CameraService to an LcmBus. Subscribes to
+// H4_CAPTURE_REQUEST (and H4_SIM_BOARD_TRUTH for the synthetic camera), publishes
+// H4_BOARD_POSE and the H4_CAMERA_STATUS heartbeat, and pings the systemd watchdog with
+// each heartbeat. Poll() is one iteration of the main loop, so tests drive it directly.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+
+#include <h4msgs/sim_board_truth_t.hpp>
+
+#include "firmware/service/camera_service.h"
+#include "firmware/service/lcm_bus.h"
+#include "firmware/sources/sim_source.h"
+
+namespace h4::cam {
+
+class ServiceNode {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  /// Subscribes on `bus`; `sim` (may be null) receives the true poses of H4_SIM_BOARD_TRUTH.
+  ServiceNode(LcmBus& bus, CameraService& service, SimSource* sim,
+              std::chrono::duration<double> heartbeat_period);
+
+  /// One loop iteration: dispatches the bus messages (waiting up to `timeout` when the
+  /// service needs no frame), steps the service, publishes a finished board pose and,
+  /// when due, the heartbeat (the first Poll() sends one at once).
+  void Poll(std::chrono::milliseconds timeout);
+  /// Publishes camera_status_t now (and WATCHDOG=1 under systemd).
+  void PublishStatus();
+
+  int64_t board_poses_published() const { return board_poses_published_; }
+  int64_t statuses_published() const { return statuses_published_; }
+  /// Sim truths refused (not finite, not a unit quaternion).
+  int64_t invalid_truths() const { return invalid_truths_; }
+
+ private:
+  void OnTruth(const h4msgs::sim_board_truth_t& truth);
+
+  LcmBus& bus_;
+  CameraService& service_;
+  SimSource* sim_;
+  Clock::duration heartbeat_period_;
+  std::optional<Clock::time_point> next_heartbeat_;
+  int64_t board_poses_published_ = 0;
+  int64_t statuses_published_ = 0;
+  int64_t invalid_truths_ = 0;
+};
+
+/// Microseconds since the Unix epoch, now.
+int64_t NowUtime();
+
+/// X_CT of a truth message; nullopt when a value is not finite or the quaternion is not
+/// unit within 1e-6 (then `why` says which).
+std::optional<RigidTransform> TruthPose(const h4msgs::sim_board_truth_t& truth, std::string* why);
+
+}  // namespace h4::cam

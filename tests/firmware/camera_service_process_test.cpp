@@ -1,0 +1,141 @@
+// `h4cam run --source sim` as a separate process over real udpm multicast, inside a private
+// network namespace (`unshare -rn`, loopback only) so that nothing reaches or comes from
+// the machine's network: truth and request in, board pose and heartbeats out, SIGTERM ->
+// final STATE_STOPPING status and exit code 0; without a camera, a STATE_ERROR status
+// and a non-zero exit. Skipped where user namespaces are refused.
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "common/formats/board_yaml.h"
+#include "common/formats/camera_yaml.h"
+#include "firmware/render/paper_scenes.h"
+#include "firmware/service/lcm_bus.h"
+#include "firmware/service/service_node.h"
+#include "messages/channels.h"
+
+extern char** environ;
+
+namespace h4::cam {
+namespace {
+
+constexpr const char* kUrl = "udpm://239.255.76.67:7667?ttl=0";
+
+// Runs inside the namespace (started by the test below through unshare).
+TEST(CameraServiceProcessTest, ChildInNamespace) {
+  if (std::getenv("H4_IN_NETNS") == nullptr) GTEST_SKIP() << "only inside unshare -rn";
+  const std::string binary = H4_BINARY_DIR "/firmware/h4cam";
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("h4cam_run_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string board = (dir / "paper_board.yaml").string();
+  const std::string camera = (dir / "camera.yaml").string();
+  WriteBoardYaml(board, scenes::PaperBoard());
+  WriteCameraYaml(camera, scenes::PaperCamera());
+
+  LcmBus bus(kUrl);
+  ASSERT_TRUE(bus.good()) << bus.error();
+  std::vector<h4msgs::board_pose_t> poses;
+  std::vector<h4msgs::camera_status_t> statuses;
+  bus.Subscribe<h4msgs::board_pose_t>(channels::kBoardPose,
+                                      [&](const h4msgs::board_pose_t& m) { poses.push_back(m); });
+  bus.Subscribe<h4msgs::camera_status_t>(
+      channels::kCameraStatus, [&](const h4msgs::camera_status_t& m) { statuses.push_back(m); });
+
+  std::vector<std::string> args = {binary,      "run", "--source",    "sim",
+                                   "--board",   board, "--camera",    camera,
+                                   "--lcm-url", kUrl,  "--camera-id", "proc-cam"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, binary.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+
+  // Wait for the first heartbeat: the service is up and subscribed.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (statuses.empty() && std::chrono::steady_clock::now() < deadline) {
+    bus.Handle(std::chrono::milliseconds(100));
+  }
+  ASSERT_FALSE(statuses.empty()) << "no heartbeat from h4cam run";
+  EXPECT_EQ(statuses[0].camera_id, "proc-cam");
+
+  const RigidTransform X_CT = scenes::RandomPoses(1, 77)[0];
+  h4msgs::sim_board_truth_t truth{};
+  const Eigen::Vector4d q = X_CT.quaternion_wxyz();
+  for (int i = 0; i < 3; ++i) truth.translation[i] = X_CT.translation()[i];
+  for (int i = 0; i < 4; ++i) truth.quaternion[i] = q[i];
+  bus.Publish(channels::kSimBoardTruth, truth);
+  h4msgs::capture_request_t request{};
+  request.pose_id = 1234;
+  bus.Publish(channels::kCaptureRequest, request);
+  while (poses.empty() && std::chrono::steady_clock::now() < deadline) {
+    bus.Handle(std::chrono::milliseconds(100));
+  }
+  ASSERT_EQ(poses.size(), 1u);
+  EXPECT_EQ(poses[0].pose_id, 1234);
+  EXPECT_EQ(poses[0].status, int8_t{h4msgs::board_pose_t::STATUS_OK});
+  EXPECT_LT(std::abs(poses[0].translation[2] - X_CT.translation().z()), 0.1e-3);
+
+  kill(pid, SIGTERM);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  bus.Handle(std::chrono::milliseconds(200));
+  EXPECT_EQ(statuses.back().state, int8_t{h4msgs::camera_status_t::STATE_STOPPING});
+  EXPECT_EQ(statuses.back().measurements_total, 1);
+  std::filesystem::remove_all(dir);
+
+  // The default libcamera source on this machine (no camera): a STATE_ERROR status naming
+  // the cause goes out before the non-zero exit.
+  statuses.clear();
+  std::vector<std::string> error_args = {binary, "run", "--lcm-url", kUrl};
+  std::vector<char*> error_argv;
+  for (auto& a : error_args) error_argv.push_back(a.data());
+  error_argv.push_back(nullptr);
+  ASSERT_EQ(posix_spawn(&pid, binary.c_str(), nullptr, nullptr, error_argv.data(), environ), 0);
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_NE(WEXITSTATUS(status), 0);
+  bus.Handle(std::chrono::milliseconds(200));
+  ASSERT_EQ(statuses.size(), 1u);
+  EXPECT_EQ(statuses[0].state, int8_t{h4msgs::camera_status_t::STATE_ERROR});
+  EXPECT_NE(statuses[0].last_error.find("no camera"), std::string::npos) << statuses[0].last_error;
+}
+
+TEST(CameraServiceProcessTest, RunAnswersACaptureRequestOverUdpmAndStopsOnSigterm) {
+  const std::string binary = H4_BINARY_DIR "/firmware/h4cam";
+  if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
+  if (std::system("unshare -rn true > /dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "user/network namespaces unavailable";
+  }
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  const std::string command =
+      "unshare -rn sh -c 'ip link set lo up && ip route add 224.0.0.0/4 dev lo && "
+      "H4_IN_NETNS=1 timeout 60 " +
+      self + " --gtest_filter=CameraServiceProcessTest.ChildInNamespace'";
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char buffer[256];
+  while (fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
+  const int status = pclose(pipe);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output;
+  // Ran, not skipped.
+  EXPECT_NE(output.find("[       OK ] CameraServiceProcessTest.ChildInNamespace"),
+            std::string::npos)
+      << output;
+}
+
+}  // namespace
+}  // namespace h4::cam

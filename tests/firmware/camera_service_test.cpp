@@ -1,0 +1,289 @@
+// The camera service over real LCM traffic (the in-process memq:// provider): capture
+// requests answered with board poses measured on synthetic frames at the published true
+// pose, bad messages counted and ignored, heartbeats, and `h4cam run` on a machine
+// without a camera (the real binary).
+#include "firmware/service/camera_service.h"
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+#include <unistd.h>
+
+#include "common/geometry/rotation.h"
+#include "firmware/render/paper_scenes.h"
+#include "firmware/service/lcm_bus.h"
+#include "firmware/service/service_node.h"
+#include "firmware/sources/image_file_source.h"
+#include "firmware/sources/sim_source.h"
+#include "messages/channels.h"
+
+namespace h4::cam {
+namespace {
+
+h4msgs::sim_board_truth_t Truth(const RigidTransform& X_CT) {
+  h4msgs::sim_board_truth_t truth{};
+  truth.utime = NowUtime();
+  truth.pose_id = 7;
+  const Eigen::Vector4d q = X_CT.quaternion_wxyz();
+  for (int i = 0; i < 3; ++i) truth.translation[i] = X_CT.translation()[i];
+  for (int i = 0; i < 4; ++i) truth.quaternion[i] = q[i];
+  truth.settled = true;
+  return truth;
+}
+
+h4msgs::capture_request_t Request(int64_t pose_id, int32_t frame_count) {
+  h4msgs::capture_request_t request{};
+  request.utime = NowUtime();
+  request.pose_id = pose_id;
+  request.frame_count = frame_count;
+  return request;
+}
+
+constexpr int64_t kStartUtime = 1'700'000'000'000'000;
+
+// One service on a memq bus, as `h4cam run --source sim` wires it, plus a listener.
+class ServiceFixture : public ::testing::Test {
+ protected:
+  explicit ServiceFixture(double free_run_hz = 0)
+      : bus_("memq://"),
+        sim_(scenes::PaperBoard(), scenes::PaperCamera(), SimOptions()),
+        service_(Options(free_run_hz), sim_, scenes::PaperBoard(), scenes::PaperCamera()),
+        node_(bus_, service_, &sim_, std::chrono::seconds(1)) {
+    bus_.Subscribe<h4msgs::board_pose_t>(
+        channels::kBoardPose, [this](const h4msgs::board_pose_t& m) { poses_.push_back(m); });
+    bus_.Subscribe<h4msgs::camera_status_t>(
+        channels::kCameraStatus,
+        [this](const h4msgs::camera_status_t& m) { statuses_.push_back(m); });
+  }
+  // As `h4cam run --source sim`: synthetic timestamps start now.
+  static SimSourceOptions SimOptions() {
+    SimSourceOptions options;
+    options.start_utime = kStartUtime;
+    return options;
+  }
+  static CameraServiceOptions Options(double free_run_hz) {
+    CameraServiceOptions options;
+    options.camera_id = "test-cam";
+    options.board_id = "paper";
+    options.free_run_hz = free_run_hz;
+    options.exposure_us = 5000;
+    options.analogue_gain = 2;
+    return options;
+  }
+  void SetUp() override {
+    ASSERT_TRUE(bus_.good()) << bus_.error();
+    ASSERT_TRUE(service_.Start()) << service_.last_error();
+  }
+  // Polls until `count` board poses arrived (or a generous number of iterations).
+  void PollForPoses(size_t count) {
+    for (int i = 0; i < 500 && poses_.size() < count; ++i) {
+      node_.Poll(std::chrono::milliseconds(1));
+      bus_.Handle(std::chrono::milliseconds(0));
+    }
+  }
+
+  LcmBus bus_;
+  SimSource sim_;
+  CameraService service_;
+  ServiceNode node_;
+  std::vector<h4msgs::board_pose_t> poses_;
+  std::vector<h4msgs::camera_status_t> statuses_;
+};
+
+TEST_F(ServiceFixture, CaptureRequestMeasuresTheTruePoseWithTheRequestsPoseId) {
+  const RigidTransform X_CT = scenes::RandomPoses(1, 31)[0];
+  bus_.Publish(channels::kSimBoardTruth, Truth(X_CT));
+  bus_.Publish(channels::kCaptureRequest, Request(42, 0));
+  PollForPoses(1);
+  ASSERT_EQ(poses_.size(), 1u);
+  const h4msgs::board_pose_t& m = poses_[0];
+  EXPECT_EQ(m.pose_id, 42);
+  ASSERT_EQ(m.status, int8_t{h4msgs::board_pose_t::STATUS_OK});
+  EXPECT_EQ(m.frames_averaged, 10);
+  EXPECT_EQ(m.corners_used, 144);
+  EXPECT_EQ(m.camera_id, "test-cam");
+  EXPECT_EQ(m.board_id, "paper");
+  EXPECT_EQ(m.utime, kStartUtime);  // the first frame the service pulled
+  const RigidTransform measured = RigidTransform::FromTranslationQuaternion(
+      Eigen::Vector3d(m.translation[0], m.translation[1], m.translation[2]),
+      Eigen::Vector4d(m.quaternion[0], m.quaternion[1], m.quaternion[2], m.quaternion[3]));
+  EXPECT_LT((measured.translation() - X_CT.translation()).norm(), 0.1e-3);
+  const double angle = So3Log(X_CT.rotation().transpose() * measured.rotation()).norm();
+  EXPECT_LT(angle, 0.02 * M_PI / 180);
+  // Covariance: symmetric, positive variances, order (t in C, r in T).
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_GT(m.covariance[7 * i], 0.0);
+    for (int j = 0; j < 6; ++j) EXPECT_DOUBLE_EQ(m.covariance[6 * i + j], m.covariance[6 * j + i]);
+  }
+  EXPECT_GT(m.reprojection_rms_px, 0.0);
+  EXPECT_LT(m.reprojection_rms_px, 0.5);
+}
+
+TEST_F(ServiceFixture, WithoutABoardTheAnswerIsNoBoard) {
+  bus_.Publish(channels::kCaptureRequest, Request(3, 2));
+  PollForPoses(1);
+  ASSERT_EQ(poses_.size(), 1u);
+  EXPECT_EQ(poses_[0].pose_id, 3);
+  EXPECT_EQ(poses_[0].status, int8_t{h4msgs::board_pose_t::STATUS_NO_BOARD});
+  EXPECT_EQ(poses_[0].frames_averaged, 2);
+  EXPECT_EQ(poses_[0].translation[2], 0.0);
+}
+
+TEST_F(ServiceFixture, MalformedAndImpossibleMessagesAreCountedAndIgnored) {
+  const std::array<uint8_t, 5> garbage = {1, 2, 3, 4, 5};
+  bus_.lcm().publish(channels::kCaptureRequest, garbage.data(), garbage.size());
+  bus_.Publish(channels::kCaptureRequest, Request(-1, 0));    // pose_id < 0
+  bus_.Publish(channels::kCaptureRequest, Request(5, -2));    // frame_count < 0
+  bus_.Publish(channels::kCaptureRequest, Request(6, 1001));  // frame_count > 1000
+  h4msgs::sim_board_truth_t bad = Truth(scenes::RandomPoses(1, 5)[0]);
+  bad.quaternion[0] = 3;  // not a unit quaternion
+  bus_.Publish(channels::kSimBoardTruth, bad);
+  for (int i = 0; i < 20; ++i) node_.Poll(std::chrono::milliseconds(1));
+  bus_.Handle(std::chrono::milliseconds(0));
+  EXPECT_EQ(bus_.decode_failures(), 1);
+  EXPECT_EQ(service_.rejected_requests(), 3);
+  EXPECT_EQ(node_.invalid_truths(), 1);
+  EXPECT_FALSE(sim_.pose().has_value());
+  EXPECT_TRUE(poses_.empty());
+  // Still serving afterwards.
+  bus_.Publish(channels::kCaptureRequest, Request(8, 1));
+  PollForPoses(1);
+  ASSERT_EQ(poses_.size(), 1u);
+  EXPECT_EQ(poses_[0].pose_id, 8);
+}
+
+TEST_F(ServiceFixture, RequestsArrivingWhileBusyAreAnsweredInOrder) {
+  bus_.Publish(channels::kCaptureRequest, Request(10, 3));
+  bus_.Publish(channels::kCaptureRequest, Request(11, 4));
+  bus_.Publish(channels::kCaptureRequest, Request(12, 0));
+  PollForPoses(3);
+  ASSERT_EQ(poses_.size(), 3u);
+  EXPECT_EQ(poses_[0].pose_id, 10);
+  EXPECT_EQ(poses_[0].frames_averaged, 3);
+  EXPECT_EQ(poses_[1].pose_id, 11);
+  EXPECT_EQ(poses_[1].frames_averaged, 4);
+  EXPECT_EQ(poses_[2].pose_id, 12);
+  EXPECT_EQ(poses_[2].frames_averaged, 10);
+}
+
+TEST_F(ServiceFixture, HeartbeatReportsStateCountsAndStopping) {
+  node_.Poll(std::chrono::milliseconds(0));
+  bus_.Handle(std::chrono::milliseconds(0));
+  ASSERT_EQ(statuses_.size(), 1u);  // the first poll sends a heartbeat at once
+  EXPECT_EQ(statuses_[0].state, int8_t{h4msgs::camera_status_t::STATE_IDLE});
+  EXPECT_EQ(statuses_[0].camera_id, "test-cam");
+  EXPECT_EQ(statuses_[0].exposure_us, 5000);
+  EXPECT_EQ(statuses_[0].analogue_gain, 2);
+  bus_.Publish(channels::kCaptureRequest, Request(1, 4));
+  PollForPoses(1);
+  service_.Stop();
+  node_.PublishStatus();
+  bus_.Handle(std::chrono::milliseconds(0));
+  ASSERT_GE(statuses_.size(), 2u);
+  const h4msgs::camera_status_t& last = statuses_.back();
+  EXPECT_EQ(last.state, int8_t{h4msgs::camera_status_t::STATE_STOPPING});
+  EXPECT_EQ(last.frames_total, 4);
+  EXPECT_EQ(last.measurements_total, 1);
+  EXPECT_GT(last.frame_rate_hz, 0.0);  // 4 frames within the last second
+  EXPECT_TRUE(last.last_error.empty());
+}
+
+class FreeRunFixture : public ServiceFixture {
+ protected:
+  FreeRunFixture() : ServiceFixture(50.0) {}
+};
+
+TEST_F(FreeRunFixture, FreeRunningMeasurementsCarryPoseIdMinusOne) {
+  bus_.Publish(channels::kSimBoardTruth, Truth(scenes::RandomPoses(1, 9)[0]));
+  PollForPoses(2);
+  ASSERT_EQ(poses_.size(), 2u);
+  for (const auto& m : poses_) {
+    EXPECT_EQ(m.pose_id, -1);
+    EXPECT_EQ(m.status, int8_t{h4msgs::board_pose_t::STATUS_OK});
+  }
+}
+
+TEST(CameraServiceTest, AnExhaustedFileSourceAnswersWithACameraError) {
+  // A source that has no frames at all: the request ends with STATUS_CAMERA_ERROR.
+  class EmptySource final : public FrameSource {
+   public:
+    bool Open() override { return true; }
+    bool Configure() override { return true; }
+    bool Start() override { return true; }
+    std::optional<Frame> Next(std::chrono::milliseconds) override { return std::nullopt; }
+    void Stop() override {}
+    void Close() override {}
+    std::string Describe() const override { return "empty"; }
+    bool finished() const override { return true; }
+  } source;
+  CameraService service(CameraServiceOptions{}, source, scenes::PaperBoard(),
+                        scenes::PaperCamera());
+  ASSERT_TRUE(service.Start());
+  ASSERT_TRUE(service.SubmitRequest(Request(4, 0)));
+  std::optional<h4msgs::board_pose_t> m;
+  for (int i = 0; i < 3 && !m; ++i) m = service.Step();
+  ASSERT_TRUE(m.has_value());
+  EXPECT_EQ(m->pose_id, 4);
+  EXPECT_EQ(m->status, int8_t{h4msgs::board_pose_t::STATUS_CAMERA_ERROR});
+  EXPECT_NE(service.last_error().find("no more frames"), std::string::npos);
+}
+
+TEST(CameraServiceTest, DirectorySourceMeasuresImagesInNameOrderThenReportsExhaustion) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("h4cam_dir_source_" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  SimSource sim(scenes::PaperBoard(), scenes::PaperCamera(), SimSourceOptions{});
+  ASSERT_TRUE(sim.Open());
+  sim.SetPose(scenes::RandomPoses(1, 3)[0]);
+  for (int k = 0; k < 3; ++k) {
+    cv::imwrite((dir / ("frame_" + std::to_string(k) + ".png")).string(),
+                sim.Next(std::chrono::milliseconds(0))->image);
+  }
+  ImageFileSource source({dir.string()});
+  CameraService service(CameraServiceOptions{}, source, scenes::PaperBoard(),
+                        scenes::PaperCamera());
+  ASSERT_TRUE(service.Start()) << service.last_error();
+  ASSERT_TRUE(service.SubmitRequest(Request(1, 3)));
+  ASSERT_TRUE(service.SubmitRequest(Request(2, 3)));
+  std::vector<h4msgs::board_pose_t> poses;
+  for (int i = 0; i < 20 && poses.size() < 2; ++i) {
+    if (auto m = service.Step()) poses.push_back(*m);
+  }
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(poses.size(), 2u);
+  EXPECT_EQ(poses[0].pose_id, 1);
+  EXPECT_EQ(poses[0].status, int8_t{h4msgs::board_pose_t::STATUS_OK});
+  EXPECT_EQ(poses[0].frames_averaged, 3);
+  EXPECT_EQ(poses[1].pose_id, 2);
+  EXPECT_EQ(poses[1].status, int8_t{h4msgs::board_pose_t::STATUS_CAMERA_ERROR});
+}
+
+TEST(CameraServiceTest, RunWithoutACameraExitsNonZeroWithAClearMessage) {
+  const std::string binary = H4_BINARY_DIR "/firmware/h4cam";
+  if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
+  const auto start = std::chrono::steady_clock::now();
+  // memq: no multicast needed; the camera is what must be missing.
+  FILE* pipe = popen(("timeout 30 " + binary + " run --lcm-url memq:// 2>&1").c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  std::array<char, 256> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe) != nullptr) output += buffer.data();
+  const int status = pclose(pipe);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_TRUE(WIFEXITED(status)) << output;
+  EXPECT_NE(WEXITSTATUS(status), 0) << output;
+  EXPECT_NE(WEXITSTATUS(status), 124) << "timed out: " << output;
+  EXPECT_NE(output.find("no camera"), std::string::npos) << output;
+  EXPECT_NE(output.find("h4cam run:"), std::string::npos) << output;
+  EXPECT_LT(seconds, 10.0);
+}
+
+}  // namespace
+}  // namespace h4::cam

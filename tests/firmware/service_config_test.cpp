@@ -1,0 +1,104 @@
+// The camera service configuration: the packaged file parses to the values it states,
+// errors name the file, the line and the field, and command-line flags override the file.
+#include "firmware/service/service_config.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "common/formats/format_error.h"
+#include "firmware/cli/run_command.h"
+
+namespace h4::cam {
+namespace {
+
+TEST(ServiceConfigTest, PackagedConfigurationGivesItsStatedValues) {
+  const ServiceConfig c = ReadServiceConfig(H4_SOURCE_DIR "/firmware/packaging/h4cam.yaml");
+  EXPECT_EQ(c.source, "libcamera");
+  EXPECT_EQ(c.board_path, "/usr/share/h4cam/boards/aprilgrid_6x6_30mm.yaml");
+  EXPECT_EQ(c.camera_intrinsics_path, "/var/lib/h4cam/camera.yaml");
+  EXPECT_EQ(c.camera_id, "");
+  EXPECT_EQ(c.MessageCameraId(), "h4cam");
+  EXPECT_EQ(c.width_px, 2028);
+  EXPECT_EQ(c.height_px, 1520);
+  EXPECT_FALSE(c.rotate_180);
+  EXPECT_EQ(c.exposure_time_us, 10000);
+  EXPECT_EQ(c.analogue_gain, 1.0);
+  EXPECT_EQ(c.frame_duration_us, 100000);
+  EXPECT_EQ(c.frames_averaged, 10);
+  EXPECT_EQ(c.max_spread_px, 0.5);
+  EXPECT_EQ(c.lcm_url, "");
+}
+
+TEST(ServiceConfigTest, OptionalKeysAreRead) {
+  const ServiceConfig c = ParseServiceConfig(
+      "source: sim\ncamera:\n  name: bench\nmeasurement:\n  free_run_hz: 2\n"
+      "service:\n  heartbeat_period_s: 0.5\nlcm:\n  url: memq://\n",
+      "c.yaml");
+  EXPECT_EQ(c.source, "sim");
+  EXPECT_EQ(c.MessageCameraId(), "bench");
+  EXPECT_EQ(c.free_run_hz, 2);
+  EXPECT_EQ(c.heartbeat_period_s, 0.5);
+  EXPECT_EQ(c.lcm_url, "memq://");
+}
+
+void ExpectError(const std::string& text, int line, const std::string& field,
+                 const std::string& what) {
+  try {
+    ParseServiceConfig(text, "svc.yaml");
+    FAIL() << "no error for:\n" << text;
+  } catch (const FormatError& e) {
+    EXPECT_EQ(e.file(), "svc.yaml");
+    EXPECT_EQ(e.line(), line) << e.what();
+    EXPECT_EQ(e.field(), field) << e.what();
+    EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+  }
+}
+
+TEST(ServiceConfigTest, ErrorsNameTheFileLineAndField) {
+  ExpectError("board: b.yaml\nmeasurement:\n  frames_averaged: ten\n", 3,
+              "measurement.frames_averaged", "ten");
+  ExpectError("measurement:\n  frames_averaged: 0\n", 2, "measurement.frames_averaged", "1..1000");
+  ExpectError("camera:\n  id: x\n  rotate_180: maybe\n", 3, "camera.rotate_180", "true or false");
+  ExpectError("camera:\n  analogue_gain: 0.5\n", 2, "camera.analogue_gain", ">= 1");
+}
+
+TEST(ServiceConfigTest, MisspeltKeyIsRejected) {
+  try {
+    ParseServiceConfig("camera:\n  exposure_us: 100\n", "svc.yaml");
+    FAIL() << "misspelt key accepted";
+  } catch (const FormatError& e) {
+    EXPECT_NE(std::string(e.what()).find("exposure_us"), std::string::npos) << e.what();
+    EXPECT_EQ(e.line(), 2) << e.what();
+  }
+}
+
+TEST(ServiceConfigTest, FlagsOverrideTheFile) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "h4cam_service_config_test.yaml").string();
+  {
+    std::ofstream out(path);
+    out << "source: libcamera\nboard: a.yaml\nmeasurement:\n  frames_averaged: 10\n";
+  }
+  RunArgs args;
+  args.config_path = path;
+  args.source = "dir:/tmp/images";
+  args.frames = 4;
+  args.camera_id = "cam7";
+  const ServiceConfig c = ResolveRunConfig(args);
+  std::remove(path.c_str());
+  EXPECT_EQ(c.source, "dir:/tmp/images");
+  EXPECT_EQ(c.board_path, "a.yaml");
+  EXPECT_EQ(c.frames_averaged, 4);
+  EXPECT_EQ(c.camera_id, "cam7");
+  EXPECT_EQ(c.MessageCameraId(), "cam7");
+
+  RunArgs bad;
+  bad.source = "webcam";
+  EXPECT_THROW(ResolveRunConfig(bad), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace h4::cam
