@@ -4,6 +4,7 @@
 #include <sstream>
 #include <vector>
 
+#include "common/text/markup_escape.h"
 #include "firmware/board_print/board_print.h"
 
 namespace h4::cam {
@@ -20,26 +21,6 @@ std::string Num(double mm) {
   while (!s.empty() && s.back() == '0') s.pop_back();
   if (!s.empty() && s.back() == '.') s.pop_back();
   return s == "-0" ? "0" : s;
-}
-
-std::string XmlEscape(const std::string& text) {
-  std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
 }
 
 std::string PdfEscape(const std::string& text) {
@@ -74,7 +55,7 @@ std::string BoardSvg(const BoardLayout& layout) {
   for (const auto& t : layout.texts) {
     out << "<text x=\"" << Num(t.x * kMmPerM) << "\" y=\"" << Num(t.y * kMmPerM)
         << "\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"" << Num(t.size * kMmPerM)
-        << "\" fill=\"#000000\">" << XmlEscape(t.text) << "</text>\n";
+        << "\" fill=\"#000000\">" << MarkupEscape(t.text) << "</text>\n";
   }
   out << "</svg>\n";
   return out.str();

@@ -10,6 +10,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "common/text/markup_escape.h"
 #include "host/report/report_figures.h"
 #include "host/report/report_tables.h"
 
@@ -36,7 +37,7 @@ std::string Figure(const std::string& svg, const std::string& caption) {
 }
 
 std::string NotComputed(const std::string& why) {
-  return "<p class=\"note\">Not computed: " + HtmlEscape(why) + "</p>\n";
+  return "<p class=\"note\">Not computed: " + MarkupEscape(why) + "</p>\n";
 }
 
 }  // namespace
@@ -59,7 +60,7 @@ std::string FormatHtmlReport(const ValidationInputs& in, const ValidationReport&
        << "<title>h4cal calibration report</title>\n<style>" << kStyle << "</style>\n"
        << "</head>\n<body>\n<h1>H4 calibration report</h1>\n"
        << "<p>Validation after Renaud et al., ICRA 2003, section IV.D. Made by <code>"
-       << HtmlEscape(command) << "</code>."
+       << MarkupEscape(command) << "</code>."
        << (report.paper_scenario
                ? " <strong>Paper scenario</strong>: the paper's published numbers (rows "
                  "marked paper) stand beside ours."
@@ -88,7 +89,7 @@ std::string FormatHtmlReport(const ValidationInputs& in, const ValidationReport&
                              : NotComputed("needs the true robot (simulation truth file)"));
   html << Section("four-dof", "4-DoF check", FourDofTable(report));
   std::string notes;
-  for (const auto& note : report.notes) notes += "<li>" + HtmlEscape(note) + "</li>\n";
+  for (const auto& note : report.notes) notes += "<li>" + MarkupEscape(note) + "</li>\n";
   html << Section("notes", "Notes",
                   notes.empty() ? "<p>None.</p>\n" : "<ul>\n" + notes + "</ul>\n");
   html << "</body>\n</html>\n";

@@ -7,6 +7,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "common/text/markup_escape.h"
 #include "host/report/paper_numbers.h"
 #include "host/simulation/paper_scenario.h"
 
@@ -42,29 +43,6 @@ std::array<double, 12> Table2Row(const Model12Parameters& p) {
 
 }  // namespace
 
-std::string HtmlEscape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
-
 std::string SummaryTable(const ValidationInputs& in, const ValidationReport& report) {
   const bool paper = report.paper_scenario;
   std::ostringstream t;
@@ -95,7 +73,7 @@ std::string SummaryTable(const ValidationInputs& in, const ValidationReport& rep
       fmt::format("{:.2f}", paper::kAxisSpreadDeg));
   t << "</table>\n";
   t << fmt::format("<p>{} poses in {}, {} held out for validation.</p>\n", in.rows.size(),
-                   HtmlEscape(in.dataset_name), report.heldout_ids.size());
+                   MarkupEscape(in.dataset_name), report.heldout_ids.size());
   return t.str();
 }
 
@@ -104,17 +82,17 @@ std::string ParameterTables(const ValidationInputs& in) {
   for (const auto* result : {&in.result12, &in.result31}) {
     if (!*result) continue;
     const IdentificationResult& r = **result;
-    t << "<h3>Model " << HtmlEscape(r.model) << "</h3>\n<table>\n"
+    t << "<h3>Model " << MarkupEscape(r.model) << "</h3>\n<table>\n"
       << Header({"parameter", "a priori", "identified", "one sigma", "status", "reason fixed"});
     for (const ResultParameter& p : r.parameters) {
       std::string reason;
       for (const FixedParameter& f : r.fixed) {
         if (f.name == p.name) reason = f.reason;
       }
-      t << Row(HtmlEscape(p.name),
+      t << Row(MarkupEscape(p.name),
                {fmt::format("{:.6g}", p.apriori), fmt::format("{:.6g}", p.value),
                 p.std ? fmt::format("{:.2g}", *p.std) : "-", p.fixed ? "fixed" : "identified",
-                HtmlEscape(reason)},
+                MarkupEscape(reason)},
                p.fixed ? "fixed" : "");
     }
     t << "</table>\n";
@@ -131,13 +109,13 @@ std::string IdentifiabilityTable(const ValidationInputs& in) {
     if (!*result) continue;
     const IdentificationResult& r = **result;
     std::string fixed, correlations;
-    for (const auto& f : r.fixed) fixed += HtmlEscape(f.name) + "<br>";
+    for (const auto& f : r.fixed) fixed += MarkupEscape(f.name) + "<br>";
     for (const auto& c : r.correlations) {
       correlations +=
-          fmt::format("{} / {}: {:.3f}<br>", HtmlEscape(c.a), HtmlEscape(c.b), c.correlation);
+          fmt::format("{} / {}: {:.3f}<br>", MarkupEscape(c.a), MarkupEscape(c.b), c.correlation);
     }
-    t << Row("Model " + HtmlEscape(r.model),
-             {HtmlEscape(r.estimator.empty() ? "-" : r.estimator),
+    t << Row("Model " + MarkupEscape(r.model),
+             {MarkupEscape(r.estimator.empty() ? "-" : r.estimator),
               r.condition_number ? fmt::format("{:.3g}", *r.condition_number) : "-",
               fixed.empty() ? "none" : fixed, correlations.empty() ? "none" : correlations});
   }
@@ -306,7 +284,7 @@ std::string FourDofTable(const ValidationReport& report) {
   std::ostringstream t;
   const PriorAnalysis& p = report.prior;
   t << "<table>\n" << Header({"check", "value"});
-  t << Row("status", {p.ok ? "ok" : "not computed: " + HtmlEscape(p.message)});
+  t << Row("status", {p.ok ? "ok" : "not computed: " + MarkupEscape(p.message)});
   t << Row("poses used", {std::to_string(p.poses_used)});
   t << Row("rotation axis spread in C (deg)", {fmt::format("{:.3f}", p.axis_spread_deg)});
   t << Row("rotation axis spread in T (deg)", {fmt::format("{:.3f}", p.axis_spread_T_deg)});

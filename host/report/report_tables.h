@@ -5,12 +5,10 @@
 
 #include <string>
 
+#include "common/text/markup_escape.h"
 #include "host/validation/validation.h"
 
 namespace h4::host {
-
-/// Escapes &, <, >, " for HTML text and attributes.
-std::string HtmlEscape(const std::string& text);
 
 std::string SummaryTable(const ValidationInputs& in, const ValidationReport& report);
 std::string ParameterTables(const ValidationInputs& in);

@@ -20,10 +20,6 @@ int Count(const std::string& text, const std::string& what) {
   return n;
 }
 
-TEST(Report, HtmlEscapeEscapesMarkup) {
-  EXPECT_EQ(HtmlEscape("a<b & \"c\">"), "a&lt;b &amp; &quot;c&quot;&gt;");
-}
-
 TEST(Report, HoldsEverySectionAndFigureAndIsSelfContained) {
   if (!GnuplotAvailable()) GTEST_SKIP() << "gnuplot missing: run scripts/setup";
   const ValidationInputs in = PaperValidationInputs();
