@@ -68,9 +68,14 @@ namespace {
 
 // One cost stage: identifiability at the start, NLopt, LM polish. `p` carries the values
 // in and out; its mask on return is this stage's. `placement_only` fixes the kinematics.
+// A parameter the analysis fixes takes its value in `reference` (the start: the a priori
+// after the prior analysis, or the --from result): kinematics.md, "Fixed parameters keep
+// their a priori value". Without this, an earlier stage whose cost does not share the
+// null direction would leave it wherever that stage drifted it.
 StageSummary RunStage(CostKind kind, bool placement_only, const KinematicModel& model,
                       const std::vector<DatasetRow>& rows, const IdentificationOptions& options,
-                      ParameterVector* p, IdentifiabilityReport* identifiability) {
+                      const ParameterVector& reference, ParameterVector* p,
+                      IdentifiabilityReport* identifiability) {
   StageSummary stage;
   stage.cost = kind;
   stage.name = std::string(ToString(kind)) + (placement_only ? " (placement)" : "");
@@ -99,7 +104,13 @@ StageSummary RunStage(CostKind kind, bool placement_only, const KinematicModel& 
   if (!analysis_cost.Evaluate(*p, &r_analysis, &J_analysis)) J_analysis = J;
   IdentifiabilityReport report =
       AnalyzeIdentifiability(J_analysis, model.name(), options.identifiability, p);
-  for (const FixedByAnalysis& f : report.fixed) stage.fixed.push_back(f.name + ": " + f.reason);
+  Eigen::VectorXd values = p->values();
+  for (const FixedByAnalysis& f : report.fixed) {
+    stage.fixed.push_back(f.name + ": " + f.reason);
+    const int index = p->IndexOf(f.name);
+    if (index >= 0) values[index] = reference.values()[index];
+  }
+  p->set_values(values);
   if (identifiability != nullptr) *identifiability = report;
 
   const ParameterVector base = *p;
@@ -215,7 +226,7 @@ IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const Param
   bool final_ok = false;
   for (size_t s = 0; s < plan.size(); ++s) {
     const bool is_final = s + 1 == plan.size();
-    StageSummary stage = RunStage(plan[s].first, plan[s].second, model, rows, options, &p,
+    StageSummary stage = RunStage(plan[s].first, plan[s].second, model, rows, options, start, &p,
                                   is_final ? &out.identifiability : nullptr);
     log.push_back("stage " + stage.name + ": " + stage.message +
                   Printf(", residual RMS %.4g -> %.4g", stage.rms_before, stage.rms_after));
@@ -254,7 +265,7 @@ IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const Param
     rejected.insert(rejected.end(), newly.begin(), newly.end());
     rows = kept;
     StageSummary stage =
-        RunStage(options.estimator, false, model, rows, options, &p, &out.identifiability);
+        RunStage(options.estimator, false, model, rows, options, start, &p, &out.identifiability);
     stage.name += " (after rejection)";
     log.push_back("stage " + stage.name + ": " + stage.message +
                   Printf(", residual RMS %.4g -> %.4g", stage.rms_before, stage.rms_after));

@@ -168,6 +168,14 @@ TEST(IdentificationTest, ConvergesFromTheRoughAprioriForEveryEstimator) {
     const IdentificationOutcome out = IdentifyScenario(s, "12", options);
     EXPECT_TRUE(out.summary.usable) << ToString(estimator) << "\n" << out.summary.FullReport();
     EXPECT_LT(HeldOutTruthError(out, s).first, 0.5e-3) << ToString(estimator);
+    // kinematics.md: fixed parameters keep their a priori value, whatever the warm-up
+    // stages did to them before the analysis fixed them.
+    for (const char* name : {"X_TE.tz", "d"}) {
+      const ResultParameter* fixed = out.result.Find(name);
+      ASSERT_NE(fixed, nullptr) << name;
+      EXPECT_TRUE(fixed->fixed) << name << " " << ToString(estimator);
+      EXPECT_DOUBLE_EQ(fixed->value, fixed->apriori) << name << " " << ToString(estimator);
+    }
   }
 }
 
@@ -268,6 +276,10 @@ TEST(IdentificationTest, Model31FromModel12ResultKeepsItsFixedValues) {
   // X_TE.tz is fixed in both; Model 31 keeps the Model 12 result's value.
   ASSERT_TRUE(out31.result.Find("X_TE.tz")->fixed);
   EXPECT_DOUBLE_EQ(out31.result.Find("X_TE.tz")->value, out12.result.Find("X_TE.tz")->value);
+  EXPECT_DOUBLE_EQ(out12.result.Find("X_TE.tz")->value, out12.result.Find("X_TE.tz")->apriori);
+  // The angle about z_B that Model 31 must fix takes the Model 12 result's value.
+  ASSERT_TRUE(out31.result.Find("X_BC.rz")->fixed);
+  EXPECT_DOUBLE_EQ(out31.result.Find("X_BC.rz")->value, out12.result.Find("X_BC.rz")->value);
   // The a priori column is the robot's nominal Model 31, not the Model 12 result.
   EXPECT_DOUBLE_EQ(out31.result.Find("arm1")->apriori, PaperAprioriRobot().model12.arm);
   EXPECT_EQ(out31.result.valid_poses, out12.result.valid_poses);
