@@ -12,7 +12,7 @@
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "firmware/service/camera_service.h"
-#include "firmware/service/lcm_bus.h"
+#include "messages/bus/lcm_bus.h"
 #include "firmware/service/sd_notify.h"
 #include "firmware/service/service_node.h"
 #include "firmware/sources/image_file_source.h"
@@ -42,7 +42,7 @@ LibcameraSourceOptions LibcameraOptions(const ServiceConfig& config) {
 }
 
 // Fails before the service runs: the reason on stderr and in a STATE_ERROR status.
-int Fail(LcmBus* bus, const ServiceConfig& config, const std::string& why, std::ostream& err) {
+int Fail(bus::LcmBus* bus, const ServiceConfig& config, const std::string& why, std::ostream& err) {
   err << "h4cam run: " << why << "\n";
   if (bus != nullptr && bus->good()) {
     h4msgs::camera_status_t status{};
@@ -76,7 +76,7 @@ ServiceConfig ResolveRunConfig(const RunArgs& args) {
 }
 
 int RunService(const ServiceConfig& config, std::ostream& err, const std::atomic<bool>& stop) {
-  LcmBus bus(config.lcm_url);
+  bus::LcmBus bus(config.lcm_url);
   if (!bus.good()) return Fail(nullptr, config, bus.error(), err);
 
   std::unique_ptr<FrameSource> source;

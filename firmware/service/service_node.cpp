@@ -31,7 +31,7 @@ std::optional<RigidTransform> TruthPose(const h4msgs::sim_board_truth_t& truth, 
   return RigidTransform::FromTranslationQuaternion(p, q);
 }
 
-ServiceNode::ServiceNode(LcmBus& bus, CameraService& service, SimSource* sim,
+ServiceNode::ServiceNode(bus::LcmBus& bus, CameraService& service, SimSource* sim,
                          std::chrono::duration<double> heartbeat_period)
     : bus_(bus),
       service_(service),

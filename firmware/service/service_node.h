@@ -1,4 +1,4 @@
-// The camera service on the bus: wires a CameraService to an LcmBus. Subscribes to
+// The camera service on the bus: wires a CameraService to a bus::LcmBus. Subscribes to
 // H4_CAPTURE_REQUEST (and H4_SIM_BOARD_TRUTH for the synthetic camera), publishes
 // H4_BOARD_POSE and the H4_CAMERA_STATUS heartbeat, and pings the systemd watchdog with
 // each heartbeat. Poll() is one iteration of the main loop, so tests drive it directly.
@@ -10,7 +10,7 @@
 #include <h4msgs/sim_board_truth_t.hpp>
 
 #include "firmware/service/camera_service.h"
-#include "firmware/service/lcm_bus.h"
+#include "messages/bus/lcm_bus.h"
 #include "firmware/sources/sim_source.h"
 
 namespace h4::cam {
@@ -20,7 +20,7 @@ class ServiceNode {
   using Clock = std::chrono::steady_clock;
 
   /// Subscribes on `bus`; `sim` (may be null) receives the true poses of H4_SIM_BOARD_TRUTH.
-  ServiceNode(LcmBus& bus, CameraService& service, SimSource* sim,
+  ServiceNode(bus::LcmBus& bus, CameraService& service, SimSource* sim,
               std::chrono::duration<double> heartbeat_period);
 
   /// One loop iteration: dispatches the bus messages (waiting up to `timeout` when the
@@ -38,7 +38,7 @@ class ServiceNode {
  private:
   void OnTruth(const h4msgs::sim_board_truth_t& truth);
 
-  LcmBus& bus_;
+  bus::LcmBus& bus_;
   CameraService& service_;
   SimSource* sim_;
   Clock::duration heartbeat_period_;

@@ -20,7 +20,7 @@
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "firmware/render/paper_scenes.h"
-#include "firmware/service/lcm_bus.h"
+#include "messages/bus/lcm_bus.h"
 #include "firmware/service/service_node.h"
 #include "messages/channels.h"
 
@@ -43,7 +43,7 @@ TEST(CameraServiceProcessTest, ChildInNamespace) {
   WriteBoardYaml(board, scenes::PaperBoard());
   WriteCameraYaml(camera, scenes::PaperCamera());
 
-  LcmBus bus(kUrl);
+  bus::LcmBus bus(kUrl);
   ASSERT_TRUE(bus.good()) << bus.error();
   std::vector<h4msgs::board_pose_t> poses;
   std::vector<h4msgs::camera_status_t> statuses;

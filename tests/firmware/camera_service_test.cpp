@@ -17,7 +17,7 @@
 
 #include "common/geometry/rotation.h"
 #include "firmware/render/paper_scenes.h"
-#include "firmware/service/lcm_bus.h"
+#include "messages/bus/lcm_bus.h"
 #include "firmware/service/service_node.h"
 #include "firmware/sources/image_file_source.h"
 #include "firmware/sources/sim_source.h"
@@ -88,7 +88,7 @@ class ServiceFixture : public ::testing::Test {
     }
   }
 
-  LcmBus bus_;
+  bus::LcmBus bus_;
   SimSource sim_;
   CameraService service_;
   ServiceNode node_;

@@ -1,4 +1,4 @@
-// A thin adapter over lcm::LCM for the camera service: the URL rule (--lcm-url, else
+// A thin adapter over lcm::LCM shared by h4cam and h4cal: the URL rule (--lcm-url, else
 // $LCM_DEFAULT_URL, else udpm with ttl=0 so nothing leaves the machine), typed
 // subscriptions whose decode failures are counted and logged instead of thrown, publish,
 // and handle() with a timeout. Tests use the in-process "memq://" provider: real LCM
@@ -14,10 +14,10 @@
 
 #include <lcm/lcm-cpp.hpp>
 
-namespace h4::cam {
+namespace h4::bus {
 
 /// The default when neither --lcm-url nor $LCM_DEFAULT_URL is given: LCM's default group,
-/// ttl=0 (the camera module and its host share a machine or a wire; see h4cam.service).
+/// ttl=0 (nothing leaves the machine; see h4cam.service for ttl=1 on an isolated camera network).
 inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 
 /// `url` if not empty, else $LCM_DEFAULT_URL if set and not empty, else kDefaultLcmUrl.
@@ -82,4 +82,4 @@ class LcmBus {
   int64_t publish_failures_ = 0;
 };
 
-}  // namespace h4::cam
+}  // namespace h4::bus

@@ -1,11 +1,11 @@
-// The camera service's LCM adapter; see lcm_bus.h.
-#include "firmware/service/lcm_bus.h"
+// The LCM adapter shared by both programs; see lcm_bus.h.
+#include "messages/bus/lcm_bus.h"
 
 #include <cstdlib>
 
 #include <spdlog/spdlog.h>
 
-namespace h4::cam {
+namespace h4::bus {
 
 std::string ResolveLcmUrl(const std::string& url) {
   if (!url.empty()) return url;
@@ -56,4 +56,4 @@ void LcmBus::OnPublishFailure(const std::string& channel) {
   spdlog::warn("lcm: cannot publish on {} ({} failures so far)", channel, publish_failures_);
 }
 
-}  // namespace h4::cam
+}  // namespace h4::bus
