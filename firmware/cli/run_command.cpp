@@ -105,6 +105,7 @@ int RunService(const ServiceConfig& config, std::ostream& err, const std::atomic
     SimSourceOptions sim_options;
     sim_options.frame_rate_hz = 1e6 / config.frame_duration_us;
     sim_options.start_utime = NowUtime();
+    sim_options.real_time = true;
     auto sim_source = std::make_unique<SimSource>(board, intrinsics, sim_options);
     sim = sim_source.get();
     source = std::move(sim_source);

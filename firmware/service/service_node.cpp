@@ -56,7 +56,7 @@ void ServiceNode::OnTruth(const h4msgs::sim_board_truth_t& truth) {
                  invalid_truths_);
     return;
   }
-  sim_->SetPose(*X_CT);
+  pending_truth_ = *X_CT;
 }
 
 void ServiceNode::PublishStatus() {
@@ -79,6 +79,10 @@ void ServiceNode::Poll(std::chrono::milliseconds timeout) {
     wait = std::max(std::chrono::milliseconds(0), std::min(timeout, to_heartbeat));
   }
   bus_.Handle(wait);
+  if (pending_truth_) {
+    sim_->SetPose(*pending_truth_);
+    pending_truth_.reset();
+  }
   if (std::optional<h4msgs::board_pose_t> pose = service_.Step(Clock::now())) {
     if (bus_.Publish(channels::kBoardPose, *pose)) ++board_poses_published_;
   }

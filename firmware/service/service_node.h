@@ -46,6 +46,9 @@ class ServiceNode {
   int64_t board_poses_published_ = 0;
   int64_t statuses_published_ = 0;
   int64_t invalid_truths_ = 0;
+  /// The newest valid truth not yet rendered: truths arrive at the robot's 100 Hz, faster
+  /// than a frame renders, so the handler only stores them and Poll() renders the newest.
+  std::optional<RigidTransform> pending_truth_;
 };
 
 /// Microseconds since the Unix epoch, now.

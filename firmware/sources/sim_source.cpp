@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <thread>
 
 namespace h4::cam {
 
@@ -16,6 +17,13 @@ SimSource::SimSource(const BoardSpec& board, const CameraIntrinsics& camera,
 }
 
 void SimSource::SetPose(const std::optional<RigidTransform>& X_CT) {
+  {
+    // A robot at rest sends the same pose again and again: render it once.
+    std::lock_guard<std::mutex> lock(mutex_);
+    const bool same = X_CT.has_value() == X_CT_.has_value() &&
+                      (!X_CT || X_CT->matrix() == X_CT_->matrix());
+    if (same && !clean_.empty()) return;
+  }
   cv::Mat clean = X_CT ? renderer_.RenderClean(*X_CT)
                        : cv::Mat(std::max(height_, 1), std::max(width_, 1), CV_32F,
                                  cv::Scalar(options_.render.background_level));
@@ -37,10 +45,31 @@ bool SimSource::Open() {
   return true;
 }
 
-std::optional<Frame> SimSource::Next(std::chrono::milliseconds /*timeout*/) {
+std::optional<Frame> SimSource::Next(std::chrono::milliseconds timeout) {
   if (!renderer_.ok()) {
     error_ = "sim: " + renderer_.error();
     return std::nullopt;
+  }
+  const double period_us = options_.frame_rate_hz > 0 ? 1e6 / options_.frame_rate_hz : 0.0;
+  int64_t utime = options_.start_utime + static_cast<int64_t>(std::llround(sequence_ * period_us));
+  if (options_.real_time) {
+    // The sensor's next exposure: one period after the last frame, never before now.
+    const auto now_us = [] {
+      return std::chrono::duration_cast<std::chrono::microseconds>(
+                 std::chrono::system_clock::now().time_since_epoch())
+          .count();
+    };
+    const int64_t due = last_utime_ ? *last_utime_ + static_cast<int64_t>(period_us) : now_us();
+    const int64_t wait_us = due - now_us();
+    if (wait_us > 0) {
+      if (std::chrono::microseconds(wait_us) > timeout) {
+        std::this_thread::sleep_for(timeout);
+        return std::nullopt;
+      }
+      std::this_thread::sleep_for(std::chrono::microseconds(wait_us));
+    }
+    utime = std::max(due, now_us());
+    last_utime_ = utime;
   }
   cv::Mat clean;
   {
@@ -51,8 +80,7 @@ std::optional<Frame> SimSource::Next(std::chrono::milliseconds /*timeout*/) {
   Frame frame;
   frame.image = renderer_.Expose(clean, rng);
   frame.sequence = sequence_;
-  const double period_us = options_.frame_rate_hz > 0 ? 1e6 / options_.frame_rate_hz : 0.0;
-  frame.utime = options_.start_utime + static_cast<int64_t>(std::llround(sequence_ * period_us));
+  frame.utime = utime;
   ++sequence_;
   return frame;
 }

@@ -23,6 +23,10 @@ struct SimSourceOptions {
   uint64_t seed = 1;
   double frame_rate_hz = 30.0;  ///< spacing of the synthetic timestamps
   int64_t start_utime = 0;      ///< utime of frame 0
+  /// Live camera behaviour (h4cam run): frames come at frame_rate_hz in real time, stamped
+  /// with the wall clock, so that they pair with the robot's joint states by utime and a
+  /// robot moving during a group shows in it. Off: as fast as asked, synthetic stamps.
+  bool real_time = false;
 };
 
 class SimSource final : public FrameSource {
@@ -37,7 +41,7 @@ class SimSource final : public FrameSource {
   bool Open() override;
   bool Configure() override { return true; }
   bool Start() override { return true; }
-  /// A new noisy frame of the current scene; never waits.
+  /// A new noisy frame of the current scene; waits (up to `timeout`) only in real time.
   std::optional<Frame> Next(std::chrono::milliseconds timeout) override;
   void Stop() override {}
   void Close() override {}
@@ -51,6 +55,7 @@ class SimSource final : public FrameSource {
   std::optional<RigidTransform> X_CT_;
   cv::Mat clean_;  // CV_32F noise-free image of the current scene
   int64_t sequence_ = 0;
+  std::optional<int64_t> last_utime_;  ///< real time: stamp of the last frame
 };
 
 }  // namespace h4::cam

@@ -34,9 +34,11 @@ int LcmBus::Handle(std::chrono::milliseconds timeout) {
   if (!good()) return -1;
   int handled = 0;
   // handleTimeout dispatches one message at a time: drain what is queued, waiting at
-  // most `timeout` for the first.
+  // most `timeout` for the first. The drain is bounded so that a flood (or handlers slower
+  // than the arrival rate) cannot keep the caller from its other work.
   int wait_ms = static_cast<int>(timeout.count());
   for (;;) {
+    if (handled >= kMaxMessagesPerHandle) return handled;
     const int ret = lcm_.handleTimeout(wait_ms);
     if (ret < 0) return handled > 0 ? handled : -1;
     if (ret == 0) return handled;

@@ -25,6 +25,8 @@ std::string ResolveLcmUrl(const std::string& url);
 
 class LcmBus {
  public:
+  static constexpr int kMaxMessagesPerHandle = 256;
+
   /// Connects to ResolveLcmUrl(url); good() is false (error() says why) when LCM fails.
   explicit LcmBus(const std::string& url);
   LcmBus(const LcmBus&) = delete;
@@ -59,7 +61,8 @@ class LcmBus {
   }
 
   /// Dispatches the messages that arrive within `timeout` (0: only those already
-  /// queued): returns the number handled, or -1 when LCM reports an error.
+  /// queued), at most kMaxMessagesPerHandle: returns the number handled, or -1 when LCM
+  /// reports an error.
   int Handle(std::chrono::milliseconds timeout);
 
   int64_t decode_failures() const { return decode_failures_; }

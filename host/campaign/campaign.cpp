@@ -1,0 +1,267 @@
+// The calibration campaign state machine; see campaign.h.
+#include "host/campaign/campaign.h"
+
+#include <algorithm>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <h4msgs/capture_request_t.hpp>
+#include <h4msgs/robot_target_t.hpp>
+
+#include "messages/channels.h"
+
+namespace h4::host {
+namespace {
+
+double Seconds(Campaign::Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+const char* ModeName(CampaignMode mode) {
+  switch (mode) {
+    case CampaignMode::kActive: return "active";
+    case CampaignMode::kManual: return "manual";
+    case CampaignMode::kPassive: return "passive";
+  }
+  return "?";
+}
+
+}  // namespace
+
+int64_t NowUtime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+Campaign::Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal,
+                   CampaignOptions options)
+    : bus_(bus), plan_(std::move(plan)), journal_(journal), options_(options) {
+  for (size_t i = 0; i < plan_.size(); ++i) {
+    if (!journal_.Contains(plan_[i].pose_id)) pending_.push_back(i);
+  }
+  for (const DatasetRow& row : journal_.rows()) {
+    if (!IsPlanned(row.pose_id)) {
+      spdlog::warn("{}: pose {} is not in the pose plan (kept, not measured again)",
+                   journal_.path(), row.pose_id);
+    }
+  }
+  bus_.Subscribe<h4msgs::joint_state_t>(
+      channels::kJointState, [this](const h4msgs::joint_state_t& m) { OnJointState(m); });
+  bus_.Subscribe<h4msgs::board_pose_t>(
+      channels::kBoardPose, [this](const h4msgs::board_pose_t& m) { OnBoardPose(m); });
+  bus_.Subscribe<h4msgs::camera_status_t>(
+      channels::kCameraStatus, [this](const h4msgs::camera_status_t&) { camera_heard_ = true; });
+  spdlog::info("campaign ({} mode): {} poses planned, {} already in {}, {} to measure",
+               ModeName(options_.mode), plan_.size(), plan_.size() - pending_.size(),
+               journal_.path(), pending_.size());
+}
+
+int Campaign::done_count() const {
+  return static_cast<int>(plan_.size() - pending_.size() + next_);
+}
+
+bool Campaign::IsPlanned(int64_t pose_id) const {
+  return std::any_of(plan_.begin(), plan_.end(),
+                     [pose_id](const PlannedPose& p) { return p.pose_id == pose_id; });
+}
+
+void Campaign::OnJointState(const h4msgs::joint_state_t& msg) {
+  ++counters_.joint_states;
+  JointReading reading;
+  std::string why;
+  if (CheckJointState(msg, &reading, &why) != MessageProblem::kNone) {
+    ++counters_.impossible_values;
+    spdlog::warn("ignored a joint state: {} ({} so far)", why, counters_.impossible_values);
+    return;
+  }
+  joints_heard_ = true;
+  history_.Add(reading);
+  if (finished()) return;
+  if (options_.mode == CampaignMode::kActive && phase_ == Phase::kSettling &&
+      reading.settled && reading.pose_id == current().pose_id) {
+    settled_seen_ = true;
+  }
+  if (options_.mode == CampaignMode::kManual && phase_ == Phase::kSettling) {
+    if (!reading.settled) moved_since_capture_ = true;
+    if (reading.settled && moved_since_capture_) settled_seen_ = true;
+  }
+}
+
+bool Campaign::Record(const h4msgs::board_pose_t& msg, std::optional<int64_t> joint_pose_id,
+                      std::string* why) {
+  const int64_t tolerance_us = static_cast<int64_t>(options_.pair_tolerance_s * 1e6);
+  const std::optional<JointReading> joints =
+      history_.FindSettled(joint_pose_id, msg.utime, tolerance_us);
+  if (!joints) {
+    ++counters_.unpaired;
+    *why = fmt::format("no settled joint reading within {:.3f} s of the measurement",
+                       options_.pair_tolerance_s);
+    return false;
+  }
+  journal_.Append(MakeDatasetRow(msg, *joints));
+  return true;
+}
+
+void Campaign::OnBoardPose(const h4msgs::board_pose_t& msg) {
+  ++counters_.board_poses;
+  if (msg.pose_id < 0) return;  // free-running measurements are not campaign data
+  if (journal_.Contains(msg.pose_id)) {
+    ++counters_.duplicates;
+    spdlog::debug("pose {}: already recorded, later measurement ignored", msg.pose_id);
+    return;
+  }
+  const bool passive = options_.mode == CampaignMode::kPassive;
+  const bool awaited = !finished() && phase_ == Phase::kMeasuring &&
+                       msg.pose_id == current().pose_id;
+  if (!(passive ? IsPlanned(msg.pose_id) : awaited)) {
+    ++counters_.unexpected_pose_ids;
+    spdlog::warn("ignored a measurement of pose {}: {} ({} so far)", msg.pose_id,
+                 IsPlanned(msg.pose_id) ? "not the pose being measured" : "not in the plan",
+                 counters_.unexpected_pose_ids);
+    return;
+  }
+  std::string why;
+  if (msg.status != h4msgs::board_pose_t::STATUS_OK) {
+    why = "camera reported '" + BoardPoseStatusName(msg.status) + "'";
+  } else if (CheckBoardPose(msg, &why) != MessageProblem::kNone) {
+    ++counters_.impossible_values;
+    spdlog::warn("ignored a measurement: {}", why);
+  } else {
+    // Active mode pairs with the robot's report for this very pose id; a robot moved by hand
+    // (manual) reports no campaign ids, so only time pairs.
+    const std::optional<int64_t> joint_pose_id =
+        options_.mode == CampaignMode::kManual ? std::nullopt
+                                               : std::optional<int64_t>(msg.pose_id);
+    if (Record(msg, joint_pose_id, &why)) {
+      spdlog::debug("pose {} recorded", msg.pose_id);
+      if (awaited) recorded_current_ = true;
+      if (passive) {
+        // Keep done_count() meaningful: a passive campaign advances as poses arrive.
+        auto it = std::find_if(pending_.begin() + static_cast<long>(next_), pending_.end(),
+                               [&](size_t i) { return plan_[i].pose_id == msg.pose_id; });
+        if (it != pending_.end()) {
+          std::iter_swap(pending_.begin() + static_cast<long>(next_), it);
+          ++next_;
+        }
+      }
+      return;
+    }
+  }
+  if (passive) {
+    spdlog::info("pose {}: measurement not used: {}", msg.pose_id, why);
+  } else {
+    failed_attempt_ = why;
+  }
+}
+
+void Campaign::NextPose() {
+  ++next_;
+  phase_ = Phase::kSendTarget;
+  attempt_ = 0;
+  settled_seen_ = false;
+  moved_since_capture_ = false;
+  failed_attempt_.reset();
+  recorded_current_ = false;
+}
+
+void Campaign::Retry(Phase phase, const std::string& why, Clock::time_point now) {
+  const PlannedPose& pose = current();
+  if (attempt_ >= options_.retries) {
+    spdlog::warn("pose {}: skipped after {} attempts: {}", pose.pose_id, attempt_ + 1, why);
+    skipped_.push_back({pose.pose_id, why});
+    NextPose();
+    return;
+  }
+  ++attempt_;
+  ++counters_.retries;
+  spdlog::warn("pose {}: {}; retrying ({}/{})", pose.pose_id, why, attempt_, options_.retries);
+  phase_ = phase;
+  phase_start_ = now;
+  failed_attempt_.reset();
+}
+
+bool Campaign::Step(Clock::time_point now) {
+  if (finished()) return false;
+  if (options_.mode == CampaignMode::kPassive) return true;  // handlers do all the work
+  const PlannedPose& pose = current();
+  if (recorded_current_) {
+    NextPose();
+    return !finished();
+  }
+  switch (phase_) {
+    case Phase::kSendTarget: {
+      if (options_.mode == CampaignMode::kActive) {
+        h4msgs::robot_target_t target{};
+        target.utime = NowUtime();
+        target.pose_id = pose.pose_id;
+        target.target_type = h4msgs::robot_target_t::TARGET_POSE;
+        for (int i = 0; i < 4; ++i) target.pose[i] = pose.x[i];
+        bus_.Publish(channels::kRobotTarget, target);
+      } else {
+        spdlog::info("pose {}: move the robot to X={:.4f} Y={:.4f} Z={:.4f} m theta={:.2f} deg "
+                     "and let it settle",
+                     pose.pose_id, pose.x[0], pose.x[1], pose.x[2], pose.x[3] * 57.29577951308232);
+      }
+      settled_seen_ = false;
+      phase_ = Phase::kSettling;
+      phase_start_ = now;
+      break;
+    }
+    case Phase::kSettling: {
+      if (settled_seen_) {
+        phase_ = Phase::kSendRequest;
+        break;
+      }
+      if (Seconds(now - phase_start_) > options_.settle_timeout_s) {
+        const std::string hint = joints_heard_ ? "" : " (no joint state heard at all: is the "
+                                                      "robot controller running?)";
+        Retry(options_.mode == CampaignMode::kActive ? Phase::kSendTarget : Phase::kSettling,
+              fmt::format("robot not settled after {:.1f} s{}", options_.settle_timeout_s, hint),
+              now);
+      }
+      break;
+    }
+    case Phase::kSendRequest: {
+      h4msgs::capture_request_t request{};
+      request.utime = NowUtime();
+      request.pose_id = pose.pose_id;
+      request.frame_count = options_.frame_count;
+      bus_.Publish(channels::kCaptureRequest, request);
+      failed_attempt_.reset();
+      phase_ = Phase::kMeasuring;
+      phase_start_ = now;
+      break;
+    }
+    case Phase::kMeasuring: {
+      if (failed_attempt_) {
+        Retry(Phase::kSendRequest, *failed_attempt_, now);
+      } else if (Seconds(now - phase_start_) > options_.capture_timeout_s) {
+        const std::string hint = camera_heard_ ? "" : " (no camera status heard at all: is "
+                                                      "h4cam running?)";
+        Retry(Phase::kSendRequest,
+              fmt::format("no measurement after {:.1f} s{}", options_.capture_timeout_s, hint),
+              now);
+      }
+      break;
+    }
+  }
+  return !finished();
+}
+
+std::string Campaign::waiting_for() const {
+  if (finished()) return "done";
+  if (options_.mode == CampaignMode::kPassive) return "listening";
+  const int64_t id = current().pose_id;
+  const std::string attempt =
+      attempt_ > 0 ? fmt::format(" (attempt {}/{})", attempt_ + 1, options_.retries + 1) : "";
+  switch (phase_) {
+    case Phase::kSendTarget: return fmt::format("pose {}: sending target{}", id, attempt);
+    case Phase::kSettling:
+      return fmt::format("pose {}: waiting for the robot to settle{}", id, attempt);
+    case Phase::kSendRequest: return fmt::format("pose {}: requesting a measurement", id);
+    case Phase::kMeasuring: return fmt::format("pose {}: camera measuring{}", id, attempt);
+  }
+  return "";
+}
+
+}  // namespace h4::host

@@ -1,0 +1,119 @@
+// `h4cal collect`'s campaign (issue "Live system", item 3; the paper's protocol, section
+// IV.A): for each planned pose, send the robot target, wait until the robot has settled,
+// request an averaged camera measurement, pair it with the joint reading of the same moment
+// and append the row to the dataset durably. Retries measurements flagged moved / partial /
+// no board and timeouts, then skips and lists the pose. Three modes:
+//   active  - drives the robot (H4_ROBOT_TARGET) and the camera (H4_CAPTURE_REQUEST);
+//   manual  - the operator moves the robot; a pose is taken when the robot has moved and
+//             settled again; only capture requests are sent;
+//   passive - sends nothing, pairs what it hears (a live lcm-logplayer replay, or a log
+//             read through LCM's file:// provider), by the same rule as the live run.
+// The campaign is a state machine over one bus: Step() is called after bus.Handle(), so a
+// test can run it beside other nodes on the in-process memq:// provider.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <h4msgs/board_pose_t.hpp>
+#include <h4msgs/camera_status_t.hpp>
+#include <h4msgs/joint_state_t.hpp>
+
+#include "host/campaign/dataset_journal.h"
+#include "host/campaign/measurement_pairing.h"
+#include "host/simulation/pose_plan.h"
+#include "messages/bus/lcm_bus.h"
+
+namespace h4::host {
+
+enum class CampaignMode { kActive, kManual, kPassive };
+
+struct CampaignOptions {
+  CampaignMode mode = CampaignMode::kActive;
+  int frame_count = 0;             ///< frames per measurement; 0: the camera's default (10)
+  double settle_timeout_s = 30.0;  ///< robot target to settled
+  double capture_timeout_s = 10.0; ///< capture request to board pose
+  int retries = 2;                 ///< extra attempts per pose before it is skipped
+  double pair_tolerance_s = 0.2;   ///< max |utime(joints) - utime(measurement)|
+};
+
+struct SkippedPose {
+  int64_t pose_id = 0;
+  std::string reason;
+};
+
+/// Messages the campaign did not use, and why (LCM hygiene: counted and logged, never fatal).
+struct CampaignCounters {
+  int64_t joint_states = 0;
+  int64_t board_poses = 0;
+  int64_t impossible_values = 0;    ///< messages with numbers no robot or camera can produce
+  int64_t unexpected_pose_ids = 0;  ///< measurements of a pose not planned or not awaited
+  int64_t duplicates = 0;           ///< measurements of a pose already recorded
+  int64_t unpaired = 0;             ///< measurements with no settled joint reading in tolerance
+  int64_t retries = 0;              ///< attempts repeated (timeouts, moved, partial, ...)
+};
+
+class Campaign {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  /// Subscribes to H4_JOINT_STATE, H4_BOARD_POSE and H4_CAMERA_STATUS on `bus`. Poses of
+  /// `plan` already in `journal` (a resumed campaign) are not measured again.
+  Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal, CampaignOptions options);
+
+  /// Sends what is due and handles timeouts at time `now`; false once every planned pose
+  /// is recorded or skipped.
+  bool Step(Clock::time_point now);
+  bool finished() const { return next_ >= pending_.size(); }
+
+  /// Planned poses, and those recorded or skipped so far (including resumed ones).
+  int planned_count() const { return static_cast<int>(plan_.size()); }
+  int done_count() const;
+  /// What the campaign waits for now, for the progress bar.
+  std::string waiting_for() const;
+  const std::vector<SkippedPose>& skipped() const { return skipped_; }
+  const CampaignCounters& counters() const { return counters_; }
+
+ private:
+  enum class Phase { kSendTarget, kSettling, kSendRequest, kMeasuring };
+
+  void OnJointState(const h4msgs::joint_state_t& msg);
+  void OnBoardPose(const h4msgs::board_pose_t& msg);
+  /// Pairs and records an OK measurement of `pose_id`; false (with `why`) when it cannot.
+  bool Record(const h4msgs::board_pose_t& msg, std::optional<int64_t> joint_pose_id,
+              std::string* why);
+  /// A failed attempt at the current pose: retry from `phase`, or skip when none is left.
+  void Retry(Phase phase, const std::string& why, Clock::time_point now);
+  void NextPose();
+  bool IsPlanned(int64_t pose_id) const;
+  const PlannedPose& current() const { return plan_[pending_[next_]]; }
+
+  bus::LcmBus& bus_;
+  PosePlan plan_;
+  DatasetJournal& journal_;
+  CampaignOptions options_;
+
+  std::vector<size_t> pending_;  ///< indices into plan_ of the poses to measure, in order
+  size_t next_ = 0;              ///< index into pending_ of the pose in progress
+  Phase phase_ = Phase::kSendTarget;
+  int attempt_ = 0;
+  Clock::time_point phase_start_{};
+  bool settled_seen_ = false;     ///< the robot reported settled at the current pose
+  bool moved_since_capture_ = false;  ///< manual mode: the operator moved the robot
+  std::optional<std::string> failed_attempt_;  ///< set by a handler, acted on by Step()
+  bool recorded_current_ = false;              ///< set by a handler, acted on by Step()
+  bool camera_heard_ = false;
+  bool joints_heard_ = false;
+
+  JointHistory history_;
+  std::vector<SkippedPose> skipped_;
+  CampaignCounters counters_;
+};
+
+/// Current time in microseconds since the Unix epoch (the messages' utime).
+int64_t NowUtime();
+
+}  // namespace h4::host

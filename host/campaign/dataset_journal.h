@@ -1,0 +1,48 @@
+// The campaign's dataset file, appended durably (issue "Live system", item 3): each row is
+// written with one write(2) and fsync(2)ed before the campaign moves on, so a crash or a
+// kill loses at most the pose in flight and never leaves a half row behind that a restart
+// would misread. On open, an existing file is read back: its pose ids are the poses the
+// restarted campaign skips, so every pose ends up in the file exactly once.
+#pragma once
+
+#include <cstdint>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "common/formats/dataset_csv.h"
+
+namespace h4::host {
+
+class DatasetJournal {
+ public:
+  /// Opens (creating it with the header when absent or empty) `path`. An existing file must
+  /// have the campaign's columns (formats.md's dataset with sigma_t, sigma_r) and parse;
+  /// a last line cut by a crash (no newline) is removed with a warning. Throws FormatError
+  /// or std::runtime_error naming the file on anything else.
+  explicit DatasetJournal(std::string path);
+  ~DatasetJournal();
+  DatasetJournal(const DatasetJournal&) = delete;
+  DatasetJournal& operator=(const DatasetJournal&) = delete;
+
+  const std::string& path() const { return path_; }
+  /// Rows already in the file when it was opened, plus those appended since.
+  const std::vector<DatasetRow>& rows() const { return rows_; }
+  bool Contains(int64_t pose_id) const { return pose_ids_.count(pose_id) != 0; }
+  /// Rows found in the file when it was opened (a resumed campaign).
+  size_t resumed_count() const { return resumed_count_; }
+
+  /// Appends one row and flushes it to the disk; throws std::runtime_error (naming the file
+  /// and the system error) when it cannot, and std::invalid_argument for a pose id already
+  /// in the file.
+  void Append(const DatasetRow& row);
+
+ private:
+  std::string path_;
+  int fd_ = -1;
+  std::vector<DatasetRow> rows_;
+  std::set<int64_t> pose_ids_;
+  size_t resumed_count_ = 0;
+};
+
+}  // namespace h4::host

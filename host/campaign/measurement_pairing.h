@@ -1,0 +1,72 @@
+// Pairing a camera measurement with the joint reading of the same moment (issue "Live
+// system", item 3): the campaign's core rule, kept free of the bus so that the live run,
+// the passive listener and the log replay apply exactly the same decision to the same
+// sequence of messages (and so rebuild the same dataset rows).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <string>
+
+#include <h4msgs/board_pose_t.hpp>
+#include <h4msgs/joint_state_t.hpp>
+
+#include "common/formats/dataset_csv.h"
+
+namespace h4::host {
+
+/// One encoder reading as received on H4_JOINT_STATE.
+struct JointReading {
+  int64_t utime = 0;
+  int64_t pose_id = -1;
+  std::array<double, 4> q{};
+  bool settled = false;
+};
+
+/// Why a message was not used; kNone when it is fine.
+enum class MessageProblem {
+  kNone,
+  kImpossibleValues,  ///< non-finite, non-unit quaternion, board behind the camera, ...
+  kWrongJointCount,   ///< an H4 has 4 joints
+};
+
+/// Checks a joint state and converts it; `why` says what is wrong.
+MessageProblem CheckJointState(const h4msgs::joint_state_t& msg, JointReading* reading,
+                               std::string* why);
+
+/// Checks the numbers of a board pose whose status is OK: finite translation with the board
+/// in front of the camera (z > 0) and within 20 m, unit quaternion (1e-3), finite covariance
+/// with a positive diagonal. Statuses other than OK are not "impossible": the caller
+/// retries them.
+MessageProblem CheckBoardPose(const h4msgs::board_pose_t& msg, std::string* why);
+
+/// A short name for a board pose status ("ok", "no board", "moved", "partial",
+/// "camera error", or "unknown status N").
+std::string BoardPoseStatusName(int8_t status);
+
+/// The recent joint readings, oldest first, bounded (a few seconds at 100 Hz).
+class JointHistory {
+ public:
+  explicit JointHistory(size_t capacity = 2000) : capacity_(capacity) {}
+  void Add(const JointReading& reading);
+  /// The settled reading nearest in time to `utime` within `tolerance_us`, among those of
+  /// `pose_id` (or of any pose id when `pose_id` is nullopt: a robot driven by hand).
+  std::optional<JointReading> FindSettled(std::optional<int64_t> pose_id, int64_t utime,
+                                          int64_t tolerance_us) const;
+  /// The newest reading, if any.
+  std::optional<JointReading> Latest() const;
+  void Clear() { readings_.clear(); }
+
+ private:
+  size_t capacity_;
+  std::deque<JointReading> readings_;
+};
+
+/// The dataset row of a measurement and its joint reading: utime and X_CT from the camera,
+/// q from the encoders, sigma_t / sigma_r from the covariance's translation and rotation
+/// blocks (root of the mean diagonal: one std per axis, as formats.md's columns mean).
+DatasetRow MakeDatasetRow(const h4msgs::board_pose_t& measurement, const JointReading& joints);
+
+}  // namespace h4::host

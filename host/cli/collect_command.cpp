@@ -1,0 +1,203 @@
+// `h4cal collect`: the calibration campaign over LCM (issue "Live system", item 3-4): drives
+// the robot and the camera through a pose plan (or listens, or reads a recorded log) and
+// writes the paired dataset durably; a restarted campaign resumes where it stopped. With
+// --identify DIR it then identifies Models 12 and 31, validates and writes the report.
+#include <filesystem>
+#include <memory>
+#include <thread>
+
+#include <spdlog/spdlog.h>
+
+#include "common/formats/identification_result.h"
+#include "common/formats/poses_csv.h"
+#include "common/formats/robot_yaml.h"
+#include "host/campaign/campaign.h"
+#include "host/cli/commands.h"
+#include "host/cli/progress.h"
+#include "host/cli/stop_signal.h"
+#include "host/cli/validation_inputs.h"
+#include "host/identification/identification.h"
+#include "host/report/html_report.h"
+#include "messages/bus/lcm_bus.h"
+
+namespace h4::host::cli {
+namespace {
+
+struct CollectOptions {
+  std::string out_path;
+  std::string plan_path;
+  bool manual = false;
+  bool passive = false;
+  std::string from_log;
+  std::string lcm_url;
+  CampaignOptions campaign;
+  std::string identify_dir;
+  std::string robot_path;
+};
+
+/// LCM's file:// provider, as fast as the log can be read (speed=0): the same messages in
+/// the same order as the live run, so the passive rule rebuilds the same rows.
+std::string LogUrl(const std::string& path) {
+  return "file://" + std::filesystem::absolute(path).string() + "?speed=0";
+}
+
+void PrintSummary(const Campaign& campaign, const DatasetJournal& journal,
+                  const bus::LcmBus& bus, bool interrupted) {
+  const CampaignCounters& c = campaign.counters();
+  std::printf("campaign: %zu of %d planned poses in %s (%zu from an earlier run)%s\n",
+              journal.rows().size(), campaign.planned_count(), journal.path().c_str(),
+              journal.resumed_count(), interrupted ? ", interrupted" : "");
+  for (const SkippedPose& s : campaign.skipped()) {
+    std::printf("  skipped pose %lld: %s\n", static_cast<long long>(s.pose_id), s.reason.c_str());
+  }
+  std::printf("  messages: %lld joint states, %lld board poses; not used: %lld impossible, "
+              "%lld unexpected pose id, %lld duplicate, %lld unpaired, %lld undecodable; "
+              "%lld retries\n",
+              static_cast<long long>(c.joint_states), static_cast<long long>(c.board_poses),
+              static_cast<long long>(c.impossible_values),
+              static_cast<long long>(c.unexpected_pose_ids),
+              static_cast<long long>(c.duplicates), static_cast<long long>(c.unpaired),
+              static_cast<long long>(bus.decode_failures()), static_cast<long long>(c.retries));
+  if (interrupted) std::printf("  run the same command again to resume\n");
+}
+
+/// Model 12, then Model 31 from it (paper IV.C), validation and the report, in `dir`.
+void IdentifyAndReport(const CollectOptions& options, const std::string& command_line) {
+  namespace fs = std::filesystem;
+  fs::create_directories(options.identify_dir);
+  const RobotDescription robot = ReadRobotYaml(options.robot_path);
+  const std::vector<DatasetRow> rows = ReadDatasetCsv(options.out_path);
+  const IdentificationOptions id_options;
+  const std::string result12 = (fs::path(options.identify_dir) / "result12.json").string();
+  const std::string result31 = (fs::path(options.identify_dir) / "result31.json").string();
+  const IdentificationOutcome m12 = IdentifyRobot(robot, "12", rows, id_options);
+  WriteIdentificationResult(result12, m12.result);
+  spdlog::info("Model 12: {} -> {}", m12.summary.message, result12);
+  if (!m12.summary.usable) throw std::runtime_error("Model 12 identification not usable");
+  const IdentificationOutcome m31 = IdentifyModel31FromModel12(robot, m12.result, rows, id_options);
+  WriteIdentificationResult(result31, m31.result);
+  spdlog::info("Model 31: {} -> {}", m31.summary.message, result31);
+  ValidationFileOptions files;
+  files.robot_path = options.robot_path;
+  files.data_path = options.out_path;
+  files.result12_path = result12;
+  if (m31.summary.usable) files.result31_path = result31;
+  const ValidationInputs inputs = LoadValidationInputs(files);
+  const ValidationReport report = Validate(inputs);
+  std::fputs(FormatValidationText(report).c_str(), stdout);
+  spdlog::info("wrote {}", WriteHtmlReport(options.identify_dir, inputs, report, command_line));
+}
+
+void Run(CollectOptions options, const std::string& command_line) {
+  if (options.manual && options.passive) {
+    throw std::invalid_argument("--manual and --passive exclude each other");
+  }
+  if (!options.identify_dir.empty() && options.robot_path.empty()) {
+    throw std::invalid_argument("--identify needs --robot (the a priori robot.yaml)");
+  }
+  const bool from_log = !options.from_log.empty();
+  if (from_log && !options.lcm_url.empty()) {
+    throw std::invalid_argument("--from-log reads the log itself: do not give --lcm-url");
+  }
+  options.campaign.mode = (options.passive || from_log) ? CampaignMode::kPassive
+                          : options.manual              ? CampaignMode::kManual
+                                                        : CampaignMode::kActive;
+  const PosePlan plan = options.plan_path.empty()
+                            ? GridPosePlan()
+                            : PosePlanFromRows(ReadPosesCsv(options.plan_path));
+  if (plan.empty()) throw std::invalid_argument(options.plan_path + ": the pose plan is empty");
+
+  bus::LcmBus bus(from_log ? LogUrl(options.from_log) : options.lcm_url);
+  if (!bus.good()) {
+    throw std::runtime_error(from_log ? options.from_log + ": cannot open the LCM log"
+                                      : bus.error());
+  }
+  spdlog::info("LCM: {}", bus.url());
+  DatasetJournal journal(options.out_path);
+  Campaign campaign(bus, plan, journal, options.campaign);
+  const std::atomic<bool>& stop = InstallStopSignalHandlers();
+
+  Progress progress("collect", campaign.planned_count());
+  bool interrupted = false;
+  while (campaign.Step(Campaign::Clock::now())) {
+    if (stop.load()) {
+      interrupted = true;
+      break;
+    }
+    const int handled = bus.Handle(std::chrono::milliseconds(20));
+    if (handled < 0) {
+      if (from_log) break;  // the end of the log
+      throw std::runtime_error("LCM stopped receiving on " + bus.url());
+    }
+    progress.Update(campaign.done_count(), campaign.waiting_for());
+  }
+  progress.Finish(campaign.finished() ? "every pose recorded or skipped"
+                                      : interrupted ? "interrupted" : "end of the log");
+  PrintSummary(campaign, journal, bus, interrupted);
+  if (interrupted) {
+    SetExitCode(130);
+    return;
+  }
+  if (!options.identify_dir.empty()) IdentifyAndReport(options, command_line);
+  if (!campaign.finished() || !campaign.skipped().empty()) SetExitCode(3);
+}
+
+}  // namespace
+
+void AddCollectCommand(CLI::App& app) {
+  auto options = std::make_shared<CollectOptions>();
+  CLI::App* command = app.add_subcommand(
+      "collect",
+      "Calibration campaign over LCM: move the robot through a pose plan, measure the board "
+      "at each pose and append the paired rows to a dataset CSV (resumable)");
+  command->add_option("--out", options->out_path,
+                      "Dataset CSV; an existing one is resumed (its poses are not measured again)")
+      ->required();
+  command->add_option("--plan", options->plan_path,
+                      "Poses CSV (pose_id,X,Y,Z,theta); default the paper's 81-pose grid")
+      ->check(CLI::ExistingFile);
+  command->add_flag("--manual", options->manual,
+                    "The operator moves the robot: each pose is measured once the robot has "
+                    "moved and settled again; no targets are sent");
+  command->add_flag("--passive", options->passive,
+                    "Send nothing; pair the measurements and joint states heard (e.g. an "
+                    "lcm-logplayer replay)");
+  command->add_option("--from-log", options->from_log,
+                      "Rebuild the dataset from an lcm-logger file (LCM's file:// provider)")
+      ->check(CLI::ExistingFile);
+  command->add_option("--lcm-url", options->lcm_url,
+                      "LCM provider URL (default $LCM_DEFAULT_URL, else udpm with ttl=0)");
+  command->add_option("--frames", options->campaign.frame_count,
+                      "Frames averaged per measurement (0: the camera's default)")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  command->add_option("--settle-timeout", options->campaign.settle_timeout_s,
+                      "Seconds to wait for the robot to settle at a pose")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--capture-timeout", options->campaign.capture_timeout_s,
+                      "Seconds to wait for a measurement")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--retries", options->campaign.retries,
+                      "Extra attempts per pose (timeouts, moved, partial) before skipping it")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  command->add_option("--pair-tolerance", options->campaign.pair_tolerance_s,
+                      "Max seconds between a measurement and its joint reading")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--identify", options->identify_dir,
+                      "After the campaign: identify Models 12 and 31, validate, and write "
+                      "DIR/result12.json, DIR/result31.json, DIR/report.html (needs --robot)");
+  command->add_option("--robot", options->robot_path, "A priori robot.yaml (for --identify)")
+      ->check(CLI::ExistingFile);
+  command->footer(
+      "Exit codes: 0 every pose recorded, 3 some poses skipped (listed), 130 interrupted "
+      "(run again to resume), 1 error.");
+  command->callback([options, command] {
+    Run(*options, "h4cal collect " + ReportCommandLine(*command));
+  });
+}
+
+}  // namespace h4::host::cli
