@@ -154,6 +154,16 @@ void Campaign::OnBoardPose(const h4msgs::board_pose_t& msg) {
   }
 }
 
+void Campaign::PublishTarget(const PlannedPose& pose, Clock::time_point now) {
+  h4msgs::robot_target_t target{};
+  target.utime = NowUtime();
+  target.pose_id = pose.pose_id;
+  target.target_type = h4msgs::robot_target_t::TARGET_POSE;
+  for (int i = 0; i < 4; ++i) target.pose[i] = pose.x[i];
+  bus_.Publish(channels::kRobotTarget, target);
+  target_sent_ = now;
+}
+
 void Campaign::NextPose() {
   ++next_;
   phase_ = Phase::kSendTarget;
@@ -189,14 +199,28 @@ bool Campaign::Step(Clock::time_point now) {
     return !finished();
   }
   switch (phase_) {
+    case Phase::kWaitForDevices: {
+      // Do not send into the void: a target published before the robot subscribes is lost.
+      if (phase_start_ == Clock::time_point{}) phase_start_ = now;
+      if (joints_heard_ && camera_heard_) {
+        spdlog::info("robot and camera heard; starting");
+        phase_ = Phase::kSendTarget;
+      } else if (Seconds(now - phase_start_) > options_.settle_timeout_s) {
+        std::string silent = !joints_heard_ ? "no joint state on H4_JOINT_STATE (is the robot "
+                                              "controller or h4cal sim-robot running?)"
+                                            : "";
+        if (!camera_heard_) {
+          silent += std::string(silent.empty() ? "" : "; ") +
+                    "no camera status on H4_CAMERA_STATUS (is h4cam running?)";
+        }
+        throw std::runtime_error(fmt::format("nothing heard for {:.0f} s on {}: {}",
+                                             options_.settle_timeout_s, bus_.url(), silent));
+      }
+      break;
+    }
     case Phase::kSendTarget: {
       if (options_.mode == CampaignMode::kActive) {
-        h4msgs::robot_target_t target{};
-        target.utime = NowUtime();
-        target.pose_id = pose.pose_id;
-        target.target_type = h4msgs::robot_target_t::TARGET_POSE;
-        for (int i = 0; i < 4; ++i) target.pose[i] = pose.x[i];
-        bus_.Publish(channels::kRobotTarget, target);
+        PublishTarget(pose, now);
       } else {
         spdlog::info("pose {}: move the robot to X={:.4f} Y={:.4f} Z={:.4f} m theta={:.2f} deg "
                      "and let it settle",
@@ -211,6 +235,15 @@ bool Campaign::Step(Clock::time_point now) {
       if (settled_seen_) {
         phase_ = Phase::kSendRequest;
         break;
+      }
+      if (options_.mode == CampaignMode::kActive &&
+          Seconds(now - target_sent_) > options_.target_resend_s) {
+        const std::optional<JointReading> latest = history_.Latest();
+        if (!latest || latest->pose_id != pose.pose_id) {
+          spdlog::info("pose {}: the robot has not taken the target yet; sending it again",
+                       pose.pose_id);
+          PublishTarget(pose, now);
+        }
       }
       if (Seconds(now - phase_start_) > options_.settle_timeout_s) {
         const std::string hint = joints_heard_ ? "" : " (no joint state heard at all: is the "
@@ -255,6 +288,7 @@ std::string Campaign::waiting_for() const {
   const std::string attempt =
       attempt_ > 0 ? fmt::format(" (attempt {}/{})", attempt_ + 1, options_.retries + 1) : "";
   switch (phase_) {
+    case Phase::kWaitForDevices: return "waiting to hear the robot and the camera";
     case Phase::kSendTarget: return fmt::format("pose {}: sending target{}", id, attempt);
     case Phase::kSettling:
       return fmt::format("pose {}: waiting for the robot to settle{}", id, attempt);

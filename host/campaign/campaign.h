@@ -38,6 +38,9 @@ struct CampaignOptions {
   double capture_timeout_s = 10.0; ///< capture request to board pose
   int retries = 2;                 ///< extra attempts per pose before it is skipped
   double pair_tolerance_s = 0.2;   ///< max |utime(joints) - utime(measurement)|
+  /// Active mode: a target the robot has not acknowledged (its joint states still carry
+  /// another pose id) after this long is sent again (a lost datagram, a robot started late).
+  double target_resend_s = 1.0;
 };
 
 struct SkippedPose {
@@ -65,7 +68,9 @@ class Campaign {
   Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal, CampaignOptions options);
 
   /// Sends what is due and handles timeouts at time `now`; false once every planned pose
-  /// is recorded or skipped.
+  /// is recorded or skipped. Active and manual campaigns first wait (up to the settle
+  /// timeout) until the robot's joint states and the camera's heartbeat are heard, and
+  /// throw std::runtime_error naming what is silent when they are not.
   bool Step(Clock::time_point now);
   bool finished() const { return next_ >= pending_.size(); }
 
@@ -78,7 +83,7 @@ class Campaign {
   const CampaignCounters& counters() const { return counters_; }
 
  private:
-  enum class Phase { kSendTarget, kSettling, kSendRequest, kMeasuring };
+  enum class Phase { kWaitForDevices, kSendTarget, kSettling, kSendRequest, kMeasuring };
 
   void OnJointState(const h4msgs::joint_state_t& msg);
   void OnBoardPose(const h4msgs::board_pose_t& msg);
@@ -87,6 +92,7 @@ class Campaign {
               std::string* why);
   /// A failed attempt at the current pose: retry from `phase`, or skip when none is left.
   void Retry(Phase phase, const std::string& why, Clock::time_point now);
+  void PublishTarget(const PlannedPose& pose, Clock::time_point now);
   void NextPose();
   bool IsPlanned(int64_t pose_id) const;
   const PlannedPose& current() const { return plan_[pending_[next_]]; }
@@ -98,7 +104,8 @@ class Campaign {
 
   std::vector<size_t> pending_;  ///< indices into plan_ of the poses to measure, in order
   size_t next_ = 0;              ///< index into pending_ of the pose in progress
-  Phase phase_ = Phase::kSendTarget;
+  Phase phase_ = Phase::kWaitForDevices;
+  Clock::time_point target_sent_{};  ///< when the current target was last published
   int attempt_ = 0;
   Clock::time_point phase_start_{};
   bool settled_seen_ = false;     ///< the robot reported settled at the current pose

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <h4msgs/camera_status_t.hpp>
 #include <h4msgs/capture_request_t.hpp>
 #include <h4msgs/robot_target_t.hpp>
 
@@ -31,6 +32,10 @@ class ScriptedCell {
     bus_.Subscribe<h4msgs::robot_target_t>(channels::kRobotTarget,
                                            [this](const h4msgs::robot_target_t& t) {
                                              targets.push_back(t.pose_id);
+                                             if (targets_to_drop > 0) {
+                                               --targets_to_drop;
+                                               return;
+                                             }
                                              pose_id_ = t.pose_id;
                                              target_time_ = Clock::now();
                                            });
@@ -59,8 +64,14 @@ class ScriptedCell {
     js.position.assign(q.begin(), q.end());
     js.settled = settled;
     bus_.Publish(channels::kJointState, js);
+    if (!silent_camera) {
+      h4msgs::camera_status_t status{};
+      status.utime = NowUtime();
+      status.state = h4msgs::camera_status_t::STATE_IDLE;
+      bus_.Publish(channels::kCameraStatus, status);
+    }
     for (int64_t id : pending_requests_) {
-      if (silent_camera) continue;
+      if (silent_camera || !answer_requests) continue;
       const int attempt = attempts_[id]++;
       h4msgs::board_pose_t m{};
       m.utime = NowUtime();
@@ -78,6 +89,8 @@ class ScriptedCell {
   std::vector<int64_t> requests;
   std::set<int64_t> never_settles;
   bool silent_camera = false;
+  bool answer_requests = true;
+  int targets_to_drop = 0;  ///< targets "lost" before the robot takes one
   std::chrono::milliseconds settle_delay{5};
   std::function<int8_t(int64_t, int)> camera_status;
 
@@ -106,6 +119,7 @@ CampaignOptions FastOptions() {
   o.capture_timeout_s = 0.2;
   o.retries = 2;
   o.pair_tolerance_s = 0.2;
+  o.target_resend_s = 0.05;
   return o;
 }
 
@@ -205,18 +219,55 @@ TEST_F(CampaignTest, SkipsAPoseWhereTheRobotNeverSettlesAndResendsItsTarget) {
   EXPECT_EQ(ReadDatasetCsv(path_).size(), 2u);
 }
 
-TEST_F(CampaignTest, SaysWhenNoCameraIsHeard) {
+TEST_F(CampaignTest, RefusesToStartWhileTheCameraIsSilentAndSaysSo) {
   bus::LcmBus bus("memq://");
   ScriptedCell cell(bus);
   cell.silent_camera = true;
   DatasetJournal journal(path_);
+  Campaign campaign(bus, Plan(1), journal, FastOptions());
+  try {
+    Run(bus, campaign, &cell);
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("is h4cam running"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find("robot controller"), std::string::npos)
+        << "the robot was heard: " << e.what();
+  }
+  EXPECT_TRUE(cell.targets.empty()) << "nothing is sent before both are heard";
+}
+
+TEST_F(CampaignTest, SkipsAPoseWhoseMeasurementNeverComes) {
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  DatasetJournal journal(path_);
   CampaignOptions options = FastOptions();
-  options.retries = 0;
-  Campaign campaign(bus, Plan(1), journal, options);
-  Run(bus, campaign, &cell);
-  ASSERT_EQ(campaign.skipped().size(), 1u);
-  EXPECT_NE(campaign.skipped()[0].reason.find("is h4cam running"), std::string::npos)
+  options.retries = 1;
+  Campaign campaign(bus, Plan(2), journal, options);
+  bool muted = false;
+  Run(bus, campaign, &cell, 20.0, [&] {
+    // The camera keeps its heartbeat but stops answering once the campaign has started.
+    if (!muted && !cell.targets.empty()) {
+      cell.answer_requests = false;
+      muted = true;
+    }
+  });
+  ASSERT_EQ(campaign.skipped().size(), 2u);
+  EXPECT_NE(campaign.skipped()[0].reason.find("no measurement after"), std::string::npos)
       << campaign.skipped()[0].reason;
+  EXPECT_EQ(std::count(cell.requests.begin(), cell.requests.end(), 1), 2);
+}
+
+TEST_F(CampaignTest, SendsATargetAgainWhenTheRobotDidNotTakeIt) {
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  cell.targets_to_drop = 2;
+  DatasetJournal journal(path_);
+  Campaign campaign(bus, Plan(2), journal, FastOptions());
+  Run(bus, campaign, &cell);
+  EXPECT_TRUE(campaign.skipped().empty());
+  EXPECT_EQ(ReadDatasetCsv(path_).size(), 2u);
+  EXPECT_EQ(std::count(cell.targets.begin(), cell.targets.end(), 1), 3);
+  EXPECT_EQ(campaign.counters().retries, 0) << "a resend is not a failed attempt";
 }
 
 TEST_F(CampaignTest, ResumesWithoutMeasuringRecordedPosesAgain) {
