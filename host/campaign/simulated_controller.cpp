@@ -1,0 +1,225 @@
+// The simulated H4 controller; see simulated_controller.h.
+#include "host/campaign/simulated_controller.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <spdlog/fmt/fmt.h>
+
+#include "common/geometry/rotation.h"
+#include "host/kinematics/forward_kinematics.h"
+#include "host/kinematics/measurement_chain.h"
+#include "host/kinematics/model12.h"
+
+namespace h4::host {
+namespace {
+
+// Two joint vectors closer than this (wrapped, rad) are the same target: far below the
+// encoder noise, so a resent target compares equal after any round trip through a message.
+constexpr double kSameTargetTolerance = 1e-12;
+
+JointVector WrappedDifference(const JointVector& a, const JointVector& b) {
+  JointVector d;
+  for (int i = 0; i < 4; ++i) d[i] = WrapAngle(a[i] - b[i]);
+  return d;
+}
+
+std::string FormatJoints(const JointVector& q) {
+  return fmt::format("({:.4f}, {:.4f}, {:.4f}, {:.4f}) rad", q[0], q[1], q[2], q[3]);
+}
+
+}  // namespace
+
+bool SimulatedControllerOptions::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& message) {
+    if (why) *why = message;
+    return false;
+  };
+  if (!(std::isfinite(joint_speed) && joint_speed > 0.0)) {
+    return fail("joint speed must be positive, got " + std::to_string(joint_speed) + " rad/s");
+  }
+  if (!(std::isfinite(settle_time) && settle_time >= 0.0)) {
+    return fail("settle time must be >= 0, got " + std::to_string(settle_time) + " s");
+  }
+  if (!(std::isfinite(sigma_q) && sigma_q >= 0.0)) {
+    return fail("encoder noise must be >= 0, got " + std::to_string(sigma_q) + " rad");
+  }
+  if (!(std::isfinite(joint_range) && joint_range > 0.0)) {
+    return fail("joint range must be positive, got " + std::to_string(joint_range) + " rad");
+  }
+  if (!home.allFinite()) return fail("home pose is not finite");
+  return true;
+}
+
+const char* ToString(TargetStatus status) {
+  switch (status) {
+    case TargetStatus::kAccepted:
+      return "accepted";
+    case TargetStatus::kUnreachable:
+      return "unreachable";
+    case TargetStatus::kOutsideLimits:
+      return "outside joint limits";
+    case TargetStatus::kInvalid:
+      return "invalid";
+  }
+  return "invalid";
+}
+
+SimulatedController::SimulatedController(const SimulatedRobot& truth,
+                                         const Model12Parameters& apriori,
+                                         const Assembly& apriori_assembly,
+                                         const SimulatedControllerOptions& options)
+    : truth_(truth),
+      true_model_(truth.MakeModel()),
+      apriori_model_(std::make_unique<Model12>(apriori, apriori_assembly)),
+      X_ModelB_(truth.X_ModelB()),
+      options_(options) {
+  std::string why;
+  if (!options_.IsValid(&why)) throw std::invalid_argument("simulated controller: " + why);
+  const RigidTransform X_BE_home = TransformFromEePose(options_.home);
+  const EePose x_model = EePoseFromTransform(X_ModelB_ * X_BE_home);
+  const IkResult ik = true_model_->InverseKinematics(x_model);
+  if (!ik.ok()) {
+    throw std::invalid_argument(fmt::format(
+        "simulated controller: the true robot cannot reach the home pose ({:.3f}, {:.3f}, "
+        "{:.3f}) m, theta {:.3f} rad",
+        options_.home[0], options_.home[1], options_.home[2], options_.home[3]));
+  }
+  q_home_ = ik.q;
+  q_ = ik.q;
+  q_target_ = ik.q;
+  X_BE_ = X_BE_home;
+  x_model_ = x_model;
+  // At rest at home from the start: settled with pose id -1.
+  time_at_target_ = options_.settle_time;
+}
+
+SimulatedController::~SimulatedController() = default;
+
+TargetResult SimulatedController::SetPoseTarget(int64_t pose_id, const EePose& x_B) {
+  if (!x_B.allFinite()) {
+    return Refuse(pose_id, TargetStatus::kInvalid, "pose target is not finite");
+  }
+  const IkResult ik = apriori_model_->InverseKinematics(x_B);
+  if (!ik.ok()) {
+    std::string legs;
+    for (int i = 0; i < 4; ++i) {
+      if (!ik.reachable[static_cast<size_t>(i)])
+        legs += (legs.empty() ? "" : ", ") + std::to_string(i + 1);
+    }
+    return Refuse(pose_id, TargetStatus::kUnreachable,
+                  fmt::format("pose ({:.4f}, {:.4f}, {:.4f}) m, theta {:.4f} rad is out of reach "
+                              "of the a priori model (leg {} has no inverse kinematics)",
+                              x_B[0], x_B[1], x_B[2], x_B[3], legs));
+  }
+  return SetJointTarget(pose_id, ik.q);
+}
+
+TargetResult SimulatedController::SetJointTarget(int64_t pose_id, const JointVector& q_in) {
+  if (!q_in.allFinite()) {
+    return Refuse(pose_id, TargetStatus::kInvalid, "joint target is not finite");
+  }
+  JointVector q;
+  for (int i = 0; i < 4; ++i) q[i] = WrapAngle(q_in[i]);
+  const JointVector from_home = WrappedDifference(q, q_home_);
+  for (int i = 0; i < 4; ++i) {
+    if (std::abs(from_home[i]) > options_.joint_range) {
+      return Refuse(pose_id, TargetStatus::kOutsideLimits,
+                    fmt::format("joint {} target {:.4f} rad is {:.4f} rad from its home {:.4f} "
+                                "rad, beyond the joint range {:.4f} rad",
+                                i + 1, q[i], from_home[i], q_home_[i], options_.joint_range));
+    }
+  }
+  RigidTransform X_BE;
+  if (!TrueEePose(q, &X_BE)) {
+    return Refuse(pose_id, TargetStatus::kUnreachable,
+                  "the true robot has no pose at joints " + FormatJoints(q));
+  }
+  return Accept(pose_id, q);
+}
+
+TargetResult SimulatedController::RejectTarget(int64_t pose_id, const std::string& reason) {
+  return Refuse(pose_id, TargetStatus::kInvalid, reason);
+}
+
+TargetResult SimulatedController::Accept(int64_t pose_id, const JointVector& q) {
+  pose_id_ = pose_id;
+  const bool same_target =
+      !refused_ && WrappedDifference(q, q_target_).cwiseAbs().maxCoeff() <= kSameTargetTolerance;
+  if (!same_target) {
+    q_target_ = q;
+    time_at_target_ = 0.0;
+  }
+  refused_ = false;
+  TargetResult result;
+  result.status = TargetStatus::kAccepted;
+  result.q_target = q_target_;
+  return result;
+}
+
+TargetResult SimulatedController::Refuse(int64_t pose_id, TargetStatus status,
+                                         const std::string& reason) {
+  // Hold where it is; the campaign sees this pose id never settle and skips it.
+  pose_id_ = pose_id;
+  refused_ = true;
+  q_target_ = q_;
+  time_at_target_ = 0.0;
+  TargetResult result;
+  result.status = status;
+  result.reason = reason;
+  return result;
+}
+
+void SimulatedController::Step(double dt_s) {
+  if (!std::isfinite(dt_s) || dt_s <= 0.0) return;
+  const JointVector delta = WrappedDifference(q_target_, q_);
+  const double distance = delta.cwiseAbs().maxCoeff();
+  if (distance == 0.0) {
+    time_at_target_ += dt_s;
+    return;
+  }
+  // Straight line in joint space at joint_speed for the joint with the farthest to go.
+  const double travel = options_.joint_speed * dt_s;
+  if (travel >= distance) {
+    q_ = q_target_;
+    time_at_target_ = dt_s - distance / options_.joint_speed;
+  } else {
+    for (int i = 0; i < 4; ++i) q_[i] = WrapAngle(q_[i] + delta[i] * (travel / distance));
+  }
+  RigidTransform X_BE;
+  if (TrueEePose(q_, &X_BE)) {
+    X_BE_ = X_BE;
+    x_model_ = EePoseFromTransform(X_ModelB_ * X_BE);
+  } else {
+    // Between two assemblable targets the straight joint path should stay assemblable; if
+    // not, the board pose freezes at the last solved pose rather than becoming NaN.
+    ++fk_failures_;
+  }
+}
+
+bool SimulatedController::settled() const {
+  // The small slack absorbs the rounding of summed time steps (20 x 0.01 s < 0.2 s).
+  return !refused_ && q_ == q_target_ && time_at_target_ + 1e-9 >= options_.settle_time;
+}
+
+bool SimulatedController::moving() const { return q_ != q_target_; }
+
+JointVector SimulatedController::EncoderReading(std::mt19937_64& rng) const {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  JointVector reading;
+  for (int i = 0; i < 4; ++i) reading[i] = WrapAngle(q_[i] + options_.sigma_q * normal(rng));
+  return reading;
+}
+
+RigidTransform SimulatedController::true_X_CT() const {
+  return truth_.X_BC.inverse() * X_BE_ * truth_.X_TE.inverse();
+}
+
+bool SimulatedController::TrueEePose(const JointVector& q, RigidTransform* X_BE) const {
+  const FkResult fk = ForwardKinematics(*true_model_, q, x_model_);
+  if (!fk.ok()) return false;
+  *X_BE = X_ModelB_.inverse() * TransformFromEePose(fk.x);
+  return true;
+}
+
+}  // namespace h4::host
