@@ -31,7 +31,6 @@ struct IdentifyCommandOptions {
   std::vector<std::string> fix;
   bool no_outliers = false;
   bool no_polish = false;
-  bool nlopt_first = false;
   std::string report_dir;
 };
 
@@ -66,6 +65,10 @@ void PrintHeadline(const IdentificationOutcome& outcome) {
 }
 
 void Run(const IdentifyCommandOptions& options, const std::string& command_line) {
+  std::string algorithm_why;
+  if (!IsValidNloptAlgorithm(options.algorithm, &algorithm_why)) {
+    throw std::invalid_argument("--algorithm: " + algorithm_why);
+  }
   const RobotDescription robot = ReadRobotYaml(options.robot_path);
   const std::vector<DatasetRow> rows = ReadDatasetCsv(options.data_path);
   IdentificationOptions id_options;
@@ -77,7 +80,6 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
   id_options.fixed_parameters = options.fix;
   id_options.reject_outliers = !options.no_outliers;
   id_options.lm_polish = !options.no_polish;
-  id_options.nlopt_first = options.nlopt_first;
   Progress progress("identify Model " + options.model, 0);
   int iterations = 0;
   id_options.progress = [&](const std::string& stage, int iteration, double cost) {
@@ -161,17 +163,19 @@ void AddIdentifyCommand(CLI::App& app) {
                    "paper's eq. (3)), implicit (eq. (5))")
       ->check(CLI::IsMember({"measurement", "joint", "implicit"}))
       ->capture_default_str();
+  std::string algorithms;
+  for (const std::string& name : NloptAlgorithmNames()) algorithms += " " + name;
   command
       ->add_option("--algorithm", options->algorithm,
-                   "NLopt algorithm (LD_LBFGS, LD_SLSQP, LD_MMA, LN_BOBYQA, ..., or none)")
+                   "NLopt algorithm of every stage, before the Levenberg-Marquardt polish; one "
+                   "of" +
+                       algorithms + ", or none (LM alone)")
       ->capture_default_str();
   command->add_option("--fix", options->fix, "Parameters to keep at their a priori value")
       ->delimiter(',');
   command->add_flag("--no-outlier-rejection", options->no_outliers, "Keep every pose");
-  command->add_flag("--nlopt-first", options->nlopt_first,
-                    "Solve every stage with NLopt (--algorithm) first, then polish with "
-                    "Levenberg-Marquardt (default: LM, NLopt only when LM fails; see README)");
-  command->add_flag("--no-polish", options->no_polish, "Skip the Levenberg-Marquardt polish");
+  command->add_flag("--no-polish", options->no_polish,
+                    "Skip the Levenberg-Marquardt polish: NLopt alone, run to tight tolerances");
   command->add_option("--out", options->out_path, "Result JSON")->required();
   command->add_option("--report", options->report_dir,
                       "Also validate on the held-out poses and write DIR/report.html");

@@ -60,6 +60,20 @@ IdentifiabilityReport AnalyzeIdentifiability(const Eigen::MatrixXd& J_full,
 /// SVD of the R factor of its QR decomposition (same values, far cheaper for 500 x 40).
 void TallSvd(const Eigen::MatrixXd& J, Eigen::VectorXd* singular_values, Eigen::MatrixXd* V);
 
+/// The triangular factor R (cols x cols) of J's QR decomposition, J^T J = R^T R; J itself
+/// when J is not tall.
+Eigen::MatrixXd TallR(const Eigen::MatrixXd& J);
+
+/// Singular values (descending) of M from the eigenvalues of its Gram matrix M^T M (also
+/// returned when `gram` is non-null), a fraction of the cost of a QR and a Jacobi SVD.
+/// Squaring loses the singular values below ~1e-7 of the largest, so this returns false
+/// (outputs unspecified) unless the smallest is at least `min_ratio` (>= 1e-6) of the
+/// largest: callers then decide with the SVD, and every decision above that ratio is the
+/// same as the SVD's.
+bool SingularValuesIfWellConditioned(const Eigen::MatrixXd& M, double min_ratio,
+                                     Eigen::VectorXd* singular_values,
+                                     Eigen::MatrixXd* gram = nullptr);
+
 /// The free columns of J_full, in p.FreeIndices() order.
 Eigen::MatrixXd FreeColumns(const Eigen::MatrixXd& J_full, const ParameterVector& p);
 

@@ -24,6 +24,10 @@ std::string Printf(const char* fmt, double a, double b = 0.0, double c = 0.0) {
   return buffer;
 }
 
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 double Rms(const Eigen::VectorXd& r) {
   return r.size() > 0 ? std::sqrt(r.squaredNorm() / static_cast<double>(r.size())) : 0.0;
 }
@@ -71,11 +75,14 @@ namespace {
 // A parameter the analysis fixes takes its value in `reference` (the start: the a priori
 // after the prior analysis, or the --from result): kinematics.md, "Fixed parameters keep
 // their a priori value". Without this, an earlier stage whose cost does not share the
-// null direction would leave it wherever that stage drifted it.
+// null direction would leave it wherever that stage drifted it. `solution` (may be null)
+// receives the residuals and Jacobian at the stage's solution, computed once here for
+// the outlier check, the covariance and the predicted accuracy.
 StageSummary RunStage(CostKind kind, bool placement_only, const KinematicModel& model,
                       const std::vector<DatasetRow>& rows, const IdentificationOptions& options,
                       const ParameterVector& reference, ParameterVector* p,
-                      IdentifiabilityReport* identifiability) {
+                      IdentifiabilityReport* identifiability, SolutionJacobian* solution) {
+  const auto stage_start = std::chrono::steady_clock::now();
   StageSummary stage;
   stage.cost = kind;
   stage.name = std::string(ToString(kind)) + (placement_only ? " (placement)" : "");
@@ -88,20 +95,22 @@ StageSummary RunStage(CostKind kind, bool placement_only, const KinematicModel& 
     for (int k = 0; k < p->kinematic_count(); ++k) p->Fix(k, "placement stage");
   }
   Eigen::VectorXd r;
-  Eigen::MatrixXd J;
   std::string why;
-  if (!cost.Evaluate(*p, &r, &J, &why)) {
+  if (!cost.Evaluate(*p, &r, nullptr, &why)) {
     stage.evaluable = false;
     stage.message =
         "cannot evaluate the " + std::string(ToString(kind)) + " cost at the start: " + why;
     return stage;
   }
   stage.rms_before = Rms(r);
+  const auto analysis_start = std::chrono::steady_clock::now();
   const IdentificationCost analysis_cost(kind, model, ConsistentRows(model, *p, rows),
                                          options.cost);
   Eigen::VectorXd r_analysis;
   Eigen::MatrixXd J_analysis;
-  if (!analysis_cost.Evaluate(*p, &r_analysis, &J_analysis)) J_analysis = J;
+  if (!analysis_cost.Evaluate(*p, &r_analysis, &J_analysis)) {
+    cost.Evaluate(*p, &r_analysis, &J_analysis);  // evaluable: checked above
+  }
   IdentifiabilityReport report =
       AnalyzeIdentifiability(J_analysis, model.name(), options.identifiability, p);
   Eigen::VectorXd values = p->values();
@@ -112,62 +121,85 @@ StageSummary RunStage(CostKind kind, bool placement_only, const KinematicModel& 
   }
   p->set_values(values);
   if (identifiability != nullptr) *identifiability = report;
+  stage.analysis_seconds = SecondsSince(analysis_start);
 
-  const ParameterVector base = *p;
+  // r(v) on the free values; the parameter vector and the full Jacobian are buffers reused
+  // across evaluations (a ParameterVector copy per call costs ~90 string allocations).
+  const std::vector<int> free = p->FreeIndices();
+  ParameterVector work = *p;
+  Eigen::VectorXd values_buffer = p->values();
+  Eigen::MatrixXd J_all;
   const ResidualFunction f = [&](const Eigen::VectorXd& v, Eigen::VectorXd* res,
                                  Eigen::MatrixXd* J_free) {
-    ParameterVector q = base;
-    q.SetFreeValues(v);
-    if (J_free == nullptr) return cost.Evaluate(q, res, nullptr);
-    Eigen::MatrixXd J_all;
-    if (!cost.Evaluate(q, res, &J_all)) return false;
-    *J_free = FreeColumns(J_all, q);
+    for (size_t k = 0; k < free.size(); ++k) {
+      values_buffer[free[k]] = v[static_cast<Eigen::Index>(k)];
+    }
+    work.set_values(values_buffer);
+    if (J_free == nullptr) return cost.Evaluate(work, res, nullptr);
+    if (!cost.Evaluate(work, res, &J_all)) return false;
+    J_free->resize(J_all.rows(), static_cast<Eigen::Index>(free.size()));
+    for (size_t k = 0; k < free.size(); ++k) {
+      J_free->col(static_cast<Eigen::Index>(k)) = J_all.col(free[k]);
+    }
     return true;
   };
+  // NLopt to tight tolerances: alone (no polish), or as the fallback when LM fails.
+  NloptOptions tight = options.nlopt;
+  tight.relative_cost_tolerance = 1e-12;
+  tight.relative_step_tolerance = 1e-12;
+  tight.max_evaluations = std::max(options.nlopt.max_evaluations, 2000);
   Eigen::VectorXd v = p->FreeValues();
   bool converged = false;
   const bool use_nlopt = options.nlopt.algorithm != "none";
-  if (use_nlopt && options.nlopt_first) {
-    stage.minimizers.push_back(MinimizeWithNlopt(f, options.nlopt, &v, options.progress));
+  if (use_nlopt) {
+    stage.minimizers.push_back(
+        MinimizeWithNlopt(f, options.lm_polish ? options.nlopt : tight, &v, options.progress));
     converged = stage.minimizers.back().converged;
   }
   if (options.lm_polish) {
     stage.minimizers.push_back(MinimizeWithLevenbergMarquardt(f, options.lm, &v, options.progress));
     converged = stage.minimizers.back().converged;
-    if (!converged && use_nlopt && !options.nlopt_first) {
-      // Fallback: NLopt from where LM stopped, then LM again.
-      stage.minimizers.push_back(MinimizeWithNlopt(f, options.nlopt, &v, options.progress));
+    if (!converged && use_nlopt) {
+      // Fallback: NLopt to the end from where LM stopped, then LM again.
+      stage.minimizers.push_back(MinimizeWithNlopt(f, tight, &v, options.progress));
       stage.minimizers.push_back(
           MinimizeWithLevenbergMarquardt(f, options.lm, &v, options.progress));
       converged = stage.minimizers.back().converged;
     }
   }
   p->SetFreeValues(v);
-  if (!cost.Evaluate(*p, &r, nullptr, &why)) {
+  Eigen::MatrixXd* J_solution = solution != nullptr ? &solution->J : nullptr;
+  if (!cost.Evaluate(*p, &r, J_solution, &why)) {
     stage.evaluable = false;
     stage.message = "cannot evaluate the cost at the solution: " + why;
     return stage;
   }
+  if (solution != nullptr) solution->r = r;
   stage.rms_after = Rms(r);
   stage.ok = converged;
   stage.message =
       converged ? "converged" : "did not converge: " + stage.minimizers.back().stop_reason;
+  stage.seconds = SecondsSince(stage_start);
   return stage;
 }
 
-// Per-pose residual norms of `kind` at p over rows.
-std::vector<double> PoseResidualNorms(CostKind kind, const KinematicModel& model,
-                                      const std::vector<DatasetRow>& rows,
-                                      const IdentificationOptions& options,
-                                      const ParameterVector& p) {
-  const IdentificationCost cost(kind, model, rows, options.cost);
-  Eigen::VectorXd r;
-  std::vector<double> norms;
-  if (!cost.Evaluate(p, &r, nullptr)) return norms;
-  const int m = cost.residuals_per_pose();
-  for (size_t j = 0; j < rows.size(); ++j) {
-    norms.push_back(r.segment(static_cast<Eigen::Index>(j) * m, m).norm());
+// One log line per stage: what ran, how many iterations and evaluations, the costs.
+std::string StageLogLine(const StageSummary& stage) {
+  std::string line = "stage " + stage.name + ": " + stage.message +
+                     Printf(", residual RMS %.4g -> %.4g", stage.rms_before, stage.rms_after);
+  for (const MinimizerReport& m : stage.minimizers) {
+    line += "; " + m.name + " " + std::to_string(m.iterations) + " iterations, " +
+            std::to_string(m.evaluations) + " evaluations, cost " +
+            Printf("%.6g -> %.6g", m.initial_cost, m.final_cost) + " (" + m.stop_reason + ")";
   }
+  return line + Printf(", %.2f ms", stage.seconds * 1e3);
+}
+
+// Per-pose residual norms of r (residuals_per_pose rows per pose).
+std::vector<double> PoseResidualNorms(const Eigen::VectorXd& r, int residuals_per_pose) {
+  std::vector<double> norms;
+  const Eigen::Index m = residuals_per_pose;
+  for (Eigen::Index j = 0; j + m <= r.size(); j += m) norms.push_back(r.segment(j, m).norm());
   return norms;
 }
 
@@ -179,7 +211,11 @@ bool IdentificationOptions::IsValid(std::string* why) const {
     return false;
   };
   if (nlopt.algorithm == "none" && !lm_polish) return fail("no minimiser (nlopt none, no LM)");
-  if (!lm_polish && !nlopt_first) return fail("without LM, NLopt must run first (nlopt_first)");
+  std::string algorithm_why;
+  if (!IsValidNloptAlgorithm(nlopt.algorithm, &algorithm_why)) return fail(algorithm_why);
+  if (!(nlopt.relative_cost_tolerance > 0) || !(nlopt.relative_step_tolerance > 0)) {
+    return fail("nlopt tolerances must be positive");
+  }
   if (nlopt.max_evaluations <= 0) return fail("nlopt.max_evaluations must be positive");
   if (lm.max_iterations <= 0) return fail("lm.max_iterations must be positive");
   if (!(cost.default_sigma_t > 0) || !(cost.default_sigma_r > 0)) {
@@ -224,12 +260,13 @@ IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const Param
   plan.emplace_back(options.estimator, false);
   if (options.placement_first) plan.insert(plan.begin(), {plan.front().first, true});
   bool final_ok = false;
+  SolutionJacobian solution;  // the estimator's r and J at the final solution, on `rows`
   for (size_t s = 0; s < plan.size(); ++s) {
     const bool is_final = s + 1 == plan.size();
-    StageSummary stage = RunStage(plan[s].first, plan[s].second, model, rows, options, start, &p,
-                                  is_final ? &out.identifiability : nullptr);
-    log.push_back("stage " + stage.name + ": " + stage.message +
-                  Printf(", residual RMS %.4g -> %.4g", stage.rms_before, stage.rms_after));
+    StageSummary stage =
+        RunStage(plan[s].first, plan[s].second, model, rows, options, start, &p,
+                 is_final ? &out.identifiability : nullptr, is_final ? &solution : nullptr);
+    log.push_back(StageLogLine(stage));
     summary.stages.push_back(stage);
     if (!stage.evaluable) {
       summary.message = "stage " + stage.name + " failed: " + stage.message;
@@ -241,7 +278,10 @@ IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const Param
 
   // Outlier rejection on the estimator's per-pose residuals, then refits.
   for (int round = 0; options.reject_outliers && round < options.max_outlier_rounds; ++round) {
-    const std::vector<double> norms = PoseResidualNorms(options.estimator, model, rows, options, p);
+    const auto outlier_start = std::chrono::steady_clock::now();
+    const std::vector<double> norms =
+        PoseResidualNorms(solution.r, IdentificationCost::ResidualsPerPose(options.estimator));
+    summary.outlier_seconds += SecondsSince(outlier_start);
     if (norms.empty()) break;
     std::vector<double> sorted = norms;
     std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2),
@@ -264,11 +304,10 @@ IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const Param
     log.push_back("rejected poses " + ids + Printf(" (residual norm above %.3g)", limit));
     rejected.insert(rejected.end(), newly.begin(), newly.end());
     rows = kept;
-    StageSummary stage =
-        RunStage(options.estimator, false, model, rows, options, start, &p, &out.identifiability);
+    StageSummary stage = RunStage(options.estimator, false, model, rows, options, start, &p,
+                                  &out.identifiability, &solution);
     stage.name += " (after rejection)";
-    log.push_back("stage " + stage.name + ": " + stage.message +
-                  Printf(", residual RMS %.4g -> %.4g", stage.rms_before, stage.rms_after));
+    log.push_back(StageLogLine(stage));
     summary.stages.push_back(stage);
     final_ok = stage.ok;
   }
@@ -285,7 +324,10 @@ IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const Param
       used.push_back(row);
   }
   out.parameters = p;
-  FillResult(model, apriori, p, used, valid, rejected, options, &out);
+  const auto report_start = std::chrono::steady_clock::now();
+  // `used` is `rows` (calib in order, rejected removed), on which `solution` was computed.
+  FillResult(model, apriori, p, used, valid, rejected, options, &out, &solution);
+  summary.report_seconds = SecondsSince(report_start);
   summary.chi2_per_dof = out.uncertainty.chi2_per_dof;
   summary.usable = final_ok && out.uncertainty.ok;
   if (summary.message.empty()) {

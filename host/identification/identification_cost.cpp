@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <Eigen/LU>
+
 #include "common/geometry/rotation.h"
 #include "host/identification/pose_chain.h"
 #include "host/kinematics/forward_kinematics.h"
@@ -42,7 +44,12 @@ bool ParseCostKind(const std::string& text, CostKind* kind) {
 
 IdentificationCost::IdentificationCost(CostKind kind, const KinematicModel& model,
                                        std::vector<DatasetRow> rows, const CostOptions& options)
-    : kind_(kind), model_(model.Clone()), rows_(std::move(rows)), options_(options) {
+    : kind_(kind),
+      model_(model.Clone()),
+      rows_(std::move(rows)),
+      options_(options),
+      fk_cache_(rows_.size(), EePose::Zero()),
+      fk_cached_(rows_.size(), false) {
   const std::vector<std::string>& names = model_->parameter_names();
   for (int leg = 0; leg < 4; ++leg) {
     int index = -1;
@@ -61,7 +68,9 @@ IdentificationCost::IdentificationCost(const IdentificationCost& other)
       model_(other.model_->Clone()),
       rows_(other.rows_),
       options_(other.options_),
-      forearm_index_(other.forearm_index_) {}
+      forearm_index_(other.forearm_index_),
+      fk_cache_(other.fk_cache_),
+      fk_cached_(other.fk_cached_) {}
 
 double IdentificationCost::RotationWeight(const DatasetRow& row) const {
   const double s = options_.use_dataset_sigmas && row.sigma_r && *row.sigma_r > 0
@@ -81,21 +90,23 @@ bool IdentificationCost::Evaluate(const ParameterVector& p, Eigen::VectorXd* r, 
                                   std::string* why) const {
   p.ApplyTo(model_.get());
   const int m = residuals_per_pose();
+  const ChainTransforms chain = MakeChainTransforms(p.X_BC(), p.X_TE());
   r->resize(residual_count());
-  if (J != nullptr) J->setZero(residual_count(), p.size());
+  // Every entry of J is written below (kinematic columns, X_BC, X_TE for every row).
+  if (J != nullptr) J->resize(residual_count(), p.size());
   for (size_t j = 0; j < rows_.size(); ++j) {
     const Eigen::Index row0 = static_cast<Eigen::Index>(j) * m;
     auto r_j = r->segment(row0, m);
     bool ok = false;
     switch (kind_) {
       case CostKind::kJointSpace:
-        ok = EvaluateJoint(p, rows_[j], r_j, J, row0, why);
+        ok = EvaluateJoint(p, chain, rows_[j], r_j, J, row0, why);
         break;
       case CostKind::kImplicit:
-        ok = EvaluateImplicit(p, rows_[j], r_j, J, row0, why);
+        ok = EvaluateImplicit(p, chain, rows_[j], r_j, J, row0, why);
         break;
       case CostKind::kMeasurement:
-        ok = EvaluateMeasurement(p, rows_[j], r_j, J, row0, why);
+        ok = EvaluateMeasurement(p, chain, j, r_j, J, row0, why);
         break;
     }
     if (!ok) return false;
@@ -107,11 +118,13 @@ bool IdentificationCost::Evaluate(const ParameterVector& p, Eigen::VectorXd* r, 
   return true;
 }
 
-bool IdentificationCost::EvaluateJoint(const ParameterVector& p, const DatasetRow& row,
-                                       Eigen::Ref<Eigen::VectorXd> r, Eigen::MatrixXd* J,
-                                       Eigen::Index row0, std::string* why) const {
+bool IdentificationCost::EvaluateJoint(const ParameterVector& p,
+                                       const ChainTransforms& chain_transforms,
+                                       const DatasetRow& row, Eigen::Ref<Eigen::VectorXd> r,
+                                       Eigen::MatrixXd* J, Eigen::Index row0,
+                                       std::string* why) const {
   const MeasuredEePoseJacobians chain =
-      EePoseFromMeasurementWithJacobians(p.X_BC(), row.X_CT, p.X_TE());
+      EePoseFromMeasurementWithJacobians(chain_transforms, row.X_CT);
   const IkResult ik = model_->InverseKinematics(chain.x);
   if (!ik.ok()) {
     if (why != nullptr) *why = PoseName(row) + " is out of reach of the model (IK)";
@@ -121,7 +134,7 @@ bool IdentificationCost::EvaluateJoint(const ParameterVector& p, const DatasetRo
   if (J == nullptr) return true;
   Eigen::Matrix4d J_f_x;
   Eigen::Vector4d J_f_q;
-  Eigen::MatrixXd J_f_xi;
+  Eigen::MatrixXd& J_f_xi = J_f_xi_;
   model_->ConstraintJacobians(ik.q, chain.x, &J_f_x, &J_f_q, &J_f_xi);
   const int n_kin = p.kinematic_count();
   for (int i = 0; i < 4; ++i) {
@@ -138,13 +151,15 @@ bool IdentificationCost::EvaluateJoint(const ParameterVector& p, const DatasetRo
   return true;
 }
 
-bool IdentificationCost::EvaluateImplicit(const ParameterVector& p, const DatasetRow& row,
-                                          Eigen::Ref<Eigen::VectorXd> r, Eigen::MatrixXd* J,
-                                          Eigen::Index row0, std::string* why) const {
+bool IdentificationCost::EvaluateImplicit(const ParameterVector& p,
+                                          const ChainTransforms& chain_transforms,
+                                          const DatasetRow& row, Eigen::Ref<Eigen::VectorXd> r,
+                                          Eigen::MatrixXd* J, Eigen::Index row0,
+                                          std::string* why) const {
   (void)why;  // always evaluable: no IK, no FK
   const JointVector q(row.q[0], row.q[1], row.q[2], row.q[3]);
   const MeasuredEePoseJacobians chain =
-      EePoseFromMeasurementWithJacobians(p.X_BC(), row.X_CT, p.X_TE());
+      EePoseFromMeasurementWithJacobians(chain_transforms, row.X_CT);
   const Eigen::Vector4d f = model_->Constraints(q, chain.x);
   Eigen::Vector4d length;  // |closing vector_i| = sqrt(f_i + forearm_i^2)
   for (int i = 0; i < 4; ++i) {
@@ -154,7 +169,7 @@ bool IdentificationCost::EvaluateImplicit(const ParameterVector& p, const Datase
   }
   if (J == nullptr) return true;
   Eigen::Matrix4d J_f_x;
-  Eigen::MatrixXd J_f_xi;
+  Eigen::MatrixXd& J_f_xi = J_f_xi_;
   model_->ConstraintJacobians(q, chain.x, &J_f_x, nullptr, &J_f_xi);
   const int n_kin = p.kinematic_count();
   for (int i = 0; i < 4; ++i) {
@@ -171,33 +186,51 @@ bool IdentificationCost::EvaluateImplicit(const ParameterVector& p, const Datase
   return true;
 }
 
-bool IdentificationCost::EvaluateMeasurement(const ParameterVector& p, const DatasetRow& row,
+bool IdentificationCost::EvaluateMeasurement(const ParameterVector& p,
+                                             const ChainTransforms& chain_transforms, size_t j,
                                              Eigen::Ref<Eigen::VectorXd> r, Eigen::MatrixXd* J,
                                              Eigen::Index row0, std::string* why) const {
+  const DatasetRow& row = rows_[j];
   const JointVector q(row.q[0], row.q[1], row.q[2], row.q[3]);
-  const RigidTransform X_BC = p.X_BC();
-  const RigidTransform X_TE = p.X_TE();
-  // The measured pose through the chain is the natural start of Newton's method.
-  const EePose guess = EePoseFromMeasurement(X_BC, row.X_CT, X_TE).x;
-  const FkResult fk = ForwardKinematics(*model_, q, guess);
+  const RigidTransform& X_BC = chain_transforms.X_BC;
+  const RigidTransform& X_TE = chain_transforms.X_TE;
+  FkResult fk;
+  if (fk_cached_[j]) {
+    FkOptions warm;
+    warm.retry_from_centre = false;  // the cold start below is the fallback
+    fk = ForwardKinematics(*model_, q, fk_cache_[j], warm);
+  }
   if (!fk.ok()) {
+    // The measured pose through the chain is the natural start of Newton's method.
+    const EePose guess = EePoseFromMeasurement(X_BC, row.X_CT, X_TE).x;
+    fk = ForwardKinematics(*model_, q, guess);
+  }
+  if (!fk.ok()) {
+    fk_cached_[j] = false;
     if (why != nullptr) *why = PoseName(row) + ": forward kinematics " + ToString(fk.status);
     return false;
   }
-  const BoardPoseError err = BoardPoseErrorOf(X_BC, fk.x, X_TE, row.X_CT, J != nullptr);
+  fk_cache_[j] = fk.x;
+  fk_cached_[j] = true;
+  const BoardPoseError err = BoardPoseErrorOf(chain_transforms, fk.x, row.X_CT, J != nullptr);
   const double w_r = RotationWeight(row);
   const double w_t = TranslationWeight(row);
   r.head<3>() = w_r * err.e.head<3>();
   r.tail<3>() = w_t * err.e.tail<3>();
   if (J == nullptr) return true;
-  Eigen::MatrixXd J_x_xi;
-  if (!ForwardKinematicsJacobians(*model_, q, fk.x, nullptr, &J_x_xi)) {
+  // dx/dxi = -J_f_x^-1 J_f_xi (forward_kinematics.h), folded into de/dxi = J_e_x dx/dxi
+  // with buffers reused across poses.
+  Eigen::Matrix4d J_f_x;
+  model_->ConstraintJacobians(q, fk.x, &J_f_x, nullptr, &J_f_xi_);
+  const Eigen::PartialPivLU<Eigen::Matrix4d> lu(J_f_x);
+  if (!(lu.rcond() > 1e-12)) {  // ForwardKinematicsJacobians' singularity threshold
     if (why != nullptr) *why = PoseName(row) + ": forward kinematics singular";
     return false;
   }
+  const Eigen::Matrix<double, 6, 4> J_e_f = -err.J_e_x * lu.inverse();
   const int n_kin = p.kinematic_count();
   auto block = J->middleRows(row0, 6);
-  block.leftCols(n_kin) = err.J_e_x * J_x_xi;
+  block.leftCols(n_kin).noalias() = J_e_f.lazyProduct(J_f_xi_);  // small: no GEMM
   block.middleCols<6>(p.bc_offset()) = err.J_e_bc;
   block.middleCols<6>(p.te_offset()) = err.J_e_te;
   block.topRows<3>() *= w_r;

@@ -17,6 +17,7 @@
 
 #include "common/formats/dataset_csv.h"
 #include "host/identification/parameter_vector.h"
+#include "host/identification/pose_chain.h"
 #include "host/kinematics/kinematic_model.h"
 
 namespace h4::host {
@@ -48,14 +49,18 @@ class IdentificationCost {
   CostKind kind() const { return kind_; }
   const std::vector<DatasetRow>& rows() const { return rows_; }
   /// 4 (joint, implicit) or 6 (measurement).
-  int residuals_per_pose() const { return kind_ == CostKind::kMeasurement ? 6 : 4; }
+  static int ResidualsPerPose(CostKind kind) { return kind == CostKind::kMeasurement ? 6 : 4; }
+  int residuals_per_pose() const { return ResidualsPerPose(kind_); }
   int residual_count() const { return residuals_per_pose() * static_cast<int>(rows_.size()); }
 
   /// Residuals at the parameter values of `p` and, when J is non-null, their Jacobian by
   /// every parameter (residual_count x p.size()). Rows of pose j start at
   /// j * residuals_per_pose(). Returns false when a pose cannot be evaluated (IK out of
   /// reach, FK failure, singular leg); `why` then names the pose. Never returns NaN.
-  /// Not thread-safe (it reuses one model copy).
+  /// Not thread-safe (it reuses one model copy and per-pose buffers). The measurement cost
+  /// starts each pose's forward kinematics from that pose's last solution (an LM step moves
+  /// it little: one Newton step or none instead of several), falling back to the measured
+  /// pose through the chain, the start it uses on the first call.
   bool Evaluate(const ParameterVector& p, Eigen::VectorXd* r, Eigen::MatrixXd* J,
                 std::string* why = nullptr) const;
 
@@ -64,12 +69,13 @@ class IdentificationCost {
   double TranslationWeight(const DatasetRow& row) const;
 
  private:
-  bool EvaluateJoint(const ParameterVector& p, const DatasetRow& row, Eigen::Ref<Eigen::VectorXd> r,
-                     Eigen::MatrixXd* J, Eigen::Index row0, std::string* why) const;
-  bool EvaluateImplicit(const ParameterVector& p, const DatasetRow& row,
-                        Eigen::Ref<Eigen::VectorXd> r, Eigen::MatrixXd* J, Eigen::Index row0,
-                        std::string* why) const;
-  bool EvaluateMeasurement(const ParameterVector& p, const DatasetRow& row,
+  bool EvaluateJoint(const ParameterVector& p, const ChainTransforms& chain, const DatasetRow& row,
+                     Eigen::Ref<Eigen::VectorXd> r, Eigen::MatrixXd* J, Eigen::Index row0,
+                     std::string* why) const;
+  bool EvaluateImplicit(const ParameterVector& p, const ChainTransforms& chain,
+                        const DatasetRow& row, Eigen::Ref<Eigen::VectorXd> r, Eigen::MatrixXd* J,
+                        Eigen::Index row0, std::string* why) const;
+  bool EvaluateMeasurement(const ParameterVector& p, const ChainTransforms& chain, size_t j,
                            Eigen::Ref<Eigen::VectorXd> r, Eigen::MatrixXd* J, Eigen::Index row0,
                            std::string* why) const;
 
@@ -78,6 +84,11 @@ class IdentificationCost {
   std::vector<DatasetRow> rows_;
   CostOptions options_;
   std::vector<int> forearm_index_;  // per leg, index of its forearm length in xi
+  // Measurement cost: the last forward kinematic solution per pose (warm start), and
+  // Jacobian buffers reused across poses and calls.
+  mutable std::vector<EePose> fk_cache_;
+  mutable std::vector<bool> fk_cached_;
+  mutable Eigen::MatrixXd J_f_xi_;
 };
 
 }  // namespace h4::host

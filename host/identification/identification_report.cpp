@@ -20,7 +20,8 @@ std::string Printf(const char* fmt, double a, double b = 0.0, double c = 0.0, do
 void FillResult(const KinematicModel& model, const ParameterVector& apriori,
                 const ParameterVector& p, const std::vector<DatasetRow>& calib,
                 const std::vector<DatasetRow>& valid, const std::vector<int64_t>& rejected,
-                const IdentificationOptions& options, IdentificationOutcome* out) {
+                const IdentificationOptions& options, IdentificationOutcome* out,
+                const SolutionJacobian* at_solution) {
   IdentificationResult& result = out->result;
   result.model = model.name();
   result.estimator = ToString(options.estimator);
@@ -29,10 +30,13 @@ void FillResult(const KinematicModel& model, const ParameterVector& apriori,
 
   // Covariance of the estimator's cost at the solution.
   const IdentificationCost cost(options.estimator, model, calib, options.cost);
-  Eigen::VectorXd r;
-  Eigen::MatrixXd J;
+  SolutionJacobian evaluated;
   std::string why;
-  if (cost.Evaluate(p, &r, &J, &why)) {
+  const bool have_jacobian =
+      at_solution != nullptr || cost.Evaluate(p, &evaluated.r, &evaluated.J, &why);
+  const Eigen::VectorXd& r = at_solution != nullptr ? at_solution->r : evaluated.r;
+  const Eigen::MatrixXd& J = at_solution != nullptr ? at_solution->J : evaluated.J;
+  if (have_jacobian) {
     out->uncertainty = ComputeUncertainty(p, r, J, options.estimator == CostKind::kMeasurement,
                                           options.correlation_threshold);
     // Re-check of identifiability at the solution: report, do not change the mask.
@@ -56,18 +60,32 @@ void FillResult(const KinematicModel& model, const ParameterVector& apriori,
     result.correlations = u.correlations;
     result.log.push_back(Printf("chi2/dof %.4g, sigma^2 %.4g, condition number %.4g",
                                 u.chi2_per_dof, u.sigma2, u.condition_number));
-    // Position accuracy the covariance predicts for the board on the calibration poses.
-    CostOptions unit = options.cost;
-    unit.use_dataset_sigmas = false;
-    unit.default_sigma_t = unit.default_sigma_r = 1.0;
-    const IdentificationCost board(CostKind::kMeasurement, model, calib, unit);
-    Eigen::VectorXd e;
-    Eigen::MatrixXd J_e;
-    if (board.Evaluate(p, &e, &J_e)) {
-      Eigen::MatrixXd J_p(3 * static_cast<Eigen::Index>(calib.size()), J_e.cols());
-      for (Eigen::Index j = 0; j < static_cast<Eigen::Index>(calib.size()); ++j) {
-        J_p.middleRows<3>(3 * j) = J_e.middleRows<3>(6 * j + 3);
+    // Position accuracy the covariance predicts for the board on the calibration poses:
+    // the translation rows of the board-pose error, i.e. the measurement cost's rows
+    // without their 1/sigma weights (evaluated when the estimator is another cost).
+    const Eigen::Index poses = static_cast<Eigen::Index>(calib.size());
+    Eigen::MatrixXd J_p(3 * poses, J.cols());
+    bool have_position_rows = false;
+    if (options.estimator == CostKind::kMeasurement) {
+      for (Eigen::Index j = 0; j < poses; ++j) {
+        const double w_t = cost.TranslationWeight(calib[static_cast<size_t>(j)]);
+        J_p.middleRows<3>(3 * j) = J.middleRows<3>(6 * j + 3) / w_t;
       }
+      have_position_rows = true;
+    } else {
+      CostOptions unit = options.cost;
+      unit.use_dataset_sigmas = false;
+      unit.default_sigma_t = unit.default_sigma_r = 1.0;
+      const IdentificationCost board(CostKind::kMeasurement, model, calib, unit);
+      Eigen::VectorXd e;
+      Eigen::MatrixXd J_e;
+      if (board.Evaluate(p, &e, &J_e)) {
+        for (Eigen::Index j = 0; j < poses; ++j)
+          J_p.middleRows<3>(3 * j) = J_e.middleRows<3>(6 * j + 3);
+        have_position_rows = true;
+      }
+    }
+    if (have_position_rows) {
       result.predicted_position_accuracy_m = PredictedPositionAccuracy(u, J_p);
     }
   }

@@ -57,6 +57,37 @@ double NloptObjective(unsigned n, const double* z, double* grad, void* data) {
 
 }  // namespace
 
+const std::vector<std::string>& NloptAlgorithmNames() {
+  static const std::vector<std::string> names = {"LD_LBFGS",
+                                                 "LD_SLSQP",
+                                                 "LD_MMA",
+                                                 "LD_CCSAQ",
+                                                 "LD_VAR1",
+                                                 "LD_VAR2",
+                                                 "LD_TNEWTON",
+                                                 "LD_TNEWTON_RESTART",
+                                                 "LD_TNEWTON_PRECOND",
+                                                 "LD_TNEWTON_PRECOND_RESTART",
+                                                 "LN_BOBYQA",
+                                                 "LN_NEWUOA",
+                                                 "LN_COBYLA",
+                                                 "LN_SBPLX",
+                                                 "LN_NELDERMEAD",
+                                                 "LN_PRAXIS"};
+  return names;
+}
+
+bool IsValidNloptAlgorithm(const std::string& name, std::string* why) {
+  const std::vector<std::string>& names = NloptAlgorithmNames();
+  if (name == "none" || std::find(names.begin(), names.end(), name) != names.end()) return true;
+  if (why != nullptr) {
+    *why = "unknown NLopt algorithm \"" + name + "\": expected one of";
+    for (const std::string& n : names) *why += " " + n;
+    *why += ", or none";
+  }
+  return false;
+}
+
 Eigen::VectorXd ColumnScale(const Eigen::MatrixXd& J) {
   Eigen::VectorXd s = J.colwise().norm().transpose();
   for (Eigen::Index k = 0; k < s.size(); ++k) {
@@ -117,8 +148,8 @@ MinimizerReport MinimizeWithLevenbergMarquardt(const ResidualFunction& f, const 
   const auto start = std::chrono::steady_clock::now();
   MinimizerReport report;
   report.name = "levenberg-marquardt";
-  Eigen::VectorXd r, r_trial;
-  Eigen::MatrixXd J;
+  Eigen::VectorXd r, r_trial, g, dz, v_trial;
+  Eigen::MatrixXd J, A, A_damped;
   report.evaluations = 1;
   if (!f(*v, &r, &J)) {
     report.stop_reason = "residuals cannot be evaluated at the start point";
@@ -129,13 +160,19 @@ MinimizerReport MinimizeWithLevenbergMarquardt(const ResidualFunction& f, const 
   Eigen::VectorXd scale = ColumnScale(J);
   double lambda = options.initial_lambda;
   double nu = 2.0;
+  const Eigen::Index n = v->size();
   report.stop_reason = "iteration limit";
   for (int iteration = 1; iteration <= options.max_iterations; ++iteration) {
     report.iterations = iteration;
     scale = scale.cwiseMax(ColumnScale(J));  // Moré: scaling never shrinks
-    const Eigen::MatrixXd J_s = J * scale.cwiseInverse().asDiagonal();
-    const Eigen::MatrixXd A = J_s.transpose() * J_s;
-    const Eigen::VectorXd g = J_s.transpose() * r;
+    // A = D^-1 J^T J D^-1 and g = D^-1 J^T r: one symmetric rank update (half a product).
+    A.setZero(n, n);
+    A.selfadjointView<Eigen::Lower>().rankUpdate(J.transpose());
+    A.triangularView<Eigen::StrictlyUpper>() = A.transpose();
+    const Eigen::VectorXd inverse_scale = scale.cwiseInverse();
+    A = inverse_scale.asDiagonal() * A * inverse_scale.asDiagonal();
+    g.noalias() = J.transpose() * r;
+    g = g.cwiseProduct(inverse_scale);
     if (g.cwiseAbs().maxCoeff() <= options.gradient_tolerance * (1.0 + cost)) {
       report.stop_reason = "gradient tolerance";
       report.converged = true;
@@ -143,28 +180,28 @@ MinimizerReport MinimizeWithLevenbergMarquardt(const ResidualFunction& f, const 
     }
     bool accepted = false;
     bool small_step = false;
+    const double z_norm = scale.cwiseProduct(*v).norm();
     while (!accepted) {
-      Eigen::MatrixXd A_damped = A;
+      A_damped = A;
       A_damped.diagonal().array() += lambda;
-      const Eigen::VectorXd dz = -A_damped.ldlt().solve(g);
-      const Eigen::VectorXd z_norm_ref = scale.cwiseProduct(*v);
-      if (dz.norm() <= options.step_tolerance * (z_norm_ref.norm() + options.step_tolerance)) {
+      dz = -A_damped.ldlt().solve(g);
+      if (dz.norm() <= options.step_tolerance * (z_norm + options.step_tolerance)) {
         small_step = true;
         break;
       }
-      const Eigen::VectorXd v_trial = *v + dz.cwiseQuotient(scale);
-      Eigen::MatrixXd J_trial;
+      v_trial = *v + dz.cwiseQuotient(scale);
+      // Residuals only: a rejected trial (most of them near the minimum, where the damping
+      // grows until the step vanishes) needs no Jacobian.
       ++report.evaluations;
-      const bool ok = dz.allFinite() && f(v_trial, &r_trial, &J_trial);
+      const bool ok = dz.allFinite() && f(v_trial, &r_trial, nullptr);
       const double cost_trial = ok ? 0.5 * r_trial.squaredNorm() : 0.0;
       // Gain ratio: actual over predicted decrease of the quadratic model.
       const double predicted = -(g.dot(dz) + 0.5 * dz.dot(A * dz));
-      if (ok && cost_trial < cost) {
+      if (ok && cost_trial < cost && f(v_trial, &r_trial, &J)) {
         const double rho = predicted > 0 ? (cost - cost_trial) / predicted : 1.0;
         const double decrease = (cost - cost_trial) / std::max(cost, 1e-300);
-        *v = v_trial;
+        v->swap(v_trial);
         r.swap(r_trial);
-        J.swap(J_trial);
         cost = cost_trial;
         lambda *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));
         nu = 2.0;

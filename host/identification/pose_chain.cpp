@@ -41,9 +41,20 @@ Eigen::Matrix3d So3RightJacobianInverse(const Eigen::Vector3d& w) {
   return Eigen::Matrix3d::Identity() + 0.5 * W + c * W * W;
 }
 
+ChainTransforms MakeChainTransforms(const RigidTransform& X_BC, const RigidTransform& X_TE) {
+  return {X_BC, X_TE, RpyBodyRateJacobian(X_BC.rpy()), RpyBodyRateJacobian(X_TE.rpy())};
+}
+
 MeasuredEePoseJacobians EePoseFromMeasurementWithJacobians(const RigidTransform& X_BC,
                                                            const RigidTransform& X_CT,
                                                            const RigidTransform& X_TE) {
+  return EePoseFromMeasurementWithJacobians(MakeChainTransforms(X_BC, X_TE), X_CT);
+}
+
+MeasuredEePoseJacobians EePoseFromMeasurementWithJacobians(const ChainTransforms& chain,
+                                                           const RigidTransform& X_CT) {
+  const RigidTransform& X_BC = chain.X_BC;
+  const RigidTransform& X_TE = chain.X_TE;
   MeasuredEePoseJacobians out;
   const RigidTransform X_BE = X_BC * X_CT * X_TE;
   const Eigen::Matrix3d& R_BE = X_BE.rotation();
@@ -54,8 +65,8 @@ MeasuredEePoseJacobians EePoseFromMeasurementWithJacobians(const RigidTransform&
   const Eigen::Matrix3d& R_CT = X_CT.rotation();
   const Eigen::Vector3d p_CE = R_CT * X_TE.translation() + X_CT.translation();
   const Eigen::RowVector3d J_theta_Omega = ThetaBySpatialRotation(R_BE);
-  const Eigen::Matrix3d E_bc = RpyBodyRateJacobian(X_BC.rpy());
-  const Eigen::Matrix3d E_te = RpyBodyRateJacobian(X_TE.rpy());
+  const Eigen::Matrix3d& E_bc = chain.E_bc;
+  const Eigen::Matrix3d& E_te = chain.E_te;
 
   // X_BC: p_BE = R_BC p_CE + p_BC; body rate w moves p_BE by -R_BC [p_CE]x w and R_BE by
   // the spatial rate R_BC w.
@@ -71,6 +82,13 @@ MeasuredEePoseJacobians EePoseFromMeasurementWithJacobians(const RigidTransform&
 BoardPoseError BoardPoseErrorOf(const RigidTransform& X_BC, const EePose& x,
                                 const RigidTransform& X_TE, const RigidTransform& X_CT_measured,
                                 bool with_jacobians) {
+  return BoardPoseErrorOf(MakeChainTransforms(X_BC, X_TE), x, X_CT_measured, with_jacobians);
+}
+
+BoardPoseError BoardPoseErrorOf(const ChainTransforms& chain, const EePose& x,
+                                const RigidTransform& X_CT_measured, bool with_jacobians) {
+  const RigidTransform& X_BC = chain.X_BC;
+  const RigidTransform& X_TE = chain.X_TE;
   BoardPoseError out;
   const RigidTransform X_BE = TransformFromEePose(x);
   out.X_CT_predicted = X_BC.inverse() * X_BE * X_TE.inverse();
@@ -85,8 +103,8 @@ BoardPoseError BoardPoseErrorOf(const RigidTransform& X_BC, const EePose& x,
   const Eigen::Vector3d p_ET = -(R_TE.transpose() * X_TE.translation());
   // A body perturbation d of R_CT_predicted moves the rotation error by JrInv(e_r) d.
   const Eigen::Matrix3d Jr_inv = So3RightJacobianInverse(out.e.head<3>());
-  const Eigen::Matrix3d E_bc = RpyBodyRateJacobian(X_BC.rpy());
-  const Eigen::Matrix3d E_te = RpyBodyRateJacobian(X_TE.rpy());
+  const Eigen::Matrix3d& E_bc = chain.E_bc;
+  const Eigen::Matrix3d& E_te = chain.E_te;
   const Eigen::Vector3d ez = Eigen::Vector3d::UnitZ();
 
   // End-effector pose: p_CT = R_BC^T (R_BE p_ET + p_BE - p_BC); theta turns R_BE about z.

@@ -18,6 +18,16 @@ Eigen::Matrix3d RpyBodyRateJacobian(const Eigen::Vector3d& rpy);
 /// Inverse of SO(3)'s right Jacobian at w: Log(Exp(w) Exp(d)) = w + JrInv(w) d + O(d^2).
 Eigen::Matrix3d So3RightJacobianInverse(const Eigen::Vector3d& w);
 
+/// The per-evaluation constants of the chain: X_BC, X_TE and their rpy rate Jacobians
+/// (computed once per cost evaluation instead of once per pose).
+struct ChainTransforms {
+  RigidTransform X_BC;
+  RigidTransform X_TE;
+  Eigen::Matrix3d E_bc = Eigen::Matrix3d::Identity();  ///< RpyBodyRateJacobian(X_BC.rpy())
+  Eigen::Matrix3d E_te = Eigen::Matrix3d::Identity();
+};
+ChainTransforms MakeChainTransforms(const RigidTransform& X_BC, const RigidTransform& X_TE);
+
 /// (X, Y, Z, theta) of X_BE = X_BC X_CT X_TE with theta = atan2(R_BE[1,0], R_BE[0,0])
 /// (measurement_chain.h's EePoseFromMeasurement) and its derivatives by X_BC and X_TE.
 struct MeasuredEePoseJacobians {
@@ -28,6 +38,8 @@ struct MeasuredEePoseJacobians {
 MeasuredEePoseJacobians EePoseFromMeasurementWithJacobians(const RigidTransform& X_BC,
                                                            const RigidTransform& X_CT,
                                                            const RigidTransform& X_TE);
+MeasuredEePoseJacobians EePoseFromMeasurementWithJacobians(const ChainTransforms& chain,
+                                                           const RigidTransform& X_CT);
 
 /// The 6-vector error e = PoseError(X_CT_measured, X_CT_predicted) (rotation vector, then
 /// translation difference in C; rad and m) and its Jacobians.
@@ -41,5 +53,7 @@ struct BoardPoseError {
 BoardPoseError BoardPoseErrorOf(const RigidTransform& X_BC, const EePose& x,
                                 const RigidTransform& X_TE, const RigidTransform& X_CT_measured,
                                 bool with_jacobians);
+BoardPoseError BoardPoseErrorOf(const ChainTransforms& chain, const EePose& x,
+                                const RigidTransform& X_CT_measured, bool with_jacobians);
 
 }  // namespace h4::host

@@ -1,11 +1,13 @@
 // Covariance, standard deviations and correlations at the solution; see uncertainty.h.
-// The inverse is taken through the SVD of the column-scaled Jacobian, so that metres and
-// radians mixing does not cost accuracy: C = D^-1 V S^-2 V^T D^-1.
+// The inverse is taken on the column-scaled Jacobian J_s = J D^-1, so that metres and
+// radians mixing does not cost accuracy: C = D^-1 (J_s^T J_s)^-1 D^-1, or D^-1 V S^-2 V^T
+// D^-1 through the SVD when J_s is ill-conditioned.
 #include "host/identification/uncertainty.h"
 
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Cholesky>
 #include <Eigen/SVD>
 
 #include "host/identification/identifiability.h"
@@ -23,14 +25,24 @@ Uncertainty ComputeUncertainty(const ParameterVector& p, const Eigen::VectorXd& 
   if (n == 0 || m <= n) return u;
   const Eigen::MatrixXd J = FreeColumns(J_full, p);
   const Eigen::VectorXd scale = ColumnScale(J);
+  // (J_s^T J_s)^-1 directly when the eigenvalues of J_s^T J_s show it well conditioned
+  // (relative error ~ cond^2 eps, 1e-8 at worst); else through the SVD of J_s's QR factor,
+  // which also decides rank deficiency.
+  const Eigen::MatrixXd J_s = J * scale.cwiseInverse().asDiagonal();
   Eigen::VectorXd s;
-  Eigen::MatrixXd V;
-  TallSvd(J * scale.cwiseInverse().asDiagonal(), &s, &V);
-  if (!(s[n - 1] > 1e-12 * s[0])) return u;  // rank deficient: no meaningful covariance
+  Eigen::MatrixXd C_scaled, gram;
+  if (SingularValuesIfWellConditioned(J_s, 1e-4, &s, &gram)) {
+    C_scaled = gram.llt().solve(Eigen::MatrixXd::Identity(n, n));
+  } else {
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(TallR(J_s), Eigen::ComputeFullV);
+    s = svd.singularValues();
+    if (!(s[n - 1] > 1e-12 * s[0])) return u;  // rank deficient: no meaningful covariance
+    const Eigen::MatrixXd& V = svd.matrixV();
+    C_scaled = V * s.cwiseAbs2().cwiseInverse().asDiagonal() * V.transpose();
+  }
   u.condition_number = s[0] / s[n - 1];
   u.chi2_per_dof = r.squaredNorm() / static_cast<double>(m - n);
   u.sigma2 = weighted ? 1.0 : u.chi2_per_dof;
-  const Eigen::MatrixXd C_scaled = V * s.cwiseAbs2().cwiseInverse().asDiagonal() * V.transpose();
   u.covariance =
       u.sigma2 * scale.cwiseInverse().asDiagonal() * C_scaled * scale.cwiseInverse().asDiagonal();
   u.std = u.covariance.diagonal().cwiseSqrt();

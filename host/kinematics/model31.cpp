@@ -29,6 +29,7 @@ Eigen::Vector3d AxisB(double psi) { return {-std::cos(psi), -std::sin(psi), 0.0}
 
 Model31::Model31(const Model31Parameters& parameters, const Assembly& assembly)
     : p_(parameters), assembly_(assembly) {
+  UpdateAxes();
   UpdateCentre();
 }
 
@@ -78,10 +79,26 @@ Model31Parameters Model31::FromVector(const Eigen::VectorXd& xi) {
 
 void Model31::set_parameters(const Eigen::VectorXd& xi) {
   p_ = FromVector(xi);
+  UpdateAxes();
   UpdateCentre();
 }
 
 std::unique_ptr<KinematicModel> Model31::Clone() const { return std::make_unique<Model31>(*this); }
+
+void Model31::UpdateAxes() {
+  // The axes depend on the parameters only: computed once per parameter set, not on every
+  // constraint evaluation (the identification evaluates thousands per parameter set).
+  for (size_t i = 0; i < 4; ++i) {
+    const double psi = p_.psi[i], beta = p_.beta[i];
+    LegAxes& axes = axes_[i];
+    axes.a = AxisA(psi, beta);
+    axes.b = AxisB(psi);
+    axes.a_psi = {std::cos(beta) * std::cos(psi), std::cos(beta) * std::sin(psi), 0.0};
+    axes.b_psi = {std::sin(psi), -std::cos(psi), 0.0};
+    axes.a_beta = {-std::sin(beta) * std::sin(psi), std::sin(beta) * std::cos(psi),
+                   -std::cos(beta)};
+  }
+}
 
 void Model31::UpdateCentre() {
   // Unknowns (X, Y, R): X - R cos psi_i = x_i and Y + d - R sin psi_i = y_i for every leg,
@@ -127,8 +144,8 @@ IkResult Model31::InverseKinematics(const EePose& x) const {
     // |arm V + W|^2 = forearm^2 with V = sin(phi) a + cos(phi) b:
     // 2 arm (b.W) cos(phi) + 2 arm (a.W) sin(phi) = forearm^2 - arm^2 - |W|^2.
     const double G = p_.forearm[i] * p_.forearm[i] - p_.arm[i] * p_.arm[i] - W.squaredNorm();
-    const double N = 2.0 * p_.arm[i] * AxisA(p_.psi[i], p_.beta[i]).dot(W);
-    const double M = 2.0 * p_.arm[i] * AxisB(p_.psi[i]).dot(W);
+    const double N = 2.0 * p_.arm[i] * axes_[i].a.dot(W);
+    const double M = 2.0 * p_.arm[i] * axes_[i].b.dot(W);
     double phi = 0.0;
     if (SolveLegAngle(M, N, G, assembly_.elbow[i], &phi)) {
       result.q[leg] = WrapAngle(phi - p_.q0[i]);
@@ -143,8 +160,7 @@ Eigen::Vector4d Model31::Constraints(const JointVector& q, const EePose& x) cons
   for (int leg = 0; leg < 4; ++leg) {
     const auto i = static_cast<size_t>(leg);
     const double phi = q[leg] + p_.q0[i];
-    const Eigen::Vector3d V =
-        std::sin(phi) * AxisA(p_.psi[i], p_.beta[i]) + std::cos(phi) * AxisB(p_.psi[i]);
+    const Eigen::Vector3d V = std::sin(phi) * axes_[i].a + std::cos(phi) * axes_[i].b;
     f[leg] = (p_.arm[i] * V + LegVector(leg, x)).squaredNorm() - p_.forearm[i] * p_.forearm[i];
   }
   return f;
@@ -157,10 +173,12 @@ void Model31::ConstraintJacobians(const JointVector& q, const EePose& x, Eigen::
   for (int leg = 0; leg < 4; ++leg) {
     const auto i = static_cast<size_t>(leg);
     const double s = assembly_.bar[i];
-    const double psi = p_.psi[i], beta = p_.beta[i], arm = p_.arm[i];
+    const double arm = p_.arm[i];
+    const LegAxes& axes = axes_[i];
     const double phi = q[leg] + p_.q0[i];
     const double sp = std::sin(phi), cp = std::cos(phi);
-    const Eigen::Vector3d a = AxisA(psi, beta), b = AxisB(psi);
+    const Eigen::Vector3d& a = axes.a;
+    const Eigen::Vector3d& b = axes.b;
     const Eigen::Vector3d V = sp * a + cp * b;
     const Eigen::Vector3d c = arm * V + LegVector(leg, x);
     const Eigen::Vector3d W_theta(-s * p_.h * std::sin(theta), s * p_.h * std::cos(theta), 0.0);
@@ -172,13 +190,8 @@ void Model31::ConstraintJacobians(const JointVector& q, const EePose& x, Eigen::
     if (J_f_xi == nullptr) continue;
     auto row = J_f_xi->row(leg);
     if (leg > 0) row.segment<3>(kP + 3 * (leg - 1)) = -2.0 * c;  // W = A - P_i
-    const Eigen::Vector3d a_psi(std::cos(beta) * std::cos(psi), std::cos(beta) * std::sin(psi),
-                                0.0);
-    const Eigen::Vector3d b_psi(std::sin(psi), -std::cos(psi), 0.0);
-    const Eigen::Vector3d a_beta(-std::sin(beta) * std::sin(psi), std::sin(beta) * std::cos(psi),
-                                 -std::cos(beta));
-    row[kPsi + leg] = 2.0 * arm * c.dot(sp * a_psi + cp * b_psi);
-    row[kBeta + leg] = 2.0 * arm * sp * c.dot(a_beta);
+    row[kPsi + leg] = 2.0 * arm * c.dot(sp * axes.a_psi + cp * axes.b_psi);
+    row[kBeta + leg] = 2.0 * arm * sp * c.dot(axes.a_beta);
     row[kQ0 + leg] = f_phi;
     row[kArm + leg] = 2.0 * c.dot(V);
     row[kForearm + leg] = -2.0 * p_.forearm[i];

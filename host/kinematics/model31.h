@@ -3,6 +3,7 @@
 // and their analytic Jacobians; and the nominal map from Model 12's base B to B31.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -51,8 +52,15 @@ class Model31 final : public KinematicModel {
 
  private:
   Eigen::Vector3d BaseJoint(int leg) const;
+  void UpdateAxes();
   void UpdateCentre();
 
+  /// Per leg: the axes a, b of the arm's rotation plane (V = sin(phi) a + cos(phi) b) and
+  /// their derivatives by psi and beta, from the parameters (see UpdateAxes).
+  struct LegAxes {
+    Eigen::Vector3d a, b, a_psi, b_psi, a_beta;
+  };
+  std::array<LegAxes, 4> axes_{};
   Model31Parameters p_;
   Assembly assembly_;
   EePose centre_ = EePose::Zero();

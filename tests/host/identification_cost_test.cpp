@@ -89,6 +89,29 @@ TEST_P(CostTest, ResidualsVanishAtTheTruthOnNoiseFreeData) {
   EXPECT_LT(r.cwiseAbs().maxCoeff(), 1e-9);
 }
 
+TEST_P(CostTest, WarmStartedEvaluationsMatchAFreshCost) {
+  // The measurement cost starts forward kinematics from each pose's last solution: after
+  // evaluating elsewhere, coming back must give what a fresh cost gives.
+  const TrueSetup setup = Setup();
+  const std::vector<DatasetRow> rows = NoiseFreeRows(setup);
+  const IdentificationCost cost(GetParam().kind, *setup.model, rows);
+  const ParameterVector p(*setup.model, setup.X_BC, setup.X_TE);
+  ParameterVector moved = p;
+  Eigen::VectorXd values = p.values();
+  values.head(p.kinematic_count()).array() += 1e-3;
+  moved.set_values(values);
+  Eigen::VectorXd r_fresh, r_moved, r_back;
+  Eigen::MatrixXd J_fresh, J_back;
+  ASSERT_TRUE(
+      IdentificationCost(GetParam().kind, *setup.model, rows).Evaluate(p, &r_fresh, &J_fresh));
+  ASSERT_TRUE(cost.Evaluate(p, &r_back, nullptr));
+  ASSERT_TRUE(cost.Evaluate(moved, &r_moved, nullptr));
+  EXPECT_GT((r_moved - r_fresh).norm(), 1e-6);  // it did move
+  ASSERT_TRUE(cost.Evaluate(p, &r_back, &J_back));
+  EXPECT_LT((r_back - r_fresh).cwiseAbs().maxCoeff(), 1e-7);  // 1/sigma weights: 2e-11 m
+  EXPECT_LT((J_back - J_fresh).cwiseAbs().maxCoeff(), 1e-6 * J_fresh.cwiseAbs().maxCoeff());
+}
+
 TEST_P(CostTest, JacobianMatchesFiniteDifferencesOffTheTruth) {
   const TrueSetup setup = Setup();
   CostOptions unit_sigma;  // unweighted, so that FK's 1e-12 tolerance stays below FD noise

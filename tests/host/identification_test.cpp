@@ -299,6 +299,92 @@ TEST(IdentificationOptionsTest, InvalidOptionsAreRejectedWithAReason) {
   EXPECT_FALSE(options.IsValid(&why));
 }
 
+TEST(IdentificationOptionsTest, UnknownNloptAlgorithmIsRejectedListingTheAllowedNames) {
+  IdentificationOptions options;
+  options.nlopt.algorithm = "LD_NOSUCH";
+  std::string why;
+  EXPECT_FALSE(options.IsValid(&why));
+  EXPECT_NE(why.find("LD_NOSUCH"), std::string::npos) << why;
+  for (const char* name : {"LD_LBFGS", "LD_SLSQP", "LN_BOBYQA"}) {
+    EXPECT_NE(why.find(name), std::string::npos) << why;
+    options.nlopt.algorithm = name;
+    EXPECT_TRUE(options.IsValid(&why)) << name;
+  }
+}
+
+TEST(IdentificationTest, EveryStageRunsNloptThenTheLmPolishAndTheLogSaysSo) {
+  const Scenario s = MakeScenario(TrueGeometry::kPerturbedModel31, 2, true);
+  const IdentificationOutcome out = IdentifyScenario(s, "31", IdentificationOptions{});
+  ASSERT_TRUE(out.summary.usable) << out.summary.FullReport();
+  for (const StageSummary& stage : out.summary.stages) {
+    ASSERT_GE(stage.minimizers.size(), 2u) << stage.name;
+    EXPECT_EQ(stage.minimizers.front().name, "nlopt LD_LBFGS") << stage.name;
+    EXPECT_GT(stage.minimizers.front().evaluations, 1) << stage.name;
+    EXPECT_EQ(stage.minimizers.back().name, "levenberg-marquardt") << stage.name;
+    // The polish never ends above where NLopt left it.
+    EXPECT_LE(stage.minimizers.back().final_cost, stage.minimizers.front().final_cost);
+  }
+  int logged = 0;
+  for (const std::string& line : out.result.log) {
+    if (line.rfind("stage ", 0) == 0) {
+      EXPECT_NE(line.find("nlopt LD_LBFGS"), std::string::npos) << line;
+      EXPECT_NE(line.find("levenberg-marquardt"), std::string::npos) << line;
+      EXPECT_NE(line.find("evaluations"), std::string::npos) << line;
+      ++logged;
+    }
+  }
+  EXPECT_EQ(logged, static_cast<int>(out.summary.stages.size()));
+}
+
+TEST(IdentificationTest, AnyNloptAlgorithmOrNoneReachesTheSameMinimumAfterThePolish) {
+  const Scenario s = MakeScenario(TrueGeometry::kPerturbedModel31, 2, true);
+  const IdentificationOutcome reference = IdentifyScenario(s, "31", IdentificationOptions{});
+  ASSERT_TRUE(reference.summary.usable);
+  for (const char* algorithm : {"LD_SLSQP", "LN_BOBYQA", "none"}) {
+    IdentificationOptions options;
+    options.nlopt.algorithm = algorithm;
+    const IdentificationOutcome out = IdentifyScenario(s, "31", options);
+    EXPECT_TRUE(out.summary.usable) << algorithm << "\n" << out.summary.FullReport();
+    EXPECT_NEAR(out.summary.final_cost, reference.summary.final_cost,
+                1e-9 * reference.summary.final_cost)
+        << algorithm;
+    EXPECT_EQ(out.result.rejected_poses, reference.result.rejected_poses) << algorithm;
+  }
+}
+
+TEST(IdentificationTest, WithoutThePolishNloptAloneReachesTheMinimum) {
+  const Scenario s = MakeScenario(TrueGeometry::kPerturbedModel12, 3, true);
+  IdentificationOptions options;
+  options.reject_outliers = false;
+  const IdentificationOutcome polished = IdentifyScenario(s, "12", options);
+  options.lm_polish = false;
+  const IdentificationOutcome alone = IdentifyScenario(s, "12", options);
+  ASSERT_TRUE(polished.summary.usable);
+  for (const StageSummary& stage : alone.summary.stages) {
+    ASSERT_EQ(stage.minimizers.size(), 1u) << stage.name;
+    EXPECT_EQ(stage.minimizers[0].name, "nlopt LD_LBFGS");
+  }
+  // NLopt alone stops on a relative cost change of 1e-12, short of LM's last digits.
+  EXPECT_NEAR(alone.summary.final_cost, polished.summary.final_cost,
+              1e-6 * polished.summary.final_cost)
+      << alone.summary.FullReport();
+}
+
+TEST(SingularValuesTest, GramEigenvaluesMatchTheSvdWhenWellConditionedAndDeclineElse) {
+  Eigen::MatrixXd J = Eigen::MatrixXd::Random(300, 20);
+  J.col(3) *= 1e-3;  // condition number ~1e3: well conditioned for the fast path
+  Eigen::VectorXd fast, svd_values;
+  Eigen::MatrixXd V;
+  ASSERT_TRUE(SingularValuesIfWellConditioned(J, 1e-4, &fast));
+  TallSvd(J, &svd_values, &V);
+  ASSERT_EQ(fast.size(), svd_values.size());
+  for (Eigen::Index k = 0; k < fast.size(); ++k) {
+    EXPECT_NEAR(fast[k], svd_values[k], 1e-10 * svd_values[0]) << k;
+  }
+  J.col(5) = J.col(6);  // rank deficient: the fast path must decline
+  EXPECT_FALSE(SingularValuesIfWellConditioned(J, 1e-4, &fast));
+}
+
 TEST(DatasetSplitTest, UsesTheSetColumnElseASeededDraw) {
   const Scenario s = MakeScenario(TrueGeometry::kPaperTable2, 1, true);
   const DatasetSplit by_set = SplitDataset(s.data.rows);
