@@ -1,12 +1,14 @@
 // Loading the validation inputs and the text summary (see validation_inputs.h).
 #include "host/cli/validation_inputs.h"
 
+#include <cmath>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
 #include <spdlog/fmt/fmt.h>
 
+#include "common/formats/poses_csv.h"
 #include "common/formats/robot_yaml.h"
 
 namespace h4::host::cli {
@@ -43,6 +45,38 @@ std::optional<IdentificationResult> ReadResult(const std::string& path,
   return result;
 }
 
+// The square plan and the measured runs; the plan also sets the simulated square.
+void LoadSquareRuns(const ValidationFileOptions& o, const std::string& result12_path,
+                    ValidationInputs* in) {
+  if (o.square_measured.empty() != o.square_plan_path.empty()) {
+    throw std::invalid_argument(
+        o.square_measured.empty()
+            ? "--square-plan is given without --square-measured LABEL=DATASET (the runs "
+              "collected along it)"
+            : "--square-measured needs --square-plan, the plan the runs were collected along");
+  }
+  if (o.square_measured.empty()) return;
+  if (result12_path.empty()) {
+    throw std::invalid_argument(
+        "--square-measured needs --result12: the Model 12 result's camera and board placement "
+        "(X_BC, X_TE) turn the measured board poses into end-effector poses");
+  }
+  CheckExists(o.square_plan_path);
+  in->square_plan = SquarePlanFromPoses(ReadPosesCsv(o.square_plan_path), o.square_plan_path);
+  const SquareOptions& planned = in->square_plan->options;
+  if (o.square_mm_given && std::abs(o.square_mm * 1e-3 - planned.side) > 1e-6) {
+    throw std::invalid_argument(
+        fmt::format("--square-mm {} disagrees with the {:.3f} mm square of {} (leave it out)",
+                    o.square_mm, planned.side * 1e3, o.square_plan_path));
+  }
+  in->square = planned;
+  for (const std::string& value : o.square_measured) {
+    const auto [label, path] = SplitSquareMeasured(value);
+    CheckExists(path);
+    in->square_measured.push_back({label, path, ReadDatasetCsv(path)});
+  }
+}
+
 }  // namespace
 
 void AddValidationFileOptions(CLI::App* command, ValidationFileOptions* o) {
@@ -57,9 +91,32 @@ void AddValidationFileOptions(CLI::App* command, ValidationFileOptions* o) {
                       "truth.yaml of a simulation: the true robot for the square path");
   command->add_option("--straightness", o->straightness_paths,
                       "Joints CSVs logged along a straight ruler, one per direction");
-  command->add_option("--square-mm", o->square_mm, "Side of the square path, mm")
+  command
+      ->add_option("--square-mm", o->square_mm,
+                   "Side of the simulated square path, mm (with --square-plan: the plan's)")
       ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+      ->capture_default_str()
+      ->each([o](const std::string&) { o->square_mm_given = true; });
+  command
+      ->add_option("--square-plan", o->square_plan_path,
+                   "Poses CSV of the square driven on the robot (h4cal square-plan); also sets "
+                   "the simulated square")
+      ->check(CLI::ExistingFile);
+  command
+      ->add_option("--square-measured", o->square_measured,
+                   "LABEL=DATASET, repeatable: dataset CSV collected along --square-plan by the "
+                   "LABEL controller (e.g. \"a priori=sq_apriori.csv\"); needs --result12 for "
+                   "the camera and board placement")
+      ->take_all();
+}
+
+std::pair<std::string, std::string> SplitSquareMeasured(const std::string& value) {
+  const size_t eq = value.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == value.size()) {
+    throw std::invalid_argument(fmt::format(
+        "--square-measured \"{}\": expected LABEL=DATASET (e.g. \"Model 12=sq_m12.csv\")", value));
+  }
+  return {value.substr(0, eq), value.substr(eq + 1)};
 }
 
 ValidationInputs LoadValidationInputs(const ValidationFileOptions& o) {
@@ -69,6 +126,9 @@ ValidationInputs LoadValidationInputs(const ValidationFileOptions& o) {
   const std::string r12 = Resolve(o.result12_path, o.sim_dir, "result12.json", false, "");
   const std::string r31 = Resolve(o.result31_path, o.sim_dir, "result31.json", false, "");
   const std::string truth = Resolve(o.truth_path, o.sim_dir, "truth.yaml", false, "");
+  // The square runs first: a missing --result12 is named before any file is read.
+  in.square.side = o.square_mm * 1e-3;
+  LoadSquareRuns(o, r12, &in);
   for (const auto& path : {robot, data, truth}) CheckExists(path);
   in.apriori = ReadRobotYaml(robot);
   in.rows = ReadDatasetCsv(data);
@@ -92,7 +152,6 @@ ValidationInputs LoadValidationInputs(const ValidationFileOptions& o) {
       throw std::invalid_argument(path + ": a straightness run needs at least 3 readings");
     }
   }
-  in.square.side = o.square_mm * 1e-3;
   return in;
 }
 
@@ -133,6 +192,17 @@ std::string FormatValidationText(const ValidationReport& report) {
         v.label, v.square->sides[0].rms * 1e3, v.square->sides[1].rms * 1e3,
         v.square->sides[2].rms * 1e3, v.square->sides[3].rms * 1e3, v.square->shape_rms * 1e3,
         v.square->mean_position_error * 1e3);
+  }
+  for (const auto& m : report.measured_squares) {
+    const SquareRun& s = m.run;
+    t << fmt::format(
+        "Square (measured), {} controller: side RMS {:.2f} {:.2f} {:.2f} {:.2f} mm, shape "
+        "{:.2f} mm, mean |measured - commanded| {:.2f} mm, offset ({:.2f}, {:.2f}, {:.2f}) mm; "
+        "{} of {} points",
+        m.label, s.sides[0].rms * 1e3, s.sides[1].rms * 1e3, s.sides[2].rms * 1e3,
+        s.sides[3].rms * 1e3, s.shape_rms * 1e3, s.mean_position_error * 1e3, s.offset[0] * 1e3,
+        s.offset[1] * 1e3, s.offset[2] * 1e3, s.reached.size(), m.planned);
+    t << (m.missing_ids.empty() ? "\n" : " (missing pose ids " + PoseIdList(m.missing_ids) + ")\n");
   }
   t << (report.prior.ok ? fmt::format("4-DoF check: rotation axis spread {:.3f} deg\n",
                                       report.prior.axis_spread_deg)

@@ -1,9 +1,11 @@
 // The inputs of `h4cal validate` and `h4cal report` (shared options): the a priori
 // robot.yaml, the dataset, the Model 12 / Model 31 results, the ruler runs, the truth of a
-// simulation and the square size; or --sim-dir, the folder `h4cal simulate` wrote.
+// simulation and the square size, the square runs measured on the robot (plan and
+// datasets); or --sim-dir, the folder `h4cal simulate` wrote.
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -21,7 +23,16 @@ struct ValidationFileOptions {
   std::string truth_path;
   std::vector<std::string> straightness_paths;
   double square_mm = 100.0;
+  bool square_mm_given = false;  ///< --square-mm was on the command line
+  std::string square_plan_path;  ///< --square-plan: poses CSV of `h4cal square-plan`
+  /// --square-measured LABEL=DATASET, repeatable: a dataset collected along the plan by the
+  /// LABEL controller (e.g. "a priori=sq_apriori.csv").
+  std::vector<std::string> square_measured;
 };
+
+/// Splits "LABEL=DATASET" at its first '='; throws std::invalid_argument when either part
+/// is empty or there is no '='.
+std::pair<std::string, std::string> SplitSquareMeasured(const std::string& value);
 
 void AddValidationFileOptions(CLI::App* command, ValidationFileOptions* options);
 

@@ -24,7 +24,7 @@ h1 { font-size: 1.6em; } h2 { border-bottom: 1px solid #ccc; margin-top: 2em; }
 table { border-collapse: collapse; margin: 0.8em 0; font-size: 0.9em; }
 th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: right; }
 th:first-child { text-align: left; } tr.paper { background: #fff6dd; }
-tr.fixed { color: #777; } figure { margin: 1em 0; } figure svg { max-width: 100%; height: auto; }
+tr.fixed { color: #777; } tr.measured { background: #eef6ff; } figure { margin: 1em 0; } figure svg { max-width: 100%; height: auto; }
 code { background: #f3f3f3; padding: 0 0.2em; } .note { color: #a33; }
 )";
 
@@ -54,6 +54,9 @@ std::string FormatHtmlReport(const ValidationInputs& in, const ValidationReport&
   const std::string histograms = HistogramFigure(report);
   const std::string straightness = has_straightness ? StraightnessFigure(report) : "";
   const std::string square = has_square ? SquareFigure(report) : "";
+  const bool has_measured = !report.measured_squares.empty() && in.square_plan.has_value();
+  const std::string measured_square =
+      has_measured ? MeasuredSquareFigure(*in.square_plan, report) : "";
 
   std::ostringstream html;
   html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
@@ -82,11 +85,19 @@ std::string FormatHtmlReport(const ValidationInputs& in, const ValidationReport&
                   has_straightness ? Figure(straightness, "Distance to the fitted line.")
                                    : NotComputed("no ruler run given"));
   html << Section("square", "Square path",
-                  has_square ? SquareTable(in, report)
-                             : NotComputed("needs the true robot (simulation truth file)"));
+                  has_square || has_measured
+                      ? SquareTable(in, report)
+                      : NotComputed("needs the true robot (simulation truth file) or square "
+                                    "runs measured on the robot (--square-measured)"));
   html << Section("square-plot", "Square path plot",
                   has_square ? Figure(square, "Commanded and reached paths in the X-Y plane.")
                              : NotComputed("needs the true robot (simulation truth file)"));
+  if (has_measured) {
+    html << Section(kMeasuredSquareSection, "Square path measured by the camera",
+                    Figure(measured_square,
+                           "Commanded and measured paths in the X-Y plane of B, and each "
+                           "measured point's distance to its commanded side."));
+  }
   html << Section("four-dof", "4-DoF check", FourDofTable(report));
   std::string notes;
   for (const auto& note : report.notes) notes += "<li>" + MarkupEscape(note) + "</li>\n";

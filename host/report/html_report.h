@@ -1,6 +1,7 @@
 // The calibration report: one self-contained HTML file (inline CSS and SVG figures, no
 // script, nothing fetched) with the parameter tables, the identifiability summary, the
-// analogues of the paper's Tables 2, 3 and 4, the square path, the 4-DoF check and the
+// analogues of the paper's Tables 2, 3 and 4, the square path (simulated and/or measured by
+// the camera), the 4-DoF check and the
 // figures; on the paper scenario, the paper's published numbers beside ours.
 #pragma once
 
@@ -15,6 +16,10 @@ inline constexpr const char* kReportSections[] = {
     "summary",     "parameters",  "identifiability", "table2", "table3",
     "positioning", "residuals",   "histograms",      "table4", "straightness",
     "square",      "square-plot", "four-dof",        "notes"};
+
+/// The section of the square paths measured by the camera: present only when the report
+/// has measured square runs (`--square-measured`).
+inline constexpr const char* kMeasuredSquareSection = "square-measured-plot";
 
 /// The page. `command` is shown as how the report was made. Throws std::runtime_error when a
 /// figure cannot be drawn (no gnuplot): never a half report.

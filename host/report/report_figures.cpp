@@ -21,6 +21,13 @@ std::string Block(const std::string& name, const std::string& body) {
 
 std::string Quoted(const std::string& s) { return "'" + s + "'"; }
 
+// Text for inside a gnuplot single-quoted string: a quote is written twice.
+std::string GnuplotText(const std::string& s) {
+  std::string out;
+  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out;
+}
+
 }  // namespace
 
 std::string ResidualsFigure(const ValidationReport& report) {
@@ -166,6 +173,57 @@ std::string SquareFigure(const ValidationReport& report) {
         "set xlabel 'X_B (mm)' noenhanced\nset ylabel 'Y_B (mm)' noenhanced\n";
   gp << "plot " << plots << "\n";
   return RenderSvg(gp.str(), 620, 640);
+}
+
+std::string MeasuredSquareFigure(const SquarePlan& plan, const ValidationReport& report) {
+  std::ostringstream gp;
+  std::ostringstream cmd;
+  for (const auto& p : plan.commanded)
+    cmd << fmt::format("{:.6g} {:.6g}\n", p[0] * 1e3, p[1] * 1e3);
+  gp << Block("cmd", cmd.str());
+  std::string paths = "$cmd using 1:2 with lines lw 2 lc rgb 'black' title 'commanded'";
+  std::string distances;
+  // Each run along the plan's path order: point k of the plan at abscissa k + 1, so that
+  // runs with skipped points stay aligned.
+  for (size_t m = 0; m < report.measured_squares.size(); ++m) {
+    const MeasuredSquareRun& r = report.measured_squares[m];
+    std::ostringstream body;
+    size_t j = 0;
+    for (size_t k = 0; k < plan.pose_ids.size() && j < r.run.reached.size(); ++k) {
+      if (std::find(r.missing_ids.begin(), r.missing_ids.end(), plan.pose_ids[k]) !=
+          r.missing_ids.end()) {
+        continue;
+      }
+      const Eigen::Vector3d& p = r.run.reached[j];
+      body << fmt::format("{} {:.6g} {:.6g} {:.6g}\n", k + 1, p[0] * 1e3, p[1] * 1e3,
+                          r.run.distance[j] * 1e3);
+      ++j;
+    }
+    gp << Block(fmt::format("m{}", m), body.str());
+    const std::string sep = m + 1 < report.measured_squares.size() ? ", " : "";
+    paths += fmt::format(
+        ", $m{} using 2:3 with linespoints pt 7 ps 0.4 lc rgb '{}' title '{} controller'", m,
+        kColours[m % 5], GnuplotText(r.label));
+    distances += fmt::format(
+        "$m{} using 1:4 with linespoints pt 7 ps 0.4 lc rgb '{}' title '{} (side RMS {:.2f} "
+        "mm)'{}",
+        m, kColours[m % 5], GnuplotText(r.label), r.run.rms * 1e3, sep);
+  }
+  gp << "set multiplot layout 1,2 title 'Square path under the Model 12 IK control law, "
+        "measured by the camera'\n"
+        "set grid\nset key outside bottom center font ',10' noenhanced\n";
+  gp << "set title 'path'\nset size ratio -1\n"
+        "set xlabel 'X_B (mm)' noenhanced\nset ylabel 'Y_B (mm)' noenhanced\n";
+  gp << "plot " << paths << "\n";
+  gp << "set title 'distance to the commanded side'\nset size noratio\n"
+        "set xlabel 'plan point (sides of "
+     << plan.options.points_per_side
+     << ")'\n"
+        "set ylabel 'distance (mm)'\n";
+  gp << fmt::format("set xtics {}\n", plan.options.points_per_side);
+  gp << "plot " << distances << "\n";
+  gp << "unset multiplot\n";
+  return RenderSvg(gp.str(), 1000, 560);
 }
 
 }  // namespace h4::host

@@ -1,6 +1,6 @@
 // The report's figures, as inline SVG drawn by gnuplot: joint residuals per held-out pose
 // and joint (before / after), residual histograms, the straightness runs' distances to
-// their fitted lines, and the square path commanded vs reached.
+// their fitted lines, and the square path commanded vs reached (simulated) or measured.
 #pragma once
 
 #include <string>
@@ -15,5 +15,7 @@ std::string HistogramFigure(const ValidationReport& report);
 std::string StraightnessFigure(const ValidationReport& report);
 /// Precondition: some model has a square run.
 std::string SquareFigure(const ValidationReport& report);
+/// Precondition: the report has measured square runs of `plan`.
+std::string MeasuredSquareFigure(const SquarePlan& plan, const ValidationReport& report);
 
 }  // namespace h4::host

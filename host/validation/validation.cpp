@@ -65,6 +65,31 @@ bool SameModel12(const Model12Parameters& a, const Model12Parameters& b) {
   return same;
 }
 
+// The measured square runs: the board poses through the Model 12 result's placement.
+std::vector<MeasuredSquareRun> MeasuredSquares(const ValidationInputs& in) {
+  std::vector<MeasuredSquareRun> runs;
+  if (in.square_measured.empty()) return runs;
+  if (!in.result12) {
+    throw std::invalid_argument(
+        "the measured square runs need a Model 12 result (--result12): its identified camera "
+        "and board placement X_BC, X_TE turn the measured board poses into end-effector poses");
+  }
+  if (!in.square_plan) {
+    throw std::invalid_argument(
+        "the measured square runs need the plan they were driven through (--square-plan)");
+  }
+  std::set<std::string> labels;
+  for (const MeasuredSquareInput& m : in.square_measured) {
+    if (!labels.insert(m.label).second) {
+      throw std::invalid_argument(
+          fmt::format("two measured square runs are labelled \"{}\"", m.label));
+    }
+    runs.push_back(MeasuredSquareOf(*in.square_plan, m.rows, in.result12->X_BC, in.result12->X_TE,
+                                    m.label, m.dataset_name));
+  }
+  return runs;
+}
+
 }  // namespace
 
 bool IsPaperScenario(const RobotDescription& apriori, const SimulationTruth& truth) {
@@ -91,6 +116,21 @@ ValidationReport Validate(const ValidationInputs& in) {
   if (in.rows.empty()) throw std::invalid_argument(in.dataset_name + ": no pose");
 
   ValidationReport report;
+  // The measured squares first: their input errors need no kinematics to be found.
+  report.measured_squares = MeasuredSquares(in);
+  for (const MeasuredSquareRun& m : report.measured_squares) {
+    if (!m.missing_ids.empty()) {
+      report.notes.push_back(fmt::format(
+          "square (measured), {} controller: {} of {} planned points missing from {} (pose ids "
+          "{}); the side errors use the others",
+          m.label, m.missing_ids.size(), m.planned, m.dataset_name, PoseIdList(m.missing_ids)));
+    }
+    if (m.unplanned_rows > 0) {
+      report.notes.push_back(fmt::format(
+          "square (measured), {} controller: {} rows of {} are not in the plan (ignored)", m.label,
+          m.unplanned_rows, m.dataset_name));
+    }
+  }
   const std::vector<DatasetRow> held = HeldOutRows(in, &report.heldout_ids);
 
   struct Candidate {
@@ -126,7 +166,10 @@ ValidationReport Validate(const ValidationInputs& in) {
     true_model = in.truth->robot.MakeModel();
   } else {
     report.notes.push_back(
-        "no truth file: the square path needs the true robot (simulation), not computed");
+        in.square_measured.empty()
+            ? "no truth file: the square path needs the true robot (simulation), not computed"
+            : "no truth file: the simulated square path needs the true robot, not computed "
+              "(the measured square runs are shown)");
   }
   if (in.straightness.empty()) {
     report.notes.push_back("no straightness run given: Table 4 not computed");

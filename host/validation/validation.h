@@ -1,8 +1,9 @@
 // The validation of a calibration (paper IV.D) in one place: from the a priori robot, the
 // identification results (Model 12 and/or 31), the dataset, the straightness runs and, in
 // simulation, the truth, it computes the analogues of the paper's Tables 3 and 4, the square
-// path under the Model 12 control law, the positioning error and the 4-DoF check. Pure: the
-// CLI reads the files, the report writer draws the answer.
+// path under the Model 12 control law (simulated with the truth, and/or measured by the
+// camera on the robot), the positioning error and the 4-DoF check. Pure: the CLI reads the
+// files, the report writer draws the answer.
 #pragma once
 
 #include <optional>
@@ -16,10 +17,19 @@
 #include "host/identification/prior_analysis.h"
 #include "host/simulation/truth_file.h"
 #include "host/validation/joint_residuals.h"
+#include "host/validation/measured_square.h"
 #include "host/validation/square_path.h"
 #include "host/validation/straightness.h"
 
 namespace h4::host {
+
+/// A square path driven on the robot and measured by the camera: the dataset collected with
+/// the square plan (same pose ids) by a controller (its label, e.g. "a priori").
+struct MeasuredSquareInput {
+  std::string label;
+  std::string dataset_name;  ///< for messages
+  std::vector<DatasetRow> rows;
+};
 
 struct ValidationInputs {
   RobotDescription apriori;
@@ -29,7 +39,9 @@ struct ValidationInputs {
   std::string dataset_name;                          ///< for messages
   std::vector<std::vector<JointsRow>> straightness;  ///< ruler runs (directions 1, 2, ...)
   std::optional<SimulationTruth> truth;              ///< simulation: the true robot
-  SquareOptions square;
+  SquareOptions square;                              ///< the simulated square
+  std::optional<SquarePlan> square_plan;             ///< commanded points of the measured runs
+  std::vector<MeasuredSquareInput> square_measured;  ///< needs square_plan and result12
 };
 
 /// One row of the Table 3 / Table 4 analogues: a priori, Model 12 or Model 31.
@@ -50,6 +62,8 @@ struct ValidationReport {
   bool has_truth = false;               ///< a truth file was given (simulation)
   /// The a priori is Table 2's and the truth Table 2's "Identified" rows.
   bool paper_scenario = false;
+  /// The measured square runs, in the order given; placement from the Model 12 result.
+  std::vector<MeasuredSquareRun> measured_squares;
   std::vector<std::string> notes;  ///< what was not computed and why
   /// Straightness improvement in percent for model m (index into models) and run r.
   double StraightnessImprovementPercent(size_t m, size_t r) const;
@@ -57,7 +71,9 @@ struct ValidationReport {
 
 /// Throws std::invalid_argument with a clear message on bad input: a result of the wrong
 /// model, a result whose held-out poses are missing from the dataset, no held-out pose, a
-/// square the robot cannot follow, a ruler run where forward kinematics fails.
+/// square the robot cannot follow, a ruler run where forward kinematics fails, measured
+/// square runs without their plan or without a Model 12 result (their placement), or with
+/// a side of fewer than 2 measured points.
 ValidationReport Validate(const ValidationInputs& inputs);
 
 /// True when `apriori` and `truth` are the paper's Table 2 rows (a priori, "Identified").

@@ -1,6 +1,6 @@
 // Tests of the HTML report (host/report): every section and figure is present, the page is
 // self-contained (no script, nothing fetched), the paper's numbers stand beside ours on the
-// paper scenario, and text is escaped.
+// paper scenario, text is escaped, and measured square runs bring their rows and figure.
 #include <regex>
 #include <string>
 
@@ -58,6 +58,45 @@ TEST(Report, WithoutTruthOrRulerRunsSaysWhatIsMissing) {
   EXPECT_EQ(Count(html, "<svg"), 2);
   EXPECT_EQ(Count(html, "Not computed"), 4);
   EXPECT_EQ(html.find("(paper)"), std::string::npos);
+}
+
+TEST(Report, MeasuredSquareRunsAddTheirRowsAndFigure) {
+  if (!GnuplotAvailable()) GTEST_SKIP() << "gnuplot missing: run scripts/setup";
+  const ValidationInputs plain = PaperValidationInputs();
+  const std::string without = FormatHtmlReport(plain, Validate(plain), "test");
+  EXPECT_EQ(without.find(std::string("<section id=\"") + kMeasuredSquareSection),
+            std::string::npos);
+
+  ValidationInputs in = WithMeasuredSquares(PaperValidationInputs());
+  in.square_measured[0].label = "a <priori>";  // escaped in the tables
+  const ValidationReport report = Validate(in);
+  const std::string html = FormatHtmlReport(in, report, "test");
+  for (const char* id : kReportSections) {
+    EXPECT_NE(html.find(std::string("<section id=\"") + id + "\">"), std::string::npos) << id;
+  }
+  EXPECT_NE(html.find(std::string("<section id=\"") + kMeasuredSquareSection + "\">"),
+            std::string::npos);
+  // Residuals, histograms, straightness, square, measured square.
+  EXPECT_EQ(Count(html, "<svg"), 5);
+  EXPECT_EQ(Count(html, "Not computed"), 0);
+  EXPECT_NE(html.find("<th>a &lt;priori&gt; (measured)</th>"), std::string::npos);
+  EXPECT_NE(html.find("<th>Model 12 (measured)</th>"), std::string::npos);
+  EXPECT_EQ(html.find("<priori>"), std::string::npos);
+  EXPECT_EQ(html.find("nan"), std::string::npos);
+}
+
+TEST(Report, MeasuredSquareRunsWithoutTruthStillFillTheSquareSection) {
+  if (!GnuplotAvailable()) GTEST_SKIP() << "gnuplot missing: run scripts/setup";
+  ValidationInputs in = WithMeasuredSquares(PaperValidationInputs());
+  in.truth.reset();
+  const std::string html = FormatHtmlReport(in, Validate(in), "test");
+  const size_t square = html.find("<section id=\"square\">");
+  ASSERT_NE(square, std::string::npos);
+  const size_t end = html.find("</section>", square);
+  EXPECT_NE(html.substr(square, end - square).find("Model 12 (measured)"), std::string::npos);
+  EXPECT_EQ(html.substr(square, end - square).find("Not computed"), std::string::npos);
+  EXPECT_NE(html.find(std::string("<section id=\"") + kMeasuredSquareSection + "\">"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -1,6 +1,10 @@
 // Fixtures of the validation and report tests (see validation_test_helpers.h).
 #include "tests/host/validation_test_helpers.h"
 
+#include <stdexcept>
+
+#include "host/kinematics/forward_kinematics.h"
+#include "host/kinematics/measurement_chain.h"
 #include "host/kinematics/model12.h"
 #include "host/simulation/paper_scenario.h"
 #include "host/simulation/pose_plan.h"
@@ -49,6 +53,47 @@ ValidationInputs PaperValidationInputs() {
     in.straightness.push_back(SimulateRulerRun(truth, line, 0.0, 1));
   }
   in.truth = SimulationTruth{truth, NoiseOptions{}, 1, 1};
+  return in;
+}
+
+SquarePlan DefaultSquarePlan() {
+  return SquarePlanFromPoses(SquarePlanPoses(SquareOptions{}, 1001), "square.csv");
+}
+
+std::vector<DatasetRow> CameraSeesSquare(const KinematicModel& controller,
+                                         const SimulatedRobot& truth, const SquarePlan& plan) {
+  // By hand, not through RunSquare's code: q = IK_controller(commanded), the true robot's
+  // pose FK_true(q) in B, and the true chain X_CT = inv(X_BC) * X_BE * inv(X_TE).
+  const auto true_model = truth.MakeModel();
+  const RigidTransform X_ModelB = truth.X_ModelB();
+  std::vector<DatasetRow> rows;
+  for (size_t k = 0; k < plan.commanded.size(); ++k) {
+    const Eigen::Vector3d& p = plan.commanded[k];
+    const EePose x(p[0], p[1], p[2], plan.options.theta);
+    const IkResult ik = controller.InverseKinematics(x);
+    if (!ik.ok()) throw std::invalid_argument("CameraSeesSquare: out of the controller's reach");
+    const FkResult fk = ForwardKinematics(*true_model, ik.q,
+                                          EePoseFromTransform(X_ModelB * TransformFromEePose(x)));
+    if (!fk.ok()) throw std::invalid_argument("CameraSeesSquare: " + fk.message);
+    const RigidTransform X_BE = X_ModelB.inverse() * TransformFromEePose(fk.x);
+    DatasetRow row;
+    row.pose_id = plan.pose_ids[k];
+    row.utime = 1700000000000000 + static_cast<int64_t>(k) * 1000000;
+    for (int i = 0; i < 4; ++i) row.q[static_cast<size_t>(i)] = ik.q[i];
+    row.X_CT = truth.X_BC.inverse() * X_BE * truth.X_TE.inverse();
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+ValidationInputs WithMeasuredSquares(ValidationInputs in) {
+  const Model12 apriori(in.apriori.model12, in.apriori.assembly);
+  const Model12 identified(in.truth->robot.model12, in.truth->robot.assembly);
+  in.square_plan = DefaultSquarePlan();
+  in.square_measured.push_back(
+      {"a priori", "sq_apriori.csv", CameraSeesSquare(apriori, in.truth->robot, *in.square_plan)});
+  in.square_measured.push_back(
+      {"Model 12", "sq_m12.csv", CameraSeesSquare(identified, in.truth->robot, *in.square_plan)});
   return in;
 }
 

@@ -1,6 +1,7 @@
 // Shared fixtures of the validation and report tests: the paper's scenario (Table 2
-// "Identified" as the true robot), its noise-free dataset, and an identification result
-// holding the true parameters (what a perfect identification would return).
+// "Identified" as the true robot), its noise-free dataset, an identification result
+// holding the true parameters (what a perfect identification would return), and square runs
+// as a noise-free camera would measure them.
 #pragma once
 
 #include "common/formats/identification_result.h"
@@ -20,5 +21,18 @@ IdentificationResult PerfectModel12Result(const SimulatedRobot& truth,
 /// Inputs of Validate on the paper scenario: the 81-pose grid without noise, the perfect
 /// Model 12 result, two ruler runs without noise, the truth.
 ValidationInputs PaperValidationInputs();
+
+/// The default square (SquareOptions{}) as `h4cal square-plan` writes it, ids from 1001.
+SquarePlan DefaultSquarePlan();
+
+/// What the camera sees when `controller` drives the true robot through `plan` with the
+/// Model 12 IK control law: a dataset row per plan point (same pose id) holding the true
+/// board pose X_CT = inv(X_BC) * X_BE * inv(X_TE), noise-free, and the commanded joints.
+std::vector<DatasetRow> CameraSeesSquare(const KinematicModel& controller,
+                                         const SimulatedRobot& truth, const SquarePlan& plan);
+
+/// `in` (with a truth) plus the default plan and two measured runs: "a priori" (in.apriori's
+/// Model 12 as controller) and "Model 12" (the truth's Model 12 as controller).
+ValidationInputs WithMeasuredSquares(ValidationInputs in);
 
 }  // namespace h4::host
