@@ -154,14 +154,27 @@ void Campaign::OnBoardPose(const h4msgs::board_pose_t& msg) {
   }
 }
 
-void Campaign::PublishTarget(const PlannedPose& pose, Clock::time_point now) {
+bool Campaign::PublishTarget(const PlannedPose& pose, Clock::time_point now) {
   h4msgs::robot_target_t target{};
   target.utime = NowUtime();
   target.pose_id = pose.pose_id;
-  target.target_type = h4msgs::robot_target_t::TARGET_POSE;
   for (int i = 0; i < 4; ++i) target.pose[i] = pose.x[i];
+  target.target_type = h4msgs::robot_target_t::TARGET_POSE;
+  if (options_.control_law) {
+    std::string why;
+    const std::optional<JointVector> q = options_.control_law(pose.x, &why);
+    if (!q) {
+      spdlog::warn("pose {}: skipped: the control law cannot reach it: {}", pose.pose_id, why);
+      skipped_.push_back({pose.pose_id, "control law: " + why});
+      NextPose();
+      return false;
+    }
+    target.target_type = h4msgs::robot_target_t::TARGET_JOINTS;
+    for (int i = 0; i < 4; ++i) target.joints[i] = (*q)[i];
+  }
   bus_.Publish(channels::kRobotTarget, target);
   target_sent_ = now;
+  return true;
 }
 
 void Campaign::NextPose() {
@@ -220,7 +233,7 @@ bool Campaign::Step(Clock::time_point now) {
     }
     case Phase::kSendTarget: {
       if (options_.mode == CampaignMode::kActive) {
-        PublishTarget(pose, now);
+        if (!PublishTarget(pose, now)) break;
       } else {
         spdlog::info("pose {}: move the robot to X={:.4f} Y={:.4f} Z={:.4f} m theta={:.2f} deg "
                      "and let it settle",

@@ -14,6 +14,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,14 +34,20 @@ enum class CampaignMode { kActive, kManual, kPassive };
 
 struct CampaignOptions {
   CampaignMode mode = CampaignMode::kActive;
-  int frame_count = 0;             ///< frames per measurement; 0: the camera's default (10)
-  double settle_timeout_s = 30.0;  ///< robot target to settled
-  double capture_timeout_s = 10.0; ///< capture request to board pose
-  int retries = 2;                 ///< extra attempts per pose before it is skipped
-  double pair_tolerance_s = 0.2;   ///< max |utime(joints) - utime(measurement)|
+  int frame_count = 0;              ///< frames per measurement; 0: the camera's default (10)
+  double settle_timeout_s = 30.0;   ///< robot target to settled
+  double capture_timeout_s = 10.0;  ///< capture request to board pose
+  int retries = 2;                  ///< extra attempts per pose before it is skipped
+  double pair_tolerance_s = 0.2;    ///< max |utime(joints) - utime(measurement)|
   /// Active mode: a target the robot has not acknowledged (its joint states still carry
   /// another pose id) after this long is sent again (a lost datagram, a robot started late).
   double target_resend_s = 1.0;
+  /// Active mode: when set, each planned pose is sent as joint targets computed by this
+  /// control law (e.g. Model 12 inverse kinematics of given parameters, the paper's square
+  /// experiment) instead of as a pose for the robot's own controller. An empty result means
+  /// unreachable: the pose is skipped with `why`.
+  using ControlLaw = std::function<std::optional<JointVector>(const EePose& x_B, std::string* why)>;
+  ControlLaw control_law;
 };
 
 struct SkippedPose {
@@ -92,7 +99,8 @@ class Campaign {
               std::string* why);
   /// A failed attempt at the current pose: retry from `phase`, or skip when none is left.
   void Retry(Phase phase, const std::string& why, Clock::time_point now);
-  void PublishTarget(const PlannedPose& pose, Clock::time_point now);
+  /// Sends the target of `pose`; false (pose skipped) when the control law cannot reach it.
+  bool PublishTarget(const PlannedPose& pose, Clock::time_point now);
   void NextPose();
   bool IsPlanned(int64_t pose_id) const;
   const PlannedPose& current() const { return plan_[pending_[next_]]; }
@@ -108,8 +116,8 @@ class Campaign {
   Clock::time_point target_sent_{};  ///< when the current target was last published
   int attempt_ = 0;
   Clock::time_point phase_start_{};
-  bool settled_seen_ = false;     ///< the robot reported settled at the current pose
-  bool moved_since_capture_ = false;  ///< manual mode: the operator moved the robot
+  bool settled_seen_ = false;                  ///< the robot reported settled at the current pose
+  bool moved_since_capture_ = false;           ///< manual mode: the operator moved the robot
   std::optional<std::string> failed_attempt_;  ///< set by a handler, acted on by Step()
   bool recorded_current_ = false;              ///< set by a handler, acted on by Step()
   bool camera_heard_ = false;

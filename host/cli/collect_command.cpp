@@ -14,6 +14,7 @@
 #include "host/campaign/campaign.h"
 #include "host/cli/commands.h"
 #include "host/cli/progress.h"
+#include "host/cli/robot_source.h"
 #include "host/cli/stop_signal.h"
 #include "host/cli/validation_inputs.h"
 #include "host/identification/identification.h"
@@ -33,7 +34,31 @@ struct CollectOptions {
   CampaignOptions campaign;
   std::string identify_dir;
   std::string robot_path;
+  std::string controller_path;
 };
+
+/// The paper's control law (IV.D, the square): Model 12 inverse kinematics with the
+/// parameters of an a priori robot.yaml or of a Model 12 result.
+CampaignOptions::ControlLaw LoadControlLaw(const std::string& path) {
+  RobotSourceOptions source;
+  const bool is_result = std::filesystem::path(path).extension() == ".json";
+  (is_result ? source.result_path : source.robot_path) = path;
+  if (is_result && ReadIdentificationResult(path).model != "12") {
+    throw std::invalid_argument(path + ": the control law uses Model 12 (paper IV.D); this is a " +
+                                "Model " + ReadIdentificationResult(path).model + " result");
+  }
+  std::string description;
+  auto robot = std::make_shared<IdentifiedRobot>(LoadRobot(source, &description));
+  spdlog::info("targets sent as joints from the inverse kinematics of {}", description);
+  return [robot](const EePose& x_B, std::string* why) -> std::optional<JointVector> {
+    const IkResult ik = robot->model->InverseKinematics(x_B);
+    if (!ik.ok()) {
+      *why = "inverse kinematics out of reach";
+      return std::nullopt;
+    }
+    return ik.q;
+  };
+}
 
 /// LCM's file:// provider, as fast as the log can be read (speed=0): the same messages in
 /// the same order as the live run, so the passive rule rebuilds the same rows.
@@ -98,6 +123,13 @@ void Run(CollectOptions options, const std::string& command_line) {
   const bool from_log = !options.from_log.empty();
   if (from_log && !options.lcm_url.empty()) {
     throw std::invalid_argument("--from-log reads the log itself: do not give --lcm-url");
+  }
+  if (!options.controller_path.empty()) {
+    if (options.manual || options.passive || from_log) {
+      throw std::invalid_argument("--controller drives the robot: not with --manual, --passive "
+                                  "or --from-log");
+    }
+    options.campaign.control_law = LoadControlLaw(options.controller_path);
   }
   options.campaign.mode = (options.passive || from_log) ? CampaignMode::kPassive
                           : options.manual              ? CampaignMode::kManual
@@ -164,6 +196,12 @@ void AddCollectCommand(CLI::App& app) {
                     "lcm-logplayer replay)");
   command->add_option("--from-log", options->from_log,
                       "Rebuild the dataset from an lcm-logger file (LCM's file:// provider)")
+      ->check(CLI::ExistingFile);
+  command
+      ->add_option("--controller", options->controller_path,
+                   "Send joint targets from the Model 12 inverse kinematics of this robot.yaml "
+                   "or Model 12 result.json (the paper's control law, e.g. for the square "
+                   "path; default: pose targets, the robot's own controller)")
       ->check(CLI::ExistingFile);
   command->add_option("--lcm-url", options->lcm_url,
                       "LCM provider URL (default $LCM_DEFAULT_URL, else udpm with ttl=0)");

@@ -15,6 +15,9 @@ void AddAllCommands(CLI::App& app) {
   AddValidateCommand(app);
   AddReportCommand(app);
   AddExportCommand(app);
+  AddCollectCommand(app);
+  AddSimRobotCommand(app);
+  AddSquarePlanCommand(app);
 }
 
 int ExitCode() { return g_exit_code; }

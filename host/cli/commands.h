@@ -17,6 +17,9 @@ void AddIkCommand(CLI::App& app);
 void AddValidateCommand(CLI::App& app);
 void AddReportCommand(CLI::App& app);
 void AddExportCommand(CLI::App& app);
+void AddCollectCommand(CLI::App& app);
+void AddSimRobotCommand(CLI::App& app);
+void AddSquarePlanCommand(CLI::App& app);
 
 /// The options a subcommand was given, as "--name value ..." (shown in the report).
 std::string ReportCommandLine(const CLI::App& command);

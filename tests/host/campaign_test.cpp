@@ -32,6 +32,8 @@ class ScriptedCell {
     bus_.Subscribe<h4msgs::robot_target_t>(channels::kRobotTarget,
                                            [this](const h4msgs::robot_target_t& t) {
                                              targets.push_back(t.pose_id);
+                                             target_types.push_back(t.target_type);
+                                             target_q1.push_back(t.joints[0]);
                                              if (targets_to_drop > 0) {
                                                --targets_to_drop;
                                                return;
@@ -86,6 +88,8 @@ class ScriptedCell {
   }
 
   std::vector<int64_t> targets;
+  std::vector<int8_t> target_types;
+  std::vector<double> target_q1;
   std::vector<int64_t> requests;
   std::set<int64_t> never_settles;
   bool silent_camera = false;
@@ -268,6 +272,30 @@ TEST_F(CampaignTest, SendsATargetAgainWhenTheRobotDidNotTakeIt) {
   EXPECT_EQ(ReadDatasetCsv(path_).size(), 2u);
   EXPECT_EQ(std::count(cell.targets.begin(), cell.targets.end(), 1), 3);
   EXPECT_EQ(campaign.counters().retries, 0) << "a resend is not a failed attempt";
+}
+
+TEST_F(CampaignTest, AControlLawSendsJointTargetsAndSkipsWhatItCannotReach) {
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  DatasetJournal journal(path_);
+  CampaignOptions options = FastOptions();
+  options.control_law = [](const EePose& x, std::string* why) -> std::optional<JointVector> {
+    if (x[0] > 0.025) {
+      *why = "out of reach";
+      return std::nullopt;
+    }
+    return JointVector(10.0 * x[0], 0.0, 0.0, 0.0);
+  };
+  Campaign campaign(bus, Plan(3), journal, options);  // X = 0.01, 0.02, 0.03
+  Run(bus, campaign, &cell);
+  EXPECT_EQ(cell.targets, (std::vector<int64_t>{1, 2}));
+  for (int8_t type : cell.target_types) EXPECT_EQ(type, h4msgs::robot_target_t::TARGET_JOINTS);
+  ASSERT_EQ(cell.target_q1.size(), 2u);
+  EXPECT_DOUBLE_EQ(cell.target_q1[1], 0.2);
+  ASSERT_EQ(campaign.skipped().size(), 1u);
+  EXPECT_EQ(campaign.skipped()[0].pose_id, 3);
+  EXPECT_NE(campaign.skipped()[0].reason.find("control law: out of reach"), std::string::npos);
+  EXPECT_EQ(ReadDatasetCsv(path_).size(), 2u);
 }
 
 TEST_F(CampaignTest, ResumesWithoutMeasuringRecordedPosesAgain) {
