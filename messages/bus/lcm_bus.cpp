@@ -21,13 +21,14 @@ std::string LcmBus::error() const {
   return good() ? std::string() : "lcm: cannot open '" + url_ + "' (bad URL or no multicast route)";
 }
 
-void LcmBus::Subscription::Receive(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-  handler(rbuf->data, rbuf->data_size);
+void LcmBus::Subscription::Receive(const lcm::ReceiveBuffer* rbuf, const std::string&,
+                                   Subscription* self) {
+  self->handler(rbuf->data, rbuf->data_size);
 }
 
 void LcmBus::SubscribeRaw(const std::string& channel, RawHandler handler) {
   subscriptions_.push_back(std::make_unique<Subscription>(Subscription{std::move(handler)}));
-  lcm_.subscribe(channel, &Subscription::Receive, subscriptions_.back().get());
+  lcm_.subscribeFunction(channel, &Subscription::Receive, subscriptions_.back().get());
 }
 
 int LcmBus::Handle(std::chrono::milliseconds timeout) {

@@ -72,7 +72,11 @@ class LcmBus {
   using RawHandler = std::function<void(const void* data, uint32_t size)>;
   struct Subscription {
     RawHandler handler;
-    void Receive(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+    // A plain function for lcm::LCM::subscribeFunction, not a member function: GCC 12
+    // miscompiles LCM's pointer-to-member dispatch under -fsanitize=vptr (the sanitizer
+    // pass; see cmake/H4Sanitizers.cmake).
+    static void Receive(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
+                        Subscription* self);
   };
   void SubscribeRaw(const std::string& channel, RawHandler handler);
   void OnDecodeFailure(const std::string& channel, const char* type, uint32_t size);

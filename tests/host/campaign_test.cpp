@@ -373,7 +373,13 @@ TEST_F(CampaignTest, PassiveListenerRebuildsTheRowsOfTheLiveRunFromItsMessages) 
         log->push_back({channel, std::vector<uint8_t>(data, data + rbuf->data_size)});
       }
     } recorder{&log};
-    bus.lcm().subscribe(".*", &Recorder::Receive, &recorder);
+    // subscribeFunction, not subscribe(&Recorder::Receive): see the note in lcm_bus.h.
+    bus.lcm().subscribeFunction(
+        ".*",
+        +[](const lcm::ReceiveBuffer* rbuf, const std::string& channel, Recorder* r) {
+          r->Receive(rbuf, channel);
+        },
+        &recorder);
     ScriptedCell cell(bus);
     cell.camera_status = [](int64_t id, int attempt) -> int8_t {
       return (id == 3 && attempt == 0) ? h4msgs::board_pose_t::STATUS_MOVED
