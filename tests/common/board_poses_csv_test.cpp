@@ -12,11 +12,11 @@
 namespace h4 {
 namespace {
 
-const std::string kHeader = "image,x,y,z,qw,qx,qy,qz,corners,rms_px,sigma_t,sigma_r\n";
+const std::string kPosesHeader = "image,x,y,z,qw,qx,qy,qz,corners,rms_px,sigma_t,sigma_r\n";
 
 TEST(BoardPosesCsv, ReadsAPoseRowAndAnEmptyRow) {
   const std::vector<BoardPoseRow> rows =
-      ParseBoardPosesCsv(kHeader +
+      ParseBoardPosesCsv(kPosesHeader +
                              "img_000.png,0.01,-0.02,0.8,0,0,0,1,144,0.21,0.00005,0.0004\n"
                              "img_001.png,,,,,,,,0,,,\n",
                          "b.csv");
@@ -64,7 +64,7 @@ TEST(BoardPosesCsv, RoundTripIsExact) {
     EXPECT_EQ(back[i].sigma_t, rows[i].sigma_t);
     EXPECT_EQ(back[i].sigma_r, rows[i].sigma_r);
   }
-  EXPECT_EQ(FormatBoardPosesCsv({rows[1]}), kHeader + "b.png,,,,,,,,0,,,\n");
+  EXPECT_EQ(FormatBoardPosesCsv({rows[1]}), kPosesHeader + "b.png,,,,,,,,0,,,\n");
 }
 
 TEST(BoardPosesCsvErrors, NameLineAndField) {
@@ -73,27 +73,29 @@ TEST(BoardPosesCsvErrors, NameLineAndField) {
       "b.csv", 1, "sigma_r", "missing column"));
   // A pose with one field left empty is neither a pose nor "no board".
   EXPECT_TRUE(
-      FailsWith([] { ParseBoardPosesCsv(kHeader + "a.png,0,0,1,1,0,,0,4,0.1,,\n", "b.csv"); },
+      FailsWith([] { ParseBoardPosesCsv(kPosesHeader + "a.png,0,0,1,1,0,,0,4,0.1,,\n", "b.csv"); },
                 "b.csv", 2, "qy", "all empty"));
-  EXPECT_TRUE(FailsWith([] { ParseBoardPosesCsv(kHeader + ",0,0,1,1,0,0,0,4,0.1,,\n", "b.csv"); },
-                        "b.csv", 2, "image", "expected a value"));
   EXPECT_TRUE(
-      FailsWith([] { ParseBoardPosesCsv(kHeader + "a.png,0,0,1,2,0,0,0,4,0.1,,\n", "b.csv"); },
+      FailsWith([] { ParseBoardPosesCsv(kPosesHeader + ",0,0,1,1,0,0,0,4,0.1,,\n", "b.csv"); },
+                "b.csv", 2, "image", "expected a value"));
+  EXPECT_TRUE(
+      FailsWith([] { ParseBoardPosesCsv(kPosesHeader + "a.png,0,0,1,2,0,0,0,4,0.1,,\n", "b.csv"); },
                 "b.csv", 2, "qw,qx,qy,qz", "unit quaternion"));
+  EXPECT_TRUE(FailsWith(
+      [] { ParseBoardPosesCsv(kPosesHeader + "a.png,0,0,1,1,0,0,0,-4,0.1,,\n", "b.csv"); }, "b.csv",
+      2, "corners", "non-negative"));
+  EXPECT_TRUE(FailsWith(
+      [] { ParseBoardPosesCsv(kPosesHeader + "a.png,0,0,1,1,0,0,0,4.5,0.1,,\n", "b.csv"); },
+      "b.csv", 2, "corners", "expected an integer"));
   EXPECT_TRUE(
-      FailsWith([] { ParseBoardPosesCsv(kHeader + "a.png,0,0,1,1,0,0,0,-4,0.1,,\n", "b.csv"); },
-                "b.csv", 2, "corners", "non-negative"));
-  EXPECT_TRUE(
-      FailsWith([] { ParseBoardPosesCsv(kHeader + "a.png,0,0,1,1,0,0,0,4.5,0.1,,\n", "b.csv"); },
-                "b.csv", 2, "corners", "expected an integer"));
-  EXPECT_TRUE(FailsWith([] { ParseBoardPosesCsv(kHeader + "a.png,0,0,1,1,0,0,0,4,,,\n", "b.csv"); },
-                        "b.csv", 2, "rms_px", "reprojection RMS"));
-  EXPECT_TRUE(
-      FailsWith([] { ParseBoardPosesCsv(kHeader + "a.png,0,0,1,1,0,0,0,4,-0.1,,\n", "b.csv"); },
-                "b.csv", 2, "rms_px", "non-negative"));
-  EXPECT_TRUE(
-      FailsWith([] { ParseBoardPosesCsv(kHeader + "a.png,0,0,1,1,0,0,0,4,0.1,0,0.1\n", "b.csv"); },
-                "b.csv", 2, "sigma_t", "positive"));
+      FailsWith([] { ParseBoardPosesCsv(kPosesHeader + "a.png,0,0,1,1,0,0,0,4,,,\n", "b.csv"); },
+                "b.csv", 2, "rms_px", "reprojection RMS"));
+  EXPECT_TRUE(FailsWith(
+      [] { ParseBoardPosesCsv(kPosesHeader + "a.png,0,0,1,1,0,0,0,4,-0.1,,\n", "b.csv"); }, "b.csv",
+      2, "rms_px", "non-negative"));
+  EXPECT_TRUE(FailsWith(
+      [] { ParseBoardPosesCsv(kPosesHeader + "a.png,0,0,1,1,0,0,0,4,0.1,0,0.1\n", "b.csv"); },
+      "b.csv", 2, "sigma_t", "positive"));
 }
 
 }  // namespace

@@ -35,7 +35,7 @@ distortion_coefficients: !!opencv-matrix
 avg_reprojection_error: 2.5000000000000000e-01
 )";
 
-std::string With(const std::string& from, const std::string& to) {
+std::string CameraFileWith(const std::string& from, const std::string& to) {
   std::string text = kOpenCvFile;
   const size_t at = text.find(from);
   EXPECT_NE(at, std::string::npos) << from;
@@ -68,7 +68,7 @@ TEST(CameraYaml, AcceptsCrLfLineEndingsWithTheSameLineNumbers) {
 }
 
 TEST(CameraYaml, AcceptsPlainYamlAndRowVectorsAndNoRmsKey) {
-  std::string text = With("%YAML:1.0\n---\n", "");
+  std::string text = CameraFileWith("%YAML:1.0\n---\n", "");
   text = text.substr(0, text.find("avg_reprojection_error"));
   const size_t rows = text.find("rows: 5");
   text.replace(rows, 7, "rows: 1");
@@ -100,46 +100,49 @@ TEST(CameraYaml, RoundTripIsExact) {
 
 TEST(CameraYamlErrors, NameLineAndField) {
   // Line numbers are those of the file, the %YAML line included.
+  EXPECT_TRUE(FailsWith(
+      [] { ParseCameraYaml(CameraFileWith("image_width: 1456", "image_width: 0"), "c.yaml"); },
+      "c.yaml", 4, "image_width", "positive image size"));
+  EXPECT_TRUE(FailsWith(
+      [] { ParseCameraYaml(CameraFileWith("image_height: 1088", "image_height: 10.5"), "c.yaml"); },
+      "c.yaml", 5, "image_height", "expected an integer"));
   EXPECT_TRUE(
-      FailsWith([] { ParseCameraYaml(With("image_width: 1456", "image_width: 0"), "c.yaml"); },
-                "c.yaml", 4, "image_width", "positive image size"));
+      FailsWith([] { ParseCameraYaml(CameraFileWith("image_height: 1088\n", ""), "c.yaml"); },
+                "c.yaml", 0, "image_height", "missing key"));
+  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(CameraFileWith("dt: d", "dt: u"), "c.yaml"); },
+                        "c.yaml", 9, "camera_matrix.dt", "expected 'd' or 'f'"));
   EXPECT_TRUE(
-      FailsWith([] { ParseCameraYaml(With("image_height: 1088", "image_height: 10.5"), "c.yaml"); },
-                "c.yaml", 5, "image_height", "expected an integer"));
-  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(With("image_height: 1088\n", ""), "c.yaml"); },
-                        "c.yaml", 0, "image_height", "missing key"));
-  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(With("dt: d", "dt: u"), "c.yaml"); }, "c.yaml", 9,
-                        "camera_matrix.dt", "expected 'd' or 'f'"));
-  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(With("0., 0., 1. ]", "0., 1. ]"), "c.yaml"); },
-                        "c.yaml", 10, "camera_matrix.data", "list of 9 numbers, got a list of 8"));
-  EXPECT_TRUE(
-      FailsWith([] { ParseCameraYaml(With("544., 0., 0., 1.", "544., 0., 0., 2."), "c.yaml"); },
-                "c.yaml", 11, "camera_matrix.data[8]", "expected 1"));
-  EXPECT_TRUE(
-      FailsWith([] { ParseCameraYaml(With("1.2352500000000000e+03", "-1.23525e+03"), "c.yaml"); },
-                "c.yaml", 11, "camera_matrix.data[4]", "positive focal length"));
-  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(With("544.,", "oops,"), "c.yaml"); }, "c.yaml", 11,
-                        "camera_matrix.data[5]", "expected a number, got 'oops'"));
-  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(With("rows: 5", "rows: 6"), "c.yaml"); }, "c.yaml", 16,
-                        "distortion_coefficients.data", "list of 6"));
-  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(With("dt: d", "dtype: d"), "c.yaml"); }, "c.yaml", 9,
-                        "camera_matrix.dtype", "unknown key"));
-  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(With("rows: 3", "rows: 2"), "c.yaml"); }, "c.yaml", 10,
-                        "camera_matrix.data", "list of 6"));
+      FailsWith([] { ParseCameraYaml(CameraFileWith("0., 0., 1. ]", "0., 1. ]"), "c.yaml"); },
+                "c.yaml", 10, "camera_matrix.data", "list of 9 numbers, got a list of 8"));
+  EXPECT_TRUE(FailsWith(
+      [] { ParseCameraYaml(CameraFileWith("544., 0., 0., 1.", "544., 0., 0., 2."), "c.yaml"); },
+      "c.yaml", 11, "camera_matrix.data[8]", "expected 1"));
+  EXPECT_TRUE(FailsWith(
+      [] { ParseCameraYaml(CameraFileWith("1.2352500000000000e+03", "-1.23525e+03"), "c.yaml"); },
+      "c.yaml", 11, "camera_matrix.data[4]", "positive focal length"));
+  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(CameraFileWith("544.,", "oops,"), "c.yaml"); },
+                        "c.yaml", 11, "camera_matrix.data[5]", "expected a number, got 'oops'"));
+  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(CameraFileWith("rows: 5", "rows: 6"), "c.yaml"); },
+                        "c.yaml", 16, "distortion_coefficients.data", "list of 6"));
+  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(CameraFileWith("dt: d", "dtype: d"), "c.yaml"); },
+                        "c.yaml", 9, "camera_matrix.dtype", "unknown key"));
+  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(CameraFileWith("rows: 3", "rows: 2"), "c.yaml"); },
+                        "c.yaml", 10, "camera_matrix.data", "list of 6"));
   EXPECT_TRUE(FailsWith(
       [] {
-        ParseCameraYaml(
-            With("avg_reprojection_error: 2.5000000000000000e-01", "avg_reprojection_error: -1"),
-            "c.yaml");
+        ParseCameraYaml(CameraFileWith("avg_reprojection_error: 2.5000000000000000e-01",
+                                       "avg_reprojection_error: -1"),
+                        "c.yaml");
       },
       "c.yaml", 18, "avg_reprojection_error", "non-negative"));
-  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(With("   cols: 3", "     cols: 3"), "c.yaml"); },
-                        "c.yaml", 8, "", "invalid YAML"));
+  EXPECT_TRUE(
+      FailsWith([] { ParseCameraYaml(CameraFileWith("   cols: 3", "     cols: 3"), "c.yaml"); },
+                "c.yaml", 8, "", "invalid YAML"));
 }
 
 TEST(CameraYamlErrors, DistortionCountMustBe4Or5Or8) {
   // 2 x 2 holds 4 values but is not a vector.
-  const std::string text = With("rows: 5\n   cols: 1", "rows: 2\n   cols: 2");
+  const std::string text = CameraFileWith("rows: 5\n   cols: 1", "rows: 2\n   cols: 2");
   std::string four = text;
   four.replace(four.find(", 0. ]"), 6, " ]");
   EXPECT_TRUE(FailsWith([&] { ParseCameraYaml(four, "c.yaml"); }, "c.yaml", 13,

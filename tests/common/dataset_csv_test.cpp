@@ -14,10 +14,10 @@
 namespace h4 {
 namespace {
 
-const std::string kHeader = "pose_id,utime,q1,q2,q3,q4,x,y,z,qw,qx,qy,qz";
+const std::string kDatasetHeader = "pose_id,utime,q1,q2,q3,q4,x,y,z,qw,qx,qy,qz";
 
 // Line 1 header, line 2 a good row, line 3 the row under test.
-std::string WithRow(const std::string& row, const std::string& header = kHeader) {
+std::string WithRow(const std::string& row, const std::string& header = kDatasetHeader) {
   return header + "\n0,100,0,0,0,0,0,0,1,1,0,0,0\n" + row + "\n";
 }
 
@@ -53,7 +53,7 @@ TEST(DatasetCsv, AcceptsEitherQuaternionSignAndNormWithinTolerance) {
 }
 
 TEST(DatasetCsv, ReadsSetAndSigmaColumns) {
-  const std::string text = kHeader +
+  const std::string text = kDatasetHeader +
                            ",set,sigma_t,sigma_r\n"
                            "1,5,0,0,0,0,0,0,1,1,0,0,0,calib,0.0001,0.002\n"
                            "2,6,0,0,0,0,0,0,1,1,0,0,0,valid,,\n";
@@ -121,7 +121,7 @@ TEST(DatasetCsv, RoundTripThroughAFile) {
 }
 
 TEST(DatasetCsv, HeaderAndLineForAppendingWriters) {
-  EXPECT_EQ(DatasetCsvHeader(true, true), kHeader + ",set,sigma_t,sigma_r");
+  EXPECT_EQ(DatasetCsvHeader(true, true), kDatasetHeader + ",set,sigma_t,sigma_r");
   DatasetRow r;
   r.pose_id = 4;
   r.utime = 9;
@@ -184,7 +184,7 @@ TEST(DatasetCsvErrors, DuplicatePoseId) {
 }
 
 TEST(DatasetCsvErrors, UnknownSet) {
-  const std::string header = kHeader + ",set";
+  const std::string header = kDatasetHeader + ",set";
   EXPECT_TRUE(
       FailsWith([&] { ParseDatasetCsv(header + "\n1,100,0,0,0,0,0,0,1,1,0,0,0,train\n", "d.csv"); },
                 "d.csv", 2, "set", "expected 'calib' or 'valid', got 'train'"));
@@ -194,7 +194,7 @@ TEST(DatasetCsvErrors, UnknownSet) {
 }
 
 TEST(DatasetCsvErrors, NonPositiveSigma) {
-  const std::string header = kHeader + ",sigma_t,sigma_r";
+  const std::string header = kDatasetHeader + ",sigma_t,sigma_r";
   EXPECT_TRUE(FailsWith(
       [&] { ParseDatasetCsv(header + "\n1,100,0,0,0,0,0,0,1,1,0,0,0,-0.001,0.01\n", "d.csv"); },
       "d.csv", 2, "sigma_t", "positive"));

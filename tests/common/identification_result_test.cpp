@@ -30,7 +30,7 @@ const std::string kResult = R"({
 )";
 
 // kResult with `from` replaced by `to`.
-std::string With(const std::string& from, const std::string& to) {
+std::string ResultWith(const std::string& from, const std::string& to) {
   std::string text = kResult;
   const size_t at = text.find(from);
   EXPECT_NE(at, std::string::npos) << from;
@@ -140,46 +140,51 @@ TEST(IdentificationResultErrors, NameTheJsonPath) {
     return FailsWith([&] { ParseIdentificationResult(text, "r.json"); }, "r.json", 0, field,
                      expected);
   };
-  EXPECT_TRUE(fails(With("\"12\"", "\"13\""), "model", "expected \"12\" or \"31\", got \"13\""));
-  EXPECT_TRUE(fails(With("\"12\"", "12"), "model", "expected a string"));
-  EXPECT_TRUE(fails(With("\"value\": 0.0610", "\"value\": \"0.0610\""), "parameters[0].value",
+  EXPECT_TRUE(
+      fails(ResultWith("\"12\"", "\"13\""), "model", "expected \"12\" or \"31\", got \"13\""));
+  EXPECT_TRUE(fails(ResultWith("\"12\"", "12"), "model", "expected a string"));
+  EXPECT_TRUE(fails(ResultWith("\"value\": 0.0610", "\"value\": \"0.0610\""), "parameters[0].value",
                     "expected a number"));
-  EXPECT_TRUE(fails(With("\"apriori\": 0.06, ", ""), "parameters[0].apriori", "missing key"));
-  EXPECT_TRUE(fails(With("\"status\": \"identified\"", "\"status\": \"free\""),
+  EXPECT_TRUE(fails(ResultWith("\"apriori\": 0.06, ", ""), "parameters[0].apriori", "missing key"));
+  EXPECT_TRUE(fails(ResultWith("\"status\": \"identified\"", "\"status\": \"free\""),
                     "parameters[0].status", "expected \"identified\" or \"fixed\""));
-  EXPECT_TRUE(
-      fails(With("\"std\": null, \"status\": \"fixed\"}", "\"std\": 0.1, \"status\": \"fixed\"}"),
-            "parameters[1].std", "null for a fixed parameter"));
-  EXPECT_TRUE(
-      fails(With("\"std\": 0.0001", "\"std\": -0.0001"), "parameters[0].std", "non-negative"));
-  EXPECT_TRUE(
-      fails(With("{\"name\": \"d\"", "{\"name\": \"h\""), "parameters[1].name", "given twice"));
-  EXPECT_TRUE(
-      fails(With("[0, 0, -1.05]", "[0, -1.05]"), "X_BC.translation", "expected an array of 3"));
-  EXPECT_TRUE(fails(With("\"rpy\": [0, 0, 0]}", "\"rpy\": [0, 0, null]}"), "X_TE.rpy[2]",
+  EXPECT_TRUE(fails(
+      ResultWith("\"std\": null, \"status\": \"fixed\"}", "\"std\": 0.1, \"status\": \"fixed\"}"),
+      "parameters[1].std", "null for a fixed parameter"));
+  EXPECT_TRUE(fails(ResultWith("\"std\": 0.0001", "\"std\": -0.0001"), "parameters[0].std",
+                    "non-negative"));
+  EXPECT_TRUE(fails(ResultWith("{\"name\": \"d\"", "{\"name\": \"h\""), "parameters[1].name",
+                    "given twice"));
+  EXPECT_TRUE(fails(ResultWith("[0, 0, -1.05]", "[0, -1.05]"), "X_BC.translation",
+                    "expected an array of 3"));
+  EXPECT_TRUE(fails(ResultWith("\"rpy\": [0, 0, 0]}", "\"rpy\": [0, 0, null]}"), "X_TE.rpy[2]",
                     "expected a number, got null"));
-  EXPECT_TRUE(fails(With("{\"name\": \"X_TE.tz\", \"reason\"", "{\"name\": \"h\", \"reason\""),
-                    "fixed[0].name", "status \"fixed\""));
-  EXPECT_TRUE(fails(With("0.003, 0.004]", "0.003]"), "residuals.calib_rms_rad", "array of 4"));
-  EXPECT_TRUE(fails(With("0.0011,", "-0.0011,"), "residuals.valid_rms_rad[0]", "non-negative"));
   EXPECT_TRUE(
-      fails(With("\"valid\": [4]", "\"valid\": [4.5]"), "poses.valid[0]", "expected an integer"));
-  EXPECT_TRUE(fails(With(", \"rejected\": []", ""), "poses.rejected", "missing key"));
-  EXPECT_TRUE(fails(With("\"model\": \"12\",", "\"model\": \"12\", \"log\": [1],"), "log[0]",
+      fails(ResultWith("{\"name\": \"X_TE.tz\", \"reason\"", "{\"name\": \"h\", \"reason\""),
+            "fixed[0].name", "status \"fixed\""));
+  EXPECT_TRUE(
+      fails(ResultWith("0.003, 0.004]", "0.003]"), "residuals.calib_rms_rad", "array of 4"));
+  EXPECT_TRUE(
+      fails(ResultWith("0.0011,", "-0.0011,"), "residuals.valid_rms_rad[0]", "non-negative"));
+  EXPECT_TRUE(fails(ResultWith("\"valid\": [4]", "\"valid\": [4.5]"), "poses.valid[0]",
+                    "expected an integer"));
+  EXPECT_TRUE(fails(ResultWith(", \"rejected\": []", ""), "poses.rejected", "missing key"));
+  EXPECT_TRUE(fails(ResultWith("\"model\": \"12\",", "\"model\": \"12\", \"log\": [1],"), "log[0]",
                     "expected a string"));
-  EXPECT_TRUE(fails(With("\"model\": \"12\",",
-                         "\"model\": \"12\", \"correlations\": [{\"a\": \"h\", \"b\": \"R\", "
-                         "\"correlation\": 1.5}],"),
+  EXPECT_TRUE(fails(ResultWith("\"model\": \"12\",",
+                               "\"model\": \"12\", \"correlations\": [{\"a\": \"h\", \"b\": \"R\", "
+                               "\"correlation\": 1.5}],"),
                     "correlations[0].correlation", "[-1, 1]"));
   EXPECT_TRUE(fails("[1, 2]", "", "expected an object"));
 }
 
 TEST(IdentificationResultErrors, SyntaxErrorNamesTheLine) {
   EXPECT_TRUE(FailsWith(
-      [] { ParseIdentificationResult(With("\"valid\": [4]", "\"valid\": [4,]"), "r.json"); },
+      [] { ParseIdentificationResult(ResultWith("\"valid\": [4]", "\"valid\": [4,]"), "r.json"); },
       "r.json", 13, "", "invalid JSON"));
-  EXPECT_TRUE(FailsWith([] { ParseIdentificationResult(With("0.0610,", "0.0610,,"), "r.json"); },
-                        "r.json", 4, "", "invalid JSON"));
+  EXPECT_TRUE(
+      FailsWith([] { ParseIdentificationResult(ResultWith("0.0610,", "0.0610,,"), "r.json"); },
+                "r.json", 4, "", "invalid JSON"));
   EXPECT_TRUE(
       FailsWith([] { ParseIdentificationResult("", "r.json"); }, "r.json", 1, "", "invalid JSON"));
   const std::string path = TempPath("absent.json");

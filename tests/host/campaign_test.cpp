@@ -10,7 +10,6 @@
 #include <set>
 
 #include <gtest/gtest.h>
-
 #include <h4msgs/camera_status_t.hpp>
 #include <h4msgs/capture_request_t.hpp>
 #include <h4msgs/robot_target_t.hpp>
@@ -41,11 +40,11 @@ class ScriptedCell {
                                              pose_id_ = t.pose_id;
                                              target_time_ = Clock::now();
                                            });
-    bus_.Subscribe<h4msgs::capture_request_t>(
-        channels::kCaptureRequest, [this](const h4msgs::capture_request_t& r) {
-          requests.push_back(r.pose_id);
-          pending_requests_.push_back(r.pose_id);
-        });
+    bus_.Subscribe<h4msgs::capture_request_t>(channels::kCaptureRequest,
+                                              [this](const h4msgs::capture_request_t& r) {
+                                                requests.push_back(r.pose_id);
+                                                pending_requests_.push_back(r.pose_id);
+                                              });
   }
 
   /// Joint values of a pose: distinct per pose so that pairing mistakes show.
@@ -289,7 +288,10 @@ TEST_F(CampaignTest, AControlLawSendsJointTargetsAndSkipsWhatItCannotReach) {
   Campaign campaign(bus, Plan(3), journal, options);  // X = 0.01, 0.02, 0.03
   Run(bus, campaign, &cell);
   EXPECT_EQ(cell.targets, (std::vector<int64_t>{1, 2}));
-  for (int8_t type : cell.target_types) EXPECT_EQ(type, h4msgs::robot_target_t::TARGET_JOINTS);
+  // lcm-gen 1.3.1 declares its constants `static const` without a definition: a copy,
+  // because EXPECT_EQ binds a reference (an ODR use that fails to link unoptimised).
+  const int8_t joints_type = h4msgs::robot_target_t::TARGET_JOINTS;
+  for (int8_t type : cell.target_types) EXPECT_EQ(type, joints_type);
   ASSERT_EQ(cell.target_q1.size(), 2u);
   EXPECT_DOUBLE_EQ(cell.target_q1[1], 0.2);
   ASSERT_EQ(campaign.skipped().size(), 1u);
@@ -349,7 +351,8 @@ TEST_F(CampaignTest, CountsGarbageAndImpossibleMessagesWithoutUsingThem) {
   });
   EXPECT_TRUE(campaign.finished());
   EXPECT_EQ(bus.decode_failures(), 1);
-  EXPECT_EQ(campaign.counters().unexpected_pose_ids, 2) << "pose 1 not yet awaited, pose 99 unplanned";
+  EXPECT_EQ(campaign.counters().unexpected_pose_ids, 2)
+      << "pose 1 not yet awaited, pose 99 unplanned";
   EXPECT_EQ(campaign.counters().impossible_values, 1) << "the 3-joint state";
   const std::vector<DatasetRow> rows = ReadDatasetCsv(path_);
   ASSERT_EQ(rows.size(), 2u);

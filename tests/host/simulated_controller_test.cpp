@@ -20,7 +20,7 @@ namespace {
 
 constexpr double kDt = 0.01;  // s, the node's 100 Hz step
 
-SimulatedRobot PaperTruth() {
+SimulatedRobot PaperTruthWithPlacement() {
   PerturbationOptions placement;
   placement.seed = 1;
   return MakeTrueRobot(PaperAprioriRobot(), TrueGeometry::kPaperTable2, placement);
@@ -36,7 +36,7 @@ class SimulatedControllerTest : public ::testing::Test {
  protected:
   SimulatedControllerTest()
       : apriori_(PaperAprioriRobot()),
-        truth_(PaperTruth()),
+        truth_(PaperTruthWithPlacement()),
         controller_(truth_, apriori_.model12, apriori_.assembly) {}
 
   // Steps until settled (or `limit_s`); returns the time taken, s.
@@ -252,8 +252,9 @@ TEST(SimulatedControllerOptions, RejectsNonPositiveSpeed) {
   std::string why;
   EXPECT_FALSE(options.IsValid(&why));
   EXPECT_NE(why.find("joint speed"), std::string::npos);
-  EXPECT_THROW(SimulatedController(PaperTruth(), kPaperAprioriModel12, Assembly{}, options),
-               std::invalid_argument);
+  EXPECT_THROW(
+      SimulatedController(PaperTruthWithPlacement(), kPaperAprioriModel12, Assembly{}, options),
+      std::invalid_argument);
 }
 
 }  // namespace

@@ -10,8 +10,13 @@
 #   - a campaign killed (SIGKILL) in the middle and started again ends with every pose
 #     exactly once.
 #   live_campaign_test.sh H4CAL H4CAM SOURCE_DIR WORK_DIR
+# Time limits (capture and settle timeouts, waits) are multiplied by $H4_TEST_TIME_SCALE
+# (default 1; the sanitizer build sets it, cmake/H4Sanitizers.cmake: its renderer is ~7x
+# slower, so a 10-frame capture takes longer than the plain build's 10 s capture timeout).
 set -euo pipefail
 h4cal=$(realpath "$1") h4cam=$(realpath "$2") src=$(realpath "$3") dir=$(realpath -m "$4")
+scale=${H4_TEST_TIME_SCALE:-1}
+[[ "$scale" =~ ^[1-9][0-9]*$ ]] || { echo "FAIL: H4_TEST_TIME_SCALE='$scale' is not a positive integer"; exit 1; }
 
 if [ -z "${H4_IN_NETNS:-}" ]; then
   if ! unshare -rn true 2> /dev/null; then
@@ -61,7 +66,8 @@ camera=$!; pids+=($camera)
 lcm-logger --quiet -f campaign.lcmlog > logger.log 2>&1 &
 logger=$!; pids+=($logger)
 
-collect=("$h4cal" collect --plan plan.csv --settle-timeout 20 --capture-timeout 10)
+collect=("$h4cal" collect --plan plan.csv --settle-timeout $((20 * scale))
+         --capture-timeout $((10 * scale)))
 "${collect[@]}" --out dataset.csv > collect.log 2>&1 || fail "collect exited $?"
 [ "$(rows dataset.csv)" -eq 12 ] || fail "dataset.csv has $(rows dataset.csv) rows, expected 12"
 kill -INT $logger; wait $logger || true
@@ -69,7 +75,7 @@ kill -INT $logger; wait $logger || true
 # Killed in the middle, then started again: every pose exactly once.
 "${collect[@]}" --out resumed.csv > resumed_1.log 2>&1 &
 victim=$!; pids+=($victim)
-for _ in $(seq 600); do [ "$(rows resumed.csv)" -ge 5 ] && break; sleep 0.1; done
+for _ in $(seq $((600 * scale))); do [ "$(rows resumed.csv)" -ge 5 ] && break; sleep 0.1; done
 kill -KILL $victim; wait $victim 2> /dev/null || true
 before=$(rows resumed.csv)
 [ "$before" -ge 5 ] && [ "$before" -lt 12 ] || fail "kill came at $before rows"
@@ -92,7 +98,7 @@ cmp dataset.csv from_log.csv || fail "--from-log rebuilt other rows"
 listener=$!; pids+=($listener)
 sleep 0.5
 lcm-logplayer -s 4 campaign.lcmlog > logplayer.log 2>&1 || fail "lcm-logplayer exited $?"
-for _ in $(seq 100); do kill -0 $listener 2> /dev/null || break; sleep 0.1; done
+for _ in $(seq $((100 * scale))); do kill -0 $listener 2> /dev/null || break; sleep 0.1; done
 kill -INT $listener 2> /dev/null || true
 wait $listener || true
 pids=()
