@@ -23,6 +23,7 @@
 #include "firmware/service/service_node.h"
 #include "messages/bus/lcm_bus.h"
 #include "messages/channels.h"
+#include "tests/firmware/program_command.h"
 
 extern char** environ;
 
@@ -52,14 +53,18 @@ TEST(CameraServiceProcessTest, ChildInNamespace) {
   bus.Subscribe<h4msgs::camera_status_t>(
       channels::kCameraStatus, [&](const h4msgs::camera_status_t& m) { statuses.push_back(m); });
 
-  std::vector<std::string> args = {binary,      "run", "--source",    "sim",
-                                   "--board",   board, "--camera",    camera,
-                                   "--lcm-url", kUrl,  "--camera-id", "proc-cam"};
+  std::vector<std::string> args = test::ProgramArgv(binary);
+  for (const std::string& a :
+       {std::string("run"), std::string("--source"), std::string("sim"), std::string("--board"),
+        board, std::string("--camera"), camera, std::string("--lcm-url"), std::string(kUrl),
+        std::string("--camera-id"), std::string("proc-cam")}) {
+    args.push_back(a);
+  }
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, binary.c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  ASSERT_EQ(posix_spawn(&pid, args[0].c_str(), nullptr, nullptr, argv.data(), environ), 0);
 
   // Wait for the first heartbeat: the service is up and subscribed.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
@@ -99,11 +104,13 @@ TEST(CameraServiceProcessTest, ChildInNamespace) {
   // The default libcamera source on this machine (no camera): a STATE_ERROR status naming
   // the cause goes out before the non-zero exit.
   statuses.clear();
-  std::vector<std::string> error_args = {binary, "run", "--lcm-url", kUrl};
+  std::vector<std::string> error_args = test::ProgramArgv(binary);
+  for (const char* a : {"run", "--lcm-url", kUrl}) error_args.emplace_back(a);
   std::vector<char*> error_argv;
   for (auto& a : error_args) error_argv.push_back(a.data());
   error_argv.push_back(nullptr);
-  ASSERT_EQ(posix_spawn(&pid, binary.c_str(), nullptr, nullptr, error_argv.data(), environ), 0);
+  ASSERT_EQ(posix_spawn(&pid, error_args[0].c_str(), nullptr, nullptr, error_argv.data(), environ),
+            0);
   ASSERT_EQ(waitpid(pid, &status, 0), pid);
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_NE(WEXITSTATUS(status), 0);
@@ -130,7 +137,8 @@ TEST(CameraServiceProcessTest, RunAnswersACaptureRequestOverUdpmAndStopsOnSigter
   const std::string command = unshare +
                               " sh -c 'ip link set lo up && ip route add 224.0.0.0/4 dev lo && "
                               "H4_IN_NETNS=1 timeout 60 " +
-                              self + " --gtest_filter=CameraServiceProcessTest.ChildInNamespace'";
+                              test::ProgramCommand(self) +
+                              " --gtest_filter=CameraServiceProcessTest.ChildInNamespace'";
   FILE* pipe = popen((command + " 2>&1").c_str(), "r");
   ASSERT_NE(pipe, nullptr);
   std::string output;

@@ -17,11 +17,12 @@
 
 #include "common/geometry/rotation.h"
 #include "firmware/render/paper_scenes.h"
-#include "messages/bus/lcm_bus.h"
 #include "firmware/service/service_node.h"
 #include "firmware/sources/image_file_source.h"
 #include "firmware/sources/sim_source.h"
+#include "messages/bus/lcm_bus.h"
 #include "messages/channels.h"
+#include "tests/firmware/program_command.h"
 
 namespace h4::cam {
 namespace {
@@ -269,7 +270,8 @@ TEST(CameraServiceTest, RunWithoutACameraExitsNonZeroWithAClearMessage) {
   if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
   const auto start = std::chrono::steady_clock::now();
   // memq: no multicast needed; the camera is what must be missing.
-  FILE* pipe = popen(("timeout 30 " + binary + " run --lcm-url memq:// 2>&1").c_str(), "r");
+  FILE* pipe = popen(
+      ("timeout 30 " + test::ProgramCommand(binary) + " run --lcm-url memq:// 2>&1").c_str(), "r");
   ASSERT_NE(pipe, nullptr);
   std::string output;
   std::array<char, 256> buffer{};

@@ -1,0 +1,41 @@
+// How a test starts one of the project's programs (h4cam, or the test program itself).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace h4::cam::test {
+
+// Natively the program runs as it is. In a cross build (scripts/cross-build) it runs
+// through the same emulator ctest runs the tests with (CMAKE_CROSSCOMPILING_EMULATOR,
+// passed as H4_TEST_EMULATOR by tests/CMakeLists.txt): the host kernel may have no
+// binfmt_misc entry for aarch64 (a fresh machine or a chroot has none), and then exec'ing
+// an aarch64 program fails, or a shell reads it as a script.
+inline std::vector<std::string> ProgramArgv(const std::string& program) {
+  std::vector<std::string> argv;
+#ifdef H4_TEST_EMULATOR
+  std::string word;
+  for (const char c : std::string(H4_TEST_EMULATOR)) {
+    if (c == ' ') {
+      if (!word.empty()) argv.push_back(word);
+      word.clear();
+    } else {
+      word += c;
+    }
+  }
+  if (!word.empty()) argv.push_back(word);
+#endif
+  argv.push_back(program);
+  return argv;
+}
+
+// The same as one shell word list (paths here have no spaces or shell characters).
+inline std::string ProgramCommand(const std::string& program) {
+  std::string command;
+  for (const std::string& word : ProgramArgv(program)) {
+    command += (command.empty() ? "" : " ") + word;
+  }
+  return command;
+}
+
+}  // namespace h4::cam::test
