@@ -1,7 +1,7 @@
 # Build time of a full build (CI builds everything twice, scripts/test): -DH4_UNITY_BUILD=ON
-# compiles each library's and test program's sources in batches (CMake unity build), so that the heavy headers
-# (CLI11, spdlog/fmt, Eigen, OpenCV, nlohmann/json) are parsed and their templates
-# instantiated once per batch instead of once per file. Off by default: an incremental
+# compiles each library's and test program's sources in batches (CMake unity build), so
+# that the heavy headers (CLI11, spdlog/fmt, Eigen, OpenCV, nlohmann/json) are parsed and
+# their templates instantiated once per batch instead of once per file. Off by default: an incremental
 # build of one edited file stays one file. Included at the end of the top-level
 # CMakeLists.txt, once every target exists.
 #
@@ -10,9 +10,9 @@
 # sanitizer build (build-asan, -O1 -g1 -fsanitize) 8 min 34 s wall, 15.7 min CPU. The
 # file-by-file build had taken about 20 min CPU (CI's whole run: 23 min CPU). Single files:
 # four host/cli/*_command.cpp compiled one by one under -fsanitize took 97 s, as one unity
-# file 27 s. Precompiled headers were tried and
-# are not used: with GCC 12 a 220 MB precompiled header (-g) made files slower to compile
-# (host/identification/identification.cpp 8.8 s -> 18.7 s, fk_command.cpp unchanged).
+# file 27 s. Precompiled headers were tried and are not used: with GCC 12 a 220 MB
+# precompiled header (-g) made files slower to compile (host/identification/
+# identification.cpp 8.8 s -> 18.7 s, fk_command.cpp unchanged).
 #
 # Files in one batch share their anonymous namespaces: two files defining the same name
 # there (e.g. the parameter indices kQ0... of model12.cpp and model31.cpp) must not be in

@@ -32,6 +32,16 @@ namespace {
 
 constexpr const char* kUrl = "udpm://239.255.76.67:7667?ttl=0";
 
+// Starts `command` (program, arguments) as a child process, through the emulator in a cross
+// build (program_command.h).
+bool Spawn(const std::vector<std::string>& command, pid_t* pid) {
+  std::vector<std::string> args = test::ProgramArgv(command);
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  return posix_spawn(pid, args[0].c_str(), nullptr, nullptr, argv.data(), environ) == 0;
+}
+
 // Runs inside the namespace (started by the test below through unshare).
 TEST(CameraServiceProcessTest, ChildInNamespace) {
   if (std::getenv("H4_IN_NETNS") == nullptr) GTEST_SKIP() << "only inside unshare -rn";
@@ -53,18 +63,10 @@ TEST(CameraServiceProcessTest, ChildInNamespace) {
   bus.Subscribe<h4msgs::camera_status_t>(
       channels::kCameraStatus, [&](const h4msgs::camera_status_t& m) { statuses.push_back(m); });
 
-  std::vector<std::string> args = test::ProgramArgv(binary);
-  for (const std::string& a :
-       {std::string("run"), std::string("--source"), std::string("sim"), std::string("--board"),
-        board, std::string("--camera"), camera, std::string("--lcm-url"), std::string(kUrl),
-        std::string("--camera-id"), std::string("proc-cam")}) {
-    args.push_back(a);
-  }
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
   pid_t pid = 0;
-  ASSERT_EQ(posix_spawn(&pid, args[0].c_str(), nullptr, nullptr, argv.data(), environ), 0);
+  ASSERT_TRUE(Spawn({binary, "run", "--source", "sim", "--board", board, "--camera", camera,
+                     "--lcm-url", kUrl, "--camera-id", "proc-cam"},
+                    &pid));
 
   // Wait for the first heartbeat: the service is up and subscribed.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
@@ -104,13 +106,7 @@ TEST(CameraServiceProcessTest, ChildInNamespace) {
   // The default libcamera source on this machine (no camera): a STATE_ERROR status naming
   // the cause goes out before the non-zero exit.
   statuses.clear();
-  std::vector<std::string> error_args = test::ProgramArgv(binary);
-  for (const char* a : {"run", "--lcm-url", kUrl}) error_args.emplace_back(a);
-  std::vector<char*> error_argv;
-  for (auto& a : error_args) error_argv.push_back(a.data());
-  error_argv.push_back(nullptr);
-  ASSERT_EQ(posix_spawn(&pid, error_args[0].c_str(), nullptr, nullptr, error_argv.data(), environ),
-            0);
+  ASSERT_TRUE(Spawn({binary, "run", "--lcm-url", kUrl}, &pid));
   ASSERT_EQ(waitpid(pid, &status, 0), pid);
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_NE(WEXITSTATUS(status), 0);

@@ -6,12 +6,13 @@
 
 namespace h4::cam::test {
 
-// Natively the program runs as it is. In a cross build (scripts/cross-build) it runs
-// through the same emulator ctest runs the tests with (CMAKE_CROSSCOMPILING_EMULATOR,
-// passed as H4_TEST_EMULATOR by tests/CMakeLists.txt): the host kernel may have no
-// binfmt_misc entry for aarch64 (a fresh machine or a chroot has none), and then exec'ing
-// an aarch64 program fails, or a shell reads it as a script.
-inline std::vector<std::string> ProgramArgv(const std::string& program) {
+// The argv that runs `command` (program path first, then its arguments). Natively that is
+// `command` itself. In a cross build (scripts/cross-build) the emulator ctest runs the tests
+// with comes first (CMAKE_CROSSCOMPILING_EMULATOR, passed as H4_TEST_EMULATOR by
+// tests/CMakeLists.txt): the host kernel may have no binfmt_misc entry for aarch64 (a
+// fresh machine or a chroot has none), and then exec'ing an aarch64 program fails, or a
+// shell reads it as a script.
+inline std::vector<std::string> ProgramArgv(const std::vector<std::string>& command) {
   std::vector<std::string> argv;
 #ifdef H4_TEST_EMULATOR
   std::string word;
@@ -25,14 +26,15 @@ inline std::vector<std::string> ProgramArgv(const std::string& program) {
   }
   if (!word.empty()) argv.push_back(word);
 #endif
-  argv.push_back(program);
+  argv.insert(argv.end(), command.begin(), command.end());
   return argv;
 }
 
-// The same as one shell word list (paths here have no spaces or shell characters).
+// The same for a shell: the emulator (if any) and the program as one word list (paths here
+// have no spaces or shell characters); the caller appends the arguments.
 inline std::string ProgramCommand(const std::string& program) {
   std::string command;
-  for (const std::string& word : ProgramArgv(program)) {
+  for (const std::string& word : ProgramArgv({program})) {
     command += (command.empty() ? "" : " ") + word;
   }
   return command;
