@@ -57,6 +57,10 @@ CameraService::CameraService(CameraServiceOptions options, FrameSource& source,
       source_(source),
       pipeline_(board, camera, MakePipelineOptions(options_)) {
   if (!pipeline_.ok()) RecordError("measuring pipeline: " + pipeline_.error());
+  if (options_.free_run_hz > 0) {
+    free_run_.emplace(std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(1.0 / options_.free_run_hz)));
+  }
 }
 
 bool CameraService::Start() {
@@ -128,15 +132,9 @@ std::optional<h4msgs::board_pose_t> CameraService::Step(Clock::time_point now) {
       queue_.pop_front();
       BeginCapture(request.pose_id,
                    request.frame_count == 0 ? options_.default_frames : request.frame_count, now);
-    } else if (options_.free_run_hz > 0) {
-      const auto period = std::chrono::duration_cast<Clock::duration>(
-          std::chrono::duration<double>(1.0 / options_.free_run_hz));
-      if (!next_free_run_) next_free_run_ = now;
-      if (now >= *next_free_run_) {
-        // Skip missed slots rather than bursting to catch up.
-        while (*next_free_run_ <= now) *next_free_run_ += period;
-        BeginCapture(-1, options_.default_frames, now);
-      }
+    } else if (free_run_ && free_run_->Due(now)) {
+      // A late slot (a long capture) gives one measurement, not a burst to catch up.
+      BeginCapture(-1, options_.default_frames, now);
     }
   }
   if (!capture_ && !options_.drain_when_idle) return std::nullopt;

@@ -17,6 +17,7 @@
 
 #include "common/board/board_spec.h"
 #include "common/camera/camera_intrinsics.h"
+#include "common/timing/periodic_schedule.h"
 #include "firmware/pose/measure_pipeline.h"
 #include "firmware/sources/frame_source.h"
 
@@ -99,7 +100,7 @@ class CameraService {
   std::string last_error_;
   std::deque<h4msgs::capture_request_t> queue_;
   std::optional<Capture> capture_;
-  std::optional<Clock::time_point> next_free_run_;
+  std::optional<PeriodicSchedule> free_run_;     // when free_run_hz > 0
   std::deque<Clock::time_point> recent_frames_;  // frame times within the last second
   int64_t frames_total_ = 0;
   int64_t measurements_total_ = 0;

@@ -5,13 +5,18 @@
 //    `--algorithm none`), with per-phase counters (analysis, minimisers, report, ms);
 //  - the final measurement-space stage alone, from the same start: the default NLopt stage
 //    (loose), this project's LM, NLopt alone to the minimum, and Ceres (an analytic
-//    CostFunction wrapping the same residuals and Jacobian).
+//    CostFunction wrapping the same residuals and Jacobian);
+//  - the forward kinematics of the 81 grid poses with a perturbed Model 31 (what the
+//    measurement-space stage and the validation solve per evaluation).
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <benchmark/benchmark.h>
 
 #include "host/identification/identification.h"
+#include "host/kinematics/forward_kinematics.h"
+#include "host/kinematics/model31.h"
 #include "host/simulation/dataset_simulator.h"
 #include "host/simulation/paper_scenario.h"
 #include "host/simulation/pose_plan.h"
@@ -172,6 +177,28 @@ void BM_MeasurementStageNloptLooseModel31(benchmark::State& state) {
 void BM_MeasurementStageNloptAloneModel31(benchmark::State& state) {
   StageWithNlopt(state, "31", true);
 }
+
+// 81 forward kinematics (Newton on the IKM, forward_kinematics.h) from the default guess,
+// the joints from the true perturbed Model 31's inverse kinematics on the paper grid.
+void BM_ForwardKinematicsPaperGrid(benchmark::State& state) {
+  const SimulatedRobot truth = MakeTrueRobot(PaperAprioriRobot(), TrueGeometry::kPerturbedModel31);
+  const std::unique_ptr<KinematicModel> model = truth.MakeModel();
+  std::vector<JointVector> joints;
+  for (const PlannedPose& pose : GridPosePlan()) {
+    joints.push_back(model->InverseKinematics(EePoseInB31(pose.x, truth.X_ModelB())).q);
+  }
+  int failed = 0;
+  for (auto _ : state) {
+    for (const JointVector& q : joints) {
+      const FkResult fk = ForwardKinematics(*model, q);
+      failed += fk.ok() ? 0 : 1;
+      benchmark::DoNotOptimize(fk.x);
+    }
+  }
+  if (failed > 0) state.SkipWithError("a forward kinematics did not converge");
+  state.counters["poses"] = static_cast<double>(joints.size());
+}
+BENCHMARK(BM_ForwardKinematicsPaperGrid)->Unit(benchmark::kMicrosecond);
 
 #ifdef H4_HAVE_CERES
 // All residuals of the measurement cost as one analytic Ceres cost over the free values.

@@ -8,6 +8,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/timing/periodic_schedule.h"
 #include "messages/channels.h"
 
 namespace h4::host {
@@ -123,25 +124,21 @@ void SimRobotNode::Run(const std::atomic<bool>& stop, std::chrono::duration<doub
       duration.count() > 0.0 ? std::optional<Clock::time_point>(
                                    start + std::chrono::duration_cast<Clock::duration>(duration))
                              : std::nullopt;
-  Clock::time_point next_tick = start;
+  PeriodicSchedule ticks(period);
   Clock::time_point next_status = start + status_period;
   int consecutive_failures = 0;
   while (!stop.load()) {
     Clock::time_point now = Clock::now();
     if (end && now >= *end) break;
-    if (now >= next_tick) {
-      Tick(now);
-      next_tick += period;
-      // After a stall, resume the rate from now rather than publishing a burst.
-      if (next_tick <= now) next_tick = now + period;
-    }
+    // After a stall the rate resumes on its grid rather than with a burst of late states.
+    if (ticks.Due(now)) Tick(now);
     if (options_.status_period_s > 0.0 && now >= next_status) {
       LogStatus();
       next_status = now + status_period;
     }
     // Wait on the bus until the next tick (rounded up to whole ms, LCM's resolution), and
     // at most 100 ms so that the stop flag is seen promptly.
-    Clock::time_point wake = next_tick;
+    Clock::time_point wake = *ticks.next();
     if (end) wake = std::min(wake, *end);
     now = Clock::now();
     const auto wait = std::clamp(std::chrono::ceil<std::chrono::milliseconds>(wake - now),

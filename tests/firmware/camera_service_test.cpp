@@ -268,7 +268,6 @@ TEST(CameraServiceTest, DirectorySourceMeasuresImagesInNameOrderThenReportsExhau
 TEST(CameraServiceTest, RunWithoutACameraExitsNonZeroWithAClearMessage) {
   const std::string binary = H4_BINARY_DIR "/firmware/h4cam";
   if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
-  const auto start = std::chrono::steady_clock::now();
   // memq: no multicast needed; the camera is what must be missing.
   FILE* pipe = popen(
       ("timeout 30 " + test::ProgramCommand(binary) + " run --lcm-url memq:// 2>&1").c_str(), "r");
@@ -277,14 +276,11 @@ TEST(CameraServiceTest, RunWithoutACameraExitsNonZeroWithAClearMessage) {
   std::array<char, 256> buffer{};
   while (fgets(buffer.data(), buffer.size(), pipe) != nullptr) output += buffer.data();
   const int status = pclose(pipe);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ASSERT_TRUE(WIFEXITED(status)) << output;
   EXPECT_NE(WEXITSTATUS(status), 0) << output;
   EXPECT_NE(WEXITSTATUS(status), 124) << "timed out: " << output;
   EXPECT_NE(output.find("no camera"), std::string::npos) << output;
   EXPECT_NE(output.find("h4cam run:"), std::string::npos) << output;
-  EXPECT_LT(seconds, 10.0);
 }
 
 }  // namespace

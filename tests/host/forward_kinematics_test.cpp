@@ -4,7 +4,6 @@
 // match finite differences of the solver itself.
 #include "host/kinematics/forward_kinematics.h"
 
-#include <chrono>
 #include <cmath>
 #include <numbers>
 
@@ -139,26 +138,18 @@ TEST(ForwardKinematics, Model31JacobiansMatchFiniteDifferences) {
       EePoseInB31(EePose(-0.06, 0.08, -0.5, -0.3), NominalX_B31B(kPaperIdentifiedModel12)));
 }
 
-TEST(ForwardKinematics, SolvesThePaperGridQuickly) {
-  // The measurement-space identification runs 81 forward kinematics per iteration. Timing
-  // means something only in an optimised build without sanitizers.
-#if !defined(NDEBUG) || defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "timing is checked in optimised builds without sanitizers only";
-#endif
+// Its speed (the measurement-space identification solves 81 per evaluation) is measured in
+// host/bench/identification_bench (BM_ForwardKinematicsPaperGrid), not asserted here.
+TEST(ForwardKinematics, SolvesEveryPoseOfThePaperGridFromTheDefaultGuess) {
   const Model31 model(PerturbedModel31());
-  std::vector<JointVector> joints;
-  for (const PlannedPose& pose : GridPosePlan()) {
-    joints.push_back(
-        model.InverseKinematics(EePoseInB31(pose.x, NominalX_B31B(kPaperIdentifiedModel12))).q);
-  }
-  const auto start = std::chrono::steady_clock::now();
   int converged = 0;
-  for (const JointVector& q : joints) converged += ForwardKinematics(model, q).ok() ? 1 : 0;
-  const double elapsed_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (const PlannedPose& pose : GridPosePlan()) {
+    const IkResult ik =
+        model.InverseKinematics(EePoseInB31(pose.x, NominalX_B31B(kPaperIdentifiedModel12)));
+    ASSERT_TRUE(ik.ok());
+    converged += ForwardKinematics(model, ik.q).ok() ? 1 : 0;
+  }
   EXPECT_EQ(converged, 81);
-  EXPECT_LT(elapsed_s, 0.005) << "81 forward kinematics took " << elapsed_s * 1e3 << " ms";
-  RecordProperty("fk81_ms", std::to_string(elapsed_s * 1e3));
 }
 
 }  // namespace
