@@ -1,8 +1,8 @@
 // `h4cam run --source sim` as a separate process over real udpm multicast, inside a private
-// network namespace (`unshare -rn`, loopback only) so that nothing reaches or comes from
-// the machine's network: truth and request in, board pose and heartbeats out, SIGTERM ->
-// final STATE_STOPPING status and exit code 0; without a camera, a STATE_ERROR status
-// and a non-zero exit. Skipped where user namespaces are refused.
+// network namespace (scripts/in-private-netns, loopback only) so that nothing reaches or
+// comes from the machine's network: truth and request in, board pose and heartbeats out,
+// SIGTERM -> final STATE_STOPPING status and exit code 0; without a camera, a STATE_ERROR
+// status and a non-zero exit. Skipped where no network namespace can be made.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -44,7 +44,7 @@ bool Spawn(const std::vector<std::string>& command, pid_t* pid) {
 
 // Runs inside the namespace (started by the test below through unshare).
 TEST(CameraServiceProcessTest, ChildInNamespace) {
-  if (std::getenv("H4_IN_NETNS") == nullptr) GTEST_SKIP() << "only inside unshare -rn";
+  if (std::getenv("H4_IN_NETNS") == nullptr) GTEST_SKIP() << "only inside scripts/in-private-netns";
   const std::string binary = H4_BINARY_DIR "/firmware/h4cam";
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("h4cam_run_" + std::to_string(getpid()));
@@ -119,22 +119,18 @@ TEST(CameraServiceProcessTest, ChildInNamespace) {
 TEST(CameraServiceProcessTest, RunAnswersACaptureRequestOverUdpmAndStopsOnSigterm) {
   const std::string binary = H4_BINARY_DIR "/firmware/h4cam";
   if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
-  // A user namespace (-r) lets anyone make the network namespace; a chroot cannot make user
-  // namespaces (the kernel refuses), but root there can make a network namespace alone.
-  std::string unshare;
-  for (const char* candidate : {"unshare -rn", "unshare -n"}) {
-    if (std::system((std::string(candidate) + " true > /dev/null 2>&1").c_str()) == 0) {
-      unshare = candidate;
-      break;
-    }
+  // The namespace (loopback with a multicast route) comes from scripts/in-private-netns,
+  // which exits 77 where none can be made (a chroot without root, a locked-down kernel).
+  const std::string netns = H4_SOURCE_DIR "/scripts/in-private-netns";
+  const int check = std::system((netns + " --check > /dev/null 2>&1").c_str());
+  if (WIFEXITED(check) && WEXITSTATUS(check) == 77) {
+    GTEST_SKIP() << "no private network namespace here (" << netns << " --check)";
   }
-  if (unshare.empty()) GTEST_SKIP() << "network namespaces unavailable (unshare -rn, -n)";
+  ASSERT_TRUE(WIFEXITED(check) && WEXITSTATUS(check) == 0) << netns << " --check failed";
   const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
-  const std::string command = unshare +
-                              " sh -c 'ip link set lo up && ip route add 224.0.0.0/4 dev lo && "
-                              "H4_IN_NETNS=1 timeout 60 " +
+  const std::string command = netns + " env H4_IN_NETNS=1 timeout 60 " +
                               test::ProgramCommand(self) +
-                              " --gtest_filter=CameraServiceProcessTest.ChildInNamespace'";
+                              " --gtest_filter=CameraServiceProcessTest.ChildInNamespace";
   FILE* pipe = popen((command + " 2>&1").c_str(), "r");
   ASSERT_NE(pipe, nullptr);
   std::string output;

@@ -20,21 +20,22 @@ scale=${H4_TEST_TIME_SCALE:-1}
 
 if [ -z "${H4_IN_NETNS:-}" ]; then
   rm -rf "$dir"; mkdir -p "$dir"
-  # A user namespace (-r) lets anyone make the network namespace; a chroot cannot make user
-  # namespaces (the kernel refuses), but root there can make a network namespace alone.
-  netns=()
-  for candidate in "unshare -rn" "unshare -n"; do
-    if $candidate true 2> /dev/null; then read -ra netns <<< "$candidate"; break; fi
-  done
-  if [ ${#netns[@]} -eq 0 ]; then
-    # lcm_spy_test.sh reads this to skip for the same reason rather than fail.
-    echo "no network namespaces here (unshare -rn and unshare -n failed)" > "$dir/SKIPPED"
-    echo "SKIP: $(cat "$dir/SKIPPED")"; exit 77
-  fi
-  for tool in lcm-logger lcm-logplayer ip; do
+  for tool in lcm-logger lcm-logplayer; do
     command -v $tool > /dev/null || { echo "FAIL: $tool not installed"; exit 1; }
   done
-  exec "${netns[@]}" env H4_IN_NETNS=1 "$0" "$@"
+  # The namespace (loopback with a multicast route) comes from scripts/in-private-netns.
+  netns=$src/scripts/in-private-netns
+  set +e
+  reason=$("$netns" --check 2>&1)
+  status=$?
+  set -e
+  if [ $status -eq 77 ]; then
+    # lcm_spy_test.sh reads this to skip for the same reason rather than fail.
+    echo "$reason" > "$dir/SKIPPED"
+    echo "SKIP: $reason"; exit 77
+  fi
+  [ $status -eq 0 ] || { echo "FAIL: $reason"; exit 1; }
+  exec "$netns" env H4_IN_NETNS=1 "$0" "$@"
 fi
 
 fail() { echo "FAIL: $*" >&2; for f in "$dir"/*.log; do echo "--- $f"; tail -n 5 "$f"; done >&2; exit 1; }
@@ -44,8 +45,6 @@ pids=()
 cleanup() { for p in "${pids[@]}"; do kill "$p" 2> /dev/null || true; done; wait 2> /dev/null || true; }
 trap cleanup EXIT
 
-ip link set lo up
-ip route add 224.0.0.0/4 dev lo
 export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0"
 cd "$dir"
 
