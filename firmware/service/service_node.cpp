@@ -36,7 +36,7 @@ ServiceNode::ServiceNode(bus::LcmBus& bus, CameraService& service, SimSource* si
     : bus_(bus),
       service_(service),
       sim_(sim),
-      heartbeat_period_(std::chrono::duration_cast<Clock::duration>(heartbeat_period)) {
+      heartbeats_(std::chrono::duration_cast<Clock::duration>(heartbeat_period)) {
   bus_.Subscribe<h4msgs::capture_request_t>(
       channels::kCaptureRequest,
       [this](const h4msgs::capture_request_t& request) { service_.SubmitRequest(request); });
@@ -66,16 +66,13 @@ void ServiceNode::PublishStatus() {
 
 void ServiceNode::Poll(std::chrono::milliseconds timeout) {
   const Clock::time_point now = Clock::now();
-  if (!next_heartbeat_ || now >= *next_heartbeat_) {
-    PublishStatus();
-    next_heartbeat_ = now + heartbeat_period_;
-  }
+  if (heartbeats_.Due(now)) PublishStatus();
   // While frames are wanted, the frame wait in Step() is the loop's pacing; otherwise
   // wait on the bus, but not past the next heartbeat.
   std::chrono::milliseconds wait(0);
   if (!service_.WantsFrames()) {
     const auto to_heartbeat =
-        std::chrono::duration_cast<std::chrono::milliseconds>(*next_heartbeat_ - now);
+        std::chrono::duration_cast<std::chrono::milliseconds>(*heartbeats_.next() - now);
     wait = std::max(std::chrono::milliseconds(0), std::min(timeout, to_heartbeat));
   }
   bus_.Handle(wait);

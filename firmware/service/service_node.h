@@ -9,9 +9,10 @@
 
 #include <h4msgs/sim_board_truth_t.hpp>
 
+#include "common/timing/periodic_schedule.h"
 #include "firmware/service/camera_service.h"
-#include "messages/bus/lcm_bus.h"
 #include "firmware/sources/sim_source.h"
+#include "messages/bus/lcm_bus.h"
 
 namespace h4::cam {
 
@@ -41,8 +42,7 @@ class ServiceNode {
   bus::LcmBus& bus_;
   CameraService& service_;
   SimSource* sim_;
-  Clock::duration heartbeat_period_;
-  std::optional<Clock::time_point> next_heartbeat_;
+  PeriodicSchedule heartbeats_;
   int64_t board_poses_published_ = 0;
   int64_t statuses_published_ = 0;
   int64_t invalid_truths_ = 0;

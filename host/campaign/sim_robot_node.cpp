@@ -117,25 +117,26 @@ void SimRobotNode::LogStatus() const {
 void SimRobotNode::Run(const std::atomic<bool>& stop, std::chrono::duration<double> duration) {
   const auto period = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(1.0 / options_.rate_hz));
-  const auto status_period = std::chrono::duration_cast<Clock::duration>(
-      std::chrono::duration<double>(options_.status_period_s));
   const Clock::time_point start = Clock::now();
   const std::optional<Clock::time_point> end =
       duration.count() > 0.0 ? std::optional<Clock::time_point>(
                                    start + std::chrono::duration_cast<Clock::duration>(duration))
                              : std::nullopt;
   PeriodicSchedule ticks(period);
-  Clock::time_point next_status = start + status_period;
+  // The status line every status_period_s (none when 0), the first one period after start.
+  std::optional<PeriodicSchedule> status_lines;
+  if (options_.status_period_s > 0.0) {
+    status_lines.emplace(std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(options_.status_period_s)));
+    status_lines->Due(start);
+  }
   int consecutive_failures = 0;
   while (!stop.load()) {
     Clock::time_point now = Clock::now();
     if (end && now >= *end) break;
     // After a stall the rate resumes on its grid rather than with a burst of late states.
     if (ticks.Due(now)) Tick(now);
-    if (options_.status_period_s > 0.0 && now >= next_status) {
-      LogStatus();
-      next_status = now + status_period;
-    }
+    if (status_lines && status_lines->Due(now)) LogStatus();
     // Wait on the bus until the next tick (rounded up to whole ms, LCM's resolution), and
     // at most 100 ms so that the stop flag is seen promptly.
     Clock::time_point wake = *ticks.next();
