@@ -1,5 +1,6 @@
-// When a periodic job (the simulated robot's joint states, the camera's free-run captures)
-// is due. Pure: the caller passes the time, so the rule is tested without a wall clock.
+// When a periodic job (the simulated robot's joint states and status lines, the camera's
+// free-run captures and heartbeat) is due. Pure: the caller passes the time, so the rule is
+// tested without a wall clock.
 #pragma once
 
 #include <chrono>
@@ -23,8 +24,6 @@ class PeriodicSchedule {
 
   /// The next slot; empty before the first call to Due.
   std::optional<Clock::time_point> next() const { return next_; }
-
-  Clock::duration period() const { return period_; }
 
  private:
   Clock::duration period_;

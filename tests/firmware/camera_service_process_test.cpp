@@ -42,7 +42,7 @@ bool Spawn(const std::vector<std::string>& command, pid_t* pid) {
   return posix_spawn(pid, args[0].c_str(), nullptr, nullptr, argv.data(), environ) == 0;
 }
 
-// Runs inside the namespace (started by the test below through unshare).
+// Runs inside the namespace (started by the test below through scripts/in-private-netns).
 TEST(CameraServiceProcessTest, ChildInNamespace) {
   if (std::getenv("H4_IN_NETNS") == nullptr) GTEST_SKIP() << "only inside scripts/in-private-netns";
   const std::string binary = H4_BINARY_DIR "/firmware/h4cam";
