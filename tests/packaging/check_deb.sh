@@ -2,9 +2,10 @@
 # Packaging test: builds the h4cam .deb with CPack into a scratch directory, installs it into
 # a scratch root with dpkg --root (unpack only: no maintainer script runs there), and checks
 # what a camera module would get: the control fields, the files, the conffile, the systemd
-# unit (systemd-analyze verify, and that it names the packaged binary, the h4cam user, the
-# video group and the packaged configuration), and what postinst does, with stand-ins for
-# adduser/systemctl so nothing on this machine changes.
+# unit (systemd-analyze verify; systemd-analyze security: exposure 2.0 or lower; and that it
+# names the packaged binary, the h4cam user, the video group and the packaged
+# configuration), and what postinst does, with stand-ins for adduser/systemctl so nothing on
+# this machine changes.
 #   check_deb.sh BUILD_DIR TARGET_ARCH VERSION [BOARDS_DIR]
 # TARGET_ARCH: "native" (a native build: dpkg's architecture) or the cross target's
 # processor (aarch64 -> arm64).
@@ -149,6 +150,15 @@ if command -v systemd-analyze >/dev/null; then
   else
     cat "$scratch/verify.log"
     fail "systemd-analyze verify"
+  fi
+  # The exposure score of the shipped unit (0 = locked down, 10 = unprotected): 2.0 or
+  # lower. --threshold takes tenths; the score is printed for the log either way.
+  if systemd-analyze security --offline=true --root="$root" --threshold=20 \
+       /lib/systemd/system/h4cam.service > "$scratch/security.log" 2>&1; then
+    pass "systemd-analyze security: $(grep -o 'exposure level[^:]*: [0-9.]*' "$scratch/security.log")"
+  else
+    grep -E '✗|exposure' "$scratch/security.log" || cat "$scratch/security.log"
+    fail "systemd-analyze security: exposure above 2.0"
   fi
 else
   fail "systemd-analyze not found: install systemd (scripts/setup does)"
