@@ -274,7 +274,7 @@ TEST(CameraYamlErrors, KalibrFieldsAreCheckedAndNamed) {
       [&] { ParseCameraYaml(with("resolution: [752, 480]", "resolution: [752]"), "k.yaml"); },
       "k.yaml", 7, "cam0.resolution", "2"));
   EXPECT_TRUE(FailsWith([&] { ParseCameraYaml(with("  resolution: [752, 480]\n", ""), "k.yaml"); },
-                        "k.yaml", 0, "cam0.resolution", "missing key"));
+                        "k.yaml", 1, "cam0.resolution", "missing key"));
 }
 
 #ifdef H4_TEST_WITH_OPENCV
