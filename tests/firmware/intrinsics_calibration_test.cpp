@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include <CLI/CLI.hpp>
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -385,6 +386,35 @@ TEST(CalibrateIntrinsicsCommand, CopiesOfOneImageFailWithoutWritingAFile) {
         << e.what();
   }
   EXPECT_FALSE(fs::exists(args.out_path));
+}
+
+// `--model` takes radtan, rational and equidistant; any other name is a usage error
+// before anything runs. (A known name gets as far as the calibration, which then fails
+// for want of views: a blank image has no board.)
+TEST(CalibrateIntrinsicsCommand, ModelOptionTakesTheThreeModelNamesOnly) {
+  const TempDir dir("h4_model_option");
+  const std::string image = (dir.path / "blank.png").string();
+  cv::imwrite(image, cv::Mat(48, 64, CV_8UC1, cv::Scalar(128)));
+  const auto parse = [&](const std::string& model) {
+    CLI::App app;
+    AddCalibrateIntrinsicsCommand(app);
+    app.parse("calibrate-intrinsics --board " + std::string(H4_SOURCE_DIR) +
+                  "/boards/aprilgrid_6x6_30mm.yaml --model " + model + " --out " +
+                  (dir.path / "c.yaml").string() + " " + image,
+              false);
+  };
+  for (const std::string model : {"radtan", "rational", "equidistant"}) {
+    try {
+      parse(model);
+      ADD_FAILURE() << model << ": calibrated from a blank image";
+    } catch (const CLI::ParseError& e) {
+      ADD_FAILURE() << model << ": refused as " << e.what();
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("0 view(s) with the board"), std::string::npos)
+          << model << ": " << e.what();
+    }
+  }
+  EXPECT_THROW(parse("fisheye"), CLI::ValidationError);
 }
 
 }  // namespace
