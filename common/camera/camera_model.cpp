@@ -1,14 +1,25 @@
-// OpenCV's distortion model and its inverse; see camera_model.h. The model is
+// The camera model's distortions and their inverses; see camera_model.h.
+//
+// Radial-tangential (OpenCV's cv::projectPoints):
 //   g = (1 + k1 r^2 + k2 r^4 + k3 r^6) / (1 + k4 r^2 + k5 r^4 + k6 r^6)
 //   xd = x g + 2 p1 x y + p2 (r^2 + 2 x^2),  yd = y g + p1 (r^2 + 2 y^2) + 2 p2 x y
-//   u = fx xd + s yd + cx,  v = fy yd + cy
+// Equidistant (OpenCV's cv::fisheye::projectPoints):
+//   r = |(x, y)|, theta = atan(r), theta_d = theta (1 + k1 theta^2 + ... + k4 theta^8)
+//   (xd, yd) = (theta_d / r) (x, y)
+// Both: u = fx xd + s yd + cx,  v = fy yd + cy.
 #include "common/camera/camera_model.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/LU>
 
 namespace h4 {
+namespace {
+
+constexpr double kHalfPi = 1.5707963267948966;
+
+}  // namespace
 
 CameraModel::CameraModel(const CameraIntrinsics& intrinsics) : intrinsics_(intrinsics) {
   const Eigen::VectorXd& d = intrinsics.distortion;
@@ -19,10 +30,22 @@ CameraModel::CameraModel(const CameraIntrinsics& intrinsics) : intrinsics_(intri
   cx_ = intrinsics.K(0, 2);
   cy_ = intrinsics.K(1, 2);
   skew_ = intrinsics.K(0, 1);
-  valid_ = (n == 0 || n == 4 || n == 5 || n == 8) && fx_ > 0 && fy_ > 0;
+  valid_ = IsSupportedDistortionCount(intrinsics.distortion_model, n) && fx_ > 0 && fy_ > 0;
+  max_theta_ = kHalfPi;
+  if (intrinsics.distortion_model == DistortionModel::kEquidistant) {
+    max_theta_ = FirstEquidistantFold();
+    max_theta_d_ = EquidistantThetaD(max_theta_);
+  }
 }
 
 Eigen::Vector2d CameraModel::Distort(const Eigen::Vector2d& xn, Eigen::Matrix2d* J_xd_xn) const {
+  return intrinsics_.distortion_model == DistortionModel::kEquidistant
+             ? DistortEquidistant(xn, J_xd_xn)
+             : DistortRadTan(xn, J_xd_xn);
+}
+
+Eigen::Vector2d CameraModel::DistortRadTan(const Eigen::Vector2d& xn,
+                                           Eigen::Matrix2d* J_xd_xn) const {
   const double k1 = d_[0], k2 = d_[1], p1 = d_[2], p2 = d_[3], k3 = d_[4], k4 = d_[5], k5 = d_[6],
                k6 = d_[7];
   const double x = xn.x(), y = xn.y();
@@ -42,6 +65,58 @@ Eigen::Vector2d CameraModel::Distort(const Eigen::Vector2d& xn, Eigen::Matrix2d*
     (*J_xd_xn)(1, 1) = g + 2 * y * y * dg + 6 * p1 * y + 2 * p2 * x;
   }
   return xd;
+}
+
+double CameraModel::EquidistantThetaD(double theta, double* dthetad_dtheta) const {
+  const double k1 = d_[0], k2 = d_[1], k3 = d_[2], k4 = d_[3];
+  const double t2 = theta * theta, t4 = t2 * t2, t6 = t4 * t2, t8 = t4 * t4;
+  if (dthetad_dtheta != nullptr) {
+    *dthetad_dtheta = 1 + 3 * k1 * t2 + 5 * k2 * t4 + 7 * k3 * t6 + 9 * k4 * t8;
+  }
+  return theta * (1 + k1 * t2 + k2 * t4 + k3 * t6 + k4 * t8);
+}
+
+// The first angle in (0, pi/2] where d theta_d / d theta reaches 0 (pi/2 when it stays
+// positive): past it two rays share a pixel and the model cannot be inverted. Scanned
+// finely (a polynomial of degree 8 turns at most 4 times) then bisected.
+double CameraModel::FirstEquidistantFold() const {
+  const int steps = 2048;
+  const auto slope = [this](double theta) {
+    double d = 0;
+    EquidistantThetaD(theta, &d);
+    return d;
+  };
+  for (int i = 1; i <= steps; ++i) {
+    double hi = kHalfPi * i / steps;
+    if (slope(hi) > 0) continue;
+    double lo = kHalfPi * (i - 1) / steps;
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (slope(mid) > 0 ? lo : hi) = mid;
+    }
+    return lo;
+  }
+  return kHalfPi;
+}
+
+Eigen::Vector2d CameraModel::DistortEquidistant(const Eigen::Vector2d& xn,
+                                                Eigen::Matrix2d* J_xd_xn) const {
+  const double r = xn.norm();
+  if (r < 1e-12) {  // theta_d / r -> 1 and the second-order term vanishes at the axis
+    if (J_xd_xn != nullptr) J_xd_xn->setIdentity();
+    return xn;
+  }
+  const double theta = std::atan(r);
+  double dthetad_dtheta = 0;
+  const double theta_d = EquidistantThetaD(theta, &dthetad_dtheta);
+  const double scale = theta_d / r;
+  if (J_xd_xn != nullptr) {
+    // xd = scale(r) xn: J = scale I + (dscale/dr / r) xn xn^T, with
+    // dscale/dr = (dthetad/dtheta dtheta/dr - scale) / r and dtheta/dr = 1 / (1 + r^2).
+    const double dscale_dr_over_r = (dthetad_dtheta / (1 + r * r) - scale) / (r * r);
+    *J_xd_xn = scale * Eigen::Matrix2d::Identity() + dscale_dr_over_r * xn * xn.transpose();
+  }
+  return scale * xn;
 }
 
 Eigen::Vector2d CameraModel::PixelFromNormalized(const Eigen::Vector2d& xn,
@@ -70,10 +145,15 @@ bool CameraModel::Project(const Eigen::Vector3d& p_CQ, Eigen::Vector2d* uv,
 }
 
 bool CameraModel::NormalizedFromPixel(const Eigen::Vector2d& uv, Eigen::Vector2d* xn) const {
-  // Distorted normalised target, then Gauss-Newton on Distort(xn) = xd from xn = xd.
   const double yd = (uv.y() - cy_) / fy_;
   const double xd = (uv.x() - cx_ - skew_ * yd) / fx_;
-  const Eigen::Vector2d target(xd, yd);
+  return intrinsics_.distortion_model == DistortionModel::kEquidistant
+             ? UndistortEquidistant(Eigen::Vector2d(xd, yd), xn)
+             : UndistortRadTan(Eigen::Vector2d(xd, yd), xn);
+}
+
+bool CameraModel::UndistortRadTan(const Eigen::Vector2d& target, Eigen::Vector2d* xn) const {
+  // Gauss-Newton on Distort(xn) = xd from xn = xd.
   Eigen::Vector2d x = target;
   for (int it = 0; it < 50; ++it) {
     Eigen::Matrix2d J;
@@ -89,6 +169,35 @@ bool CameraModel::NormalizedFromPixel(const Eigen::Vector2d& uv, Eigen::Vector2d
   }
   *xn = x;
   return (Distort(x) - target).norm() < 1e-10;
+}
+
+bool CameraModel::UndistortEquidistant(const Eigen::Vector2d& xd, Eigen::Vector2d* xn) const {
+  const double theta_d = xd.norm();
+  if (theta_d < 1e-12) {
+    *xn = xd;
+    return true;
+  }
+  if (!(theta_d < max_theta_d_)) {
+    *xn = xd;
+    return false;
+  }
+  // theta_d(theta) increases on [0, max_theta_]: one root, kept bracketed; Newton steps
+  // that leave the bracket become bisections.
+  double lo = 0, hi = max_theta_, theta = std::min(theta_d, max_theta_);
+  for (int it = 0; it < 100; ++it) {
+    double slope = 0;
+    const double residual = EquidistantThetaD(theta, &slope) - theta_d;
+    if (std::abs(residual) < 1e-15) break;
+    (residual > 0 ? hi : lo) = theta;
+    const double newton = theta - residual / slope;
+    theta = (slope > 0 && newton > lo && newton < hi) ? newton : 0.5 * (lo + hi);
+  }
+  if (!(theta < kHalfPi)) {
+    *xn = xd;
+    return false;
+  }
+  *xn = xd * (std::tan(theta) / theta_d);
+  return std::abs(EquidistantThetaD(theta) - theta_d) < 1e-10;
 }
 
 bool CameraModel::IdealFromPixel(const Eigen::Vector2d& uv, Eigen::Vector2d* ideal) const {

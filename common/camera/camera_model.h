@@ -1,7 +1,8 @@
-// Projection of points in the camera frame C to pixels through OpenCV's pinhole +
-// distortion model (radial k1..k6 in rational form, tangential p1, p2), its analytic
-// Jacobians, and the inverse (undistortion, by Gauss-Newton). Pixel convention:
-// (0, 0) is the centre of the top-left pixel, as in OpenCV (formats.md).
+// Projection of points in the camera frame C to pixels through a pinhole camera with
+// OpenCV's radial-tangential distortion (k1..k6 in rational form, p1, p2) or the
+// equidistant fisheye distortion of cv::fisheye (camera_intrinsics.h), their analytic
+// Jacobians, and the inverse (undistortion). Pixel convention: (0, 0) is the centre of
+// the top-left pixel, as in OpenCV (common/formats/README.md).
 #pragma once
 
 #include <array>
@@ -14,16 +15,22 @@ namespace h4 {
 
 class CameraModel {
  public:
-  /// Takes 4, 5 or 8 distortion coefficients (OpenCV's order); any other count is
-  /// treated as zero-padded to 8 after the first 8 (valid() tells whether the count was
-  /// one of the supported ones).
+  /// Takes the coefficients of intrinsics.distortion_model (IsSupportedDistortionCount);
+  /// any other count is treated as zero-padded after the first 8 (valid() tells whether
+  /// the count was a supported one).
   explicit CameraModel(const CameraIntrinsics& intrinsics);
 
   const CameraIntrinsics& intrinsics() const { return intrinsics_; }
-  /// False when the distortion vector has an unsupported length or fx, fy <= 0.
+  DistortionModel distortion_model() const { return intrinsics_.distortion_model; }
+  /// False when the distortion vector has an unsupported length for the model or fx, fy <= 0.
   bool valid() const { return valid_; }
   int width() const { return intrinsics_.width; }
   int height() const { return intrinsics_.height; }
+
+  /// Equidistant model: the largest angle from the optical axis (rad) the model images
+  /// one to one: pi/2, or less where theta_d(theta) stops increasing (a lens polynomial
+  /// that folds back). Radtan: pi/2 (not used).
+  double max_field_angle() const { return max_theta_; }
 
   /// Distorted normalised coordinates of undistorted normalised ones (x/z, y/z),
   /// with the 2x2 Jacobian J_xd_xn when asked.
@@ -38,9 +45,14 @@ class CameraModel {
   bool Project(const Eigen::Vector3d& p_CQ, Eigen::Vector2d* uv,
                Eigen::Matrix<double, 2, 3>* J_uv_pCQ = nullptr) const;
 
-  /// Undistorted normalised coordinates of a pixel: the inverse of PixelFromNormalized,
-  /// solved by Gauss-Newton to 1e-12 in normalised units. Returns false when it does not
-  /// converge (far outside the calibrated field); *xn then holds the last iterate.
+  /// Undistorted normalised coordinates of a pixel: the inverse of PixelFromNormalized to
+  /// 1e-10 in distorted normalised units. Radtan: Gauss-Newton from the distorted point;
+  /// returns false when it does not converge (far outside the calibrated field), *xn then
+  /// holds the last iterate. Equidistant: the angle theta solved in one dimension
+  /// (bracketed Newton), exact up to max_field_angle(); returns false for pixels at or
+  /// beyond that angle (rays at 90 degrees or more from the axis have no normalised
+  /// coordinates; beyond a fold the pixel has two rays), *xn then holds the finite
+  /// distorted normalised coordinates.
   bool NormalizedFromPixel(const Eigen::Vector2d& uv, Eigen::Vector2d* xn) const;
 
   /// Pixel -> "ideal" pixel: K applied to the undistorted normalised coordinates, i.e.
@@ -48,9 +60,19 @@ class CameraModel {
   bool IdealFromPixel(const Eigen::Vector2d& uv, Eigen::Vector2d* ideal) const;
 
  private:
+  Eigen::Vector2d DistortRadTan(const Eigen::Vector2d& xn, Eigen::Matrix2d* J_xd_xn) const;
+  Eigen::Vector2d DistortEquidistant(const Eigen::Vector2d& xn, Eigen::Matrix2d* J_xd_xn) const;
+  bool UndistortRadTan(const Eigen::Vector2d& xd, Eigen::Vector2d* xn) const;
+  bool UndistortEquidistant(const Eigen::Vector2d& xd, Eigen::Vector2d* xn) const;
+  /// theta_d(theta) of the equidistant model, and its derivative when asked.
+  double EquidistantThetaD(double theta, double* dthetad_dtheta = nullptr) const;
+  double FirstEquidistantFold() const;
+
   CameraIntrinsics intrinsics_;
-  std::array<double, 8> d_{};  // k1 k2 p1 p2 k3 k4 k5 k6
+  std::array<double, 8> d_{};  // radtan: k1 k2 p1 p2 k3 k4 k5 k6; equidistant: k1 k2 k3 k4
   double fx_ = 1, fy_ = 1, cx_ = 0, cy_ = 0, skew_ = 0;
+  double max_theta_ = 0;    // see max_field_angle()
+  double max_theta_d_ = 0;  // EquidistantThetaD(max_theta_)
   bool valid_ = false;
 };
 

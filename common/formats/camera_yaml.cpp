@@ -1,7 +1,9 @@
-// Camera intrinsics in OpenCV FileStorage YAML; see camera_yaml.h.
+// Camera intrinsics in OpenCV FileStorage YAML or a Kalibr camchain; see camera_yaml.h.
 #include "common/formats/camera_yaml.h"
 
 #include <limits>
+#include <optional>
+#include <vector>
 
 #include "common/formats/csv_table.h"
 #include "common/formats/number_text.h"
@@ -65,22 +67,28 @@ std::string WriteMatrix(const std::string& name, int rows, int cols, const doubl
   return text + " ]\n";
 }
 
-}  // namespace
+int ImageSize(const YamlMap& root, const std::string& key) {
+  const int64_t size = root.Int(key);
+  if (size < 1 || size > std::numeric_limits<int>::max()) {
+    root.Fail(key, "expected a positive image size in px, got " + std::to_string(size));
+  }
+  return static_cast<int>(size);
+}
 
-CameraIntrinsics ParseCameraYaml(const std::string& text, const std::string& source_name) {
-  const YamlMap root(LoadYaml(WithoutOpenCvDirective(text), source_name), source_name, "", 0);
-  root.RejectCaseVariants({"image_width", "image_height", "camera_matrix",
+DistortionModel ReadDistortionModel(const YamlMap& map, const std::string& key) {
+  const std::string name = map.String(key);
+  const std::optional<DistortionModel> model = DistortionModelFromName(name);
+  if (!model) map.Fail(key, "expected 'radtan' or 'equidistant', got '" + name + "'");
+  return *model;
+}
+
+// The camera YAML OpenCV's calibration sample writes, plus an optional distortion_model.
+CameraIntrinsics ParseOpenCvCamera(const YamlMap& root) {
+  root.RejectCaseVariants({"image_width", "image_height", "camera_matrix", "distortion_model",
                            "distortion_coefficients", "avg_reprojection_error"});
   CameraIntrinsics camera;
-  const auto image_size = [&root](const std::string& key) {
-    const int64_t size = root.Int(key);
-    if (size < 1 || size > std::numeric_limits<int>::max()) {
-      root.Fail(key, "expected a positive image size in px, got " + std::to_string(size));
-    }
-    return static_cast<int>(size);
-  };
-  camera.width = image_size("image_width");
-  camera.height = image_size("image_height");
+  camera.width = ImageSize(root, "image_width");
+  camera.height = ImageSize(root, "image_height");
   const Matrix K = ReadMatrix(root, "camera_matrix");
   if (K.rows != 3 || K.cols != 3) {
     root.Map("camera_matrix")
@@ -100,14 +108,18 @@ CameraIntrinsics ParseCameraYaml(const std::string& text, const std::string& sou
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) camera.K(r, c) = K.data[static_cast<size_t>(3 * r + c)];
   }
+  camera.distortion_model = root.Has("distortion_model")
+                                ? ReadDistortionModel(root, "distortion_model")
+                                : DistortionModel::kRadTan;
   const Matrix D = ReadMatrix(root, "distortion_coefficients");
   const size_t n = D.data.size();
-  if ((D.rows != 1 && D.cols != 1) || (n != 4 && n != 5 && n != 8)) {
+  if ((D.rows != 1 && D.cols != 1) || n == 0 ||
+      !IsSupportedDistortionCount(camera.distortion_model, static_cast<Eigen::Index>(n))) {
     root.Map("distortion_coefficients")
-        .Fail("rows",
-              "expected a 1xN or Nx1 matrix with N = 4, 5 or 8 (k1 k2 p1 p2 [k3 [k4 "
-              "k5 k6]]), got " +
-                  std::to_string(D.rows) + "x" + std::to_string(D.cols));
+        .Fail("rows", "expected a 1xN or Nx1 matrix with N = " +
+                          ExpectedDistortionCoefficients(camera.distortion_model) + " for the " +
+                          ToString(camera.distortion_model) + " model, got " +
+                          std::to_string(D.rows) + "x" + std::to_string(D.cols));
   }
   camera.distortion =
       Eigen::Map<const Eigen::VectorXd>(D.data.data(), static_cast<Eigen::Index>(n));
@@ -119,13 +131,103 @@ CameraIntrinsics ParseCameraYaml(const std::string& text, const std::string& sou
   return camera;
 }
 
+// One camera of a Kalibr camchain (or a file holding just that block).
+CameraIntrinsics ParseKalibrCamera(const YamlMap& block) {
+  block.RejectCaseVariants(
+      {"camera_model", "distortion_model", "intrinsics", "distortion_coeffs", "resolution"});
+  const std::string camera_model = block.String("camera_model");
+  if (camera_model != "pinhole") {
+    block.Fail(
+        "camera_model",
+        "expected 'pinhole' (the only Kalibr projection h4cal models), got '" + camera_model + "'");
+  }
+  CameraIntrinsics camera;
+  const std::vector<int64_t> resolution = block.Ints("resolution", 2);
+  for (size_t i = 0; i < 2; ++i) {
+    if (resolution[i] < 1 || resolution[i] > std::numeric_limits<int>::max()) {
+      block.FailElement("resolution", i, "expected a positive image size in px");
+    }
+  }
+  camera.width = static_cast<int>(resolution[0]);
+  camera.height = static_cast<int>(resolution[1]);
+  const std::vector<double> fu_fv_pu_pv = block.Doubles("intrinsics", 4);
+  for (size_t i = 0; i < 2; ++i) {
+    if (!(fu_fv_pu_pv[i] > 0.0)) {
+      block.FailElement("intrinsics", i, "expected a positive focal length in px (fu, fv)");
+    }
+  }
+  camera.K << fu_fv_pu_pv[0], 0, fu_fv_pu_pv[2], 0, fu_fv_pu_pv[1], fu_fv_pu_pv[3], 0, 0, 1;
+  camera.distortion_model = ReadDistortionModel(block, "distortion_model");
+  // Kalibr's radtan is OpenCV's with 4 coefficients (k1 k2 p1 p2), its equidistant
+  // cv::fisheye's 4 (k1 k2 k3 k4).
+  const YAML::Node coeffs = block.Get("distortion_coeffs");
+  if (!coeffs.IsSequence()) block.Fail("distortion_coeffs", "expected a list of 4 numbers");
+  if (coeffs.size() != 4) {
+    block.Fail("distortion_coeffs", "expected 4 coefficients for Kalibr's " +
+                                        std::string(ToString(camera.distortion_model)) +
+                                        " model, got " + std::to_string(coeffs.size()));
+  }
+  const std::vector<double> d = block.Doubles("distortion_coeffs", 4);
+  camera.distortion = Eigen::Map<const Eigen::Vector4d>(d.data());
+  return camera;
+}
+
+// cam0, cam1, ...: the camera blocks of a camchain (next to other keys, e.g. T_imu_body).
+bool IsKalibrCameraName(const std::string& key) {
+  return key.size() > 3 && key.rfind("cam", 0) == 0 &&
+         key.find_first_not_of("0123456789", 3) == std::string::npos;
+}
+
+bool LooksLikeKalibr(const YamlMap& root) {
+  return root.Has("camera_model") || root.Has("cam0") || root.Has("cam1");
+}
+
+// The camera block of a camchain: `camera` when named, else its only camN block.
+YamlMap KalibrCameraBlock(const YamlMap& root, const YAML::Node& document,
+                          const std::string& camera) {
+  if (root.Has("camera_model")) return root;
+  if (!camera.empty()) return root.Map(camera);
+  std::vector<std::string> cameras;
+  for (const auto& entry : document) {
+    const std::string key = entry.first.as<std::string>();
+    if (IsKalibrCameraName(key)) cameras.push_back(key);
+  }
+  if (cameras.empty()) root.Fail("cam0", "expected a Kalibr camera block (cam0, cam1, ...)");
+  if (cameras.size() != 1) {
+    std::string names;
+    for (const auto& name : cameras) names += (names.empty() ? "" : ", ") + name;
+    root.Fail(cameras.front(), "a Kalibr camchain with " + std::to_string(cameras.size()) +
+                                   " cameras (" + names + "): name one (FILE#cam1)");
+  }
+  return root.Map(cameras.front());
+}
+
+}  // namespace
+
+CameraIntrinsics ParseCameraYaml(const std::string& text, const std::string& source_name,
+                                 const std::string& kalibr_camera) {
+  const YAML::Node document = LoadYaml(WithoutOpenCvDirective(text), source_name);
+  const YamlMap root(document, source_name, "", 0);
+  if (!kalibr_camera.empty() || LooksLikeKalibr(root)) {
+    return ParseKalibrCamera(KalibrCameraBlock(root, document, kalibr_camera));
+  }
+  return ParseOpenCvCamera(root);
+}
+
 CameraIntrinsics ReadCameraYaml(const std::string& path) {
+  // "camchain.yaml#cam1": one camera of a Kalibr camchain.
+  const size_t hash = path.rfind('#');
+  if (hash != std::string::npos && IsKalibrCameraName(path.substr(hash + 1))) {
+    const std::string file = path.substr(0, hash);
+    return ParseCameraYaml(ReadTextFile(file), file, path.substr(hash + 1));
+  }
   return ParseCameraYaml(ReadTextFile(path), path);
 }
 
 std::string FormatCameraYaml(const CameraIntrinsics& camera) {
   std::string text = "%YAML:1.0\n---\nimage_width: " + std::to_string(camera.width) +
-                     "\nimage_height: " + std::to_string(camera.height) + "\n";
+                     "\nimage_height: " + std::to_string(camera.height) +
+                     "\ndistortion_model: " + ToString(camera.distortion_model) + "\n";
   double K[9];
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) K[3 * r + c] = camera.K(r, c);

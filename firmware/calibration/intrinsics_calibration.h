@@ -1,7 +1,8 @@
-// Camera intrinsics from several views of a planar board (Zhang's method through
-// cv::calibrateCamera): pinhole + OpenCV's 5-coefficient distortion, per-view RMS
-// reprojection errors, and outlier views named (and optionally dropped, then
-// recalibrated) by a stated rule.
+// Camera intrinsics from several views of a planar board (Zhang's method): pinhole +
+// OpenCV's 5-coefficient or rational 8-coefficient distortion (cv::calibrateCamera), or
+// the equidistant fisheye model (cv::fisheye::calibrate); per-view RMS reprojection
+// errors, outlier views named (and optionally dropped, then recalibrated) by a stated
+// rule, and view sets that cannot determine the focal length refused with the reason.
 #pragma once
 
 #include <string>
@@ -14,9 +15,28 @@
 
 namespace h4::cam {
 
+/// The lens model to calibrate (camera_intrinsics.h).
+enum class IntrinsicsModel {
+  kRadTan,       ///< radtan, k1 k2 p1 p2 k3 (cv::calibrateCamera)
+  kRational,     ///< radtan, k1 k2 p1 p2 k3 k4 k5 k6 (cv::CALIB_RATIONAL_MODEL)
+  kEquidistant,  ///< equidistant fisheye, k1 k2 k3 k4 (cv::fisheye::calibrate)
+};
+/// "radtan", "rational", "equidistant".
+const char* ToString(IntrinsicsModel model);
+
 struct IntrinsicsCalibrationOptions {
+  IntrinsicsModel model = IntrinsicsModel::kRadTan;
   int min_views = 8;              ///< fewer views with the board: no calibration
-  bool fix_aspect_ratio = false;  ///< fx = fy (CALIB_FIX_ASPECT_RATIO with ratio 1)
+  bool fix_aspect_ratio = false;  ///< fx = fy (CALIB_FIX_ASPECT_RATIO with ratio 1); not
+                                  ///< with kEquidistant (cv::fisheye has no such flag)
+  /// Observability of the focal length (Zhang's method needs the board seen tilted, in
+  /// several orientations): two views are distinct when their board normals differ by at
+  /// least min_orientation_difference_deg; fewer than min_distinct_orientations distinct
+  /// views, or no view tilted at least min_tilt_deg from fronto-parallel, and the
+  /// calibration is refused (kDegenerateViews). Normals from the calibrated poses.
+  double min_orientation_difference_deg = 5.0;
+  int min_distinct_orientations = 3;
+  double min_tilt_deg = 10.0;
   /// Outlier rule: a view whose RMS error exceeds outlier_factor x the median per-view RMS
   /// is an outlier (a blurred image, a mis-detected corner); 3 flags OpenCV's left02.jpg.
   double outlier_factor = 3.0;
@@ -30,20 +50,24 @@ struct ViewReport {
   std::string name;
   int points = 0;
   double rms_px = 0;     ///< RMS reprojection error of this view, px
+  double tilt_deg = 0;   ///< angle between the board normal and the optical axis, deg
   bool outlier = false;  ///< by the rule of IntrinsicsCalibrationOptions::outlier_factor
   bool used = true;      ///< in the final calibration (false once dropped)
 };
 
 struct IntrinsicsCalibrationResult {
-  enum class Status { kOk, kInvalidOptions, kTooFewViews, kFailed };
+  enum class Status { kOk, kInvalidOptions, kTooFewViews, kDegenerateViews, kFailed };
   Status status = Status::kFailed;
   std::string message;      ///< why it is not kOk, or a note (outliers dropped)
   CameraIntrinsics camera;  ///< with avg_reprojection_error = rms_px
-  double rms_px = 0;        ///< RMS reprojection error over every used point, px
+  IntrinsicsModel model = IntrinsicsModel::kRadTan;
+  double rms_px = 0;  ///< RMS reprojection error over every used point, px
   double median_view_rms_px = 0;
   double outlier_limit_px = 0;  ///< outlier_factor x median_view_rms_px
   std::vector<ViewReport> views;
   int views_used = 0;
+  int distinct_orientations = 0;  ///< among the used views (see the options)
+  double max_tilt_deg = 0;        ///< largest board tilt from fronto-parallel, deg
 
   bool ok() const { return status == Status::kOk; }
   /// Multi-line report: K, distortion, RMS, one line per view with outliers marked.

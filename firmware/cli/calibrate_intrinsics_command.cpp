@@ -1,6 +1,7 @@
 // `h4cam calibrate-intrinsics`; see calibrate_intrinsics_command.h.
 #include "firmware/cli/calibrate_intrinsics_command.h"
 
+#include <map>
 #include <memory>
 #include <ostream>
 #include <stdexcept>
@@ -60,6 +61,16 @@ void AddCalibrateIntrinsicsCommand(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   command->add_option("--out", args->out_path, "Camera YAML to write")->required();
+  const std::map<std::string, IntrinsicsModel> models = {
+      {"radtan", IntrinsicsModel::kRadTan},
+      {"rational", IntrinsicsModel::kRational},
+      {"equidistant", IntrinsicsModel::kEquidistant}};
+  command
+      ->add_option("--model", args->options.model,
+                   "Lens model: radtan (k1 k2 p1 p2 k3), rational (8 coefficients, "
+                   "CALIB_RATIONAL_MODEL) or equidistant (fisheye k1..k4, cv::fisheye)")
+      ->transform(CLI::CheckedTransformer(models))
+      ->default_str("radtan");
   command->add_flag("--fix-aspect-ratio", args->options.fix_aspect_ratio, "Calibrate with fx = fy");
   command
       ->add_option("--min-views", args->options.min_views,

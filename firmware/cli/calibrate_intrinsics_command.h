@@ -1,6 +1,9 @@
-// `h4cam calibrate-intrinsics --board B.yaml IMAGES... --out camera.yaml`: finds the board
-// in each image (chessboard or AprilTag grid), calibrates the camera (intrinsics_calibration.h),
-// prints per-view errors with outliers named, and writes the camera YAML (formats.md).
+// `h4cam calibrate-intrinsics --board B.yaml IMAGES... --out camera.yaml
+// [--model radtan|rational|equidistant]`: finds the board in each image (chessboard or
+// AprilTag grid), calibrates the camera (intrinsics_calibration.h), prints per-view errors
+// with outliers named, and writes the camera YAML with its distortion_model
+// (common/formats/README.md). Refuses (non-zero exit) view sets that cannot determine the
+// focal length.
 #pragma once
 
 #include <iosfwd>

@@ -1,6 +1,10 @@
 // Undistorted ("ideal") coordinates of every pixel centre, solved once per camera so that
 // edge fitting can work in a space where the board's straight edges are straight lines.
-// Ideal coordinates: K applied to the undistorted normalised ray (camera_model.h).
+// Ideal coordinates: K applied to the undistorted normalised ray (camera_model.h), for
+// either lens model (radtan or equidistant fisheye): straight lines in space are straight
+// here. A pixel without a ray (a fisheye pixel 90 degrees or more off-axis, or beyond a
+// lens fold; CameraModel::NormalizedFromPixel returns false) holds K applied to its
+// distorted coordinates instead: finite, but not on any straight line.
 #pragma once
 
 #include <algorithm>

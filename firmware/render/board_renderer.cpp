@@ -63,7 +63,8 @@ BoardRenderer::BoardRenderer(const BoardSpec& board, const CameraIntrinsics& cam
   for (int j = 0; j <= height_; ++j) {
     for (int i = 0; i <= width_; ++i) {
       Eigen::Vector2d xn;
-      camera_.NormalizedFromPixel(Eigen::Vector2d(i - 0.5, j - 0.5), &xn);
+      // No ray (a fisheye pixel beyond 90 degrees): NaN, which no board point accepts.
+      if (!camera_.NormalizedFromPixel(Eigen::Vector2d(i - 0.5, j - 0.5), &xn)) xn.setConstant(NAN);
       corner_rays_[static_cast<size_t>(j * (width_ + 1) + i)] = xn;
     }
   }

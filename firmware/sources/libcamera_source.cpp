@@ -17,6 +17,7 @@
 #include <sys/mman.h>
 
 #include "firmware/sources/libcamera_compat.h"
+#include "firmware/sources/libcamera_dma_buf_sync.h"
 #include "firmware/sources/libcamera_manager.h"
 
 namespace h4::cam {
@@ -226,7 +227,8 @@ bool LibcameraSource::MapBuffers() {
       return false;
     }
     mappings_.push_back({address, bytes});
-    luma_planes_[buffer.get()] = {static_cast<const uint8_t*>(address) + offset, plane.length};
+    luma_planes_[buffer.get()] = {static_cast<const uint8_t*>(address) + offset, plane.length,
+                                  plane.fd.get()};
   }
   return true;
 }
@@ -307,8 +309,13 @@ std::optional<Frame> LibcameraSource::Consume(libcamera::Request* request) {
     const MappedPlane& plane = luma_planes_.at(buffer);
     Frame out;
     std::string copy_error;
-    if (!CopyLumaPlane(plane.data, plane.bytes, width_, height_, stride_, &out.image,
-                       &copy_error)) {
+    bool copied = false;
+    {  // The CPU reads what the camera's DMA wrote: sync the caches around the copy.
+      const DmaBufReadSync cpu_read(plane.dma_buf_fd);
+      copied =
+          CopyLumaPlane(plane.data, plane.bytes, width_, height_, stride_, &out.image, &copy_error);
+    }
+    if (!copied) {
       spdlog::warn("libcamera: camera '{}': {}", camera_->id(), copy_error);
     } else {
       if (Clock::now() - last_offset_update_ > kClockOffsetRefresh) {

@@ -89,6 +89,7 @@ class LibcameraSource final : public FrameSource {
   struct MappedPlane {
     const uint8_t* data = nullptr;
     size_t bytes = 0;
+    int dma_buf_fd = -1;  ///< the plane's dma-buf, synced around every CPU read
   };
   struct Mapping {
     void* address = nullptr;

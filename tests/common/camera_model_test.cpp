@@ -1,7 +1,11 @@
-// Tests for common/camera/camera_model: OpenCV's distortion model by known values, its
-// Jacobians against finite differences, and undistortion inverting it. (Agreement with
-// cv::projectPoints itself is checked in tests/firmware, which links OpenCV.)
+// Tests for common/camera/camera_model: OpenCV's radial-tangential and equidistant
+// (fisheye) models by known values, their Jacobians against finite differences, and
+// undistortion inverting them over the whole image, failing where it must. (Agreement
+// with cv::projectPoints and cv::fisheye itself is checked in tests/firmware, which links
+// OpenCV.)
 #include "common/camera/camera_model.h"
+
+#include <cmath>
 
 #include <gtest/gtest.h>
 
@@ -17,6 +21,35 @@ CameraIntrinsics Camera(int distortion_count) {
   const double all[8] = {-0.2, 0.05, 0.001, -0.002, 0.01, 0.02, -0.01, 0.005};
   for (int i = 0; i < distortion_count; ++i) c.distortion[i] = all[i];
   return c;
+}
+
+// A wide-angle fisheye module: 1024 x 768 at 300 px focal length sees about 90 degrees
+// off-axis along the long side; the image corners are beyond 90 degrees.
+CameraIntrinsics Fisheye() {
+  CameraIntrinsics c;
+  c.width = 1024;
+  c.height = 768;
+  c.K << 300.0, 0.0, 510.0, 0.0, 301.0, 386.0, 0.0, 0.0, 1.0;
+  c.distortion_model = DistortionModel::kEquidistant;
+  c.distortion = Eigen::Vector4d(-0.02, 0.004, -0.0015, 0.0002);
+  return c;
+}
+
+// Central finite differences of Project against its analytic Jacobian.
+void ExpectProjectionJacobianMatches(const CameraModel& camera, const Eigen::Vector3d& p) {
+  Eigen::Vector2d uv;
+  Eigen::Matrix<double, 2, 3> J;
+  ASSERT_TRUE(camera.Project(p, &uv, &J));
+  for (int k = 0; k < 3; ++k) {
+    const double h = 1e-7 * std::max(1.0, p.norm());
+    Eigen::Vector2d up, um;
+    ASSERT_TRUE(camera.Project(p + h * Eigen::Vector3d::Unit(k), &up));
+    ASSERT_TRUE(camera.Project(p - h * Eigen::Vector3d::Unit(k), &um));
+    const Eigen::Vector2d numeric = (up - um) / (2 * h);
+    EXPECT_NEAR((J.col(k) - numeric).norm(), 0.0, 1e-5 * (1 + numeric.norm()))
+        << "p " << p.transpose() << " column " << k << "\nanalytic " << J.col(k).transpose()
+        << "\nnumeric " << numeric.transpose();
+  }
 }
 
 TEST(CameraModelTest, PinholeWithoutDistortionProjectsByHand) {
@@ -66,6 +99,82 @@ TEST(CameraModelTest, ProjectionJacobianMatchesFiniteDifferences) {
   }
 }
 
+TEST(CameraModelTest, EquidistantModelMatchesTheFisheyeFormula) {
+  const CameraModel camera(Fisheye());
+  const double x = 0.9, y = -0.6, r = std::hypot(x, y), theta = std::atan(r);
+  const double t2 = theta * theta;
+  const double theta_d = theta * (1 - 0.02 * t2 + 0.004 * t2 * t2 - 0.0015 * t2 * t2 * t2 +
+                                  0.0002 * t2 * t2 * t2 * t2);
+  const Eigen::Vector2d uv = camera.PixelFromNormalized(Eigen::Vector2d(x, y));
+  EXPECT_NEAR(uv.x(), 300.0 * theta_d / r * x + 510.0, 1e-10);
+  EXPECT_NEAR(uv.y(), 301.0 * theta_d / r * y + 386.0, 1e-10);
+  // On the axis the image is the principal point; the plain f-theta lens has no coefficients.
+  EXPECT_EQ(camera.PixelFromNormalized(Eigen::Vector2d::Zero()), Eigen::Vector2d(510.0, 386.0));
+  CameraIntrinsics f_theta = Fisheye();
+  f_theta.distortion.resize(0);
+  const Eigen::Vector2d xd = CameraModel(f_theta).Distort(Eigen::Vector2d(1.0, 0.0));
+  EXPECT_NEAR(xd.x(), std::atan(1.0), 1e-15);
+}
+
+TEST(CameraModelTest, EquidistantJacobianMatchesFiniteDifferencesFromAxisTo85Degrees) {
+  const CameraModel camera(Fisheye());
+  for (double angle_deg : {0.0, 1e-6, 0.5, 20.0, 45.0, 70.0, 85.0}) {
+    const double theta = angle_deg * M_PI / 180.0;
+    for (double azimuth : {0.3, 2.0, 4.4}) {
+      const Eigen::Vector3d p(std::sin(theta) * std::cos(azimuth),
+                              std::sin(theta) * std::sin(azimuth), std::cos(theta));
+      ExpectProjectionJacobianMatches(camera, 0.7 * p);
+    }
+  }
+}
+
+// Every pixel whose ray is less than 90 degrees off-axis comes back to itself; beyond,
+// NormalizedFromPixel says it cannot.
+TEST(CameraModelTest, EquidistantUndistortionInvertsOverTheImageUpTo90Degrees) {
+  const CameraModel camera(Fisheye());
+  EXPECT_DOUBLE_EQ(camera.max_field_angle(), M_PI / 2);  // this lens does not fold
+  int inverted = 0, refused = 0;
+  double widest_deg = 0;
+  for (double u = 0; u <= 1023; u += 31) {
+    for (double v = 0; v <= 767; v += 31) {
+      const Eigen::Vector2d uv(u, v);
+      const double theta_d = Eigen::Vector2d((u - 510.0) / 300.0, (v - 386.0) / 301.0).norm();
+      Eigen::Vector2d xn;
+      const bool ok = camera.NormalizedFromPixel(uv, &xn);
+      EXPECT_TRUE(xn.allFinite());
+      const Eigen::Vector2d at_90 = camera.Distort(Eigen::Vector2d(1e9, 0));
+      if (theta_d >= at_90.norm()) {
+        EXPECT_FALSE(ok) << uv.transpose();
+        ++refused;
+        continue;
+      }
+      ASSERT_TRUE(ok) << uv.transpose();
+      ++inverted;
+      widest_deg = std::max(widest_deg, std::atan(xn.norm()) * 180.0 / M_PI);
+      EXPECT_NEAR((camera.PixelFromNormalized(xn) - uv).norm(), 0.0, 1e-8) << uv.transpose();
+    }
+  }
+  EXPECT_GT(inverted, 300);
+  EXPECT_GT(refused, 20);  // the corners
+  EXPECT_GT(widest_deg, 88.0);
+}
+
+TEST(CameraModelTest, EquidistantUndistortionRefusesPixelsBeyondAFold) {
+  CameraIntrinsics folding = Fisheye();
+  folding.distortion = Eigen::Vector4d(-0.5, 0, 0, 0);  // theta_d' = 1 - 1.5 theta^2
+  const CameraModel camera(folding);
+  const double fold = std::sqrt(1 / 1.5);
+  EXPECT_NEAR(camera.max_field_angle(), fold, 1e-9);
+  const auto pixel_at = [&](double theta) {
+    return camera.PixelFromNormalized(Eigen::Vector2d(std::tan(theta), 0));
+  };
+  Eigen::Vector2d xn;
+  ASSERT_TRUE(camera.NormalizedFromPixel(pixel_at(0.95 * fold), &xn));
+  EXPECT_NEAR(std::atan(xn.x()), 0.95 * fold, 1e-9);
+  // Beyond the fold theta_d decreases: that pixel is also the image of a ray inside it.
+  EXPECT_FALSE(camera.NormalizedFromPixel(pixel_at(fold) + Eigen::Vector2d(0.5, 0), &xn));
+}
+
 TEST(CameraModelTest, UndistortionInvertsDistortionAcrossTheImage) {
   const CameraModel camera(Camera(8));
   for (double u = 0; u <= 1023; u += 170.5) {
@@ -88,6 +197,18 @@ TEST(CameraModelTest, PointBehindCameraIsRefused) {
 TEST(CameraModelTest, UnsupportedDistortionCountIsInvalid) {
   EXPECT_FALSE(CameraModel(Camera(6)).valid());
   EXPECT_TRUE(CameraModel(Camera(5)).valid());
+  CameraIntrinsics fisheye = Fisheye();
+  EXPECT_TRUE(CameraModel(fisheye).valid());
+  fisheye.distortion = Eigen::VectorXd::Zero(5);  // five coefficients: a radtan vector
+  EXPECT_FALSE(CameraModel(fisheye).valid());
+}
+
+TEST(CameraModelTest, DistortionModelNamesRoundTrip) {
+  for (DistortionModel model : {DistortionModel::kRadTan, DistortionModel::kEquidistant}) {
+    EXPECT_EQ(DistortionModelFromName(ToString(model)), model);
+  }
+  EXPECT_EQ(DistortionModelFromName("fisheye"), std::nullopt);
+  EXPECT_EQ(DistortionModelFromName("RadTan"), std::nullopt);
 }
 
 }  // namespace

@@ -1,10 +1,13 @@
 // Camera intrinsics in OpenCV FileStorage YAML: a file OpenCV 4.6 wrote, files without
 // the %YAML directive, exact round trip, malformed values with their line and field, and
-// (when the tests link OpenCV) that cv::FileStorage reads what the writer writes.
+// (when the tests link OpenCV) that cv::FileStorage reads what the writer writes. The
+// distortion model key (radtan by default, equidistant) and Kalibr camchain files, with
+// their errors.
 #include "common/formats/camera_yaml.h"
 
 #include <gtest/gtest.h>
 
+#include "common/formats/csv_table.h"
 #include "tests/common/format_error_helpers.h"
 
 #ifdef H4_TEST_WITH_OPENCV
@@ -147,6 +150,131 @@ TEST(CameraYamlErrors, DistortionCountMustBe4Or5Or8) {
   four.replace(four.find(", 0. ]"), 6, " ]");
   EXPECT_TRUE(FailsWith([&] { ParseCameraYaml(four, "c.yaml"); }, "c.yaml", 13,
                         "distortion_coefficients.rows", "1xN or Nx1"));
+}
+
+TEST(CameraYaml, AFileWithoutDistortionModelIsRadtan) {
+  EXPECT_EQ(ParseCameraYaml(kOpenCvFile, "cam.yaml").distortion_model, DistortionModel::kRadTan);
+  const std::string text =
+      CameraFileWith("image_height: 1088\n", "image_height: 1088\ndistortion_model: radtan\n");
+  EXPECT_EQ(ParseCameraYaml(text, "cam.yaml").distortion_model, DistortionModel::kRadTan);
+}
+
+// The same file for a fisheye lens: distortion_model and 4 coefficients k1..k4.
+std::string EquidistantFile() {
+  std::string text =
+      CameraFileWith("image_height: 1088\n", "image_height: 1088\ndistortion_model: equidistant\n");
+  text.replace(text.find("rows: 5"), 7, "rows: 4");
+  text.replace(text.find(", 0. ]"), 6, " ]");
+  return text;
+}
+
+TEST(CameraYaml, ReadsAndWritesTheEquidistantModel) {
+  const CameraIntrinsics camera = ParseCameraYaml(EquidistantFile(), "fisheye.yaml");
+  EXPECT_EQ(camera.distortion_model, DistortionModel::kEquidistant);
+  ASSERT_EQ(camera.distortion.size(), 4);
+  EXPECT_EQ(camera.distortion[3], -2e-4);
+  const std::string text = FormatCameraYaml(camera);
+  EXPECT_NE(text.find("\ndistortion_model: equidistant\n"), std::string::npos) << text;
+  const CameraIntrinsics back = ParseCameraYaml(text, "written.yaml");
+  EXPECT_EQ(back.distortion_model, DistortionModel::kEquidistant);
+  EXPECT_EQ(back.distortion, camera.distortion);
+  EXPECT_EQ(back.K, camera.K);
+}
+
+TEST(CameraYamlErrors, UnknownModelAndWrongCountForTheModelNameTheField) {
+  EXPECT_TRUE(FailsWith(
+      [] {
+        ParseCameraYaml(CameraFileWith("image_height: 1088\n",
+                                       "image_height: 1088\ndistortion_model: fisheye\n"),
+                        "c.yaml");
+      },
+      "c.yaml", 6, "distortion_model", "expected 'radtan' or 'equidistant', got 'fisheye'"));
+  // Five coefficients are a radtan vector, not an equidistant one.
+  std::string five =
+      CameraFileWith("image_height: 1088\n", "image_height: 1088\ndistortion_model: equidistant\n");
+  EXPECT_TRUE(FailsWith([&] { ParseCameraYaml(five, "c.yaml"); }, "c.yaml", 14,
+                        "distortion_coefficients.rows",
+                        "N = 4 (k1 k2 k3 k4) for the equidistant model, got 5x1"));
+}
+
+// Kalibr's camchain for the EuRoC MAV dataset's cam0 (kalibr_calibrate_cameras output).
+const std::string kKalibrCamchain = R"(cam0:
+  cam_overlaps: [1]
+  camera_model: pinhole
+  distortion_coeffs: [-0.28340811, 0.07395907, 0.00019359, 1.76187114e-05]
+  distortion_model: radtan
+  intrinsics: [458.654, 457.296, 367.215, 248.375]
+  resolution: [752, 480]
+  rostopic: /cam0/image_raw
+  T_cam_imu:
+  - [0.0148655429818, -0.999880929698, 0.00414029679422, -0.0216401454975]
+  - [0.999557249008, 0.0149672133247, 0.025715529948, -0.064676986768]
+  - [-0.0257744366974, 0.00375618835797, 0.999660727178, 0.00981073058949]
+  - [0.0, 0.0, 0.0, 1.0]
+)";
+
+const std::string kKalibrFisheye = R"(cam1:
+  camera_model: pinhole
+  distortion_coeffs: [0.0034, 0.0339, -0.0412, 0.0143]
+  distortion_model: equidistant
+  intrinsics: [190.97, 190.97, 254.93, 256.89]
+  resolution: [512, 512]
+)";
+
+TEST(CameraYaml, ReadsAKalibrCamchain) {
+  const CameraIntrinsics camera = ParseCameraYaml(kKalibrCamchain, "camchain.yaml");
+  EXPECT_EQ(camera.width, 752);
+  EXPECT_EQ(camera.height, 480);
+  Eigen::Matrix3d K;
+  K << 458.654, 0, 367.215, 0, 457.296, 248.375, 0, 0, 1;
+  EXPECT_EQ(camera.K, K);
+  EXPECT_EQ(camera.distortion_model, DistortionModel::kRadTan);
+  ASSERT_EQ(camera.distortion.size(), 4);
+  EXPECT_EQ(camera.distortion[0], -0.28340811);
+  EXPECT_EQ(camera.distortion[3], 1.76187114e-05);
+  EXPECT_FALSE(camera.avg_reprojection_error.has_value());
+
+  const CameraIntrinsics fisheye = ParseCameraYaml(kKalibrFisheye, "tum.yaml");
+  EXPECT_EQ(fisheye.distortion_model, DistortionModel::kEquidistant);
+  EXPECT_EQ(fisheye.distortion[1], 0.0339);
+  EXPECT_EQ(fisheye.K(1, 2), 256.89);
+}
+
+TEST(CameraYaml, ReadsOneCameraOfAKalibrCamchainByName) {
+  const std::string two = kKalibrCamchain + kKalibrFisheye;
+  EXPECT_TRUE(FailsWith([&] { ParseCameraYaml(two, "chain.yaml"); }, "chain.yaml", 2, "cam0",
+                        "2 cameras (cam0, cam1): name one (FILE#cam1)"));
+  EXPECT_EQ(ParseCameraYaml(two, "chain.yaml", "cam1").width, 512);
+  const std::string path = TempPath("camchain.yaml");
+  WriteTextFile(path, two);
+  EXPECT_EQ(ReadCameraYaml(path + "#cam1").distortion_model, DistortionModel::kEquidistant);
+  EXPECT_EQ(ReadCameraYaml(path + "#cam0").width, 752);
+  EXPECT_TRUE(FailsWith([&] { ReadCameraYaml(path + "#cam2"); }, path, 0, "cam2", "missing key"));
+}
+
+TEST(CameraYamlErrors, KalibrFieldsAreCheckedAndNamed) {
+  const auto with = [](const std::string& from, const std::string& to) {
+    std::string text = kKalibrCamchain;
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  EXPECT_TRUE(FailsWith(
+      [&] { ParseCameraYaml(with("camera_model: pinhole", "camera_model: omni"), "k.yaml"); },
+      "k.yaml", 3, "cam0.camera_model", "expected 'pinhole'"));
+  EXPECT_TRUE(FailsWith(
+      [&] { ParseCameraYaml(with("distortion_model: radtan", "distortion_model: fov"), "k.yaml"); },
+      "k.yaml", 5, "cam0.distortion_model", "got 'fov'"));
+  EXPECT_TRUE(FailsWith(
+      [&] { ParseCameraYaml(with(", 1.76187114e-05]", ", 1.7e-05, 0.0]"), "k.yaml"); }, "k.yaml", 4,
+      "cam0.distortion_coeffs", "expected 4 coefficients for Kalibr's radtan model, got 5"));
+  EXPECT_TRUE(
+      FailsWith([&] { ParseCameraYaml(with("[458.654, 457.296", "[-458.654, 457.296"), "k.yaml"); },
+                "k.yaml", 6, "cam0.intrinsics[0]", "positive focal length"));
+  EXPECT_TRUE(FailsWith(
+      [&] { ParseCameraYaml(with("resolution: [752, 480]", "resolution: [752]"), "k.yaml"); },
+      "k.yaml", 7, "cam0.resolution", "2"));
+  EXPECT_TRUE(FailsWith([&] { ParseCameraYaml(with("  resolution: [752, 480]\n", ""), "k.yaml"); },
+                        "k.yaml", 1, "cam0.resolution", "missing key"));
 }
 
 #ifdef H4_TEST_WITH_OPENCV
