@@ -5,8 +5,8 @@
 // the position and rotation error RMS and the reported sigma over the actual error, against
 // the goals of issue 12: <= 0.03 mm, <= 0.005 deg, sigma/actual within 0.5..2 (clean scenes
 // <= 0.01 mm).
-// Usage: h4_measure_response [scenes=12] [erosion=global|affine|none] [seed=1]
-//        [covariance=group|residual]
+// Usage: h4_measure_response [scenes=12] [erosion=affine|global|tag|none] [seed=1]
+//        [covariance=residual|group] [corner_floor_px=0.0025]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -34,6 +34,7 @@ std::vector<Condition> Conditions() {
   return {
       {"clean (blur 0.8, noise 2)", 0.8, 0.8, 1.0, 1.0, 0.0, 2.0, 0.0},
       {"blur 1.4", 1.4, 1.4, 1.0, 1.0, 0.0, 2.0, 0.0},
+      {"blur 1.4, no noise (bias only)", 1.4, 1.4, 1.0, 1.0, 0.0, 0.0, 0.0},
       {"gamma 0.7, blur 0.7", 0.7, 0.7, 0.7, 0.7, 0.0, 2.0, 0.0},
       {"gamma 0.7, blur 1.4, grad 20%, shot", 1.4, 1.4, 0.7, 0.7, 0.2, 1.0, 0.03},
       {"gamma 0.45, blur 1.0", 1.0, 1.0, 0.45, 0.45, 0.0, 2.0, 0.0},
@@ -70,24 +71,29 @@ int main(int argc, char** argv) {
   using namespace h4;
   using namespace h4::cam;
   const int count = argc > 1 ? std::atoi(argv[1]) : 12;
-  const std::string erosion = argc > 2 ? argv[2] : "global";
+  const std::string erosion = argc > 2 ? argv[2] : "affine";
   const uint64_t seed = argc > 3 ? std::strtoull(argv[3], nullptr, 10) : 1;
   const AprilGridSpec board = scenes::PaperBoard();
   const CameraIntrinsics camera = scenes::PaperCamera();
-  const std::string covariance = argc > 4 ? argv[4] : "group";
+  const std::string covariance = argc > 4 ? argv[4] : "residual";
   PipelineOptions options;
+  if (argc > 5) options.pose.corner_floor_px = std::atof(argv[5]);
   options.pose.covariance =
-      covariance == "residual" ? CovarianceModel::kResidual : CovarianceModel::kEdgeGroup;
+      covariance == "group" ? CovarianceModel::kEdgeGroup : CovarianceModel::kResidual;
   options.pose.erosion = erosion == "none"     ? ErosionModel::kNone
                          : erosion == "affine" ? ErosionModel::kAffine
-                                               : ErosionModel::kGlobal;
+                         : erosion == "tag"    ? ErosionModel::kPerTag
+                         : erosion == "global" ? ErosionModel::kGlobal
+                                               : ErosionModel::kAffine;
   MeasurePipeline pipeline(board, camera, options);
   if (!pipeline.ok()) {
     std::fprintf(stderr, "setup failed: %s\n", pipeline.error().c_str());
     return 1;
   }
-  std::printf("erosion model %s, covariance %s, %d scenes per condition, seed %llu\n",
-              erosion.c_str(), covariance.c_str(), count, static_cast<unsigned long long>(seed));
+  std::printf(
+      "erosion model %s, covariance %s, corner floor %.4f px, %d scenes per condition, seed %llu\n",
+      erosion.c_str(), covariance.c_str(), options.pose.corner_floor_px, count,
+      static_cast<unsigned long long>(seed));
   std::printf("%-46s %6s %9s %10s %7s %7s %10s\n", "condition", "scenes", "e_t_mm", "e_r_deg",
               "sig/t", "sig/r", "erosion_px");
   const auto poses = scenes::RandomPoses(count, seed);

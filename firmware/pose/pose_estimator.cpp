@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <utility>
 
 #include <Eigen/Cholesky>
@@ -29,25 +30,44 @@ struct Refined {
   int iterations = 0;
 };
 
-// Erosion at a pixel: basis(uv) . coefficients. Global: {1}; affine: {1, u', v'} with u',
-// v' the offset from the image centre over the image width (coefficients in px).
+// Erosion at a corner: basis(corner) . coefficients. Global: {1}; affine: {1, u', v'} with
+// u', v' the offset from the image centre over the image width; per tag: the indicator of
+// the corner's edge group (coefficients in px).
 class ErosionBasis {
  public:
-  ErosionBasis(ErosionModel model, const CameraModel& camera)
-      : count_(model == ErosionModel::kAffine   ? 3
-               : model == ErosionModel::kGlobal ? 1
-                                                : 0),
+  ErosionBasis(ErosionModel model, const CameraModel& camera,
+               const std::vector<CornerObservation>& corners)
+      : model_(model),
         centre_(0.5 * camera.width(), 0.5 * camera.height()),
-        scale_(1.0 / std::max(camera.width(), 1)) {}
+        scale_(1.0 / std::max(camera.width(), 1)) {
+    count_ = model == ErosionModel::kAffine ? 3 : model == ErosionModel::kGlobal ? 1 : 0;
+    if (model == ErosionModel::kPerTag) {
+      for (const CornerObservation& c : corners) {
+        if (c.edge_group >= 0 && group_index_.emplace(c.edge_group, count_).second) ++count_;
+      }
+    }
+  }
   int count() const { return count_; }
-  double At(const Eigen::Vector2d& uv, int k) const {
-    return k == 0 ? 1.0 : scale_ * (uv[k - 1] - centre_[k - 1]);
+  // Basis function k at corner c.
+  double At(const CornerObservation& c, int k) const {
+    switch (model_) {
+      case ErosionModel::kPerTag: {
+        const auto it = group_index_.find(c.edge_group);
+        return it != group_index_.end() && it->second == k ? 1.0 : 0.0;
+      }
+      case ErosionModel::kAffine:
+        return k == 0 ? 1.0 : scale_ * (c.uv[k - 1] - centre_[k - 1]);
+      default:
+        return 1.0;
+    }
   }
 
  private:
-  int count_;
+  ErosionModel model_;
+  int count_ = 0;
   Eigen::Vector2d centre_;
   double scale_;
+  std::map<int, int> group_index_;  // edge group -> coefficient (kPerTag)
 };
 
 // Residuals project(X_CT p_TQ) + e(uv) erosion_px - uv and their Jacobian by (pose
@@ -67,7 +87,7 @@ bool Residuals(const std::vector<CornerObservation>& corners, const CameraModel&
   for (Eigen::Index i = 0; i < n; ++i) {
     const CornerObservation& c = corners[static_cast<size_t>(i)];
     for (int k = 0; k < basis.count(); ++k) {
-      const double b = basis.At(c.uv, k);
+      const double b = basis.At(c, k);
       r->segment<2>(2 * i) += b * state.erosion[k] * c.erosion_px;
       if (J != nullptr) J->block<2, 1>(2 * i, 6 + k) = b * c.erosion_px;
     }
@@ -240,7 +260,7 @@ PoseEstimate EstimatePose(const std::vector<CornerObservation>& corners, const C
       rvecs.clear();  // degenerate configuration (collinear points): no start
     }
   }
-  const ErosionBasis basis(EffectiveErosionModel(corners, options), camera);
+  const ErosionBasis basis(EffectiveErosionModel(corners, options), camera, corners);
   std::vector<Refined> solutions;
   for (size_t k = 0; k < rvecs.size(); ++k) {
     cv::Mat R_cv;
@@ -289,7 +309,8 @@ PoseEstimate EstimatePose(const std::vector<CornerObservation>& corners, const C
       options.covariance == CovarianceModel::kEdgeGroup &&
       CountEdgeGroups(corners) >= kMinGroupsPerParameter * static_cast<int>(J.cols());
   const Eigen::MatrixXd full =
-      clustered ? EdgeGroupCovariance(corners, H_inverse, J, r) : (sigma2 * H_inverse).eval();
+      (clustered ? EdgeGroupCovariance(corners, H_inverse, J, r) : (sigma2 * H_inverse).eval()) +
+      options.corner_floor_px * options.corner_floor_px * H_inverse;
   estimate.covariance = full.topLeftCorner<6, 6>();
   estimate.covariance = 0.5 * (estimate.covariance + estimate.covariance.transpose()).eval();
   if (basis.count() > 0) {

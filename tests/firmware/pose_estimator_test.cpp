@@ -45,6 +45,7 @@ void SetTagErosionDirections(std::vector<CornerObservation>* corners) {
       A.row(0) = outward_normal((k + 3) % 4, k).transpose();
       A.row(1) = outward_normal(k, (k + 1) % 4).transpose();
       (*corners)[first + k].erosion_px = -(A.inverse() * Eigen::Vector2d(1, 1));
+      (*corners)[first + k].edge_group = static_cast<int>(first / 4);
     }
   }
 }
@@ -155,14 +156,17 @@ TEST(PoseEstimatorTest, UniformErosionIsFittedAndLeavesThePoseExact) {
     const PoseEstimate biased = EstimatePose(corners, camera, plain);
     ASSERT_TRUE(biased.ok());
     EXPECT_GT((biased.X_CT.translation() - X_CT.translation()).norm(), 0.2e-3);  // ~0.4 mm
-    for (ErosionModel model : {ErosionModel::kGlobal, ErosionModel::kAffine}) {
+    for (ErosionModel model :
+         {ErosionModel::kGlobal, ErosionModel::kAffine, ErosionModel::kPerTag}) {
       PoseOptions options;
       options.erosion = model;
       const PoseEstimate estimate = EstimatePose(corners, camera, options);
       ASSERT_TRUE(estimate.ok()) << estimate.message;
       EXPECT_TRUE(estimate.X_CT.IsNearlyEqualTo(X_CT, 1e-9, 1e-9));
       EXPECT_NEAR(estimate.erosion_px, erosion_px, 1e-7);
-      EXPECT_EQ(estimate.erosion_parameters, model == ErosionModel::kGlobal ? 1 : 3);
+      EXPECT_EQ(estimate.erosion_parameters, model == ErosionModel::kGlobal   ? 1
+                                             : model == ErosionModel::kAffine ? 3
+                                                                              : 36);
     }
   }
 }
@@ -176,6 +180,7 @@ TEST(PoseEstimatorTest, ErosionWidensTheDepthSigmaOnlyAsMuchAsItCorrelates) {
   cv::RNG rng(3);
   auto corners = Project(board, camera, X_CT, 0.05, &rng);
   PoseOptions options;
+  options.erosion = ErosionModel::kGlobal;
   options.covariance = CovarianceModel::kResidual;
   const PoseEstimate without_directions = EstimatePose(corners, camera, options);
   ASSERT_TRUE(without_directions.ok());
@@ -201,7 +206,8 @@ TEST(PoseEstimatorTest, CovarianceCountsTheErrorATagSharesOnce) {
   Eigen::Matrix<double, 6, 1> sum_sq = Eigen::Matrix<double, 6, 1>::Zero();
   Eigen::Matrix<double, 6, 1> grouped = Eigen::Matrix<double, 6, 1>::Zero();
   Eigen::Matrix<double, 6, 1> independent = Eigen::Matrix<double, 6, 1>::Zero();
-  PoseOptions residual;
+  PoseOptions edge_group, residual;
+  edge_group.covariance = CovarianceModel::kEdgeGroup;
   residual.covariance = CovarianceModel::kResidual;
   for (int t = 0; t < trials; ++t) {
     auto corners = Project(board, camera, X_CT, 0.02, &rng);
@@ -212,7 +218,7 @@ TEST(PoseEstimatorTest, CovarianceCountsTheErrorATagSharesOnce) {
         corners[k].edge_group = static_cast<int>(first / 4);
       }
     }
-    const PoseEstimate e = EstimatePose(corners, camera);
+    const PoseEstimate e = EstimatePose(corners, camera, edge_group);
     const PoseEstimate plain = EstimatePose(corners, camera, residual);
     ASSERT_TRUE(e.ok() && plain.ok());
     Eigen::Matrix<double, 6, 1> err;
