@@ -1,6 +1,8 @@
 // Speed of the measuring pipeline at 1024 x 768 on one core (Google Benchmark): the
 // frame-add path (must keep up with 30 fps: well under 33 ms), and the per-pose work
 // (average 10 frames -> detect -> motion check -> pose; target under 30 ms), with its parts.
+// The per-pose and pose benchmarks run with each erosion model (pose_estimator.h; argument
+// 0 none, 1 global, 2 affine) so that the cost of the erosion parameters shows in one run.
 #include <benchmark/benchmark.h>
 
 #include "firmware/detection/board_detector.h"
@@ -39,9 +41,15 @@ void BM_AddFrame(benchmark::State& state) {
 }
 BENCHMARK(BM_AddFrame)->Unit(benchmark::kMillisecond);
 
+ErosionModel ErosionArg(const benchmark::State& state) {
+  return static_cast<ErosionModel>(state.range(0));
+}
+
 void BM_MeasureGroupOf10(benchmark::State& state) {
   const Scene& scene = TheScene();
-  MeasurePipeline pipeline(scenes::PaperBoard(), scenes::PaperCamera());
+  PipelineOptions options;
+  options.pose.erosion = ErosionArg(state);
+  MeasurePipeline pipeline(scenes::PaperBoard(), scenes::PaperCamera(), options);
   for (auto _ : state) {
     std::optional<Measurement> m;
     for (const Frame& f : scene.frames) m = pipeline.AddFrame(f);
@@ -49,7 +57,7 @@ void BM_MeasureGroupOf10(benchmark::State& state) {
     benchmark::DoNotOptimize(m);
   }
 }
-BENCHMARK(BM_MeasureGroupOf10)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MeasureGroupOf10)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 void BM_DetectEdgeFit(benchmark::State& state) {
   const Scene& scene = TheScene();
@@ -72,9 +80,11 @@ void BM_Pose(benchmark::State& state) {
   const BoardDetector detector(scenes::PaperBoard(), scenes::PaperCamera());
   const BoardDetection detection = detector.Detect(scene.mean);
   const CameraModel camera(scenes::PaperCamera());
-  for (auto _ : state) benchmark::DoNotOptimize(EstimatePose(detection.corners, camera));
+  PoseOptions options;
+  options.erosion = ErosionArg(state);
+  for (auto _ : state) benchmark::DoNotOptimize(EstimatePose(detection.corners, camera, options));
 }
-BENCHMARK(BM_Pose)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Pose)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 void BM_RenderClean(benchmark::State& state) {
   const BoardRenderer renderer(scenes::PaperBoard(), scenes::PaperCamera(), RenderOptions{});

@@ -82,8 +82,11 @@ BoardDetection BoardDetector::DetectAprilGrid(const cv::Mat& image8, const cv::M
   for (TagDetection& tag : tags) {
     const int first = board_.TagCornerId(tag.id, 0);
     if (first < 0 || seen[static_cast<size_t>(first / 4)] != 1) continue;
+    // Only edge-fitted corners know their sides, hence how they move under erosion.
+    std::array<Eigen::Vector2d, 4> erosion_px{};
+    for (Eigen::Vector2d& e : erosion_px) e.setZero();
     if (options_.refinement == CornerRefinement::kEdgeFit &&
-        !RefineQuadCorners(image32, *ideal_map_, options_.edge_fit, &tag.corners_px)) {
+        !RefineQuadCorners(image32, *ideal_map_, options_.edge_fit, &tag.corners_px, &erosion_px)) {
       ++detection.tags_rejected;
       continue;
     }
@@ -93,6 +96,8 @@ BoardDetection BoardDetector::DetectAprilGrid(const cv::Mat& image8, const cv::M
       corner.id = first + k;
       corner.p_TQ = board_.corners()[static_cast<size_t>(corner.id)];
       corner.uv = tag.corners_px[static_cast<size_t>(k)];
+      corner.erosion_px = erosion_px[static_cast<size_t>(k)];
+      corner.edge_group = first / 4;
       detection.corners.push_back(corner);
       subpix.emplace_back(static_cast<float>(corner.uv.x()), static_cast<float>(corner.uv.y()));
     }

@@ -176,10 +176,33 @@ bool Intersect(const Line& l1, const Line& l2, Eigen::Vector2d* p) {
   return true;
 }
 
+// Pixel displacement of the corner p (ideal) of lines l1 and l2 when both move inward
+// (against their outward normals) by one image pixel, i.e. by `pixel_scale` in ideal
+// coordinates: the corner moves by -m with [n1^T; n2^T] m = [1; 1], mapped to pixels
+// through the distortion (a central difference over a tenth of a pixel).
+Eigen::Vector2d ErosionDirection(const IdealPixelMap& map, const Line& l1, const Line& l2,
+                                 const Eigen::Vector2d& p, double pixel_scale) {
+  Eigen::Matrix2d A;
+  A.row(0) = l1.n().transpose();
+  A.row(1) = l2.n().transpose();
+  const Eigen::Vector2d m = A.inverse() * Eigen::Vector2d(1.0, 1.0);
+  const double h = 0.05;
+  const Eigen::Vector2d step = h * pixel_scale * m;
+  return (map.PixelFromIdeal(p - step) - map.PixelFromIdeal(p + step)) / (2 * h);
+}
+
+// Size of a pixel in ideal coordinates near `uv` (distortion scales it slightly).
+double PixelScaleAt(const IdealPixelMap& map, const Eigen::Vector2d& uv) {
+  const int mu = std::clamp(static_cast<int>(uv.x()), 0, map.width() - 2);
+  const int mv = std::clamp(static_cast<int>(uv.y()), 0, map.height() - 1);
+  return (map.At(mu + 1, mv) - map.At(mu, mv)).norm();
+}
+
 }  // namespace
 
 bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
-                       const EdgeFitOptions& options, std::array<Eigen::Vector2d, 4>* corners) {
+                       const EdgeFitOptions& options, std::array<Eigen::Vector2d, 4>* corners,
+                       std::array<Eigen::Vector2d, 4>* erosion_px) {
   if (image32f.type() != CV_32FC1 || image32f.cols != map.width() ||
       image32f.rows != map.height()) {
     return false;
@@ -210,10 +233,7 @@ bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
       const double thickness = std::abs(n_opposite.dot(line.mid - c)) / options.border_cells;
       band_in = std::clamp(thickness - 2.5, 1.0, options.band_px);
     }
-    // Size of a pixel in ideal coordinates here (distortion scales it slightly).
-    const int mu = std::clamp(static_cast<int>((*corners)[k].x()), 0, map.width() - 2);
-    const int mv = std::clamp(static_cast<int>((*corners)[k].y()), 0, map.height() - 1);
-    const double pixel_scale = (map.At(mu + 1, mv) - map.At(mu, mv)).norm();
+    const double pixel_scale = PixelScaleAt(map, (*corners)[k]);
     double level_a = 0, level_b = 0, s = 0.8;
     bool levels_set = false;
     for (int pass = 0; pass < options.passes; ++pass) {
@@ -244,17 +264,21 @@ bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
       if (pass == options.passes - 1 && rms > options.max_residual * level_b) return false;
     }
   }
-  std::array<Eigen::Vector2d, 4> refined;
+  std::array<Eigen::Vector2d, 4> refined, erosion;
   for (size_t k = 0; k < 4; ++k) {
     // Corner k joins side k-1 (from corner k-1 to k) and side k (from k to k+1).
+    const Line& before = lines[(k + 3) % 4];
     Eigen::Vector2d p;
-    if (!Intersect(lines[(k + 3) % 4], lines[k], &p)) return false;
+    if (!Intersect(before, lines[k], &p)) return false;
     refined[k] = map.PixelFromIdeal(p);
     if (!refined[k].allFinite() || (refined[k] - (*corners)[k]).norm() > options.max_shift_px) {
       return false;
     }
+    erosion[k] = ErosionDirection(map, before, lines[k], p, PixelScaleAt(map, refined[k]));
+    if (!erosion[k].allFinite()) return false;
   }
   *corners = refined;
+  if (erosion_px != nullptr) *erosion_px = erosion;
   return true;
 }
 

@@ -36,7 +36,12 @@ struct EdgeFitOptions {
 /// Refines `corners` (distorted pixels, OpenCV convention, in order around the quad) in
 /// place from a CV_32FC1 image. Returns false and leaves them untouched when a side
 /// cannot be fitted (too few pixels, no contrast, poor fit, corner moved too far).
+/// When `erosion_px` is given, it receives for each corner its pixel displacement per pixel
+/// of uniform erosion of the quad (every side moving inward along its normal by one image
+/// pixel): a side's edge fit is biased that way when the image's response is not linear
+/// (corner_observation.h).
 bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
-                       const EdgeFitOptions& options, std::array<Eigen::Vector2d, 4>* corners);
+                       const EdgeFitOptions& options, std::array<Eigen::Vector2d, 4>* corners,
+                       std::array<Eigen::Vector2d, 4>* erosion_px = nullptr);
 
 }  // namespace h4::cam

@@ -113,6 +113,7 @@ Measurement MeasurePipeline::MeasureImage(const cv::Mat& image, int frames_avera
   m.sigma_t = pose.sigma_t;
   m.sigma_r = pose.sigma_r;
   m.rms_px = pose.rms_px;
+  m.erosion_px = pose.erosion_px;
   return m;
 }
 

@@ -25,6 +25,7 @@ struct Measurement {
   double sigma_r = 0;  ///< per-axis rotation sigma from the fit, rad
   int corners_used = 0;
   double rms_px = 0;           ///< reprojection RMS of the fit
+  double erosion_px = 0;       ///< fitted erosion of the tags (pose_estimator.h), px
   double frame_spread_px = 0;  ///< max per-corner spread between the group's frames
   int frames_averaged = 0;
   int64_t utime = 0;   ///< time of the group's first frame

@@ -1,8 +1,11 @@
 // Planar PnP with distortion; see pose_estimator.h.
 #include "firmware/pose/pose_estimator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <utility>
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
@@ -14,38 +17,115 @@
 namespace h4::cam {
 namespace {
 
-struct Refined {
+// The fitted parameters: the pose and the erosion coefficients (px) of the basis
+// ErosionBasis describes.
+struct State {
   RigidTransform X_CT;
+  Eigen::VectorXd erosion;
+};
+
+struct Refined {
+  State state;
   double cost = std::numeric_limits<double>::infinity();  // sum of squared residuals
   int iterations = 0;
 };
 
+// Erosion at a corner: basis(corner) . coefficients. Global: {1}; affine: {1, u', v'} with
+// u', v' the offset from the image centre over the image width; per tag: the indicator of
+// the corner's edge group (coefficients in px).
+class ErosionBasis {
+ public:
+  ErosionBasis(ErosionModel model, const CameraModel& camera,
+               const std::vector<CornerObservation>& corners)
+      : model_(model),
+        centre_(0.5 * camera.width(), 0.5 * camera.height()),
+        scale_(1.0 / std::max(camera.width(), 1)) {
+    count_ = model == ErosionModel::kAffine ? 3 : model == ErosionModel::kGlobal ? 1 : 0;
+    if (model == ErosionModel::kPerTag) {
+      for (const CornerObservation& c : corners) {
+        if (c.edge_group >= 0 && group_index_.emplace(c.edge_group, count_).second) ++count_;
+      }
+    }
+  }
+  int count() const { return count_; }
+  // Basis function k at corner c.
+  double At(const CornerObservation& c, int k) const {
+    switch (model_) {
+      case ErosionModel::kPerTag: {
+        const auto it = group_index_.find(c.edge_group);
+        return it != group_index_.end() && it->second == k ? 1.0 : 0.0;
+      }
+      case ErosionModel::kAffine:
+        return k == 0 ? 1.0 : scale_ * (c.uv[k - 1] - centre_[k - 1]);
+      default:
+        return 1.0;
+    }
+  }
+
+ private:
+  ErosionModel model_;
+  int count_ = 0;
+  Eigen::Vector2d centre_;
+  double scale_;
+  std::map<int, int> group_index_;  // edge group -> coefficient (kPerTag)
+};
+
+// Residuals project(X_CT p_TQ) + e(uv) erosion_px - uv and their Jacobian by (pose
+// perturbation as in ReprojectionResiduals, erosion coefficients).
+bool Residuals(const std::vector<CornerObservation>& corners, const CameraModel& camera,
+               const ErosionBasis& basis, const State& state, Eigen::VectorXd* r,
+               Eigen::MatrixXd* J) {
+  const auto n = static_cast<Eigen::Index>(corners.size());
+  Eigen::MatrixXd J_pose;
+  if (!ReprojectionResiduals(corners, camera, state.X_CT, r, J != nullptr ? &J_pose : nullptr)) {
+    return false;
+  }
+  if (J != nullptr) {
+    J->resize(2 * n, 6 + basis.count());
+    J->leftCols<6>() = J_pose;
+  }
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const CornerObservation& c = corners[static_cast<size_t>(i)];
+    for (int k = 0; k < basis.count(); ++k) {
+      const double b = basis.At(c, k);
+      r->segment<2>(2 * i) += b * state.erosion[k] * c.erosion_px;
+      if (J != nullptr) J->block<2, 1>(2 * i, 6 + k) = b * c.erosion_px;
+    }
+  }
+  return true;
+}
+
+State Perturbed(const State& state, const Eigen::VectorXd& delta) {
+  return {RigidTransform(state.X_CT.rotation() * So3Exp(delta.segment<3>(3)),
+                         state.X_CT.translation() + delta.head<3>()),
+          state.erosion + delta.tail(state.erosion.size())};
+}
+
 // Levenberg-Marquardt on the reprojection error with the analytic Jacobian.
 Refined RefineLm(const std::vector<CornerObservation>& corners, const CameraModel& camera,
-                 RigidTransform X, const PoseOptions& options) {
+                 const ErosionBasis& basis, State state, const PoseOptions& options) {
   Refined out;
   Eigen::VectorXd r;
   Eigen::MatrixXd J;
-  if (!ReprojectionResiduals(corners, camera, X, &r, &J)) return out;
+  if (!Residuals(corners, camera, basis, state, &r, &J)) return out;
   double cost = r.squaredNorm();
   double lambda = 1e-3;
   int it = 0;
   for (; it < options.max_iterations; ++it) {
-    const Eigen::Matrix<double, 6, 6> JtJ = J.transpose() * J;
-    const Eigen::Matrix<double, 6, 1> g = J.transpose() * r;
+    const Eigen::MatrixXd JtJ = J.transpose() * J;
+    const Eigen::VectorXd g = J.transpose() * r;
     bool accepted = false;
-    Eigen::Matrix<double, 6, 1> delta = Eigen::Matrix<double, 6, 1>::Zero();
+    Eigen::VectorXd delta = Eigen::VectorXd::Zero(J.cols());
     while (lambda < 1e10) {
-      Eigen::Matrix<double, 6, 6> A = JtJ;
+      Eigen::MatrixXd A = JtJ;
       A.diagonal() += lambda * JtJ.diagonal().cwiseMax(1e-12);
       delta = A.ldlt().solve(-g);
       if (!delta.allFinite()) break;
-      const RigidTransform candidate(X.rotation() * So3Exp(delta.tail<3>()),
-                                     X.translation() + delta.head<3>());
+      const State candidate = Perturbed(state, delta);
       Eigen::VectorXd r_new;
-      if (ReprojectionResiduals(corners, camera, candidate, &r_new) &&
+      if (Residuals(corners, camera, basis, candidate, &r_new, nullptr) &&
           r_new.squaredNorm() <= cost) {
-        X = candidate;
+        state = candidate;
         cost = r_new.squaredNorm();
         lambda = std::max(lambda * 0.1, 1e-12);
         accepted = true;
@@ -54,13 +134,78 @@ Refined RefineLm(const std::vector<CornerObservation>& corners, const CameraMode
       lambda *= 10;
     }
     if (!accepted) break;
-    ReprojectionResiduals(corners, camera, X, &r, &J);
+    Residuals(corners, camera, basis, state, &r, &J);
     if (delta.norm() < options.step_tolerance) break;
   }
-  out.X_CT = X;
+  out.state = state;
   out.cost = cost;
   out.iterations = it;
   return out;
+}
+
+// The erosion model actually fitted: none unless enough corners carry a direction.
+ErosionModel EffectiveErosionModel(const std::vector<CornerObservation>& corners,
+                                   const PoseOptions& options) {
+  int with_direction = 0;
+  for (const CornerObservation& c : corners) {
+    if (c.erosion_px.squaredNorm() > 0) ++with_direction;
+  }
+  return with_direction >= options.min_erosion_corners ? options.erosion : ErosionModel::kNone;
+}
+
+// Cluster-robust ("sandwich") covariance of the parameters: H^-1 (sum_g s_g s_g^T) H^-1
+// with H = J^T J and s_g = J_g^T r_g the score of edge group g. The corners of a tag come
+// from the same four fitted sides, so their errors are correlated (a side fitted off moves
+// two corners together); sigma^2 H^-1 assumes independent corners and then understates the
+// pose's uncertainty. Corners outside any group count as groups of one. The factor
+// G / (G - 1) * (n - 1) / (n - p) is the usual small-sample correction.
+Eigen::MatrixXd EdgeGroupCovariance(const std::vector<CornerObservation>& corners,
+                                    const Eigen::MatrixXd& H_inverse, const Eigen::MatrixXd& J,
+                                    const Eigen::VectorXd& r) {
+  const Eigen::Index p = J.cols();
+  std::vector<std::pair<int, Eigen::Index>> group_of;  // (group, corner index), sorted
+  for (size_t i = 0; i < corners.size(); ++i) {
+    const int group = corners[i].edge_group;
+    group_of.emplace_back(group >= 0 ? group : -1 - static_cast<int>(i),
+                          static_cast<Eigen::Index>(i));
+  }
+  std::sort(group_of.begin(), group_of.end());
+  Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(p, p);
+  Eigen::VectorXd score = Eigen::VectorXd::Zero(p);
+  int groups = 0;
+  for (size_t k = 0; k < group_of.size(); ++k) {
+    const Eigen::Index i = group_of[k].second;
+    score += J.middleRows(2 * i, 2).transpose() * r.segment<2>(2 * i);
+    if (k + 1 == group_of.size() || group_of[k + 1].first != group_of[k].first) {
+      meat += score * score.transpose();
+      score.setZero();
+      ++groups;
+    }
+  }
+  const double n = static_cast<double>(r.size());
+  const double correction = groups > 1 ? groups / (groups - 1.0) * (n - 1) / (n - p) : 1.0;
+  return correction * H_inverse * meat * H_inverse;
+}
+
+// Fewer edge groups than this many per parameter: the cluster-robust estimate is too
+// noisy (its rank is at most the group count), the residual one is used.
+constexpr int kMinGroupsPerParameter = 3;
+
+// Number of edge groups (a corner outside any group counts as one), or 0 when no corner
+// is in a group: then the corners are independent and sigma^2 H^-1 is the better estimate.
+int CountEdgeGroups(const std::vector<CornerObservation>& corners) {
+  std::vector<int> ids;
+  int singles = 0;
+  for (const CornerObservation& c : corners) {
+    if (c.edge_group < 0) {
+      ++singles;
+    } else {
+      ids.push_back(c.edge_group);
+    }
+  }
+  if (ids.empty()) return 0;
+  std::sort(ids.begin(), ids.end());
+  return singles + static_cast<int>(std::unique(ids.begin(), ids.end()) - ids.begin());
 }
 
 }  // namespace
@@ -115,6 +260,7 @@ PoseEstimate EstimatePose(const std::vector<CornerObservation>& corners, const C
       rvecs.clear();  // degenerate configuration (collinear points): no start
     }
   }
+  const ErosionBasis basis(EffectiveErosionModel(corners, options), camera, corners);
   std::vector<Refined> solutions;
   for (size_t k = 0; k < rvecs.size(); ++k) {
     cv::Mat R_cv;
@@ -123,7 +269,8 @@ PoseEstimate EstimatePose(const std::vector<CornerObservation>& corners, const C
     Eigen::Vector3d t;
     cv::cv2eigen(R_cv, R);
     cv::cv2eigen(tvecs[k], t);
-    Refined refined = RefineLm(corners, camera, RigidTransform(R, t), options);
+    const State start{RigidTransform(R, t), Eigen::VectorXd::Zero(basis.count())};
+    Refined refined = RefineLm(corners, camera, basis, start, options);
     if (std::isfinite(refined.cost)) solutions.push_back(refined);
   }
   if (solutions.empty()) {
@@ -140,23 +287,36 @@ PoseEstimate EstimatePose(const std::vector<CornerObservation>& corners, const C
     if (k != best) estimate.alternative_rms_px = std::sqrt(solutions[k].cost / m);
   }
   const Refined& sol = solutions[best];
-  estimate.X_CT = sol.X_CT;
+  estimate.X_CT = sol.state.X_CT;
   estimate.iterations = sol.iterations;
   estimate.rms_px = std::sqrt(sol.cost / m);
+  estimate.erosion_parameters = basis.count();
 
   Eigen::VectorXd r;
   Eigen::MatrixXd J;
-  ReprojectionResiduals(corners, camera, sol.X_CT, &r, &J);
-  const Eigen::Matrix<double, 6, 6> JtJ = J.transpose() * J;
-  Eigen::FullPivLU<Eigen::Matrix<double, 6, 6>> lu(JtJ);
+  Residuals(corners, camera, basis, sol.state, &r, &J);
+  const Eigen::MatrixXd JtJ = J.transpose() * J;
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
   if (!lu.isInvertible()) {
     estimate.message = "degenerate corner layout: the pose is not observable";
     return estimate;
   }
-  const double dof = m - 6.0;
+  const double dof = m - static_cast<double>(J.cols());
   const double sigma2 = dof > 0 ? sol.cost / dof : 0.0;
-  estimate.covariance = sigma2 * lu.inverse();
+  // The pose's marginal covariance: the erosion's uncertainty is propagated, not ignored.
+  const Eigen::MatrixXd H_inverse = lu.inverse();
+  const bool clustered =
+      options.covariance == CovarianceModel::kEdgeGroup &&
+      CountEdgeGroups(corners) >= kMinGroupsPerParameter * static_cast<int>(J.cols());
+  const Eigen::MatrixXd full =
+      (clustered ? EdgeGroupCovariance(corners, H_inverse, J, r) : (sigma2 * H_inverse).eval()) +
+      options.corner_floor_px * options.corner_floor_px * H_inverse;
+  estimate.covariance = full.topLeftCorner<6, 6>();
   estimate.covariance = 0.5 * (estimate.covariance + estimate.covariance.transpose()).eval();
+  if (basis.count() > 0) {
+    estimate.erosion_px = sol.state.erosion[0];
+    estimate.erosion_sigma_px = std::sqrt(std::max(0.0, full(6, 6)));
+  }
   estimate.sigma_t =
       std::sqrt(std::max(0.0, estimate.covariance.topLeftCorner<3, 3>().trace() / 3));
   estimate.sigma_r =

@@ -1,9 +1,18 @@
 // Board pose X_CT from its corners in one image: planar PnP. Both IPPE solutions (on
 // undistorted points) start a Levenberg-Marquardt refinement of the pixel reprojection
 // error through the full distortion model; the one with the lower error wins (the planar
-// ambiguity). The covariance of the fit, sigma^2 (J^T J)^-1 with sigma^2 from the
-// residuals, is in the order of messages/README.md: translation p_CT in C (m), then the
-// rotation vector (rad) of the right perturbation R_CT * Exp(delta), delta in T.
+// ambiguity). The covariance of the fit (CovarianceModel: cluster-robust over the tags by
+// default, else sigma^2 (J^T J)^-1 with sigma^2 from the residuals) is in the order of
+// messages/README.md: translation p_CT in C (m), then the rotation vector (rad) of the
+// right perturbation R_CT * Exp(delta), delta in T.
+//
+// Erosion: under blur, a non-linear (gamma-encoded) response moves every edge of a dark
+// tag toward its dark side, so all tags of a grid look uniformly eroded and the board
+// looks smaller, which a plain fit turns into a depth error. When the corners carry their
+// erosion directions (corner_observation.h), the fit adds the erosion (px) as nuisance
+// parameters, uv = project(X_CT p_TQ) + e(uv) * erosion_px, and reports the pose's
+// marginal covariance: the erosion and the depth are told apart by the tag spacing, which
+// erosion does not change.
 #pragma once
 
 #include <string>
@@ -17,10 +26,44 @@
 
 namespace h4::cam {
 
+/// How the erosion of dark features (corner_observation.h) enters the pose fit.
+enum class ErosionModel {
+  kNone,    ///< corners taken as they are
+  kGlobal,  ///< one erosion for the whole image (blur and response uniform)
+  kAffine,  ///< erosion varying affinely across the image (blur changing with defocus)
+  kPerTag,  ///< one erosion per edge group (tag): also takes each tag's own size bias
+};
+
+/// How the pose covariance is estimated from the fit (pose_estimator.cpp says why).
+enum class CovarianceModel {
+  kResidual,   ///< sigma^2 (J^T J)^-1, corners independent, sigma^2 from the residuals
+  kEdgeGroup,  ///< cluster-robust: residuals of one edge group (a tag) taken as correlated
+};
+
 struct PoseOptions {
   int max_iterations = 50;        ///< LM iterations per start
-  double step_tolerance = 1e-12;  ///< stop when the update is below this (m and rad)
+  double step_tolerance = 1e-12;  ///< stop when the update is below this (m, rad and px)
   int min_corners = 4;            ///< fewer: status kTooFewCorners
+  /// Erosion parameters fitted when corners carry erosion directions (kAffine: blur, hence
+  /// erosion, changes over a tilted board; measured against kGlobal and kPerTag with
+  /// firmware/bench/measure_response, it cut the rotation error under 1.4 px blur from
+  /// 0.008 to 0.005 deg over 8 scenes for two more parameters); the pose is fitted without them
+  /// when fewer than `min_erosion_corners` corners carry one (a single tag cannot tell its erosion
+  /// from its depth).
+  ErosionModel erosion = ErosionModel::kAffine;
+  int min_erosion_corners = 8;
+  /// kResidual: with the affine erosion fitted it keeps sigma/actual within 0.6-2 on the
+  /// conditions of firmware/bench/measure_response; kEdgeGroup over-reports there (up to
+  /// 2.6x under 1.4 px blur) although it is right when a tag's corners share a random
+  /// shift (tests/firmware/pose_estimator_test.cpp).
+  CovarianceModel covariance = CovarianceModel::kResidual;
+  /// Error per corner coordinate (px) that the residuals cannot show, added to the
+  /// covariance as independent: the part of the edge fit's bias that moves the pose along
+  /// with the corners, so that no residual sees it. Without it the reported sigma is ~0.5-0.7
+  /// of the actual error on clean renders, where the edge-fitted corners are within
+  /// 0.004-0.009 px of the truth (tests/firmware/board_detector_test.cpp); 0.0025 px brings
+  /// it to ~1 (measured with firmware/bench/measure_response). 0 = none.
+  double corner_floor_px = 0.0025;
 };
 
 struct PoseEstimate {
@@ -37,6 +80,12 @@ struct PoseEstimate {
   /// RMS of the other planar solution after refinement (px); +inf when IPPE gave one.
   /// Close to rms_px means the ambiguity was weakly resolved.
   double alternative_rms_px = 0;
+  /// Fitted erosion of the dark features at the image centre (kPerTag: of the first tag), px (> 0:
+  /// they look thinner than they are, as under a concave response), and its sigma; 0 when not
+  /// fitted.
+  double erosion_px = 0;
+  double erosion_sigma_px = 0;
+  int erosion_parameters = 0;  ///< nuisance parameters fitted (0, 1, 3 or one per tag)
   bool ok() const { return status == Status::kOk; }
 };
 

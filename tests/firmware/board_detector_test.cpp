@@ -7,6 +7,7 @@
 
 #include "common/camera/camera_model.h"
 #include "common/geometry/rotation.h"
+#include "firmware/bench/degraded_scene.h"
 #include "firmware/render/paper_scenes.h"
 
 namespace h4::cam {
@@ -54,6 +55,46 @@ TEST(BoardDetectorTest, EdgeFitCornersAreWithinAHundredthOfAPixel) {
   EXPECT_LT(rms_edge, 0.01);
   EXPECT_LT(rms_edge, 0.5 * rms_none);
   EXPECT_LT(rms_none, rms_subpix);
+}
+
+TEST(BoardDetectorTest, ConcaveResponseErodesTagsAlongTheirErosionDirections) {
+  // Under a gamma-0.45 response and 1 px blur every tag side moves toward the dark side:
+  // each edge-fitted corner is displaced along the erosion direction it reports (pointing
+  // into its tag, about sqrt(2) px per px for a square seen nearly face-on), by the same
+  // amount on all tags.
+  const AprilGridSpec board = scenes::PaperBoard();
+  const CameraIntrinsics camera = scenes::PaperCamera();
+  RenderOptions render;
+  render.blur_sigma_px = 1.0;
+  const BoardRenderer renderer(board, camera, render);
+  const CameraModel model(camera);
+  const BoardDetector detector(board, camera);
+  const RigidTransform X_CT = scenes::BoardPose(board, 0.5, 0.2, 0.4, 0.3);
+  bench::DegradeOptions degrade;
+  degrade.gamma = 0.45;
+  degrade.read_noise = 1.0;
+  const cv::Mat mean = bench::DegradedMean(renderer.RenderClean(X_CT), degrade, 3, 5);
+  const BoardDetection d = detector.Detect(mean);
+  ASSERT_EQ(d.status, BoardDetection::Status::kOk);
+  double sum_along = 0, sum_across2 = 0;
+  for (size_t i = 0; i < d.corners.size(); ++i) {
+    const CornerObservation& c = d.corners[i];
+    const size_t first = i - i % 4;
+    Eigen::Vector2d tag_centre = Eigen::Vector2d::Zero();
+    for (size_t k = 0; k < 4; ++k) tag_centre += 0.25 * d.corners[first + k].uv;
+    EXPECT_GT(c.erosion_px.dot((tag_centre - c.uv).normalized()), 1.2) << c.id;
+    EXPECT_LT(c.erosion_px.norm(), 1.7) << c.id;
+    Eigen::Vector2d uv_true;
+    model.Project(X_CT * c.p_TQ, &uv_true);
+    const Eigen::Vector2d direction = c.erosion_px / c.erosion_px.squaredNorm();
+    const double along = (c.uv - uv_true).dot(direction);  // px of erosion
+    sum_along += along;
+    sum_across2 += std::pow((c.uv - uv_true - along * c.erosion_px).norm(), 2);
+  }
+  const double n = static_cast<double>(d.corners.size());
+  // Measured: ~0.2 px of erosion, what is left across it ~0.0x px.
+  EXPECT_GT(sum_along / n, 0.1);
+  EXPECT_LT(std::sqrt(sum_across2 / n), 0.25 * sum_along / n);
 }
 
 TEST(BoardDetectorTest, PartlyHiddenBoardStillMeasuresWithFewerCorners) {

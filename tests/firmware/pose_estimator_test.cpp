@@ -26,6 +26,30 @@ std::vector<CornerObservation> Project(const BoardModel& board, const CameraMode
   return corners;
 }
 
+// Erosion directions of tag corners as the edge fit derives them: corner k of a tag (4
+// consecutive ids) moves by -m when its quad's sides move inward by 1 px, with
+// [n1^T; n2^T] m = [1; 1] for the outward normals of its two sides.
+void SetTagErosionDirections(std::vector<CornerObservation>* corners) {
+  for (size_t first = 0; first + 3 < corners->size(); first += 4) {
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (size_t k = 0; k < 4; ++k) centre += 0.25 * (*corners)[first + k].uv;
+    auto outward_normal = [&](size_t a, size_t b) {
+      const Eigen::Vector2d d = (*corners)[first + b].uv - (*corners)[first + a].uv;
+      Eigen::Vector2d n(-d.y(), d.x());
+      n.normalize();
+      const Eigen::Vector2d mid = 0.5 * ((*corners)[first + a].uv + (*corners)[first + b].uv);
+      return n.dot(mid - centre) < 0 ? Eigen::Vector2d(-n) : n;
+    };
+    for (size_t k = 0; k < 4; ++k) {
+      Eigen::Matrix2d A;
+      A.row(0) = outward_normal((k + 3) % 4, k).transpose();
+      A.row(1) = outward_normal(k, (k + 1) % 4).transpose();
+      (*corners)[first + k].erosion_px = -(A.inverse() * Eigen::Vector2d(1, 1));
+      (*corners)[first + k].edge_group = static_cast<int>(first / 4);
+    }
+  }
+}
+
 TEST(PoseEstimatorTest, ExactCornersGiveTheExactPose) {
   const BoardModel board(scenes::PaperBoard());
   const CameraModel camera(scenes::PaperCamera());
@@ -115,6 +139,101 @@ TEST(PoseEstimatorTest, CovarianceMatchesMonteCarloErrors) {
     EXPECT_GT(ratio, 0.8) << k;
     EXPECT_LT(ratio, 1.25) << k;
   }
+}
+
+TEST(PoseEstimatorTest, UniformErosionIsFittedAndLeavesThePoseExact) {
+  // Every tag eroded by 0.3 px (what gamma 0.45 with 1 px blur does): a plain fit sees a
+  // smaller board, hence a farther one; the erosion parameter takes it out exactly.
+  const BoardModel board(scenes::PaperBoard());
+  const CameraModel camera(scenes::PaperCamera());
+  const double erosion_px = 0.3;
+  for (const RigidTransform& X_CT : scenes::RandomPoses(3, 11)) {
+    auto corners = Project(board, camera, X_CT, 0, nullptr);
+    SetTagErosionDirections(&corners);
+    for (CornerObservation& c : corners) c.uv += erosion_px * c.erosion_px;
+    PoseOptions plain;
+    plain.erosion = ErosionModel::kNone;
+    const PoseEstimate biased = EstimatePose(corners, camera, plain);
+    ASSERT_TRUE(biased.ok());
+    EXPECT_GT((biased.X_CT.translation() - X_CT.translation()).norm(), 0.2e-3);  // ~0.4 mm
+    for (ErosionModel model :
+         {ErosionModel::kGlobal, ErosionModel::kAffine, ErosionModel::kPerTag}) {
+      PoseOptions options;
+      options.erosion = model;
+      const PoseEstimate estimate = EstimatePose(corners, camera, options);
+      ASSERT_TRUE(estimate.ok()) << estimate.message;
+      EXPECT_TRUE(estimate.X_CT.IsNearlyEqualTo(X_CT, 1e-9, 1e-9));
+      EXPECT_NEAR(estimate.erosion_px, erosion_px, 1e-7);
+      EXPECT_EQ(estimate.erosion_parameters, model == ErosionModel::kGlobal   ? 1
+                                             : model == ErosionModel::kAffine ? 3
+                                                                              : 36);
+    }
+  }
+}
+
+TEST(PoseEstimatorTest, ErosionWidensTheDepthSigmaOnlyAsMuchAsItCorrelates) {
+  // The marginal covariance with the erosion fitted is at least the plain one (the erosion
+  // trades with depth), and no parameter is fitted for corners without directions.
+  const BoardModel board(scenes::PaperBoard());
+  const CameraModel camera(scenes::PaperCamera());
+  const RigidTransform X_CT = scenes::BoardPose(scenes::PaperBoard(), 0.55, 0.3, 0.7, 0.2);
+  cv::RNG rng(3);
+  auto corners = Project(board, camera, X_CT, 0.05, &rng);
+  PoseOptions options;
+  options.erosion = ErosionModel::kGlobal;
+  options.covariance = CovarianceModel::kResidual;
+  const PoseEstimate without_directions = EstimatePose(corners, camera, options);
+  ASSERT_TRUE(without_directions.ok());
+  EXPECT_EQ(without_directions.erosion_parameters, 0);
+  SetTagErosionDirections(&corners);
+  const PoseEstimate with_erosion = EstimatePose(corners, camera, options);
+  ASSERT_TRUE(with_erosion.ok());
+  EXPECT_EQ(with_erosion.erosion_parameters, 1);
+  EXPECT_GE(with_erosion.covariance(2, 2), 0.99 * without_directions.covariance(2, 2));
+  EXPECT_GT(with_erosion.erosion_sigma_px, 0);
+  EXPECT_LT(std::abs(with_erosion.erosion_px), 5 * with_erosion.erosion_sigma_px);
+}
+
+TEST(PoseEstimatorTest, CovarianceCountsTheErrorATagSharesOnce) {
+  // Each tag's four corners share an error (their sides are fitted together), plus a
+  // smaller independent one: the edge-group covariance must match the Monte-Carlo spread,
+  // where sigma^2 (J^T J)^-1 over independent corners understates it (measured ~2x).
+  const BoardModel board(scenes::PaperBoard());
+  const CameraModel camera(scenes::PaperCamera());
+  const RigidTransform X_CT = scenes::BoardPose(scenes::PaperBoard(), 0.55, 0.3, 0.7, 0.2);
+  cv::RNG rng(29);
+  const int trials = 200;
+  Eigen::Matrix<double, 6, 1> sum_sq = Eigen::Matrix<double, 6, 1>::Zero();
+  Eigen::Matrix<double, 6, 1> grouped = Eigen::Matrix<double, 6, 1>::Zero();
+  Eigen::Matrix<double, 6, 1> independent = Eigen::Matrix<double, 6, 1>::Zero();
+  PoseOptions edge_group, residual;
+  edge_group.covariance = CovarianceModel::kEdgeGroup;
+  residual.covariance = CovarianceModel::kResidual;
+  for (int t = 0; t < trials; ++t) {
+    auto corners = Project(board, camera, X_CT, 0.02, &rng);
+    for (size_t first = 0; first < corners.size(); first += 4) {
+      const Eigen::Vector2d shared(rng.gaussian(0.04), rng.gaussian(0.04));
+      for (size_t k = first; k < first + 4; ++k) {
+        corners[k].uv += shared;
+        corners[k].edge_group = static_cast<int>(first / 4);
+      }
+    }
+    const PoseEstimate e = EstimatePose(corners, camera, edge_group);
+    const PoseEstimate plain = EstimatePose(corners, camera, residual);
+    ASSERT_TRUE(e.ok() && plain.ok());
+    Eigen::Matrix<double, 6, 1> err;
+    err.head<3>() = e.X_CT.translation() - X_CT.translation();
+    err.tail<3>() = So3Log(X_CT.rotation().transpose() * e.X_CT.rotation());
+    sum_sq += err.cwiseAbs2() / trials;
+    grouped += e.covariance.diagonal() / trials;
+    independent += plain.covariance.diagonal() / trials;
+  }
+  for (int k = 0; k < 6; ++k) {
+    const double ratio = std::sqrt(sum_sq[k] / grouped[k]);
+    EXPECT_GT(ratio, 0.75) << k;
+    EXPECT_LT(ratio, 1.33) << k;
+  }
+  EXPECT_GT(std::sqrt(sum_sq[2] / independent[2]), 1.5);  // depth, the worst understated
 }
 
 TEST(PoseEstimatorTest, TooFewCornersIsReportedNotGuessed) {
