@@ -21,7 +21,9 @@
 namespace h4::cam {
 
 enum class CornerRefinement {
-  kNone,          ///< libapriltag's corners as they come (convention-corrected)
+  kNone,          ///< libapriltag's corners as they come (convention-corrected; on a
+                  ///< board with corner squares, tags only the opened second search found
+                  ///< have their corners up to 1.4 px inside the tag)
   kCornerSubPix,  ///< cv::cornerSubPix on the averaged image
   kEdgeFit,       ///< blurred-step fit of the tag sides (edge_refinement.h): the most
                   ///< accurate on rendered legacy boards (tests/firmware/board_detector_test.cpp);
