@@ -1,6 +1,7 @@
-// Calibration board descriptions (board YAML, formats.md): an AprilTag grid with
-// Kalibr's keys, or an OpenCV chessboard. Board frame T: origin at the first
-// corner, x along a row, y down a column, z into the board (away from the print).
+// Calibration board descriptions (board YAML, common/formats/README.md "Board"): an
+// AprilTag grid with Kalibr's keys, or an OpenCV chessboard. Board frame T: origin at the
+// outer top-left corner of the top-left tag as printed (the first inner corner of a
+// chessboard), x right along a row, y down a column, z into the board (away from the print).
 #pragma once
 
 #include <string>
@@ -8,20 +9,47 @@
 
 namespace h4 {
 
+/// How the tags of an AprilTag grid are drawn and numbered.
+enum class AprilGridLayout {
+  /// As kalibr_create_target_pdf prints it (and a plain Kalibr YAML means): tags with a
+  /// 2-cell black border, a black square of side tagSpacing * tagSize at every tag corner
+  /// (in the gaps, so every tag corner is an X-corner), ids from the bottom-left tag of the
+  /// page running right, then up.
+  kKalibr,
+  /// h4cam's earlier design (YAML `h4camLayout: legacy`): libapriltag's tags with a 1-cell
+  /// black border, no corner squares, ids from the top-left tag running right, then down.
+  kH4Legacy,
+};
+
+/// The drawing rules a layout stands for.
+struct AprilGridDesign {
+  int border_cells = 2;         ///< black border width, in tag cells (bits)
+  bool corner_squares = true;   ///< black squares in the gaps at every tag corner
+  bool ids_from_bottom = true;  ///< firstId is the bottom-left tag (else the top-left one)
+};
+
+inline AprilGridDesign DesignOf(AprilGridLayout layout) {
+  if (layout == AprilGridLayout::kH4Legacy) return {1, false, false};
+  return {2, true, true};
+}
+
 struct AprilGridSpec {
   std::string tag_family = "tag36h11";
-  int cols = 6;             ///< tagCols
-  int rows = 6;             ///< tagRows
-  double tag_size = 0.03;   ///< tagSize: outer edge of the black border, m
-  double tag_spacing = 0.25;///< tagSpacing: gap between tags / tagSize (unitless)
-  int first_id = 0;         ///< firstId: id of the top-left tag; ids run row by row
+  int cols = 6;               ///< tagCols
+  int rows = 6;               ///< tagRows
+  double tag_size = 0.03;     ///< tagSize: outer edge of the black border, m
+  double tag_spacing = 0.25;  ///< tagSpacing: gap between tags / tagSize (unitless)
+  int first_id = 0;           ///< firstId: id of the first tag (see AprilGridLayout)
+  AprilGridLayout layout = AprilGridLayout::kKalibr;  ///< h4camLayout (absent: kKalibr)
+
+  AprilGridDesign design() const { return DesignOf(layout); }
 };
 
 struct CheckerboardSpec {
-  int cols = 9;                 ///< targetCols: inner corners along a row
-  int rows = 6;                 ///< targetRows: inner corners along a column
-  double col_spacing = 0.025;   ///< colSpacingMeters, m
-  double row_spacing = 0.025;   ///< rowSpacingMeters, m
+  int cols = 9;                ///< targetCols: inner corners along a row
+  int rows = 6;                ///< targetRows: inner corners along a column
+  double col_spacing = 0.025;  ///< colSpacingMeters, m
+  double row_spacing = 0.025;  ///< rowSpacingMeters, m
 };
 
 using BoardSpec = std::variant<AprilGridSpec, CheckerboardSpec>;

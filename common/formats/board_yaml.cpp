@@ -26,6 +26,16 @@ int Count(const YamlMap& map, const std::string& key, int64_t minimum) {
   return static_cast<int>(value);
 }
 
+// h4cam's own key; a plain Kalibr file has none and means Kalibr's printed design.
+const char* const kLayoutKey = "h4camLayout";
+
+AprilGridLayout ReadLayout(const YamlMap& root) {
+  const std::string name = root.String(kLayoutKey);
+  if (name == "kalibr") return AprilGridLayout::kKalibr;
+  if (name == "legacy") return AprilGridLayout::kH4Legacy;
+  root.Fail(kLayoutKey, "unknown layout '" + name + "', expected 'kalibr' or 'legacy'");
+}
+
 AprilGridSpec ReadAprilGrid(const YamlMap& root) {
   AprilGridSpec spec;
   if (root.Has("tagFamily")) {
@@ -41,6 +51,7 @@ AprilGridSpec ReadAprilGrid(const YamlMap& root) {
   spec.tag_size = root.PositiveDouble("tagSize");
   spec.tag_spacing = root.PositiveDouble("tagSpacing");
   if (root.Has("firstId")) spec.first_id = Count(root, "firstId", 0);
+  if (root.Has(kLayoutKey)) spec.layout = ReadLayout(root);
   return spec;
 }
 
@@ -65,8 +76,8 @@ const std::vector<std::string>& AprilTagFamilies() {
 BoardSpec ParseBoardYaml(const std::string& text, const std::string& source_name) {
   const YamlMap root(LoadYaml(text, source_name), source_name, "", 0);
   root.RejectCaseVariants({"target_type", "tagFamily", "tagCols", "tagRows", "tagSize",
-                           "tagSpacing", "firstId", "targetCols", "targetRows", "colSpacingMeters",
-                           "rowSpacingMeters"});
+                           "tagSpacing", "firstId", kLayoutKey, "targetCols", "targetRows",
+                           "colSpacingMeters", "rowSpacingMeters"});
   const std::string type = root.String("target_type");
   if (type == "aprilgrid") return ReadAprilGrid(root);
   if (type == "checkerboard") return ReadCheckerboard(root);
@@ -79,7 +90,7 @@ BoardSpec ReadBoardYaml(const std::string& path) {
 }
 
 std::string FormatBoardYaml(const BoardSpec& board) {
-  std::string text = "# calibration board (docs/formats.md \"Board\"; sizes in m)\n";
+  std::string text = "# calibration board (common/formats/README.md \"Board\"; sizes in m)\n";
   if (const auto* grid = std::get_if<AprilGridSpec>(&board)) {
     text +=
         "target_type: aprilgrid\ntagFamily: " + grid->tag_family +
@@ -89,6 +100,10 @@ std::string FormatBoardYaml(const BoardSpec& board) {
         FormatDouble(grid->tag_spacing, "tagSpacing") +
         "  # gap between tags = tagSpacing * tagSize\nfirstId: " + std::to_string(grid->first_id) +
         "\n";
+    if (grid->layout == AprilGridLayout::kH4Legacy) {
+      text += std::string(kLayoutKey) +
+              ": legacy  # 1-cell tag border, no corner squares, ids from the top-left\n";
+    }
   } else {
     const auto& chess = std::get<CheckerboardSpec>(board);
     text += "target_type: checkerboard\ntargetCols: " + std::to_string(chess.cols) +

@@ -1,4 +1,4 @@
-// The board YAML (formats.md "Board", `--board`): an AprilTag grid with Kalibr's
+// The board YAML (common/formats/README.md "Board", `--board`): an AprilTag grid with Kalibr's
 // aprilgrid keys, or an OpenCV chessboard with Kalibr's checkerboard keys.
 #pragma once
 
@@ -14,7 +14,9 @@ const std::vector<std::string>& AprilTagFamilies();
 
 /// Reads a board file. aprilgrid: tagCols, tagRows (positive integers), tagSize (m) and
 /// tagSpacing (ratio), both positive; optional tagFamily (one of AprilTagFamilies(),
-/// default tag36h11) and firstId (>= 0, default 0). checkerboard: targetCols, targetRows
+/// default tag36h11), firstId (>= 0, default 0) and h4cam's own h4camLayout ('kalibr',
+/// the default: the design kalibr_create_target_pdf prints; 'legacy': h4cam's earlier
+/// 1-cell-border design, board_spec.h AprilGridLayout). checkerboard: targetCols, targetRows
 /// (inner corners, >= 2), colSpacingMeters, rowSpacingMeters (positive). An unknown
 /// target_type is an error naming it and the accepted ones. Other keys (Kalibr's
 /// codeOffset...) are ignored, except a known key spelt with other letter case

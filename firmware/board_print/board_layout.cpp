@@ -1,5 +1,6 @@
-// Board page layout; see board_layout.h. Tag bits come from tag_family.h (TagCells), the
-// function the renderer uses too, so print and render share one bit layout.
+// Board page layout; see board_layout.h. Tag bits come from tag_family.h (TagCells) and tag
+// positions, ids and Kalibr's corner squares from board_model.h, as for the renderer, so
+// print and render share one layout.
 #include "firmware/board_print/board_layout.h"
 
 #include <algorithm>
@@ -54,11 +55,12 @@ bool LayoutAprilGrid(const AprilGridSpec& grid, const BoardModel& model, double 
     *error = "tag family '" + grid.tag_family + "' is not supported (tag36h11, tag25h9, tag16h5)";
     return false;
   }
+  const int border_cells = grid.design().border_cells;
   for (int row = 0; row < grid.rows; ++row) {
     for (int col = 0; col < grid.cols; ++col) {
-      const int id = grid.first_id + row * grid.cols + col;
+      const int id = model.TagIdAt(row, col);
       int width = 0;
-      const std::vector<bool> cells = TagCells(*family, id, &width);
+      const std::vector<bool> cells = TagCells(*family, id, border_cells, &width);
       if (cells.empty()) {
         *error = "tag id " + std::to_string(id) + " is beyond family " + grid.tag_family + " (" +
                  std::to_string(family->ncodes) + " codes)";
@@ -67,6 +69,10 @@ bool LayoutAprilGrid(const AprilGridSpec& grid, const BoardModel& model, double 
       const auto origin = model.TagOrigin(row, col);
       AddTag(cells, width, ox + origin.x(), oy + origin.y(), grid.tag_size / width, black);
     }
+  }
+  const double side = model.corner_square_size();
+  for (const Eigen::Vector2d& square : model.corner_squares()) {
+    black->push_back({ox + square.x(), oy + square.y(), side, side});
   }
   return true;
 }
@@ -102,7 +108,8 @@ std::string DescribeBoard(const BoardSpec& board) {
            grid->tag_family + " (ids " + std::to_string(grid->first_id) + "-" +
            std::to_string(grid->first_id + grid->cols * grid->rows - 1) + "), tag " +
            Mm(grid->tag_size) + ", spacing " + Mm(grid->tag_size * grid->tag_spacing) +
-           " (tagSpacing " + spacing + ")";
+           " (tagSpacing " + spacing + ")" +
+           (grid->layout == AprilGridLayout::kKalibr ? ", Kalibr layout (tag 0 bottom-left)" : "");
   }
   const auto& chess = std::get<CheckerboardSpec>(board);
   return "checkerboard " + std::to_string(chess.cols) + "x" + std::to_string(chess.rows) +

@@ -5,6 +5,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "firmware/detection/apriltag_detector.h"
+#include "firmware/detection/x_corner_refinement.h"
 
 namespace h4::cam {
 
@@ -13,8 +14,15 @@ BoardViewFinder::BoardViewFinder(const BoardSpec& board, const BoardViewOptions&
   if (const auto* grid = std::get_if<AprilGridSpec>(&board)) {
     AprilTagOptions tag_options;
     tag_options.family = grid->tag_family;
+    tag_options.border_cells = grid->design().border_cells;
+    tag_options.open_contacts_px = grid->design().corner_squares ? 1 : 0;
     tag_detector_ = std::make_unique<AprilTagDetector>(tag_options);
-    if (!tag_detector_->ok()) error_ = tag_detector_->error();
+    if (!tag_detector_->ok()) {
+      error_ = tag_detector_->error();
+    } else if (grid->design().corner_squares) {
+      x_radius_of_side_ =
+          XRadiusOfSide(tag_options.border_cells, tag_detector_->border_cells(), grid->tag_spacing);
+    }
   }
 }
 
@@ -60,8 +68,15 @@ std::optional<CalibrationView> BoardViewFinder::FindAprilGrid(const cv::Mat& gre
                                                               std::string* why) const {
   CalibrationView view;
   int tags = 0;
-  for (const TagDetection& tag : tag_detector_->Detect(grey)) {
+  cv::Mat grey32;
+  if (x_radius_of_side_ > 0) grey.convertTo(grey32, CV_32F);
+  for (TagDetection& tag : tag_detector_->Detect(grey)) {
     if (model_.TagCornerId(tag.id, 0) < 0) continue;  // a tag of another board
+    // Kalibr's board: every corner is an X-corner, refined as such (or the tag dropped).
+    if (x_radius_of_side_ > 0 &&
+        !RefineXCorners(grey32, XCornerOptions{}, x_radius_of_side_, &tag.corners_px)) {
+      continue;
+    }
     ++tags;
     for (int k = 0; k < 4; ++k) {
       const Eigen::Vector3d p = *model_.Corner(model_.TagCornerId(tag.id, k));

@@ -56,6 +56,7 @@ class BoardViewFinder {
   BoardModel model_;
   BoardViewOptions options_;
   std::unique_ptr<AprilTagDetector> tag_detector_;
+  double x_radius_of_side_ = 0;  // Kalibr's board: X-corner radius / tag side
   std::string error_;
 };
 

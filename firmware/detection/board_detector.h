@@ -16,20 +16,28 @@
 #include "firmware/detection/corner_observation.h"
 #include "firmware/detection/edge_refinement.h"
 #include "firmware/detection/ideal_pixel_map.h"
+#include "firmware/detection/x_corner_refinement.h"
 
 namespace h4::cam {
 
 enum class CornerRefinement {
-  kNone,          ///< libapriltag's corners as they come (convention-corrected)
+  kNone,          ///< libapriltag's corners as they come (convention-corrected; on a
+                  ///< board with corner squares, tags only the opened second search found
+                  ///< have their corners up to 1.4 px inside the tag)
   kCornerSubPix,  ///< cv::cornerSubPix on the averaged image
   kEdgeFit,       ///< blurred-step fit of the tag sides (edge_refinement.h): the most
-                  ///< accurate on rendered images (tests/firmware/board_detector_test.cpp)
+                  ///< accurate on rendered legacy boards (tests/firmware/board_detector_test.cpp);
+                  ///< on a board with corner squares (Kalibr's) it means kXCorner, as the
+                  ///< tag sides there have no free ends to fit
+  kXCorner,       ///< cornerSubPix on each X-corner (x_corner_refinement.h), boards with
+                  ///< corner squares only
 };
 
 struct DetectorOptions {
   AprilTagOptions apriltag;
   CornerRefinement refinement = CornerRefinement::kEdgeFit;
   EdgeFitOptions edge_fit;
+  XCornerOptions x_corner;
   int subpix_half_window = 5;  ///< cornerSubPix window (2n+1)^2, px (chessboard too)
   /// Fewer corners than this: status kPartial (the pose would be unreliable).
   int min_corners = 12;
@@ -62,11 +70,14 @@ class BoardDetector {
  private:
   BoardDetection DetectAprilGrid(const cv::Mat& image8, const cv::Mat& image32) const;
   BoardDetection DetectChessboard(const cv::Mat& image8, const cv::Mat& image32) const;
+  /// X-corner refinement of one tag's corners (Kalibr layout); false drops the tag.
+  bool RefineTagXCorners(const cv::Mat& image32, TagDetection* tag) const;
 
   BoardModel board_;
   DetectorOptions options_;
   std::unique_ptr<AprilTagDetector> apriltag_;
   std::unique_ptr<IdealPixelMap> ideal_map_;
+  double x_radius_of_side_ = 0;  // X-corner radius / tag side (Kalibr layout)
   int width_ = 0, height_ = 0;
   std::string error_;
 };

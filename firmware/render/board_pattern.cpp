@@ -18,14 +18,18 @@ BoardPattern::BoardPattern(const BoardSpec& spec, double margin) : spec_(spec), 
       error_ = "unsupported tag family '" + grid->tag_family + "'";
       return;
     }
-    for (int i = 0; i < grid->rows * grid->cols; ++i) {
-      int width = 0;
-      tag_cells_.push_back(TagCells(*family, grid->first_id + i, &width));
-      cells_ = width;
-      if (tag_cells_.back().empty()) {
-        error_ = "tag id " + std::to_string(grid->first_id + i) + " is beyond family " +
-                 grid->tag_family + " (" + std::to_string(family->ncodes) + " codes)";
-        return;
+    // Tag cells in print order (row from the top, then column); the layout decides which
+    // id is printed where, and how wide the black border is.
+    const int border_cells = grid->design().border_cells;
+    for (int row = 0; row < grid->rows; ++row) {
+      for (int col = 0; col < grid->cols; ++col) {
+        const int id = model_.TagIdAt(row, col);
+        tag_cells_.push_back(TagCells(*family, id, border_cells, &cells_));
+        if (tag_cells_.back().empty()) {
+          error_ = "tag id " + std::to_string(id) + " is beyond family " + grid->tag_family + " (" +
+                   std::to_string(family->ncodes) + " codes)";
+          return;
+        }
       }
     }
     const double cell = grid->tag_size / cells_;
@@ -61,8 +65,15 @@ BoardPattern::Colour BoardPattern::AprilGridAt(double x, double y) const {
   const double pitch = grid.tag_size * (1.0 + grid.tag_spacing);
   const int col = static_cast<int>(std::floor(x / pitch));
   const int row = static_cast<int>(std::floor(y / pitch));
-  if (col < 0 || col >= grid.cols || row < 0 || row >= grid.rows) return kWhite;
   const double lx = x - col * pitch, ly = y - row * pitch;
+  // Right of and below each tag's pitch cell's tag square lies the gap crossing, where
+  // Kalibr's layout prints a corner square (also left of / above the first row, col -1).
+  const bool in_crossing = lx >= grid.tag_size && ly >= grid.tag_size;
+  if (in_crossing && grid.design().corner_squares && col >= -1 && col < grid.cols && row >= -1 &&
+      row < grid.rows) {
+    return kBlack;
+  }
+  if (col < 0 || col >= grid.cols || row < 0 || row >= grid.rows) return kWhite;
   if (lx >= grid.tag_size || ly >= grid.tag_size) return kWhite;
   const double cell = grid.tag_size / cells_;
   const int cx = std::clamp(static_cast<int>(lx / cell), 0, cells_ - 1);
@@ -103,10 +114,14 @@ bool BoardPattern::AprilGridMayChange(double x0, double y0, double x1, double y1
       row != static_cast<int>(std::floor(y1 / pitch))) {
     return true;
   }
-  if (col < 0 || col >= grid.cols || row < 0 || row >= grid.rows) return false;  // margin
   const double lx0 = x0 - col * pitch, lx1 = x1 - col * pitch;
   const double ly0 = y0 - row * pitch, ly1 = y1 - row * pitch;
   const double s = grid.tag_size;
+  // Corner squares: a box across the square's sides (x = s or y = s in the gap) changes.
+  if (grid.design().corner_squares && ((lx0 < s) != (lx1 < s) || (ly0 < s) != (ly1 < s))) {
+    return true;
+  }
+  if (col < 0 || col >= grid.cols || row < 0 || row >= grid.rows) return false;  // margin
   if (lx0 >= s || ly0 >= s) return false;  // in the gap right of / below the tag
   if (lx1 >= s || ly1 >= s) return true;   // across the tag's outer edge
   const double cell = s / cells_;

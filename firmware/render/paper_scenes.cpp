@@ -23,7 +23,8 @@ AprilGridSpec PaperBoard() {
   board.cols = 6;
   board.rows = 6;
   board.tag_size = 0.03;
-  board.tag_spacing = 0.3;  // 9 mm gaps: the board is 0.219 m wide
+  board.tag_spacing = 0.3;                    // 9 mm gaps: the board is 0.219 m wide
+  board.layout = AprilGridLayout::kH4Legacy;  // the sim camera's board (aprilgrid_6x6_30mm)
   return board;
 }
 

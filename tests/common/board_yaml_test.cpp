@@ -1,5 +1,6 @@
-// Board YAML: formats.md's aprilgrid example, Kalibr-style checkerboard, defaults,
-// round trip, and every kind of malformed value with its line and field.
+// Board YAML: the aprilgrid example of common/formats/README.md, a plain Kalibr file
+// (Kalibr's design) and the legacy layout key, Kalibr-style checkerboard, defaults, round
+// trip, and every kind of malformed value with its line and field.
 #include "common/formats/board_yaml.h"
 
 #include <filesystem>
@@ -57,6 +58,42 @@ TEST(BoardYaml, OptionalKeysTakeTheirDefaults) {
   EXPECT_EQ(other.first_id, 100);
 }
 
+// A target file as Kalibr's documentation writes it: no h4cam key, so Kalibr's design.
+TEST(BoardYaml, PlainKalibrFileMeansKalibrsPrintedDesign) {
+  const AprilGridSpec grid = std::get<AprilGridSpec>(ParseBoardYaml(
+      "target_type: 'aprilgrid'\ntagCols: 6\ntagRows: 6\ntagSize: 0.088\ntagSpacing: 0.3\n",
+      "april_6x6.yaml"));
+  EXPECT_EQ(grid.layout, AprilGridLayout::kKalibr);
+  EXPECT_EQ(grid.design().border_cells, 2);
+  EXPECT_TRUE(grid.design().corner_squares);
+  EXPECT_TRUE(grid.design().ids_from_bottom);
+  EXPECT_EQ(grid.tag_size, 0.088);
+}
+
+TEST(BoardYaml, LayoutKeySelectsTheDesign) {
+  const auto layout_of = [](const std::string& value) {
+    return std::get<AprilGridSpec>(
+               ParseBoardYaml(kAprilGrid + "h4camLayout: " + value + "\n", "b.yaml"))
+        .layout;
+  };
+  EXPECT_EQ(layout_of("legacy"), AprilGridLayout::kH4Legacy);
+  EXPECT_EQ(layout_of("kalibr"), AprilGridLayout::kKalibr);
+  const AprilGridDesign legacy = DesignOf(AprilGridLayout::kH4Legacy);
+  EXPECT_EQ(legacy.border_cells, 1);
+  EXPECT_FALSE(legacy.corner_squares);
+  EXPECT_FALSE(legacy.ids_from_bottom);
+}
+
+TEST(BoardYaml, KalibrBoardIsWrittenWithoutTheLayoutKeyAndLegacyWithIt) {
+  AprilGridSpec grid;
+  EXPECT_EQ(FormatBoardYaml(grid).find("h4camLayout"), std::string::npos);
+  grid.layout = AprilGridLayout::kH4Legacy;
+  const std::string text = FormatBoardYaml(grid);
+  EXPECT_NE(text.find("h4camLayout: legacy"), std::string::npos);
+  EXPECT_EQ(std::get<AprilGridSpec>(ParseBoardYaml(text, "mem")).layout,
+            AprilGridLayout::kH4Legacy);
+}
+
 TEST(BoardYaml, ReadsACheckerboard) {
   const BoardSpec board = ParseBoardYaml(kCheckerboard, "c.yaml");
   const auto* chess = std::get_if<CheckerboardSpec>(&board);
@@ -90,6 +127,7 @@ TEST(BoardYaml, RoundTripIsExact) {
   EXPECT_EQ(back.tag_size, grid.tag_size);
   EXPECT_EQ(back.tag_spacing, grid.tag_spacing);
   EXPECT_EQ(back.first_id, grid.first_id);
+  EXPECT_EQ(back.layout, grid.layout);
   CheckerboardSpec chess{11, 8, 0.0251, 0.0249};
   const std::string path = TempPath("board.yaml");
   WriteBoardYaml(path, chess);
@@ -113,6 +151,14 @@ TEST(BoardYamlErrors, KnownKeyInOtherCaseIsNotIgnored) {
   text.replace(text.find("firstId: 0"), 10, "firstID: 5");
   EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(text, "b.yaml"); }, "b.yaml", 7, "firstID",
                         "case-sensitive: 'firstId'"));
+}
+
+TEST(BoardYamlErrors, UnknownLayoutNamesTheAcceptedOnes) {
+  EXPECT_TRUE(FailsWith([] { ParseBoardYaml(kAprilGrid + "h4camLayout: kalibr2\n", "b.yaml"); },
+                        "b.yaml", 8, "h4camLayout",
+                        "unknown layout 'kalibr2', expected 'kalibr' or 'legacy'"));
+  EXPECT_TRUE(FailsWith([] { ParseBoardYaml(kAprilGrid + "h4camlayout: legacy\n", "b.yaml"); },
+                        "b.yaml", 8, "h4camlayout", "case-sensitive: 'h4camLayout'"));
 }
 
 TEST(BoardYamlErrors, UnknownTagFamily) {

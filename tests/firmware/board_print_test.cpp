@@ -1,7 +1,8 @@
 // Printable boards: the SVG/PDF page size in mm matches the board, the check bar is 100 mm,
-// a PNG raster at a dpi is detected back (OpenCV chessboard, AprilTag grid) at the
-// expected pixel spacing, the PNG carries its dpi, and the committed boards/ printables
-// are what make-board writes today.
+// a PNG raster at a dpi is detected back (OpenCV chessboard, AprilTag grids of both
+// layouts) at the expected pixel spacing, a Kalibr board is cell for cell what
+// kalibr_create_target_pdf draws, the PNG carries its dpi, and the committed boards/
+// printables are what make-board writes today.
 #include "firmware/board_print/board_print.h"
 
 #include <filesystem>
@@ -35,6 +36,13 @@ BoardLayout Layout(const BoardSpec& board, double margin, bool caption = true) {
   return layout;
 }
 
+// h4cam's legacy design with the geometry of boards/aprilgrid_6x6_30mm.yaml.
+AprilGridSpec LegacyGrid() {
+  AprilGridSpec grid;
+  grid.layout = AprilGridLayout::kH4Legacy;
+  return grid;
+}
+
 double Attribute(const std::string& svg, const std::string& name) {
   std::smatch m;
   EXPECT_TRUE(std::regex_search(svg, m, std::regex("<svg[^>]* " + name + "=\"([0-9.]+)mm\"")));
@@ -50,7 +58,7 @@ std::string ReadFile(const fs::path& path) {
 
 TEST(BoardPrint, SvgPageIsTheAprilGridPlusItsMarginsInMillimetres) {
   // 6 tags of 30 mm and 5 gaps of 7.5 mm = 217.5 mm, plus 2 x 10 mm of margin.
-  const std::string svg = BoardSvg(Layout(AprilGridSpec{}, 0.01, false));
+  const std::string svg = BoardSvg(Layout(LegacyGrid(), 0.01, false));
   EXPECT_DOUBLE_EQ(Attribute(svg, "width"), 237.5);
   EXPECT_DOUBLE_EQ(Attribute(svg, "height"), 237.5);
   EXPECT_NE(svg.find("viewBox=\"0 0 237.5 237.5\""), std::string::npos);
@@ -76,8 +84,11 @@ TEST(BoardPrint, SvgOfTheChessboardHasTenBySevenSquaresAndTheCaption) {
 }
 
 TEST(BoardPrint, CaptionStatesTheAprilGridDimensions) {
-  EXPECT_EQ(DescribeBoard(AprilGridSpec{}),
+  EXPECT_EQ(DescribeBoard(LegacyGrid()),
             "aprilgrid 6x6 tag36h11 (ids 0-35), tag 30.0 mm, spacing 7.5 mm (tagSpacing 0.25)");
+  EXPECT_EQ(DescribeBoard(AprilGridSpec{}),
+            "aprilgrid 6x6 tag36h11 (ids 0-35), tag 30.0 mm, spacing 7.5 mm (tagSpacing 0.25), "
+            "Kalibr layout (tag 0 bottom-left)");
 }
 
 TEST(BoardPrint, PngOfTheChessboardIsDetectedAtTheExpectedPixelSpacing) {
@@ -110,15 +121,18 @@ TEST(BoardPrint, PngOfTheChessboardIsDetectedAtTheExpectedPixelSpacing) {
   EXPECT_LT(d, 0.6) << first;
 }
 
-TEST(BoardPrint, PngOfTheAprilGridIsDetectedWithEveryIdInPlace) {
+// Prints `grid` at 100 dpi, detects it back and checks every tag's top-left corner.
+void ExpectPngDetectedWithEveryIdInPlace(const AprilGridSpec& grid) {
   const double dpi = 100;
   const double px_per_m = dpi / 0.0254;
-  const AprilGridSpec grid;
   const BoardLayout layout = Layout(grid, 0.01);
   const std::string png = BoardPng(layout, dpi);
   const cv::Mat page =
       cv::imdecode(std::vector<uint8_t>(png.begin(), png.end()), cv::IMREAD_GRAYSCALE);
-  AprilTagDetector detector;
+  AprilTagOptions options;
+  options.border_cells = grid.design().border_cells;
+  options.open_contacts_px = grid.design().corner_squares ? 1 : 0;
+  AprilTagDetector detector(options);
   ASSERT_TRUE(detector.ok()) << detector.error();
   const auto tags = detector.Detect(page);
   ASSERT_EQ(tags.size(), 36u);
@@ -132,9 +146,83 @@ TEST(BoardPrint, PngOfTheAprilGridIsDetectedWithEveryIdInPlace) {
     const Eigen::Vector3d p = *model.Corner(model.TagCornerId(tag.id, 3));
     const Eigen::Vector2d expected((layout.pattern_x + p.x()) * px_per_m - 0.5,
                                    (layout.pattern_y + p.y()) * px_per_m - 0.5);
-    EXPECT_LT((tag.corners_px[3] - expected).norm(), 1.0) << "tag " << tag.id;
+    // Opening the corner contacts moves the corners in by up to sqrt(2) px.
+    EXPECT_LT((tag.corners_px[3] - expected).norm(), grid.design().corner_squares ? 2.5 : 1.0)
+        << "tag " << tag.id;
   }
   for (int id = 0; id < 36; ++id) EXPECT_TRUE(seen[static_cast<size_t>(id)]) << id;
+}
+
+TEST(BoardPrint, PngOfTheLegacyAprilGridIsDetectedWithEveryIdInPlace) {
+  ExpectPngDetectedWithEveryIdInPlace(LegacyGrid());
+}
+
+TEST(BoardPrint, PngOfTheKalibrAprilGridIsDetectedWithEveryIdInPlace) {
+  AprilGridSpec grid;  // Kalibr's layout, 30 mm tags: 10 cells of 11.8 px at 100 dpi
+  grid.tag_spacing = 0.3;
+  ExpectPngDetectedWithEveryIdInPlace(grid);
+}
+
+// kalibr_create_target_pdf (aslam_offline_calibration/kalibr/python), re-stated: page
+// coordinates with y up, tag i at ((i % nx) pitch, (i / nx) pitch), a black border of
+// borderBits = 2 cells of size tagSize / (6 + 4), the code drawn MSB-first from its
+// top-left data cell after np.rot90(codeMatrix, 2), and a tagSpacing * tagSize square at
+// each of the tag's four outer corners. Returns whether the point (x, y_up) is black.
+bool KalibrBlackAt(const std::vector<uint64_t>& codes, int nx, int ny, double size, double spacing,
+                   double x, double y_up) {
+  const double pitch = (1 + spacing) * size, bit = size / 10, square = spacing * size;
+  for (int i = 0; i < nx * ny; ++i) {
+    const double x0 = (i % nx) * pitch, y0 = (i / nx) * pitch;
+    const auto in = [&](double rx, double ry, double w, double h) {
+      return x >= rx && x < rx + w && y_up >= ry && y_up < ry + h;
+    };
+    for (const auto& [sx, sy] : {std::pair{x0 - square, y0 - square},
+                                 {x0 + size, y0 - square},
+                                 {x0 + size, y0 + size},
+                                 {x0 - square, y0 + size}}) {
+      if (in(sx, sy, square, square)) return true;
+    }
+    if (!in(x0, y0, size, size)) continue;
+    if (!in(x0 + 2 * bit, y0 + 2 * bit, 6 * bit, 6 * bit)) return true;  // border
+    for (int r = 0; r < 6; ++r) {                     // rows of the rotated matrix, from the top
+      for (int c = 0; c < 6; ++c) {                   // columns
+        const int bit_index = 6 * (5 - r) + (5 - c);  // rot90 twice
+        const bool black = !(codes[static_cast<size_t>(i)] & (uint64_t{1} << bit_index));
+        if (black && in(x0 + (c + 2) * bit, y0 + (1 + 6 - r) * bit, bit, bit)) return true;
+      }
+    }
+  }
+  return false;
+}
+
+TEST(BoardPrint, KalibrLayoutIsCellForCellWhatKalibrCreateTargetPdfDraws) {
+  // The first four codes of Kalibr's t36h11 table (kalibr_create_target_pdf).
+  const std::vector<uint64_t> codes = {0xd5d628584, 0xd97f18b49, 0xdd280910e, 0xe479e9c98};
+  AprilGridSpec grid;  // Kalibr's layout
+  grid.cols = 2;
+  grid.rows = 2;
+  grid.tag_size = 0.1;
+  grid.tag_spacing = 0.3;  // pitch 13 cells of 10 mm, squares 3 cells
+  const BoardLayout layout = Layout(grid, 0.0, false);
+  const double cell = 0.01, height = 2 * 0.1 + 0.03;  // tag grid height H
+  int black = 0, checked = 0;
+  // Every cell centre of the pattern (squares included) and one cell of margin around it.
+  for (int j = -4; j < 27; ++j) {
+    for (int i = -4; i < 27; ++i) {
+      const double x = (i + 0.5) * cell, y = (j + 0.5) * cell;  // frame T, y down
+      bool ours = false;
+      for (const PrintRect& r : layout.black) {
+        const double px = layout.pattern_x + x, py = layout.pattern_y + y;
+        ours |= px >= r.x && px < r.x + r.w && py >= r.y && py < r.y + r.h;
+      }
+      const bool kalibr = KalibrBlackAt(codes, 2, 2, 0.1, 0.3, x, height - y);
+      EXPECT_EQ(ours, kalibr) << "cell (" << i << ", " << j << ") of T";
+      black += ours;
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 31 * 31);
+  EXPECT_GT(black, 4 * 64 + 9 * 9);  // borders and squares at least
 }
 
 TEST(BoardPrint, PngCarriesItsDpiInAPhysChunk) {
@@ -182,7 +270,7 @@ TEST(BoardPrint, UnknownExtensionAndUnsupportedFamilyAreErrors) {
   BoardLayout layout;
   EXPECT_FALSE(LayoutBoard(grid, {}, &layout, &error));
   EXPECT_NE(error.find("tagStandard41h12"), std::string::npos);
-  grid = AprilGridSpec{};
+  grid = LegacyGrid();
   grid.first_id = 570;  // tag36h11 has 587 codes: ids 570..605 run past the end
   EXPECT_FALSE(LayoutBoard(grid, {}, &layout, &error));
   EXPECT_NE(error.find("tag id 587 is beyond family tag36h11"), std::string::npos) << error;
@@ -199,7 +287,9 @@ TEST(BoardPrint, CommittedPrintablesAreUpToDate) {
     double margin;
   };
   for (const auto& [name, margin] :
-       {Printable{"aprilgrid_6x6_30mm", 0.01}, Printable{"checkerboard_9x6_25mm", 0.005}}) {
+       {Printable{"aprilgrid_6x6_30mm", 0.01}, Printable{"checkerboard_9x6_25mm", 0.005},
+        Printable{"kalibr_aprilgrid_6x6_30mm", 0.01},
+        Printable{"kalibr_aprilgrid_6x6_88mm", 0.01}}) {
     for (const char* ext : {".svg", ".pdf"}) {
       const fs::path committed = boards / (std::string(name) + ext);
       if (!fs::exists(committed)) {

@@ -257,6 +257,7 @@ TEST(IntrinsicsCalibration, OpenCvSampleImagesGiveOpenCvsPublishedIntrinsics) {
 
 TEST(IntrinsicsCalibration, RenderedAprilGridViewsGiveBackTheRenderingCamera) {
   AprilGridSpec grid;  // 6 x 6 tag36h11, 30 mm, spacing 0.25 (boards/aprilgrid_6x6_30mm.yaml)
+  grid.layout = AprilGridLayout::kH4Legacy;
   CameraIntrinsics truth;
   truth.width = 640;
   truth.height = 480;

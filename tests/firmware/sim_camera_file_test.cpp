@@ -1,9 +1,8 @@
 // The committed files the simulated camera runs with (boards/sim_camera_1024x768.yaml and
 // boards/aprilgrid_6x6_30mm.yaml) must describe the scene the firmware's tests use
 // (firmware/render/paper_scenes.h), so that the demo measures what the tests check.
-#include <opencv2/core/persistence.hpp>
-
 #include <gtest/gtest.h>
+#include <opencv2/core/persistence.hpp>
 
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
@@ -45,6 +44,7 @@ TEST(SimCameraFileTest, TheBoardFileIsThePaperBoardsGrid) {
   EXPECT_DOUBLE_EQ(grid->tag_size, paper.tag_size);
   EXPECT_DOUBLE_EQ(grid->tag_spacing, 0.25);
   EXPECT_EQ(grid->tag_family, paper.tag_family);
+  EXPECT_EQ(grid->layout, paper.layout);
 }
 
 }  // namespace
