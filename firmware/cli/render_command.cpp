@@ -17,7 +17,35 @@
 
 namespace h4::cam {
 
+RenderOptions RenderOptionsFromArgs(const RenderArgs& args) {
+  RenderOptions options;
+  if (!RenderPresetByName(args.preset, &options)) {
+    throw std::runtime_error("--preset '" + args.preset + "': expected clean or processed");
+  }
+  if (args.blur_sigma_px) options.blur_sigma_px = *args.blur_sigma_px;
+  if (args.focus_distance) options.focus_distance = *args.focus_distance;
+  if (args.aperture_diameter) options.aperture_diameter = *args.aperture_diameter;
+  if (args.illumination_gradient) options.illumination_gradient = *args.illumination_gradient;
+  if (args.illumination_gradient_direction_deg) {
+    options.illumination_gradient_direction_deg = *args.illumination_gradient_direction_deg;
+  }
+  if (args.vignetting) options.vignetting = *args.vignetting;
+  if (args.full_well_electrons) options.full_well_electrons = *args.full_well_electrons;
+  if (args.read_noise) options.noise_sigma = *args.read_noise;
+  std::string why;
+  if (args.response && !ParseResponseCurve(*args.response, &options, &why)) {
+    throw std::runtime_error("--response: " + why);
+  }
+  if (!options.IsValid(&why)) throw std::runtime_error("render options: " + why);
+  return options;
+}
+
 void RunRender(const RenderArgs& args, std::ostream& out) {
+  if (args.frames < 1 || args.frames > kMaxRenderFrames) {
+    throw std::runtime_error("--frames " + std::to_string(args.frames) + ": expected 1.." +
+                             std::to_string(kMaxRenderFrames));
+  }
+  const RenderOptions options = RenderOptionsFromArgs(args);
   const BoardSpec board = ReadBoardYaml(args.board_path);
   const CameraIntrinsics camera = ReadCameraYaml(args.camera_path);
   if (args.pose.size() != 7) {
@@ -29,9 +57,6 @@ void RunRender(const RenderArgs& args, std::ostream& out) {
     throw std::runtime_error("--pose: quaternion (qw, qx, qy, qz) must have unit norm");
   }
   const RigidTransform X_CT(R_CT, Eigen::Vector3d(args.pose[0], args.pose[1], args.pose[2]));
-  RenderOptions options;
-  options.noise_sigma = args.noise;
-  options.blur_sigma_px = args.blur;
   const BoardRenderer renderer(board, camera, options);
   if (!renderer.ok()) throw std::runtime_error(args.board_path + ": " + renderer.error());
   std::filesystem::create_directories(args.out_dir);
@@ -65,13 +90,45 @@ void AddRenderCommand(CLI::App& app) {
       ->expected(7);
   command->add_option("--frames", args->frames, "Number of frames")
       ->default_val(args->frames)
-      ->check(CLI::PositiveNumber);
-  command->add_option("--noise", args->noise, "Sensor noise sigma, grey levels")
-      ->default_val(args->noise)
-      ->check(CLI::NonNegativeNumber);
-  command->add_option("--blur", args->blur, "Optical blur sigma, px")
-      ->default_val(args->blur)
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(1, kMaxRenderFrames));
+  command
+      ->add_option("--preset", args->preset,
+                   "Image formation: clean (linear, Gaussian blur and noise) or processed "
+                   "(a camera module's sRGB output: defocus, gradient, shot noise)")
+      ->default_val(args->preset)
+      ->check(CLI::IsMember({"clean", "processed"}));
+  command->add_option("--blur", args->blur_sigma_px, "Gaussian PSF sigma, px (0..20)")
+      ->check(CLI::Range(0.0, 20.0));
+  command
+      ->add_option("--focus-distance", args->focus_distance,
+                   "Defocus: distance the lens is focused at, m (0 = no defocus)")
+      ->check(CLI::Range(0.0, 1000.0));
+  command
+      ->add_option("--aperture", args->aperture_diameter,
+                   "Defocus: entrance pupil diameter, m (3.8 mm f/2: 0.0019)")
+      ->check(CLI::Range(0.0, 0.05));
+  command
+      ->add_option("--gradient", args->illumination_gradient,
+                   "Illumination change across the image, fraction (0..1)")
+      ->check(CLI::Range(0.0, 1.0));
+  command
+      ->add_option("--gradient-direction", args->illumination_gradient_direction_deg,
+                   "Direction the light grows in, deg from +u toward +v")
+      ->check(CLI::Range(-360.0, 360.0));
+  command
+      ->add_option("--vignetting", args->vignetting,
+                   "Light lost at the image corners, fraction (0..0.9)")
+      ->check(CLI::Range(0.0, 0.9));
+  command
+      ->add_option("--full-well,--shot-noise", args->full_well_electrons,
+                   "Shot noise: electrons at full scale (0 = none, else 100..1e7)")
+      ->check(CLI::Range(0.0, 1e7));
+  command
+      ->add_option("--read-noise,--noise", args->read_noise,
+                   "Read noise sigma, grey levels of the linear signal (0..50)")
+      ->check(CLI::Range(0.0, 50.0));
+  command->add_option("--response", args->response,
+                      "Response curve: linear, srgb, gamma:EXPONENT or table:V0,V1,...");
   command->add_option("--seed", args->seed, "Noise seed")->default_val(args->seed);
   command->add_option("--out", args->out_dir, "Output directory")->required();
   command->callback([args] { RunRender(*args, std::cout); });

@@ -1,12 +1,18 @@
 // `h4cam render --board B.yaml --camera C.yaml --pose x,y,z,qw,qx,qy,qz [--frames N]
-// [--noise 2] [--blur 0.8] [--seed S] --out DIR`: synthetic frames of the board at X_CT
-// (frame_0000.png, ...), the ground truth for testing `h4cam measure`.
+// [--preset clean|processed] [--blur PX] [--focus-distance M --aperture M]
+// [--gradient F [--gradient-direction DEG]] [--vignetting F] [--full-well E]
+// [--read-noise LEVELS] [--response linear|srgb|gamma:E|table:V,...] [--seed S] --out DIR`:
+// synthetic frames of the board at X_CT (frame_0000.png, ...), the ground truth for testing
+// `h4cam measure`. The preset gives every value (render_options.h); the flags override it.
 #pragma once
 
 #include <cstdint>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "firmware/render/render_options.h"
 
 namespace CLI {
 class App;
@@ -19,13 +25,24 @@ struct RenderArgs {
   std::string camera_path;
   std::vector<double> pose;  ///< x, y, z (m), qw, qx, qy, qz: X_CT
   int frames = 1;
-  double noise = 2.0;  ///< grey levels
-  double blur = 0.8;   ///< px
+  std::string preset = "clean";  ///< clean | processed (render_options.h)
+  // Overrides of the preset's values, unset = the preset's (units: render_options.h).
+  std::optional<double> blur_sigma_px, focus_distance, aperture_diameter;
+  std::optional<double> illumination_gradient, illumination_gradient_direction_deg;
+  std::optional<double> vignetting, full_well_electrons, read_noise;
+  std::optional<std::string> response;  ///< linear | srgb | gamma:E | table:V0,V1,...
   uint64_t seed = 1;
   std::string out_dir;
 };
 
+/// Most frames one call writes.
+constexpr int kMaxRenderFrames = 1000;
+
 void AddRenderCommand(CLI::App& app);
+
+/// The preset with the flags applied; throws std::runtime_error naming the option at
+/// fault (unknown preset, malformed response, or values out of range).
+RenderOptions RenderOptionsFromArgs(const RenderArgs& args);
 
 /// Writes the frames; throws (std::runtime_error or h4::FormatError) naming the file or
 /// option at fault.

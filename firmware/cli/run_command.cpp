@@ -12,12 +12,12 @@
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "firmware/service/camera_service.h"
-#include "messages/bus/lcm_bus.h"
 #include "firmware/service/sd_notify.h"
 #include "firmware/service/service_node.h"
 #include "firmware/sources/image_file_source.h"
 #include "firmware/sources/libcamera_source.h"
 #include "firmware/sources/sim_source.h"
+#include "messages/bus/lcm_bus.h"
 #include "messages/channels.h"
 
 namespace h4::cam {
@@ -70,6 +70,10 @@ ServiceConfig ResolveRunConfig(const RunArgs& args) {
   if (args.camera_id) config.camera_id = *args.camera_id;
   if (args.frames) config.frames_averaged = *args.frames;
   if (args.free_run_hz) config.free_run_hz = *args.free_run_hz;
+  if (args.sim_preset && !RenderPresetByName(*args.sim_preset, &config.sim_render)) {
+    throw std::runtime_error("--sim-preset '" + *args.sim_preset +
+                             "': expected clean or processed");
+  }
   std::string why;
   if (!config.IsValid(&why)) throw std::runtime_error("run: " + why);
   return config;
@@ -103,6 +107,7 @@ int RunService(const ServiceConfig& config, std::ostream& err, const std::atomic
   }
   if (config.source == "sim") {
     SimSourceOptions sim_options;
+    sim_options.render = config.sim_render;
     sim_options.frame_rate_hz = 1e6 / config.frame_duration_us;
     sim_options.start_utime = NowUtime();
     sim_options.real_time = true;
@@ -152,6 +157,9 @@ void AddRunCommand(CLI::App& app) {
       ->check(CLI::Range(1, kMaxFramesPerRequest));
   command->add_option("--free-run", args->free_run_hz, "Measure continuously at this rate, Hz")
       ->check(CLI::Range(0.0, 100.0));
+  command->add_option("--sim-preset", args->sim_preset,
+                      "Rendered frames of --source sim: processed (default: a camera module's "
+                      "sRGB output with defocus, gradient, shot noise) or clean");
   command->add_option("--lcm-url", args->lcm_url, "LCM URL (default $LCM_DEFAULT_URL, ttl=0)");
   command->add_option(
       "--camera-id", args->camera_id,

@@ -1,5 +1,6 @@
 // `h4cam run [--config FILE] [--source libcamera|sim|dir:PATH] [--board B.yaml]
-// [--camera C.yaml] [--frames N] [--free-run HZ] [--lcm-url URL] [--camera-id ID]`: the
+// [--camera C.yaml] [--frames N] [--free-run HZ] [--lcm-url URL] [--camera-id ID]
+// [--sim-preset clean|processed]`: the
 // camera service (h4cam.service). Answers H4_CAPTURE_REQUEST with H4_BOARD_POSE, sends the
 // H4_CAMERA_STATUS heartbeat, stops cleanly on SIGINT/SIGTERM. Flags override the file.
 #pragma once
@@ -21,6 +22,8 @@ namespace h4::cam {
 struct RunArgs {
   std::string config_path;
   std::optional<std::string> source, board_path, camera_path, lcm_url, camera_id;
+  /// Image formation of `--source sim` (replaces the file's sim: block).
+  std::optional<std::string> sim_preset;
   std::optional<int> frames;
   std::optional<double> free_run_hz;
 };

@@ -2,7 +2,9 @@
 // [u - 0.5, u + 0.5] x [v - 0.5, v + 0.5] (OpenCV's convention). The undistorted ray of
 // every pixel corner is solved once per camera; inside a pixel the ray is interpolated
 // bilinearly (the error is below 1e-4 px for mild distortion) and the board point found
-// through the inverse of the plane homography [r1 r2 p_CT].
+// through the inverse of the plane homography [r1 r2 p_CT]. Each step with an option at
+// its neutral value (no light variation, no defocus, linear response, no shot noise) is
+// skipped, so the "clean" preset gives the historical images bit for bit.
 #include "firmware/render/board_renderer.h"
 
 #include <cmath>
@@ -31,22 +33,12 @@ struct SplitMix64 {
 
 }  // namespace
 
-bool RenderOptions::IsValid(std::string* why) const {
-  auto fail = [why](const std::string& message) {
-    if (why != nullptr) *why = message;
-    return false;
-  };
-  if (samples_per_pixel < 1) return fail("samples_per_pixel must be >= 1");
-  if (supersampling < 1 || supersampling > 8) return fail("supersampling must be 1..8");
-  if (!(blur_sigma_px >= 0)) return fail("blur sigma must be >= 0 px");
-  if (!(noise_sigma >= 0)) return fail("noise sigma must be >= 0 grey levels");
-  return true;
-}
-
 BoardRenderer::BoardRenderer(const BoardSpec& board, const CameraIntrinsics& camera,
                              RenderOptions options)
     : options_(options),
       camera_(camera),
+      illumination_(options, camera.width, camera.height),
+      sensor_(options),
       pattern_(board, options.margin),
       width_(camera.width),
       height_(camera.height) {
@@ -73,8 +65,60 @@ BoardRenderer::BoardRenderer(const BoardSpec& board, const CameraIntrinsics& cam
                             std::sqrt(static_cast<double>(options_.samples_per_pixel) / (f * f)))));
 }
 
+// The printed board's image plus the reach of the PSF (Gaussian and defocus disk).
+// Outside it the image is the lit background, which blur leaves unchanged (the light
+// varies slowly). The whole image when part of the board is behind the camera.
+BoardRenderer::Region BoardRenderer::BoardRegion(const RigidTransform& X_CT) const {
+  const Eigen::Vector2d lo = pattern_.extent_min(), hi = pattern_.extent_max();
+  Eigen::Vector2d pmin(1e18, 1e18), pmax(-1e18, -1e18);
+  double defocus_px = 0;
+  const int steps = 64;  // along each side: distortion bends the sides
+  for (int k = 0; k <= steps; ++k) {
+    const double t = static_cast<double>(k) / steps;
+    const Eigen::Vector2d side[4] = {{lo.x() + t * (hi.x() - lo.x()), lo.y()},
+                                     {lo.x() + t * (hi.x() - lo.x()), hi.y()},
+                                     {lo.x(), lo.y() + t * (hi.y() - lo.y())},
+                                     {hi.x(), lo.y() + t * (hi.y() - lo.y())}};
+    for (const Eigen::Vector2d& q : side) {
+      const Eigen::Vector3d p_CQ = X_CT * Eigen::Vector3d(q.x(), q.y(), 0.0);
+      Eigen::Vector2d uv;
+      if (!camera_.Project(p_CQ, &uv) || !uv.allFinite()) return {0, 0, width_, height_};
+      pmin = pmin.cwiseMin(uv);
+      pmax = pmax.cwiseMax(uv);
+      defocus_px =
+          std::max(defocus_px, DefocusRadiusPx(options_, camera_.intrinsics().K(0, 0), p_CQ.z()));
+    }
+  }
+  const int reach = static_cast<int>(std::ceil(4.0 * options_.blur_sigma_px + defocus_px)) + 2;
+  return {std::clamp(static_cast<int>(std::floor(pmin.x())) - reach, 0, width_),
+          std::clamp(static_cast<int>(std::floor(pmin.y())) - reach, 0, height_),
+          std::clamp(static_cast<int>(std::ceil(pmax.x())) + reach + 1, 0, width_),
+          std::clamp(static_cast<int>(std::ceil(pmax.y())) + reach + 1, 0, height_)};
+}
+
+// Defocus disk radius (px) per pixel of the region, from the depth at which the pixel
+// centre's ray meets the board plane (depth = 1 / (M^-1 n).z).
+cv::Mat BoardRenderer::DefocusRadiusMap(const Eigen::Matrix3d& Minv, const Region& region) const {
+  cv::Mat radius(region.v1 - region.v0, region.u1 - region.u0, CV_32F);
+  const size_t stride = static_cast<size_t>(width_ + 1);
+  for (int r = 0; r < radius.rows; ++r) {
+    for (int c = 0; c < radius.cols; ++c) {
+      const size_t k =
+          static_cast<size_t>(region.v0 + r) * stride + static_cast<size_t>(region.u0 + c);
+      const Eigen::Vector2d xn = 0.25 * (corner_rays_[k] + corner_rays_[k + 1] +
+                                         corner_rays_[k + stride] + corner_rays_[k + stride + 1]);
+      const double inverse_depth = (Minv * Eigen::Vector3d(xn.x(), xn.y(), 1.0)).z();
+      radius.at<float>(r, c) =
+          inverse_depth > 1e-12 ? static_cast<float>(DefocusRadiusPx(
+                                      options_, camera_.intrinsics().K(0, 0), 1.0 / inverse_depth))
+                                : 0.0f;
+    }
+  }
+  return radius;
+}
+
 cv::Mat BoardRenderer::RenderClean(const RigidTransform& X_CT) const {
-  cv::Mat image(height_, width_, CV_32F, cv::Scalar(options_.background_level));
+  cv::Mat image = RenderBackground();
   if (!ok()) return image;
   // p_C = [r1 r2 p_CT] (x, y, 1)^T for board points; a ray n hits (x, y) with
   // M^-1 n = (x, y, 1) / depth, depth > 0.
@@ -86,40 +130,10 @@ cv::Mat BoardRenderer::RenderClean(const RigidTransform& X_CT) const {
   if (!lu.isInvertible()) return image;  // camera in the board plane: sees its edge only
   const Eigen::Matrix3d Minv = lu.inverse();
 
-  // Region of interest: the printed board's image plus the blur's reach. Outside it the
-  // image is the uniform background, which blur leaves unchanged.
-  const int f = std::max(1, options_.supersampling);
-  const int reach = static_cast<int>(std::ceil(4.0 * options_.blur_sigma_px)) + 2;
-  int u0 = 0, v0 = 0, u1 = width_, v1 = height_;
-  {
-    const Eigen::Vector2d lo = pattern_.extent_min(), hi = pattern_.extent_max();
-    Eigen::Vector2d pmin(1e18, 1e18), pmax(-1e18, -1e18);
-    bool all_in_front = true;
-    const int steps = 64;  // along each side: distortion bends the sides
-    for (int k = 0; k <= steps && all_in_front; ++k) {
-      const double t = static_cast<double>(k) / steps;
-      const Eigen::Vector2d side[4] = {{lo.x() + t * (hi.x() - lo.x()), lo.y()},
-                                       {lo.x() + t * (hi.x() - lo.x()), hi.y()},
-                                       {lo.x(), lo.y() + t * (hi.y() - lo.y())},
-                                       {hi.x(), lo.y() + t * (hi.y() - lo.y())}};
-      for (const Eigen::Vector2d& q : side) {
-        Eigen::Vector2d uv;
-        if (!camera_.Project(X_CT * Eigen::Vector3d(q.x(), q.y(), 0.0), &uv) || !uv.allFinite()) {
-          all_in_front = false;
-          break;
-        }
-        pmin = pmin.cwiseMin(uv);
-        pmax = pmax.cwiseMax(uv);
-      }
-    }
-    if (all_in_front) {
-      u0 = std::clamp(static_cast<int>(std::floor(pmin.x())) - reach, 0, width_);
-      v0 = std::clamp(static_cast<int>(std::floor(pmin.y())) - reach, 0, height_);
-      u1 = std::clamp(static_cast<int>(std::ceil(pmax.x())) + reach + 1, 0, width_);
-      v1 = std::clamp(static_cast<int>(std::ceil(pmax.y())) + reach + 1, 0, height_);
-    }
-  }
+  const Region region = BoardRegion(X_CT);
+  const int u0 = region.u0, v0 = region.v0, u1 = region.u1, v1 = region.v1;
   if (u1 <= u0 || v1 <= v0) return image;
+  const int f = std::max(1, options_.supersampling);
 
   const float levels[3] = {static_cast<float>(options_.background_level),
                            static_cast<float>(options_.black_level),
@@ -207,9 +221,14 @@ cv::Mat BoardRenderer::RenderClean(const RigidTransform& X_CT) const {
       row[I] = static_cast<float>(sum / (strata_ * strata_));
     }
   }
+  // Light on the board, then the optics, all on the continuous (fine) image.
+  illumination_.Apply(fine, u0, v0, 1.0 / f);
   if (options_.blur_sigma_px > 0) {
     const double sigma = options_.blur_sigma_px * f;
     cv::GaussianBlur(fine, fine, cv::Size(0, 0), sigma, sigma, cv::BORDER_REPLICATE);
+  }
+  if (options_.focus_distance > 0 && options_.aperture_diameter > 0) {
+    SpatiallyVaryingPillbox(fine, DefocusRadiusMap(Minv, region) * f, f);
   }
   cv::Mat coarse;
   cv::resize(fine, coarse, cv::Size(u1 - u0, v1 - v0), 0, 0, cv::INTER_AREA);
@@ -217,16 +236,15 @@ cv::Mat BoardRenderer::RenderClean(const RigidTransform& X_CT) const {
   return image;
 }
 
+cv::Mat BoardRenderer::RenderBackground() const {
+  cv::Mat image(std::max(height_, 1), std::max(width_, 1), CV_32F,
+                cv::Scalar(options_.background_level));
+  if (ok()) illumination_.Apply(image, 0, 0, 1.0);
+  return image;
+}
+
 cv::Mat BoardRenderer::Expose(const cv::Mat& clean, cv::RNG& rng) const {
-  cv::Mat noisy = clean.clone();
-  if (options_.noise_sigma > 0) {
-    cv::Mat noise(clean.size(), CV_32F);
-    rng.fill(noise, cv::RNG::NORMAL, 0.0, options_.noise_sigma);
-    noisy += noise;
-  }
-  cv::Mat out;
-  noisy.convertTo(out, CV_8U);  // rounds to nearest and saturates to [0, 255]
-  return out;
+  return sensor_.Expose(clean, rng);
 }
 
 cv::Mat BoardRenderer::Render(const RigidTransform& X_CT, uint64_t seed) const {

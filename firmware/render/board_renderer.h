@@ -2,8 +2,10 @@
 // for the measuring pipeline's tests and benchmarks. The board's region is rendered on a
 // grid finer than the pixels, area-sampled (a jittered grid of sub-pixel rays wherever
 // a colour boundary may cross, each ray undistorted and intersected with the board
-// plane), blurred (Gaussian optics) and integrated over each pixel; then sensor noise
-// (Gaussian) and 8-bit quantisation, reproducible from a seed.
+// plane), lit (illumination gradient, vignetting), blurred by the optics (Gaussian and a
+// depth-dependent defocus disk) and integrated over each pixel; then the sensor (shot and
+// read noise, saturation), the response curve and 8-bit quantisation, reproducible from a
+// seed. The steps and their options: render_options.h.
 #pragma once
 
 #include <cstdint>
@@ -17,25 +19,10 @@
 #include "common/camera/camera_model.h"
 #include "common/geometry/rigid_transform.h"
 #include "firmware/render/board_pattern.h"
+#include "firmware/render/image_formation.h"
+#include "firmware/render/render_options.h"
 
 namespace h4::cam {
-
-struct RenderOptions {
-  /// The board's region is rendered this many times finer per axis, blurred there, then
-  /// averaged back to pixels (optical blur before pixel integration, as in a camera).
-  int supersampling = 4;
-  /// Area samples per pixel where a colour boundary crosses it, spread over its
-  /// supersampling^2 sub-pixels as jittered strata (unbiased whatever the edge direction).
-  int samples_per_pixel = 256;
-  double blur_sigma_px = 0.8;      ///< optical blur, Gaussian sigma in px (0 = none)
-  double noise_sigma = 2.0;        ///< sensor noise per frame, grey levels (0 = none)
-  double black_level = 30.0;       ///< grey level of the printed black, 0..255
-  double white_level = 220.0;      ///< grey level of the printed white
-  double background_level = 90.0;  ///< grey level off the board
-  double margin = -1.0;            ///< white border around the pattern, m (<0: one tag/square)
-
-  bool IsValid(std::string* why) const;
-};
 
 class BoardRenderer {
  public:
@@ -46,16 +33,28 @@ class BoardRenderer {
   const std::string& error() const { return error_; }
   const RenderOptions& options() const { return options_; }
 
-  /// Noise-free image (area sampling + blur), CV_32F grey levels.
+  /// Noise-free linear signal reaching the sensor (radiance x illumination, blurred,
+  /// pixel-integrated), CV_32F grey levels of full scale.
   cv::Mat RenderClean(const RigidTransform& X_CT) const;
-  /// One sensor frame from a clean image: noise from `rng`, rounded, saturated, CV_8UC1.
+  /// The same with no board in view: the lit background.
+  cv::Mat RenderBackground() const;
+  /// One sensor frame from a clean image: noise from `rng`, saturation, response curve,
+  /// 8-bit quantisation, CV_8UC1.
   cv::Mat Expose(const cv::Mat& clean, cv::RNG& rng) const;
   /// RenderClean + Expose with a generator seeded by `seed`.
   cv::Mat Render(const RigidTransform& X_CT, uint64_t seed) const;
 
  private:
+  struct Region {  // pixel rectangle [u0, u1) x [v0, v1)
+    int u0 = 0, v0 = 0, u1 = 0, v1 = 0;
+  };
+  Region BoardRegion(const RigidTransform& X_CT) const;
+  cv::Mat DefocusRadiusMap(const Eigen::Matrix3d& Minv, const Region& region) const;
+
   RenderOptions options_;
   CameraModel camera_;
+  Illumination illumination_;
+  SensorModel sensor_;
   BoardPattern pattern_;
   int width_ = 0, height_ = 0;
   std::vector<Eigen::Vector2d> corner_rays_;  // undistorted normalised coordinates of

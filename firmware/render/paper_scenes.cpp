@@ -39,12 +39,13 @@ RigidTransform BoardPose(const AprilGridSpec& board, double depth, double tilt, 
   return {R_CT, Eigen::Vector3d(dx, dy, depth) - R_CT * p_TM};
 }
 
-std::vector<RigidTransform> RandomPoses(int count, uint64_t seed) {
+std::vector<RigidTransform> RandomPoses(int count, uint64_t seed, double min_depth,
+                                        double max_depth) {
   cv::RNG rng(seed);
   std::vector<RigidTransform> poses;
   const AprilGridSpec board = PaperBoard();
   for (int i = 0; i < count; ++i) {
-    const double depth = rng.uniform(0.45, 0.65);
+    const double depth = rng.uniform(min_depth, max_depth);
     const double tilt = rng.uniform(0.0, 25.0) * M_PI / 180.0;
     poses.push_back(BoardPose(board, depth, tilt, rng.uniform(-M_PI, M_PI),
                               rng.uniform(-M_PI, M_PI), rng.uniform(-0.04, 0.04),

@@ -22,8 +22,10 @@ AprilGridSpec PaperBoard();
 /// (rad) about an axis in the board plane at angle `axis_angle`, and rolled by `roll`.
 RigidTransform BoardPose(const AprilGridSpec& board, double depth, double tilt, double axis_angle,
                          double roll, double dx = 0, double dy = 0);
-/// Random scene poses in the paper's range (depth 0.45-0.65 m, tilt up to 25 deg).
-std::vector<RigidTransform> RandomPoses(int count, uint64_t seed);
+/// Random scene poses in the paper's range (depth 0.45-0.65 m, tilt up to 25 deg), or with
+/// the board centre's depth drawn in [min_depth, max_depth] (m) instead.
+std::vector<RigidTransform> RandomPoses(int count, uint64_t seed, double min_depth = 0.45,
+                                        double max_depth = 0.65);
 /// The CV_32F mean of `frames` noisy renderings of the clean image.
 cv::Mat AveragedFrames(const BoardRenderer& renderer, const cv::Mat& clean, int frames,
                        uint64_t seed);

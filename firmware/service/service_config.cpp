@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "common/formats/csv_table.h"
 #include "common/formats/format_error.h"
@@ -52,6 +53,48 @@ void CheckNonNegative(const YamlMap& map, const std::string& key, double value) 
   if (map.Has(key) && !(value >= 0)) map.Fail(key, "expected a number >= 0");
 }
 
+// A number of the sim: block within [lo, hi], else an error naming its line.
+double SimDouble(const YamlMap& sim, const std::string& key, double fallback, double lo,
+                 double hi) {
+  const double value = OptionalDouble(sim, key, fallback);
+  if (sim.Has(key) && !(value >= lo && value <= hi)) {
+    std::ostringstream range;
+    range << "expected " << lo << ".." << hi;
+    sim.Fail(key, range.str());
+  }
+  return value;
+}
+
+// The sim: block over the preset it names (processed when it names none). The ranges
+// are those of RenderOptions::IsValid.
+RenderOptions ParseSimBlock(const YamlMap& sim) {
+  sim.RejectUnknownKeys({"preset", "blur_sigma_px", "focus_distance", "aperture_diameter",
+                         "illumination_gradient", "illumination_gradient_direction_deg",
+                         "vignetting", "full_well_electrons", "read_noise", "response"});
+  RenderOptions o = RenderOptions::Processed();
+  const std::string preset = OptionalString(sim, "preset", "processed");
+  if (!RenderPresetByName(preset, &o)) sim.Fail("preset", "expected clean or processed");
+  o.blur_sigma_px = SimDouble(sim, "blur_sigma_px", o.blur_sigma_px, 0, 20);
+  o.focus_distance = SimDouble(sim, "focus_distance", o.focus_distance, 0, 1000);
+  o.aperture_diameter = SimDouble(sim, "aperture_diameter", o.aperture_diameter, 0, 0.05);
+  o.illumination_gradient = SimDouble(sim, "illumination_gradient", o.illumination_gradient, 0, 1);
+  o.illumination_gradient_direction_deg = SimDouble(
+      sim, "illumination_gradient_direction_deg", o.illumination_gradient_direction_deg, -360, 360);
+  o.vignetting = SimDouble(sim, "vignetting", o.vignetting, 0, 0.9);
+  o.full_well_electrons = SimDouble(sim, "full_well_electrons", o.full_well_electrons, 0, 1e7);
+  if (o.full_well_electrons > 0 && o.full_well_electrons < 100) {
+    sim.Fail("full_well_electrons", "expected 0 (no shot noise) or 100..1e7");
+  }
+  o.noise_sigma = SimDouble(sim, "read_noise", o.noise_sigma, 0, 50);
+  std::string why;
+  if (sim.Has("response")) {
+    if (!ParseResponseCurve(OptionalString(sim, "response", ""), &o, &why) || !o.IsValid(&why)) {
+      sim.Fail("response", why);
+    }
+  }
+  return o;
+}
+
 }  // namespace
 
 std::string ServiceConfig::MessageCameraId() const {
@@ -80,6 +123,8 @@ bool ServiceConfig::IsValid(std::string* why) const {
       !(frame_duration_us > 0) || width_px <= 0 || height_px <= 0) {
     return fail("camera/measurement values out of range");
   }
+  std::string render_why;
+  if (!sim_render.IsValid(&render_why)) return fail("sim: " + render_why);
   return true;
 }
 
@@ -90,7 +135,7 @@ ServiceConfig ParseServiceConfig(const std::string& text, const std::string& sou
   if (!root.IsMap()) throw FormatError(source_name, 1, "", "expected a YAML mapping");
   const YamlMap top(root, source_name, "", 1);
   top.RejectUnknownKeys(
-      {"source", "board", "camera_intrinsics", "camera", "measurement", "service", "lcm"});
+      {"source", "board", "camera_intrinsics", "camera", "measurement", "service", "lcm", "sim"});
   config.source = OptionalString(top, "source", config.source);
   config.board_path = OptionalString(top, "board", "");
   config.camera_intrinsics_path = OptionalString(top, "camera_intrinsics", "");
@@ -139,6 +184,7 @@ ServiceConfig ParseServiceConfig(const std::string& text, const std::string& sou
     l.RejectUnknownKeys({"url"});
     config.lcm_url = OptionalString(l, "url", "");
   }
+  if (top.Has("sim")) config.sim_render = ParseSimBlock(top.Map("sim"));
   std::string why;
   if (!config.IsValid(&why)) throw FormatError(source_name, 0, "", why);
   return config;

@@ -5,6 +5,8 @@
 
 #include <string>
 
+#include "firmware/render/render_options.h"
+
 namespace h4::cam {
 
 struct ServiceConfig {
@@ -34,6 +36,13 @@ struct ServiceConfig {
 
   // lcm: block
   std::string lcm_url;  ///< "" = $LCM_DEFAULT_URL, else udpm with ttl=0
+
+  // sim: block, the image formation of `source: sim` (render_options.h). `sim.preset`
+  // (clean | processed, default processed) sets every value; the other keys override it:
+  // blur_sigma_px, focus_distance (m), aperture_diameter (m), illumination_gradient,
+  // illumination_gradient_direction_deg, vignetting, full_well_electrons, read_noise
+  // (grey levels), response (linear | srgb | gamma:E | table:V0,V1,...).
+  RenderOptions sim_render = RenderOptions::Processed();
 
   /// The camera name the messages carry.
   std::string MessageCameraId() const;

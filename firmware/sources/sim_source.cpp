@@ -9,10 +9,7 @@ namespace h4::cam {
 
 SimSource::SimSource(const BoardSpec& board, const CameraIntrinsics& camera,
                      SimSourceOptions options)
-    : options_(options),
-      renderer_(board, camera, options.render),
-      width_(camera.width),
-      height_(camera.height) {
+    : options_(options), renderer_(board, camera, options.render) {
   SetPose(std::nullopt);
 }
 
@@ -20,13 +17,11 @@ void SimSource::SetPose(const std::optional<RigidTransform>& X_CT) {
   {
     // A robot at rest sends the same pose again and again: render it once.
     std::lock_guard<std::mutex> lock(mutex_);
-    const bool same = X_CT.has_value() == X_CT_.has_value() &&
-                      (!X_CT || X_CT->matrix() == X_CT_->matrix());
+    const bool same =
+        X_CT.has_value() == X_CT_.has_value() && (!X_CT || X_CT->matrix() == X_CT_->matrix());
     if (same && !clean_.empty()) return;
   }
-  cv::Mat clean = X_CT ? renderer_.RenderClean(*X_CT)
-                       : cv::Mat(std::max(height_, 1), std::max(width_, 1), CV_32F,
-                                 cv::Scalar(options_.render.background_level));
+  cv::Mat clean = X_CT ? renderer_.RenderClean(*X_CT) : renderer_.RenderBackground();
   std::lock_guard<std::mutex> lock(mutex_);
   X_CT_ = X_CT;
   clean_ = clean;

@@ -19,6 +19,9 @@
 namespace h4::cam {
 
 struct SimSourceOptions {
+  /// Image formation. The default is the "clean" preset the tests' accuracy figures are
+  /// stated for; `h4cam run --source sim` uses the service configuration's (by default
+  /// the realistic "processed" preset, service_config.h).
   RenderOptions render;
   uint64_t seed = 1;
   double frame_rate_hz = 30.0;  ///< spacing of the synthetic timestamps
@@ -50,7 +53,6 @@ class SimSource final : public FrameSource {
  private:
   SimSourceOptions options_;
   BoardRenderer renderer_;
-  int width_, height_;
   mutable std::mutex mutex_;
   std::optional<RigidTransform> X_CT_;
   cv::Mat clean_;  // CV_32F noise-free image of the current scene

@@ -1,5 +1,7 @@
-// Tests for firmware/render: area sampling, reproducibility, and geometry (a rendered
-// corner lands where the camera model projects it, checked through detection).
+// Tests for firmware/render/board_renderer: area sampling, reproducibility, geometry (a
+// rendered corner lands where the camera model projects it, checked through detection),
+// the clean preset's images unchanged, and the image formation seen in rendered boards
+// (gradient, defocus, saturation).
 #include "firmware/render/board_renderer.h"
 
 #include <gtest/gtest.h>
@@ -79,6 +81,148 @@ TEST(BoardRendererTest, RenderedCornersLandWhereTheCameraModelProjects) {
     EXPECT_LT((c.uv - uv).norm(), 0.02) << "corner " << c.id;
   }
   EXPECT_LT(mean.norm(), 0.002);  // no systematic shift between renderer and model
+}
+
+// FNV-1a over the bytes of an image: a compact fingerprint of a whole rendering.
+uint64_t Fingerprint(const cv::Mat& image) {
+  uint64_t hash = 0xcbf29ce484222325ULL;
+  for (int r = 0; r < image.rows; ++r) {
+    const unsigned char* p = image.ptr<unsigned char>(r);
+    for (size_t k = 0; k < image.cols * image.elemSize(); ++k) {
+      hash = (hash ^ p[k]) * 0x100000001b3ULL;
+    }
+  }
+  return hash;
+}
+
+// The fingerprints of images rendered by the renderer before the image formation grew
+// (commit d79b1a7): the default ("clean") options must keep giving them bit for bit, as
+// the tests' accuracy figures were measured on them. (Floating-point results of this
+// build's compiler and OpenCV on x86-64; another architecture may round differently.)
+TEST(BoardRendererTest, CleanPresetReproducesThePreviousImagesExactly) {
+  const AprilGridSpec board = scenes::PaperBoard();
+  const BoardRenderer renderer(board, scenes::PaperCamera(), RenderOptions::Clean());
+  const RigidTransform X_CT = scenes::BoardPose(board, 0.5, 0.35, 1.0, 0.4, 0.02, -0.01);
+  EXPECT_EQ(Fingerprint(renderer.RenderClean(X_CT)), 0x104023f170d07e6cULL);
+  EXPECT_EQ(Fingerprint(renderer.Render(X_CT, 7)), 0x8ca3f54232480b27ULL);
+
+  RenderOptions sharp = RenderOptions::Clean();
+  sharp.blur_sigma_px = 0;
+  sharp.noise_sigma = 1.5;
+  const BoardRenderer sharp_renderer(board, scenes::PaperCamera(), sharp);
+  const RigidTransform X_CT2 = scenes::BoardPose(board, 0.6, 0.2, -0.5, 1.2);
+  EXPECT_EQ(Fingerprint(sharp_renderer.Render(X_CT2, 3)), 0xdb451df20bbac4afULL);
+}
+
+// Light and dark levels on a fronto-parallel board with only a gradient along +u: both
+// scale by the light, which changes by the requested fraction per image width.
+TEST(BoardRendererTest, GradientScalesBlackAndWhiteLevelsByTheRequestedFraction) {
+  AprilGridSpec board;
+  board.cols = 1;
+  board.rows = 1;
+  board.tag_size = 0.08;  // 80 px tag, 10 px cells; white margin of 80 px around it
+  RenderOptions options = RenderOptions::Clean();
+  options.blur_sigma_px = 0;
+  options.noise_sigma = 0;
+  options.illumination_gradient = 0.3;
+  const BoardRenderer renderer(board, UnitCamera(), options);
+  ASSERT_TRUE(renderer.ok()) << renderer.error();
+  // Tag's left edge at u = 100, top at v = 80: the white margin spans u 20..260, the
+  // tag's black border cells u 100..110 and 170..180 (and its top row, v 80..90).
+  const RigidTransform X_CT(Eigen::Matrix3d::Identity(), Eigen::Vector3d(-0.06, -0.04, 1.0));
+  const cv::Mat image = renderer.RenderClean(X_CT);
+  const double width = UnitCamera().width, cx = 0.5 * (width - 1);
+  auto light = [&](double u) { return 1.0 + 0.3 * (u - cx) / width; };
+  const double white_left = image.at<float>(120, 30), white_right = image.at<float>(120, 250);
+  EXPECT_NEAR(white_right / white_left, light(250) / light(30), 1e-4);
+  EXPECT_NEAR(white_right - white_left, options.white_level * 0.3 * 220 / width, 0.05);
+  const double black_left = image.at<float>(85, 104), black_right = image.at<float>(85, 175);
+  EXPECT_NEAR(black_right / black_left, light(175) / light(104), 1e-4);
+  // Background (off the board, outside the rendered region) is lit too.
+  EXPECT_NEAR(image.at<float>(120, 5) / image.at<float>(120, 315), light(5) / light(315), 1e-4);
+}
+
+// Largest intensity step between horizontal neighbours within a pixel box of the image.
+double SteepestStep(const cv::Mat& image, const cv::Rect& box) {
+  double steepest = 0;
+  for (int v = box.y; v < box.y + box.height; ++v) {
+    for (int u = box.x; u + 1 < box.x + box.width; ++u) {
+      steepest = std::max(steepest, static_cast<double>(std::abs(image.at<float>(v, u + 1) -
+                                                                 image.at<float>(v, u))));
+    }
+  }
+  return steepest;
+}
+
+// The pixel box where the board band y in [y0, y1] (m, in T) appears.
+cv::Rect ImageBoxOfBand(const CameraModel& camera, const RigidTransform& X_CT, double x1, double y0,
+                        double y1) {
+  cv::Rect box;
+  Eigen::Vector2d lo(1e9, 1e9), hi(-1e9, -1e9);
+  for (double x : {0.0, x1}) {
+    for (double y : {y0, y1}) {
+      Eigen::Vector2d uv;
+      camera.Project(X_CT * Eigen::Vector3d(x, y, 0), &uv);
+      lo = lo.cwiseMin(uv);
+      hi = hi.cwiseMax(uv);
+    }
+  }
+  return cv::Rect(static_cast<int>(lo.x()), static_cast<int>(lo.y()),
+                  static_cast<int>(hi.x() - lo.x()), static_cast<int>(hi.y() - lo.y()));
+}
+
+// A board tilted about its x axis spans 0.50-0.60 m of depth. Focused at its near edge,
+// the far part is blurred by a disk of ~2 px: its edges are much less steep. Without
+// defocus both parts are equally sharp (the control).
+TEST(BoardRendererTest, DefocusBlursTheBoardMoreFarFromTheFocusDistance) {
+  const AprilGridSpec board = scenes::PaperBoard();
+  const CameraIntrinsics camera = scenes::PaperCamera();
+  const RigidTransform X_CT = scenes::BoardPose(board, 0.55, 0.5, 0.0, 0.0);
+  const double width = BoardModel(board).pattern_max().x();
+  const double height = BoardModel(board).pattern_max().y();
+  const CameraModel model(camera);
+  const cv::Rect near_box = ImageBoxOfBand(model, X_CT, width, 0.0, 0.25 * height);
+  const cv::Rect far_box = ImageBoxOfBand(model, X_CT, width, 0.75 * height, height);
+  const double near_depth = (X_CT * Eigen::Vector3d(0, 0, 0)).z();
+  const double far_depth = (X_CT * Eigen::Vector3d(0, height, 0)).z();
+  ASSERT_GT(far_depth - near_depth, 0.08);
+
+  RenderOptions options = RenderOptions::Clean();
+  options.blur_sigma_px = 0.4;
+  options.noise_sigma = 0;
+  const cv::Mat sharp = BoardRenderer(board, camera, options).RenderClean(X_CT);
+  options.focus_distance = near_depth;
+  options.aperture_diameter = 0.015;
+  const cv::Mat defocused = BoardRenderer(board, camera, options).RenderClean(X_CT);
+  EXPECT_GT(DefocusRadiusPx(options, camera.K(0, 0), far_depth), 1.5);
+
+  const double sharp_ratio = SteepestStep(sharp, far_box) / SteepestStep(sharp, near_box);
+  EXPECT_NEAR(sharp_ratio, 1.0, 0.1);
+  // Near edges stay as sharp as without defocus; far ones lose more than a third.
+  EXPECT_GT(SteepestStep(defocused, near_box), 0.85 * SteepestStep(sharp, near_box));
+  EXPECT_LT(SteepestStep(defocused, far_box), 0.65 * SteepestStep(sharp, far_box));
+}
+
+// A white exposed above full scale clips at code 255, noise or not; the black does not.
+TEST(BoardRendererTest, OverexposedWhiteSaturatesAt255) {
+  RenderOptions options = RenderOptions::Processed();
+  options.white_level = 320;
+  const BoardRenderer renderer(scenes::PaperBoard(), scenes::PaperCamera(), options);
+  ASSERT_TRUE(renderer.ok()) << renderer.error();
+  const RigidTransform X_CT = scenes::BoardPose(scenes::PaperBoard(), 0.5, 0.0, 0.0, 0.0);
+  const cv::Mat frame = renderer.Render(X_CT, 5);
+  Eigen::Vector2d centre_of_first_gap;  // the white gap between the first two tags
+  const AprilGridSpec board = scenes::PaperBoard();
+  const double gap_x = board.tag_size * (1 + 0.5 * board.tag_spacing);
+  CameraModel(scenes::PaperCamera())
+      .Project(X_CT * Eigen::Vector3d(gap_x, 0.5 * board.tag_size, 0), &centre_of_first_gap);
+  const cv::Rect gap(static_cast<int>(centre_of_first_gap.x()) - 1,
+                     static_cast<int>(centre_of_first_gap.y()) - 10, 3, 20);
+  double lo = 0, hi = 0;
+  cv::minMaxLoc(frame(gap), &lo, &hi);
+  EXPECT_EQ(lo, 255.0);
+  cv::minMaxLoc(frame, &lo, &hi);
+  EXPECT_LT(lo, 100.0);
 }
 
 }  // namespace

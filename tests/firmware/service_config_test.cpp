@@ -100,5 +100,40 @@ TEST(ServiceConfigTest, FlagsOverrideTheFile) {
   EXPECT_THROW(ResolveRunConfig(bad), std::runtime_error);
 }
 
+TEST(ServiceConfigTest, SimRendersTheProcessedPresetUnlessToldOtherwise) {
+  const ServiceConfig defaults = ParseServiceConfig("source: sim\n", "c.yaml");
+  EXPECT_EQ(defaults.sim_render.response, ResponseCurve::kSrgb);
+  EXPECT_EQ(defaults.sim_render.full_well_electrons,
+            RenderOptions::Processed().full_well_electrons);
+
+  const ServiceConfig c = ParseServiceConfig(
+      "source: sim\nsim:\n  preset: clean\n  blur_sigma_px: 1.4\n  response: gamma:0.7\n"
+      "  illumination_gradient: 0.3\n  read_noise: 0.5\n",
+      "c.yaml");
+  EXPECT_EQ(c.sim_render.blur_sigma_px, 1.4);
+  EXPECT_EQ(c.sim_render.response, ResponseCurve::kGamma);
+  EXPECT_EQ(c.sim_render.response_gamma, 0.7);
+  EXPECT_EQ(c.sim_render.illumination_gradient, 0.3);
+  EXPECT_EQ(c.sim_render.noise_sigma, 0.5);
+  EXPECT_EQ(c.sim_render.full_well_electrons, 0.0);  // the clean preset's
+
+  RunArgs args;
+  args.source = "sim";
+  args.sim_preset = "clean";
+  EXPECT_EQ(ResolveRunConfig(args).sim_render.response, ResponseCurve::kLinear);
+  args.sim_preset = "vivid";
+  EXPECT_THROW(ResolveRunConfig(args), std::runtime_error);
+}
+
+TEST(ServiceConfigTest, SimErrorsNameTheLineAndField) {
+  ExpectError("sim:\n  preset: vivid\n", 2, "sim.preset", "clean or processed");
+  ExpectError("sim:\n  preset: clean\n  blur_sigma_px: 25\n", 3, "sim.blur_sigma_px", "0..20");
+  ExpectError("sim:\n  vignetting: 1\n", 2, "sim.vignetting", "0..0.9");
+  ExpectError("sim:\n  response: gamma:x\n", 2, "sim.response", "gamma:EXPONENT");
+  ExpectError("sim:\n  response: gamma:40\n", 2, "sim.response", "0.1..10");
+  ExpectError("sim:\n  full_well_electrons: 50\n", 2, "sim.full_well_electrons", "100..1e7");
+  ExpectError("sim:\n  blur: 1\n", 2, "sim.blur", "");
+}
+
 }  // namespace
 }  // namespace h4::cam

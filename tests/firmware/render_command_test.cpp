@@ -1,0 +1,81 @@
+// Tests for `h4cam render` (firmware/cli/render_command): the preset with the flags
+// applied, and errors that name the option at fault.
+#include "firmware/cli/render_command.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+#include <gtest/gtest.h>
+
+namespace h4::cam {
+namespace {
+
+std::string ErrorOf(const RenderArgs& args) {
+  try {
+    RenderOptionsFromArgs(args);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(RenderCommandTest, FlagsOverrideThePreset) {
+  RenderArgs args;
+  args.preset = "processed";
+  args.blur_sigma_px = 1.4;
+  args.response = "gamma:0.7";
+  args.read_noise = 0.5;
+  const RenderOptions options = RenderOptionsFromArgs(args);
+  EXPECT_EQ(options.blur_sigma_px, 1.4);
+  EXPECT_EQ(options.response, ResponseCurve::kGamma);
+  EXPECT_EQ(options.response_gamma, 0.7);
+  EXPECT_EQ(options.noise_sigma, 0.5);
+  // Not overridden: the preset's.
+  EXPECT_EQ(options.illumination_gradient, RenderOptions::Processed().illumination_gradient);
+  EXPECT_EQ(options.full_well_electrons, RenderOptions::Processed().full_well_electrons);
+  // Default preset: clean.
+  EXPECT_EQ(RenderOptionsFromArgs(RenderArgs{}).response, ResponseCurve::kLinear);
+}
+
+TEST(RenderCommandTest, BadValuesAreRejectedNamingTheOption) {
+  RenderArgs args;
+  args.preset = "vivid";
+  EXPECT_NE(ErrorOf(args).find("--preset 'vivid'"), std::string::npos) << ErrorOf(args);
+  args = RenderArgs{};
+  args.response = "gamma:fast";
+  EXPECT_NE(ErrorOf(args).find("--response"), std::string::npos) << ErrorOf(args);
+  args = RenderArgs{};
+  args.response = "gamma:50";
+  EXPECT_NE(ErrorOf(args).find("gamma"), std::string::npos) << ErrorOf(args);
+}
+
+// The command line itself rejects absurd values before anything is rendered.
+TEST(RenderCommandTest, CommandLineRejectsAbsurdValues) {
+  for (const std::vector<std::string>& bad : {std::vector<std::string>{"--blur", "25"},
+                                              {"--frames", "100000"},
+                                              {"--vignetting", "2"},
+                                              {"--gradient", "1.5"},
+                                              {"--preset", "vivid"},
+                                              {"--full-well", "5e8"}}) {
+    CLI::App app;
+    AddRenderCommand(app);
+    std::vector<std::string> argv = {
+        "--out",   "/nonexistent/never-written",    "--pose",   "0,0,0.5,1,0,0,0",
+        "--board", H4_SOURCE_DIR "/CMakeLists.txt", "--camera", H4_SOURCE_DIR "/CMakeLists.txt"};
+    argv.insert(argv.end(), bad.begin(), bad.end());
+    argv.insert(argv.begin(), "render");
+    std::reverse(argv.begin(), argv.end());  // CLI11 takes them last first
+    try {
+      app.parse(argv);
+      ADD_FAILURE() << "accepted " << bad[0] << " " << bad[1];
+    } catch (const CLI::ValidationError& e) {
+      EXPECT_NE(std::string(e.what()).find(bad[0]), std::string::npos) << e.what();
+    } catch (const std::exception& e) {  // another parse error, or rendered
+      ADD_FAILURE() << bad[0] << ": " << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace h4::cam
