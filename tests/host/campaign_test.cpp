@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -16,6 +17,8 @@
 #include <h4msgs/capture_request_t.hpp>
 #include <h4msgs/robot_target_t.hpp>
 #include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "messages/channels.h"
 
@@ -671,6 +674,59 @@ TEST_F(CampaignTest, ARobotClockJumpSkipsThePosesWithTheReasonAndRecordsNoWrongP
     EXPECT_NE(s.reason.find("no settled joint reading within"), std::string::npos) << s.reason;
   }
   EXPECT_EQ(ReadDatasetCsv(path_).size(), 2u);
+}
+
+// The same faults over real UDP multicast between two LCM instances (the campaign's and the
+// scripted cell's), inside a private network namespace (scripts/in-private-netns; skipped
+// where none can be made). The kernel here has no netem, so the cell drops and reorders.
+TEST(CampaignUdpm, ChildInNamespace) {
+  if (std::getenv("H4_IN_NETNS") == nullptr) GTEST_SKIP() << "only inside scripts/in-private-netns";
+  const std::string url = "udpm://239.255.76.67:7667?ttl=0";
+  const fs::path dir = fs::temp_directory_path() / ("h4_campaign_udpm_" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string path = (dir / "dataset.csv").string();
+  {
+    bus::LcmBus campaign_bus(url);
+    bus::LcmBus cell_bus(url);
+    ASSERT_TRUE(campaign_bus.good() && cell_bus.good()) << campaign_bus.error();
+    ScriptedCell cell(cell_bus);
+    cell.loss = 0.2;
+    cell.reorder = 0.2;
+    DatasetJournal journal(path);
+    CampaignOptions options = FastOptions();
+    options.retries = 6;
+    Campaign campaign(campaign_bus, Plan(12), journal, options);
+    const auto deadline = Clock::now() + std::chrono::seconds(60);
+    while (campaign.Step(Clock::now()) && Clock::now() < deadline) {
+      cell.Step();
+      cell_bus.Handle(std::chrono::milliseconds(0));
+      campaign_bus.Handle(std::chrono::milliseconds(1));
+    }
+    ExpectNoRowLostOrCorrupted(path, campaign, 12);
+    EXPECT_GT(journal.rows().size(), 0u);
+  }
+  fs::remove_all(dir);
+}
+
+TEST(CampaignUdpm, LossyCampaignOverMulticastInAPrivateNamespace) {
+  const std::string netns = H4_SOURCE_DIR "/scripts/in-private-netns";
+  const int check = std::system((netns + " --check > /dev/null 2>&1").c_str());
+  if (WIFEXITED(check) && WEXITSTATUS(check) == 77) {
+    GTEST_SKIP() << "no private network namespace here (" << netns << " --check)";
+  }
+  ASSERT_TRUE(WIFEXITED(check) && WEXITSTATUS(check) == 0) << netns << " --check failed";
+  const std::string self = fs::read_symlink("/proc/self/exe").string();
+  const std::string command = netns + " env H4_IN_NETNS=1 timeout 120 " + self +
+                              " --gtest_filter=CampaignUdpm.ChildInNamespace 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char buffer[256];
+  while (fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
+  const int status = pclose(pipe);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output;
+  EXPECT_NE(output.find("[       OK ] CampaignUdpm.ChildInNamespace"), std::string::npos) << output;
 }
 
 }  // namespace
