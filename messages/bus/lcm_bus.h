@@ -8,7 +8,7 @@
 // decode() runs, and what fails is counted per channel and logged at most once a second.
 // No exception may unwind through LCM's C code either: it skips LCM's own clean-up (the
 // `in_handle` flag, the receive buffer's release), and the next handle() aborts the process
-// on an assertion (lcm.c: `!lcm->in_handle`, or ringbuffer.c's release order on udpm).
+// on an assertion (lcm.c: `!lcm->in_handle`; see messages/README.md).
 // So an exception from a handler (e.g. a full disk under the dataset journal) is caught at
 // the callback and rethrown by Handle() once LCM has returned.
 #pragma once
