@@ -155,11 +155,13 @@ void Run(CollectOptions options, const std::string& command_line) {
   Progress progress("collect", campaign.planned_count());
   bool interrupted = false;
   while (campaign.Step(Campaign::Clock::now())) {
+    const int handled = bus.Handle(std::chrono::milliseconds(20));
+    // A stop signal interrupts LCM's wait (EINTR), which it reports as an error: check the
+    // signal first, so that Ctrl-C is an interruption (130, resumable), not a failure.
     if (stop.load()) {
       interrupted = true;
       break;
     }
-    const int handled = bus.Handle(std::chrono::milliseconds(20));
     if (handled < 0) {
       if (from_log) break;  // the end of the log
       throw std::runtime_error("LCM stopped receiving on " + bus.url());
