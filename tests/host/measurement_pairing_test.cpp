@@ -133,7 +133,7 @@ TEST(CheckBoardPoseTest, RefusesStandardDeviationsNoCameraMeasures) {
   EXPECT_NE(why.find("element 0"), std::string::npos) << why;
 
   m = GoodBoardPose();
-  m.covariance[28] = 1e-20;  // rotation sigma 1e-10 rad
+  m.covariance[28] = 1e-26;  // rotation sigma 1e-13 rad
   EXPECT_EQ(CheckBoardPose(m, &why), MessageProblem::kNonPhysicalCovariance);
   EXPECT_NE(why.find("element 4"), std::string::npos) << why;
 
@@ -142,7 +142,7 @@ TEST(CheckBoardPoseTest, RefusesStandardDeviationsNoCameraMeasures) {
   EXPECT_EQ(CheckBoardPose(m, &why), MessageProblem::kNonPhysicalCovariance);
 
   m = GoodBoardPose();
-  for (int i = 0; i < 6; ++i) m.covariance[i * 7] = 1e-16;  // 10 nm, 10 nrad: a fine camera
+  for (int i = 0; i < 6; ++i) m.covariance[i * 7] = 1e-20;  // 100 pm, 100 prad: still accepted
   EXPECT_EQ(CheckBoardPose(m, &why), MessageProblem::kNone) << why;
 }
 
