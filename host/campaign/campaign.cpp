@@ -4,10 +4,9 @@
 #include <algorithm>
 
 #include <fmt/format.h>
-#include <spdlog/spdlog.h>
-
 #include <h4msgs/capture_request_t.hpp>
 #include <h4msgs/robot_target_t.hpp>
+#include <spdlog/spdlog.h>
 
 #include "messages/channels.h"
 
@@ -18,9 +17,12 @@ double Seconds(Campaign::Clock::duration d) { return std::chrono::duration<doubl
 
 const char* ModeName(CampaignMode mode) {
   switch (mode) {
-    case CampaignMode::kActive: return "active";
-    case CampaignMode::kManual: return "manual";
-    case CampaignMode::kPassive: return "passive";
+    case CampaignMode::kActive:
+      return "active";
+    case CampaignMode::kManual:
+      return "manual";
+    case CampaignMode::kPassive:
+      return "passive";
   }
   return "?";
 }
@@ -37,7 +39,9 @@ Campaign::Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal,
                    CampaignOptions options)
     : bus_(bus), plan_(std::move(plan)), journal_(journal), options_(options) {
   for (size_t i = 0; i < plan_.size(); ++i) {
-    if (!journal_.Contains(plan_[i].pose_id)) pending_.push_back(i);
+    if (journal_.Contains(plan_[i].pose_id)) continue;
+    pending_.push_back(i);
+    history_.Track(plan_[i].pose_id);
   }
   for (const DatasetRow& row : journal_.rows()) {
     if (!IsPlanned(row.pose_id)) {
@@ -47,8 +51,8 @@ Campaign::Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal,
   }
   bus_.Subscribe<h4msgs::joint_state_t>(
       channels::kJointState, [this](const h4msgs::joint_state_t& m) { OnJointState(m); });
-  bus_.Subscribe<h4msgs::board_pose_t>(
-      channels::kBoardPose, [this](const h4msgs::board_pose_t& m) { OnBoardPose(m); });
+  bus_.Subscribe<h4msgs::board_pose_t>(channels::kBoardPose,
+                                       [this](const h4msgs::board_pose_t& m) { OnBoardPose(m); });
   bus_.Subscribe<h4msgs::camera_status_t>(
       channels::kCameraStatus, [this](const h4msgs::camera_status_t&) { camera_heard_ = true; });
   spdlog::info("campaign ({} mode): {} poses planned, {} already in {}, {} to measure",
@@ -77,8 +81,8 @@ void Campaign::OnJointState(const h4msgs::joint_state_t& msg) {
   joints_heard_ = true;
   history_.Add(reading);
   if (finished()) return;
-  if (options_.mode == CampaignMode::kActive && phase_ == Phase::kSettling &&
-      reading.settled && reading.pose_id == current().pose_id) {
+  if (options_.mode == CampaignMode::kActive && phase_ == Phase::kSettling && reading.settled &&
+      reading.pose_id == current().pose_id) {
     settled_seen_ = true;
   }
   if (options_.mode == CampaignMode::kManual && phase_ == Phase::kSettling) {
@@ -99,6 +103,7 @@ bool Campaign::Record(const h4msgs::board_pose_t& msg, std::optional<int64_t> jo
     return false;
   }
   journal_.Append(MakeDatasetRow(msg, *joints));
+  history_.Forget(msg.pose_id);
   return true;
 }
 
@@ -111,8 +116,8 @@ void Campaign::OnBoardPose(const h4msgs::board_pose_t& msg) {
     return;
   }
   const bool passive = options_.mode == CampaignMode::kPassive;
-  const bool awaited = !finished() && phase_ == Phase::kMeasuring &&
-                       msg.pose_id == current().pose_id;
+  const bool awaited =
+      !finished() && phase_ == Phase::kMeasuring && msg.pose_id == current().pose_id;
   if (!(passive ? IsPlanned(msg.pose_id) : awaited)) {
     ++counters_.unexpected_pose_ids;
     spdlog::warn("ignored a measurement of pose {}: {} ({} so far)", msg.pose_id,
@@ -123,15 +128,21 @@ void Campaign::OnBoardPose(const h4msgs::board_pose_t& msg) {
   std::string why;
   if (msg.status != h4msgs::board_pose_t::STATUS_OK) {
     why = "camera reported '" + BoardPoseStatusName(msg.status) + "'";
-  } else if (CheckBoardPose(msg, &why) != MessageProblem::kNone) {
-    ++counters_.impossible_values;
-    spdlog::warn("ignored a measurement: {}", why);
+  } else if (const MessageProblem problem = CheckBoardPose(msg, &why);
+             problem != MessageProblem::kNone) {
+    // No camera sends this: a foreign or corrupted message. It must not cost the awaited
+    // pose an attempt, so the campaign keeps waiting for the real answer (or the timeout).
+    int64_t& count = problem == MessageProblem::kNonPhysicalCovariance
+                         ? counters_.nonphysical_covariances
+                         : counters_.impossible_values;
+    ++count;
+    spdlog::warn("ignored a measurement: {} ({} so far)", why, count);
+    return;
   } else {
     // Active mode pairs with the robot's report for this very pose id; a robot moved by hand
     // (manual) reports no campaign ids, so only time pairs.
     const std::optional<int64_t> joint_pose_id =
-        options_.mode == CampaignMode::kManual ? std::nullopt
-                                               : std::optional<int64_t>(msg.pose_id);
+        options_.mode == CampaignMode::kManual ? std::nullopt : std::optional<int64_t>(msg.pose_id);
     if (Record(msg, joint_pose_id, &why)) {
       spdlog::debug("pose {} recorded", msg.pose_id);
       if (awaited) recorded_current_ = true;
@@ -235,9 +246,10 @@ bool Campaign::Step(Clock::time_point now) {
       if (options_.mode == CampaignMode::kActive) {
         if (!PublishTarget(pose, now)) break;
       } else {
-        spdlog::info("pose {}: move the robot to X={:.4f} Y={:.4f} Z={:.4f} m theta={:.2f} deg "
-                     "and let it settle",
-                     pose.pose_id, pose.x[0], pose.x[1], pose.x[2], pose.x[3] * 57.29577951308232);
+        spdlog::info(
+            "pose {}: move the robot to X={:.4f} Y={:.4f} Z={:.4f} m theta={:.2f} deg "
+            "and let it settle",
+            pose.pose_id, pose.x[0], pose.x[1], pose.x[2], pose.x[3] * 57.29577951308232);
       }
       settled_seen_ = false;
       phase_ = Phase::kSettling;
@@ -259,8 +271,9 @@ bool Campaign::Step(Clock::time_point now) {
         }
       }
       if (Seconds(now - phase_start_) > options_.settle_timeout_s) {
-        const std::string hint = joints_heard_ ? "" : " (no joint state heard at all: is the "
-                                                      "robot controller running?)";
+        const std::string hint = joints_heard_ ? ""
+                                               : " (no joint state heard at all: is the "
+                                                 "robot controller running?)";
         Retry(options_.mode == CampaignMode::kActive ? Phase::kSendTarget : Phase::kSettling,
               fmt::format("robot not settled after {:.1f} s{}", options_.settle_timeout_s, hint),
               now);
@@ -282,8 +295,9 @@ bool Campaign::Step(Clock::time_point now) {
       if (failed_attempt_) {
         Retry(Phase::kSendRequest, *failed_attempt_, now);
       } else if (Seconds(now - phase_start_) > options_.capture_timeout_s) {
-        const std::string hint = camera_heard_ ? "" : " (no camera status heard at all: is "
-                                                      "h4cam running?)";
+        const std::string hint = camera_heard_ ? ""
+                                               : " (no camera status heard at all: is "
+                                                 "h4cam running?)";
         Retry(Phase::kSendRequest,
               fmt::format("no measurement after {:.1f} s{}", options_.capture_timeout_s, hint),
               now);
@@ -301,12 +315,16 @@ std::string Campaign::waiting_for() const {
   const std::string attempt =
       attempt_ > 0 ? fmt::format(" (attempt {}/{})", attempt_ + 1, options_.retries + 1) : "";
   switch (phase_) {
-    case Phase::kWaitForDevices: return "waiting to hear the robot and the camera";
-    case Phase::kSendTarget: return fmt::format("pose {}: sending target{}", id, attempt);
+    case Phase::kWaitForDevices:
+      return "waiting to hear the robot and the camera";
+    case Phase::kSendTarget:
+      return fmt::format("pose {}: sending target{}", id, attempt);
     case Phase::kSettling:
       return fmt::format("pose {}: waiting for the robot to settle{}", id, attempt);
-    case Phase::kSendRequest: return fmt::format("pose {}: requesting a measurement", id);
-    case Phase::kMeasuring: return fmt::format("pose {}: camera measuring{}", id, attempt);
+    case Phase::kSendRequest:
+      return fmt::format("pose {}: requesting a measurement", id);
+    case Phase::kMeasuring:
+      return fmt::format("pose {}: camera measuring{}", id, attempt);
   }
   return "";
 }

@@ -59,11 +59,12 @@ struct SkippedPose {
 struct CampaignCounters {
   int64_t joint_states = 0;
   int64_t board_poses = 0;
-  int64_t impossible_values = 0;    ///< messages with numbers no robot or camera can produce
-  int64_t unexpected_pose_ids = 0;  ///< measurements of a pose not planned or not awaited
-  int64_t duplicates = 0;           ///< measurements of a pose already recorded
-  int64_t unpaired = 0;             ///< measurements with no settled joint reading in tolerance
-  int64_t retries = 0;              ///< attempts repeated (timeouts, moved, partial, ...)
+  int64_t impossible_values = 0;        ///< messages with numbers no robot or camera can produce
+  int64_t nonphysical_covariances = 0;  ///< measurements whose sigmas no camera reaches
+  int64_t unexpected_pose_ids = 0;      ///< measurements of a pose not planned or not awaited
+  int64_t duplicates = 0;               ///< measurements of a pose already recorded
+  int64_t unpaired = 0;                 ///< measurements with no settled joint reading in tolerance
+  int64_t retries = 0;                  ///< attempts repeated (timeouts, moved, partial, ...)
 };
 
 class Campaign {

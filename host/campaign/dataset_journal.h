@@ -1,14 +1,19 @@
 // The campaign's dataset file, appended durably (issue "Live system", item 3): each row is
 // written with one write(2) and fsync(2)ed before the campaign moves on, so a crash or a
 // kill loses at most the pose in flight and never leaves a half row behind that a restart
-// would misread. On open, an existing file is read back: its pose ids are the poses the
-// restarted campaign skips, so every pose ends up in the file exactly once.
+// would misread; a write or fsync that fails (a full disk) cuts the file back to its last
+// complete row and stops the campaign with the reason. On open, an existing file is read
+// back: its pose ids are the poses the restarted campaign skips, so every pose ends up in
+// the file exactly once. The file is locked (flock, exclusive) while the journal is open:
+// a second campaign on the same file is refused instead of interleaving its rows.
 #pragma once
 
 #include <cstdint>
 #include <set>
 #include <string>
 #include <vector>
+
+#include <sys/types.h>
 
 #include "common/formats/dataset_csv.h"
 
@@ -19,7 +24,8 @@ class DatasetJournal {
   /// Opens (creating it with the header when absent or empty) `path`. An existing file must
   /// have the campaign's columns (formats.md's dataset with sigma_t, sigma_r) and parse;
   /// a last line cut by a crash (no newline) is removed with a warning. Throws FormatError
-  /// or std::runtime_error naming the file on anything else.
+  /// or std::runtime_error naming the file on anything else, including when another
+  /// process holds the file (its pid named when /proc/locks tells it).
   explicit DatasetJournal(std::string path);
   ~DatasetJournal();
   DatasetJournal(const DatasetJournal&) = delete;
@@ -33,13 +39,17 @@ class DatasetJournal {
   size_t resumed_count() const { return resumed_count_; }
 
   /// Appends one row and flushes it to the disk; throws std::runtime_error (naming the file
-  /// and the system error) when it cannot, and std::invalid_argument for a pose id already
-  /// in the file.
+  /// and the system error) when it cannot, leaving the file with its complete rows only,
+  /// and std::invalid_argument for a pose id already in the file.
   void Append(const DatasetRow& row);
 
  private:
+  /// Reads the file back (dropping a cut last line), or writes the header of a new one.
+  void Load();
+
   std::string path_;
   int fd_ = -1;
+  off_t committed_size_ = 0;  ///< [bytes] the file up to its last complete, flushed row
   std::vector<DatasetRow> rows_;
   std::set<int64_t> pose_ids_;
   size_t resumed_count_ = 0;

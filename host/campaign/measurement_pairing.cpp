@@ -46,19 +46,19 @@ MessageProblem CheckBoardPose(const h4msgs::board_pose_t& msg, std::string* why)
   const double z = msg.translation[2];
   const double distance = std::hypot(msg.translation[0], msg.translation[1], z);
   if (!(z > 0.0) || distance > 20.0) {
-    *why = fmt::format("board pose {}: the board at ({:.3f}, {:.3f}, {:.3f}) m is not in front "
-                       "of the camera within 20 m",
-                       msg.pose_id, msg.translation[0], msg.translation[1], z);
+    *why = fmt::format(
+        "board pose {}: the board at ({:.3f}, {:.3f}, {:.3f}) m is not in front "
+        "of the camera within 20 m",
+        msg.pose_id, msg.translation[0], msg.translation[1], z);
     return MessageProblem::kImpossibleValues;
   }
   Eigen::Matrix3d R;
   if (!RotationFromQuaternion(msg.quaternion[0], msg.quaternion[1], msg.quaternion[2],
                               msg.quaternion[3], &R)) {
-    *why = fmt::format("board pose {}: quaternion is not unit (norm {:.6f})", msg.pose_id,
-                       std::sqrt(msg.quaternion[0] * msg.quaternion[0] +
-                                 msg.quaternion[1] * msg.quaternion[1] +
-                                 msg.quaternion[2] * msg.quaternion[2] +
-                                 msg.quaternion[3] * msg.quaternion[3]));
+    *why = fmt::format(
+        "board pose {}: quaternion is not unit (norm {:.6f})", msg.pose_id,
+        std::sqrt(msg.quaternion[0] * msg.quaternion[0] + msg.quaternion[1] * msg.quaternion[1] +
+                  msg.quaternion[2] * msg.quaternion[2] + msg.quaternion[3] * msg.quaternion[3]));
     return MessageProblem::kImpossibleValues;
   }
   for (int i = 0; i < 6; ++i) {
@@ -72,32 +72,53 @@ MessageProblem CheckBoardPose(const h4msgs::board_pose_t& msg, std::string* why)
     *why = fmt::format("board pose {}: utime {} is not a time", msg.pose_id, msg.utime);
     return MessageProblem::kImpossibleValues;
   }
+  for (int i = 0; i < 6; ++i) {
+    const double sigma = std::sqrt(msg.covariance[i * 6 + i]);
+    if (sigma < kMinMeasurementSigma || sigma > kMaxMeasurementSigma) {
+      *why = fmt::format(
+          "board pose {}: covariance diagonal element {} ({:g}) is a standard "
+          "deviation of {:g} {}, outside [{:g}, {:g}]: not a camera measurement",
+          msg.pose_id, i, msg.covariance[i * 6 + i], sigma, i < 3 ? "m" : "rad",
+          kMinMeasurementSigma, kMaxMeasurementSigma);
+      return MessageProblem::kNonPhysicalCovariance;
+    }
+  }
   return MessageProblem::kNone;
 }
 
 std::string BoardPoseStatusName(int8_t status) {
   switch (status) {
-    case h4msgs::board_pose_t::STATUS_OK: return "ok";
-    case h4msgs::board_pose_t::STATUS_NO_BOARD: return "no board";
-    case h4msgs::board_pose_t::STATUS_MOVED: return "moved";
-    case h4msgs::board_pose_t::STATUS_PARTIAL: return "partial";
-    case h4msgs::board_pose_t::STATUS_CAMERA_ERROR: return "camera error";
-    default: return fmt::format("unknown status {}", static_cast<int>(status));
+    case h4msgs::board_pose_t::STATUS_OK:
+      return "ok";
+    case h4msgs::board_pose_t::STATUS_NO_BOARD:
+      return "no board";
+    case h4msgs::board_pose_t::STATUS_MOVED:
+      return "moved";
+    case h4msgs::board_pose_t::STATUS_PARTIAL:
+      return "partial";
+    case h4msgs::board_pose_t::STATUS_CAMERA_ERROR:
+      return "camera error";
+    default:
+      return fmt::format("unknown status {}", static_cast<int>(status));
   }
 }
 
-void JointHistory::Add(const JointReading& reading) {
-  readings_.push_back(reading);
-  while (readings_.size() > capacity_) readings_.pop_front();
+namespace {
+
+void PushBounded(std::deque<JointReading>* readings, const JointReading& reading, size_t capacity) {
+  readings->push_back(reading);
+  while (readings->size() > capacity) readings->pop_front();
 }
 
-std::optional<JointReading> JointHistory::FindSettled(std::optional<int64_t> pose_id,
-                                                      int64_t utime,
-                                                      int64_t tolerance_us) const {
+/// The settled reading of `readings` nearest to `utime` within `tolerance_us`.
+std::optional<JointReading> Nearest(const std::deque<JointReading>& readings,
+                                    std::optional<int64_t> pose_id, int64_t utime,
+                                    int64_t tolerance_us) {
   std::optional<JointReading> best;
   int64_t best_gap = std::numeric_limits<int64_t>::max();
-  for (const JointReading& r : readings_) {
+  for (const JointReading& r : readings) {
     if (!r.settled || (pose_id && r.pose_id != *pose_id)) continue;
+    // Both utimes are positive (CheckJointState, CheckBoardPose): no overflow.
     const int64_t gap = r.utime > utime ? r.utime - utime : utime - r.utime;
     // Ties go to the earlier reading: the decision depends only on what was received.
     if (gap <= tolerance_us && gap < best_gap) {
@@ -106,6 +127,35 @@ std::optional<JointReading> JointHistory::FindSettled(std::optional<int64_t> pos
     }
   }
   return best;
+}
+
+}  // namespace
+
+void JointHistory::Add(const JointReading& reading) {
+  PushBounded(&readings_, reading, capacity_);
+  if (!reading.settled) return;
+  PushBounded(&settled_, reading, capacity_);
+  const auto tracked = tracked_.find(reading.pose_id);
+  if (tracked != tracked_.end()) PushBounded(&tracked->second, reading, per_pose_capacity_);
+}
+
+void JointHistory::Track(int64_t pose_id) { tracked_.try_emplace(pose_id); }
+
+void JointHistory::Forget(int64_t pose_id) { tracked_.erase(pose_id); }
+
+std::optional<JointReading> JointHistory::FindSettled(std::optional<int64_t> pose_id, int64_t utime,
+                                                      int64_t tolerance_us) const {
+  if (pose_id) {
+    const auto tracked = tracked_.find(*pose_id);
+    if (tracked != tracked_.end()) return Nearest(tracked->second, pose_id, utime, tolerance_us);
+  }
+  return Nearest(settled_, pose_id, utime, tolerance_us);
+}
+
+void JointHistory::Clear() {
+  readings_.clear();
+  settled_.clear();
+  for (auto& [pose_id, readings] : tracked_) readings.clear();
 }
 
 std::optional<JointReading> JointHistory::Latest() const {

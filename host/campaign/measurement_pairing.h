@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -30,7 +31,20 @@ enum class MessageProblem {
   kNone,
   kImpossibleValues,  ///< non-finite, non-unit quaternion, board behind the camera, ...
   kWrongJointCount,   ///< an H4 has 4 joints
+  /// a positive covariance whose standard deviations no camera measures: below
+  /// kMinMeasurementSigma (a 1e-320 variance would give the dataset a sigma of ~1e-160,
+  /// and the identification weights of 1e320) or above kMaxMeasurementSigma
+  kNonPhysicalCovariance,
 };
+
+/// [m or rad] Bounds on each standard deviation of a board pose's covariance diagonal. No
+/// camera measures a board to a picometre (or picoradian): such a sigma comes from a fit
+/// with next to no residual, and would weigh its row 1e24 times. The floor stays far below
+/// what the fit reports for rendered images (the live_campaign test's camera: sigma_t from
+/// 1.1e-6 m, sigma_r from 7.2e-6 rad), so the simulated camera is not refused. A metre (or
+/// a radian) says nothing of the robot.
+inline constexpr double kMinMeasurementSigma = 1e-12;
+inline constexpr double kMaxMeasurementSigma = 1.0;
 
 /// Checks a joint state and converts it; `why` says what is wrong.
 MessageProblem CheckJointState(const h4msgs::joint_state_t& msg, JointReading* reading,
@@ -38,30 +52,45 @@ MessageProblem CheckJointState(const h4msgs::joint_state_t& msg, JointReading* r
 
 /// Checks the numbers of a board pose whose status is OK: finite translation with the board
 /// in front of the camera (z > 0) and within 20 m, unit quaternion (1e-3), finite covariance
-/// with a positive diagonal. Statuses other than OK are not "impossible": the caller
-/// retries them.
+/// with a positive diagonal (else kImpossibleValues) whose square roots lie within
+/// [kMinMeasurementSigma, kMaxMeasurementSigma] (else kNonPhysicalCovariance). Statuses
+/// other than OK are not "impossible": the caller retries them.
 MessageProblem CheckBoardPose(const h4msgs::board_pose_t& msg, std::string* why);
 
 /// A short name for a board pose status ("ok", "no board", "moved", "partial",
 /// "camera error", or "unknown status N").
 std::string BoardPoseStatusName(int8_t status);
 
-/// The recent joint readings, oldest first, bounded (a few seconds at 100 Hz).
+/// The recent joint readings, oldest first, bounded. The settled readings of the pose ids
+/// the owner tracks (the planned poses not yet recorded) are kept apart, per pose id, so that
+/// a flood of other readings (another publisher, a robot streaming while it moves) cannot
+/// push out the readings a measurement of a tracked pose is paired with.
 class JointHistory {
  public:
-  explicit JointHistory(size_t capacity = 2000) : capacity_(capacity) {}
+  /// `capacity`: readings kept for Latest() and for pose ids not tracked (a few seconds at
+  /// 100 Hz); `per_pose_capacity`: settled readings kept per tracked pose id (10 s of a
+  /// 1 kHz controller; a measurement is stamped with its first frame, a second or two of
+  /// averaging before it arrives).
+  explicit JointHistory(size_t capacity = 2000, size_t per_pose_capacity = 10000)
+      : capacity_(capacity), per_pose_capacity_(per_pose_capacity) {}
   void Add(const JointReading& reading);
+  /// Keeps the settled readings of `pose_id` apart from now on / no longer.
+  void Track(int64_t pose_id);
+  void Forget(int64_t pose_id);
   /// The settled reading nearest in time to `utime` within `tolerance_us`, among those of
   /// `pose_id` (or of any pose id when `pose_id` is nullopt: a robot driven by hand).
   std::optional<JointReading> FindSettled(std::optional<int64_t> pose_id, int64_t utime,
                                           int64_t tolerance_us) const;
   /// The newest reading, if any.
   std::optional<JointReading> Latest() const;
-  void Clear() { readings_.clear(); }
+  void Clear();
 
  private:
   size_t capacity_;
-  std::deque<JointReading> readings_;
+  size_t per_pose_capacity_;
+  std::deque<JointReading> readings_;                    ///< every reading
+  std::deque<JointReading> settled_;                     ///< settled readings of any pose id
+  std::map<int64_t, std::deque<JointReading>> tracked_;  ///< settled, per tracked pose id
 };
 
 /// The dataset row of a measurement and its joint reading: utime and X_CT from the camera,

@@ -66,8 +66,8 @@ std::string LogUrl(const std::string& path) {
   return "file://" + std::filesystem::absolute(path).string() + "?speed=0";
 }
 
-void PrintSummary(const Campaign& campaign, const DatasetJournal& journal,
-                  const bus::LcmBus& bus, bool interrupted) {
+void PrintSummary(const Campaign& campaign, const DatasetJournal& journal, const bus::LcmBus& bus,
+                  bool interrupted) {
   const CampaignCounters& c = campaign.counters();
   std::printf("campaign: %zu of %d planned poses in %s (%zu from an earlier run)%s\n",
               journal.rows().size(), campaign.planned_count(), journal.path().c_str(),
@@ -75,14 +75,16 @@ void PrintSummary(const Campaign& campaign, const DatasetJournal& journal,
   for (const SkippedPose& s : campaign.skipped()) {
     std::printf("  skipped pose %lld: %s\n", static_cast<long long>(s.pose_id), s.reason.c_str());
   }
-  std::printf("  messages: %lld joint states, %lld board poses; not used: %lld impossible, "
-              "%lld unexpected pose id, %lld duplicate, %lld unpaired, %lld undecodable; "
-              "%lld retries\n",
-              static_cast<long long>(c.joint_states), static_cast<long long>(c.board_poses),
-              static_cast<long long>(c.impossible_values),
-              static_cast<long long>(c.unexpected_pose_ids),
-              static_cast<long long>(c.duplicates), static_cast<long long>(c.unpaired),
-              static_cast<long long>(bus.decode_failures()), static_cast<long long>(c.retries));
+  std::printf(
+      "  messages: %lld joint states, %lld board poses; not used: %lld impossible, "
+      "%lld non-physical covariance, %lld unexpected pose id, %lld duplicate, "
+      "%lld unpaired, %lld undecodable; %lld retries\n",
+      static_cast<long long>(c.joint_states), static_cast<long long>(c.board_poses),
+      static_cast<long long>(c.impossible_values),
+      static_cast<long long>(c.nonphysical_covariances),
+      static_cast<long long>(c.unexpected_pose_ids), static_cast<long long>(c.duplicates),
+      static_cast<long long>(c.unpaired), static_cast<long long>(bus.decode_failures()),
+      static_cast<long long>(c.retries));
   if (interrupted) std::printf("  run the same command again to resume\n");
 }
 
@@ -126,8 +128,9 @@ void Run(CollectOptions options, const std::string& command_line) {
   }
   if (!options.controller_path.empty()) {
     if (options.manual || options.passive || from_log) {
-      throw std::invalid_argument("--controller drives the robot: not with --manual, --passive "
-                                  "or --from-log");
+      throw std::invalid_argument(
+          "--controller drives the robot: not with --manual, --passive "
+          "or --from-log");
     }
     options.campaign.control_law = LoadControlLaw(options.controller_path);
   }
@@ -152,11 +155,13 @@ void Run(CollectOptions options, const std::string& command_line) {
   Progress progress("collect", campaign.planned_count());
   bool interrupted = false;
   while (campaign.Step(Campaign::Clock::now())) {
+    const int handled = bus.Handle(std::chrono::milliseconds(20));
+    // A stop signal interrupts LCM's wait (EINTR), which it reports as an error: check the
+    // signal first, so that Ctrl-C is an interruption (130, resumable), not a failure.
     if (stop.load()) {
       interrupted = true;
       break;
     }
-    const int handled = bus.Handle(std::chrono::milliseconds(20));
     if (handled < 0) {
       if (from_log) break;  // the end of the log
       throw std::runtime_error("LCM stopped receiving on " + bus.url());
@@ -164,7 +169,8 @@ void Run(CollectOptions options, const std::string& command_line) {
     progress.Update(campaign.done_count(), campaign.waiting_for());
   }
   progress.Finish(campaign.finished() ? "every pose recorded or skipped"
-                                      : interrupted ? "interrupted" : "end of the log");
+                  : interrupted       ? "interrupted"
+                                      : "end of the log");
   PrintSummary(campaign, journal, bus, interrupted);
   if (interrupted) {
     SetExitCode(130);
@@ -182,11 +188,13 @@ void AddCollectCommand(CLI::App& app) {
       "collect",
       "Calibration campaign over LCM: move the robot through a pose plan, measure the board "
       "at each pose and append the paired rows to a dataset CSV (resumable)");
-  command->add_option("--out", options->out_path,
-                      "Dataset CSV; an existing one is resumed (its poses are not measured again)")
+  command
+      ->add_option("--out", options->out_path,
+                   "Dataset CSV; an existing one is resumed (its poses are not measured again)")
       ->required();
-  command->add_option("--plan", options->plan_path,
-                      "Poses CSV (pose_id,X,Y,Z,theta); default the paper's 81-pose grid")
+  command
+      ->add_option("--plan", options->plan_path,
+                   "Poses CSV (pose_id,X,Y,Z,theta); default the paper's 81-pose grid")
       ->check(CLI::ExistingFile);
   command->add_flag("--manual", options->manual,
                     "The operator moves the robot: each pose is measured once the robot has "
@@ -194,8 +202,9 @@ void AddCollectCommand(CLI::App& app) {
   command->add_flag("--passive", options->passive,
                     "Send nothing; pair the measurements and joint states heard (e.g. an "
                     "lcm-logplayer replay)");
-  command->add_option("--from-log", options->from_log,
-                      "Rebuild the dataset from an lcm-logger file (LCM's file:// provider)")
+  command
+      ->add_option("--from-log", options->from_log,
+                   "Rebuild the dataset from an lcm-logger file (LCM's file:// provider)")
       ->check(CLI::ExistingFile);
   command
       ->add_option("--controller", options->controller_path,
@@ -205,24 +214,29 @@ void AddCollectCommand(CLI::App& app) {
       ->check(CLI::ExistingFile);
   command->add_option("--lcm-url", options->lcm_url,
                       "LCM provider URL (default $LCM_DEFAULT_URL, else udpm with ttl=0)");
-  command->add_option("--frames", options->campaign.frame_count,
-                      "Frames averaged per measurement (0: the camera's default)")
+  command
+      ->add_option("--frames", options->campaign.frame_count,
+                   "Frames averaged per measurement (0: the camera's default)")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
-  command->add_option("--settle-timeout", options->campaign.settle_timeout_s,
-                      "Seconds to wait for the robot to settle at a pose")
+  command
+      ->add_option("--settle-timeout", options->campaign.settle_timeout_s,
+                   "Seconds to wait for the robot to settle at a pose")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  command->add_option("--capture-timeout", options->campaign.capture_timeout_s,
-                      "Seconds to wait for a measurement")
+  command
+      ->add_option("--capture-timeout", options->campaign.capture_timeout_s,
+                   "Seconds to wait for a measurement")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  command->add_option("--retries", options->campaign.retries,
-                      "Extra attempts per pose (timeouts, moved, partial) before skipping it")
+  command
+      ->add_option("--retries", options->campaign.retries,
+                   "Extra attempts per pose (timeouts, moved, partial) before skipping it")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
-  command->add_option("--pair-tolerance", options->campaign.pair_tolerance_s,
-                      "Max seconds between a measurement and its joint reading")
+  command
+      ->add_option("--pair-tolerance", options->campaign.pair_tolerance_s,
+                   "Max seconds between a measurement and its joint reading")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command->add_option("--identify", options->identify_dir,
@@ -233,9 +247,8 @@ void AddCollectCommand(CLI::App& app) {
   command->footer(
       "Exit codes: 0 every pose recorded, 3 some poses skipped (listed), 130 interrupted "
       "(run again to resume), 1 error.");
-  command->callback([options, command] {
-    Run(*options, "h4cal collect " + ReportCommandLine(*command));
-  });
+  command->callback(
+      [options, command] { Run(*options, "h4cal collect " + ReportCommandLine(*command)); });
 }
 
 }  // namespace h4::host::cli

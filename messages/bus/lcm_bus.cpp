@@ -2,6 +2,8 @@
 #include "messages/bus/lcm_bus.h"
 
 #include <cstdlib>
+#include <stdexcept>
+#include <utility>
 
 #include <spdlog/spdlog.h>
 
@@ -15,7 +17,11 @@ std::string ResolveLcmUrl(const std::string& url) {
   return kDefaultLcmUrl;
 }
 
-LcmBus::LcmBus(const std::string& url) : url_(ResolveLcmUrl(url)), lcm_(url_) {}
+LcmBus::LcmBus(const std::string& url, WireLimits limits)
+    : url_(ResolveLcmUrl(url)), limits_(limits), lcm_(url_) {
+  std::string why;
+  if (!limits_.IsValid(&why)) throw std::invalid_argument(why);
+}
 
 std::string LcmBus::error() const {
   return good() ? std::string() : "lcm: cannot open '" + url_ + "' (bad URL or no multicast route)";
@@ -23,11 +29,17 @@ std::string LcmBus::error() const {
 
 void LcmBus::Subscription::Receive(const lcm::ReceiveBuffer* rbuf, const std::string&,
                                    Subscription* self) {
-  self->handler(rbuf->data, rbuf->data_size);
+  // Called from LCM's C code: nothing may unwind through it (see lcm_bus.h). Handlers after
+  // a failed one still run; the first exception wins.
+  try {
+    self->handler(rbuf->data, rbuf->data_size);
+  } catch (...) {
+    if (!self->bus->handler_exception_) self->bus->handler_exception_ = std::current_exception();
+  }
 }
 
 void LcmBus::SubscribeRaw(const std::string& channel, RawHandler handler) {
-  subscriptions_.push_back(std::make_unique<Subscription>(Subscription{std::move(handler)}));
+  subscriptions_.push_back(std::make_unique<Subscription>(Subscription{std::move(handler), this}));
   lcm_.subscribeFunction(channel, &Subscription::Receive, subscriptions_.back().get());
 }
 
@@ -41,6 +53,7 @@ int LcmBus::Handle(std::chrono::milliseconds timeout) {
   for (;;) {
     if (handled >= kMaxMessagesPerHandle) return handled;
     const int ret = lcm_.handleTimeout(wait_ms);
+    if (handler_exception_) std::rethrow_exception(std::exchange(handler_exception_, nullptr));
     if (ret < 0) return handled > 0 ? handled : -1;
     if (ret == 0) return handled;
     ++handled;
@@ -48,10 +61,21 @@ int LcmBus::Handle(std::chrono::milliseconds timeout) {
   }
 }
 
-void LcmBus::OnDecodeFailure(const std::string& channel, const char* type, uint32_t size) {
+int64_t LcmBus::decode_failures(const std::string& channel) const {
+  const auto it = decode_failures_by_channel_.find(channel);
+  return it == decode_failures_by_channel_.end() ? 0 : it->second.count;
+}
+
+void LcmBus::OnDecodeFailure(const std::string& channel, const char* type, uint32_t size,
+                             const std::string& why) {
   ++decode_failures_;
-  spdlog::warn("lcm: dropped a message of {} bytes on {}: does not decode as {} ({} so far)", size,
-               channel, type, decode_failures_);
+  ChannelFailures& failures = decode_failures_by_channel_[channel];
+  ++failures.count;
+  int64_t suppressed = 0;
+  if (!failures.throttle.Allow(WarningThrottle::Clock::now(), &suppressed)) return;
+  spdlog::warn("lcm: dropped a message of {} bytes on {}: not a valid {}: {} ({} on {} so far{})",
+               size, channel, type, why, failures.count, channel,
+               suppressed > 0 ? fmt::format(", {} not logged", suppressed) : std::string());
 }
 
 void LcmBus::OnPublishFailure(const std::string& channel) {

@@ -1,18 +1,33 @@
 // A thin adapter over lcm::LCM shared by h4cam and h4cal: the URL rule (--lcm-url, else
 // $LCM_DEFAULT_URL, else udpm with ttl=0 so nothing leaves the machine), typed
-// subscriptions whose decode failures are counted and logged instead of thrown, publish,
-// and handle() with a timeout. Tests use the in-process "memq://" provider: real LCM
-// encoding and dispatch without a network.
+// subscriptions, publish, and handle() with a timeout. Tests use the in-process "memq://"
+// provider: real LCM encoding and dispatch without a network.
+//
+// Whatever arrives on the wire, nothing is thrown out of the receive loop: each message is
+// checked against its type's layout and the size limits (wire_check.h) before lcm-gen's
+// decode() runs, and what fails is counted per channel and logged at most once a second.
+// No exception may unwind through LCM's C code either: it skips LCM's own clean-up (the
+// `in_handle` flag, the receive buffer's release), and the next handle() aborts the process
+// on an assertion (lcm.c: `!lcm->in_handle`; see messages/README.md).
+// So an exception from a handler (e.g. a full disk under the dataset journal) is caught at
+// the callback and rethrown by Handle() once LCM has returned.
 #pragma once
 
 #include <chrono>
 #include <cstdint>
+#include <exception>
 #include <functional>
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <lcm/lcm-cpp.hpp>
+
+#include "messages/bus/warning_throttle.h"
+#include "messages/bus/wire_check.h"
+#include "messages/bus/wire_layouts.h"
 
 namespace h4::bus {
 
@@ -23,12 +38,33 @@ inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 /// `url` if not empty, else $LCM_DEFAULT_URL if set and not empty, else kDefaultLcmUrl.
 std::string ResolveLcmUrl(const std::string& url);
 
+/// Decodes `size` bytes as Msg after checking them against Msg's layout and `limits`;
+/// nullopt (with `why`) when they are not a valid Msg. Never throws on any input.
+template <class Msg>
+std::optional<Msg> DecodeMessage(const void* data, size_t size, const WireLimits& limits,
+                                 std::string* why) {
+  if (!CheckEncodedMessage(data, size, LayoutOf<Msg>(), limits, why)) return std::nullopt;
+  Msg msg;
+  try {
+    if (msg.decode(data, 0, static_cast<int>(size)) != static_cast<int>(size)) {
+      *why = "lcm-gen's decode refused it";
+      return std::nullopt;
+    }
+  } catch (const std::exception& e) {
+    // Unreachable after the layout check; kept so that a layout mistake cannot crash.
+    *why = std::string("lcm-gen's decode threw: ") + e.what();
+    return std::nullopt;
+  }
+  return msg;
+}
+
 class LcmBus {
  public:
   static constexpr int kMaxMessagesPerHandle = 256;
 
   /// Connects to ResolveLcmUrl(url); good() is false (error() says why) when LCM fails.
-  explicit LcmBus(const std::string& url);
+  /// Received messages are checked against `limits` (must be IsValid()).
+  explicit LcmBus(const std::string& url, WireLimits limits = {});
   LcmBus(const LcmBus&) = delete;
   LcmBus& operator=(const LcmBus&) = delete;
 
@@ -38,17 +74,19 @@ class LcmBus {
   lcm::LCM& lcm() { return lcm_; }
 
   /// Calls `handler` with each message of `channel` that decodes as Msg; a message that
-  /// does not decode (wrong type, truncated) is counted and logged, and dropped.
+  /// does not (wrong type, truncated, lengths out of limits) is counted, logged and dropped.
+  /// An exception from `handler` is rethrown by Handle().
   template <class Msg>
   void Subscribe(const std::string& channel, std::function<void(const Msg&)> handler) {
     SubscribeRaw(channel,
                  [channel, handler = std::move(handler), this](const void* data, uint32_t size) {
-                   Msg msg;
-                   if (msg.decode(data, 0, static_cast<int>(size)) < 0) {
-                     OnDecodeFailure(channel, Msg::getTypeName(), size);
+                   std::string why;
+                   const std::optional<Msg> msg = DecodeMessage<Msg>(data, size, limits_, &why);
+                   if (!msg) {
+                     OnDecodeFailure(channel, LayoutOf<Msg>().type_name, size, why);
                      return;
                    }
-                   handler(msg);
+                   handler(*msg);
                  });
   }
 
@@ -62,16 +100,19 @@ class LcmBus {
 
   /// Dispatches the messages that arrive within `timeout` (0: only those already
   /// queued), at most kMaxMessagesPerHandle: returns the number handled, or -1 when LCM
-  /// reports an error.
+  /// reports an error. Rethrows the first exception a handler threw (after LCM returned).
   int Handle(std::chrono::milliseconds timeout);
 
+  /// Messages dropped because they did not decode, in all and on one channel.
   int64_t decode_failures() const { return decode_failures_; }
+  int64_t decode_failures(const std::string& channel) const;
   int64_t publish_failures() const { return publish_failures_; }
 
  private:
   using RawHandler = std::function<void(const void* data, uint32_t size)>;
   struct Subscription {
     RawHandler handler;
+    LcmBus* bus = nullptr;
     // A plain function for lcm::LCM::subscribeFunction, not a member function: GCC 12
     // miscompiles LCM's pointer-to-member dispatch under -fsanitize=vptr (the sanitizer
     // pass; see cmake/H4Sanitizers.cmake).
@@ -79,12 +120,21 @@ class LcmBus {
                         Subscription* self);
   };
   void SubscribeRaw(const std::string& channel, RawHandler handler);
-  void OnDecodeFailure(const std::string& channel, const char* type, uint32_t size);
+  void OnDecodeFailure(const std::string& channel, const char* type, uint32_t size,
+                       const std::string& why);
   void OnPublishFailure(const std::string& channel);
 
+  struct ChannelFailures {
+    int64_t count = 0;
+    WarningThrottle throttle;
+  };
+
   std::string url_;
+  WireLimits limits_;
   lcm::LCM lcm_;
   std::vector<std::unique_ptr<Subscription>> subscriptions_;
+  std::exception_ptr handler_exception_;  ///< thrown by a handler, rethrown by Handle()
+  std::map<std::string, ChannelFailures> decode_failures_by_channel_;
   int64_t decode_failures_ = 0;
   int64_t publish_failures_ = 0;
 };

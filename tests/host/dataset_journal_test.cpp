@@ -1,11 +1,17 @@
 // Durable, resumable appends of the campaign's dataset (host/campaign/dataset_journal.h).
 #include "host/campaign/dataset_journal.h"
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
+#include <thread>
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "common/formats/format_error.h"
 
@@ -37,7 +43,8 @@ class DatasetJournalTest : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("h4_journal_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("h4_journal_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     path_ = (dir_ / "dataset.csv").string();
@@ -127,6 +134,109 @@ TEST_F(DatasetJournalTest, NamesTheFileWhenItCannotBeCreated) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
   }
+}
+
+TEST_F(DatasetJournalTest, ASecondJournalOnTheSameFileIsRefusedNamingTheHolder) {
+  DatasetJournal first(path_);
+  first.Append(Row(1));
+  try {
+    DatasetJournal second(path_);
+    FAIL() << "two campaigns on one file would interleave their rows";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path_), std::string::npos) << what;
+    EXPECT_NE(what.find("another campaign is writing it"), std::string::npos) << what;
+    EXPECT_NE(what.find("process " + std::to_string(getpid())), std::string::npos) << what;
+  }
+  first.Append(Row(2));
+  EXPECT_EQ(ReadDatasetCsv(path_).size(), 2u) << "the refused journal touched nothing";
+}
+
+TEST_F(DatasetJournalTest, TheLockIsReleasedWithTheJournal) {
+  { DatasetJournal first(path_); }
+  EXPECT_NO_THROW(DatasetJournal second(path_));
+}
+
+// A disk that fills in the middle of a row (the file size limit makes write(2) fail the way
+// a full disk does: a short write, then an error): the campaign gets an error naming the
+// file and the reason, and the file keeps its complete rows only.
+TEST_F(DatasetJournalTest, AWriteThatFailsMidRowLeavesOnlyCompleteRowsAndSaysWhy) {
+  DatasetJournal journal(path_);
+  journal.Append(Row(1));
+  journal.Append(Row(2));
+  const std::string before = Slurp(path_);
+
+  rlimit saved{};
+  ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &saved), 0);
+  rlimit limited = saved;
+  limited.rlim_cur = before.size() + 20;  // room for a part of the next row only
+  void (*saved_handler)(int) = std::signal(SIGXFSZ, SIG_IGN);
+  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &limited), 0);
+  std::string error;
+  try {
+    journal.Append(Row(3));
+  } catch (const std::runtime_error& e) {
+    error = e.what();
+  }
+  setrlimit(RLIMIT_FSIZE, &saved);
+  std::signal(SIGXFSZ, saved_handler);
+
+  ASSERT_FALSE(error.empty()) << "the write cannot have succeeded";
+  EXPECT_NE(error.find(path_ + ": cannot write"), std::string::npos) << error;
+  EXPECT_NE(error.find("complete rows only"), std::string::npos) << error;
+  EXPECT_EQ(Slurp(path_), before) << "no part of row 3 may stay in the file";
+  EXPECT_FALSE(journal.Contains(3));
+
+  // Space again: the same journal goes on.
+  journal.Append(Row(3));
+  EXPECT_EQ(ReadDatasetCsv(path_).size(), 3u);
+}
+
+TEST_F(DatasetJournalTest, RefusesWhatIsNotARegularFile) {
+  try {
+    DatasetJournal journal("/dev/null");
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("/dev/null: is not a regular file"), std::string::npos)
+        << e.what();
+  }
+}
+
+// A campaign killed (SIGKILL) at random points, 20 times, each run resuming the last: the
+// file always reads back as complete rows with pose ids 1..n, each exactly once.
+TEST_F(DatasetJournalTest, KilledAtRandomPointsAndResumedKeepsEveryRowExactlyOnce) {
+  std::mt19937 rng(20);
+  size_t rows_before = 0;
+  for (int run = 0; run < 20; ++run) {
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      // The child appends as fast as it can until it is killed; it never returns to gtest.
+      try {
+        DatasetJournal journal(path_);
+        for (int64_t id = static_cast<int64_t>(journal.rows().size()) + 1;; ++id) {
+          journal.Append(Row(id));
+        }
+      } catch (...) {
+      }
+      _exit(1);
+    }
+    std::this_thread::sleep_for(std::chrono::microseconds(500 + rng() % 20000));
+    ::kill(child, SIGKILL);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "run " << run << ": the child stopped by itself";
+
+    DatasetJournal resumed(path_);  // drops a row cut by the kill, if any
+    const std::vector<DatasetRow>& rows = resumed.rows();
+    ASSERT_GE(rows.size(), rows_before) << "run " << run << ": rows were lost";
+    for (size_t i = 0; i < rows.size(); ++i) {
+      ASSERT_EQ(rows[i].pose_id, static_cast<int64_t>(i) + 1) << "run " << run;
+      ASSERT_EQ(rows[i].q, Row(rows[i].pose_id).q) << "run " << run;
+    }
+    rows_before = rows.size();
+  }
+  EXPECT_GT(rows_before, 0u);
 }
 
 }  // namespace

@@ -18,8 +18,8 @@ h4msgs::board_pose_t GoodBoardPose() {
   m.translation[2] = 0.55;
   m.quaternion[0] = std::cos(0.1);
   m.quaternion[3] = std::sin(0.1);
-  for (int i = 0; i < 3; ++i) m.covariance[i * 7] = 4e-8;       // (0.2 mm)^2
-  for (int i = 3; i < 6; ++i) m.covariance[i * 7] = 2.7e-7;     // (0.03 deg)^2
+  for (int i = 0; i < 3; ++i) m.covariance[i * 7] = 4e-8;    // (0.2 mm)^2
+  for (int i = 3; i < 6; ++i) m.covariance[i * 7] = 2.7e-7;  // (0.03 deg)^2
   m.status = h4msgs::board_pose_t::STATUS_OK;
   return m;
 }
@@ -106,6 +106,44 @@ TEST(JointHistoryTest, KeepsOnlyTheNewestReadings) {
   EXPECT_FALSE(history.FindSettled(1, 1000, 10)) << "the oldest readings were dropped";
   ASSERT_TRUE(history.Latest());
   EXPECT_EQ(history.Latest()->utime, 5000);
+}
+
+TEST(JointHistoryTest, AFloodOfOtherReadingsDoesNotPushOutATrackedPosesSettledReadings) {
+  JointHistory history;  // default capacities, as the campaign uses them
+  history.Track(5);
+  for (int i = 0; i < 10; ++i) history.Add(Reading(1'000'000 + 10'000 * i, 5, true, 0.5));
+  // 60k plausible readings from another publisher: settled, another pose id, same times.
+  for (int i = 0; i < 60'000; ++i) history.Add(Reading(1'000'000 + i, 77, true, 0.9));
+  const auto paired = history.FindSettled(5, 1'050'000, 200'000);
+  ASSERT_TRUE(paired);
+  EXPECT_EQ(paired->q[0], 0.5);
+  EXPECT_EQ(paired->utime, 1'050'000);
+  ASSERT_TRUE(history.Latest());
+  EXPECT_EQ(history.Latest()->pose_id, 77);
+  // Once forgotten (recorded), the pose falls back to the shared history, long flooded.
+  history.Forget(5);
+  EXPECT_FALSE(history.FindSettled(5, 1'050'000, 200'000));
+}
+
+TEST(CheckBoardPoseTest, RefusesStandardDeviationsNoCameraMeasures) {
+  std::string why;
+  h4msgs::board_pose_t m = GoodBoardPose();
+  for (int i = 0; i < 6; ++i) m.covariance[i * 7] = 1e-320;  // sigma ~1e-160, subnormal variance
+  EXPECT_EQ(CheckBoardPose(m, &why), MessageProblem::kNonPhysicalCovariance);
+  EXPECT_NE(why.find("element 0"), std::string::npos) << why;
+
+  m = GoodBoardPose();
+  m.covariance[28] = 1e-26;  // rotation sigma 1e-13 rad
+  EXPECT_EQ(CheckBoardPose(m, &why), MessageProblem::kNonPhysicalCovariance);
+  EXPECT_NE(why.find("element 4"), std::string::npos) << why;
+
+  m = GoodBoardPose();
+  m.covariance[14] = 4.0;  // 2 m
+  EXPECT_EQ(CheckBoardPose(m, &why), MessageProblem::kNonPhysicalCovariance);
+
+  m = GoodBoardPose();
+  for (int i = 0; i < 6; ++i) m.covariance[i * 7] = 1e-20;  // 100 pm, 100 prad: still accepted
+  EXPECT_EQ(CheckBoardPose(m, &why), MessageProblem::kNone) << why;
 }
 
 TEST(MakeDatasetRowTest, TakesTimeAndPoseFromTheCameraAndJointsFromTheEncoders) {
