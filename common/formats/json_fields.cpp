@@ -9,15 +9,51 @@
 namespace h4 {
 namespace {
 
+// Only called on values of bounded depth (LoadJson refuses deeper documents); invalid
+// UTF-8 in a string is shown replaced rather than thrown as nlohmann's own error.
 std::string Describe(const nlohmann::json& value) {
-  std::string text = value.dump();
+  std::string text = value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   if (text.size() > 40) text = text.substr(0, 37) + "...";
   return std::string(value.type_name()) + " " + text;
+}
+
+// Refuses a document nested deeper than kMaxJsonDepth before it is parsed: nlohmann's
+// dump and destruction recurse over the nesting, so 100,000 levels overflow the stack. One
+// pass over the text, brackets inside strings skipped; the error names the line.
+void RequireBoundedDepth(const std::string& text, const std::string& source_name) {
+  int depth = 0;
+  int line = 1;
+  bool in_string = false;
+  bool escaped = false;
+  for (const char c : text) {
+    if (c == '\n') ++line;
+    if (in_string) {
+      if (escaped) {
+        escaped = false;
+      } else if (c == '\\') {
+        escaped = true;
+      } else if (c == '"') {
+        in_string = false;
+      }
+      continue;
+    }
+    if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth) {
+        throw FormatError(source_name, line, "",
+                          "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+      }
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
 }
 
 }  // namespace
 
 nlohmann::json LoadJson(const std::string& text, const std::string& source_name) {
+  RequireBoundedDepth(text, source_name);
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
