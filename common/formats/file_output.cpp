@@ -62,15 +62,37 @@ void WriteTemporary(const std::string& temporary, const std::string& bytes,
   if (::close(fd) != 0) Fail(path, "close failed", errno);
 }
 
+// A device or a pipe (`--out /dev/stdout`) cannot be replaced by renaming, and must not
+// be: it is written in place.
+void WriteInPlace(const std::string& path, const std::string& bytes) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) Fail(path, "cannot open for writing", errno);
+  try {
+    WriteAll(fd, bytes, path);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  if (::close(fd) != 0) Fail(path, "close failed", errno);
+}
+
 }  // namespace
 
 void WriteFileAtomically(const std::string& path, const std::string& bytes) {
-  const fs::path target(path);
+  struct stat existing {};
+  if (::stat(path.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode)) {
+    if (S_ISDIR(existing.st_mode)) throw std::runtime_error(path + ": is a directory");
+    return WriteInPlace(path, bytes);
+  }
+  // Through a symbolic link, the file it points to is replaced (the link stays a link).
+  std::error_code error;
+  const fs::path resolved = fs::is_symlink(path, error) ? fs::canonical(path, error) : fs::path();
+  const fs::path target = !error && !resolved.empty() ? resolved : fs::path(path);
   if (target.filename().empty()) throw std::runtime_error(path + ": not a file name");
   const std::string temporary = TemporaryPathFor(target);
   try {
     WriteTemporary(temporary, bytes, path);
-    if (::rename(temporary.c_str(), path.c_str()) != 0) Fail(path, "rename failed", errno);
+    if (::rename(temporary.c_str(), target.c_str()) != 0) Fail(path, "rename failed", errno);
   } catch (...) {
     ::unlink(temporary.c_str());
     throw;

@@ -14,7 +14,8 @@ namespace h4 {
 /// Replaces `path` with `bytes` atomically: temporary file `.<name>.tmp-<pid>-<n>` beside
 /// it (created with mode 0666 minus the umask), write, fsync, rename, fsync of the
 /// directory. On any failure the temporary file is removed, `path` is untouched, and a
-/// std::runtime_error names `path` and the system's reason.
+/// std::runtime_error names `path` and the system's reason. A symbolic link's target is
+/// replaced (the link stays); a device or pipe (/dev/stdout) is written in place.
 void WriteFileAtomically(const std::string& path, const std::string& bytes);
 
 /// True when `a` and `b` name the same file: the same device and inode when both exist

@@ -84,6 +84,21 @@ TEST(WriteFileAtomically, AFailedWriteKeepsThePreviousFileWhole) {
   EXPECT_EQ(CountTemporaries(fs::path(path).parent_path()), 0);
 }
 
+TEST(WriteFileAtomically, ThroughALinkReplacesItsTargetAndADeviceIsWrittenInPlace) {
+  const std::string target = TempPath("target.yaml");
+  const std::string link = TempPath("link.yaml");
+  WriteFileAtomically(target, "old\n");
+  fs::remove(link);
+  fs::create_symlink(target, link);
+  WriteFileAtomically(link, "new\n");
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(ReadTextFile(target), "new\n");
+  // Renaming over /dev/null would replace the device with a file.
+  WriteFileAtomically("/dev/null", "discarded\n");
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  EXPECT_EQ(CountTemporaries("/dev"), 0);
+}
+
 TEST(WriteFileAtomically, AMissingFolderIsNamed) {
   const std::string path = TempPath("absent") + "/out.txt";
   try {
