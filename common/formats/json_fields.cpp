@@ -50,6 +50,16 @@ void RequireBoundedDepth(const std::string& text, const std::string& source_name
   }
 }
 
+// nlohmann's message without its "[json.exception.parse_error.101] " prefix.
+std::string WithoutExceptionId(const nlohmann::json::exception& e) {
+  std::string what = e.what();
+  const size_t bracket = what.find("] ");
+  if (what.rfind("[json.exception", 0) == 0 && bracket != std::string::npos) {
+    what = what.substr(bracket + 2);
+  }
+  return what;
+}
+
 }  // namespace
 
 nlohmann::json LoadJson(const std::string& text, const std::string& source_name) {
@@ -61,12 +71,11 @@ nlohmann::json LoadJson(const std::string& text, const std::string& source_name)
     const size_t end = std::min(text.size(), e.byte > 0 ? e.byte - 1 : 0);
     const int line =
         1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(end), '\n'));
-    std::string what = e.what();
-    const size_t bracket = what.find("] ");
-    if (what.rfind("[json.exception", 0) == 0 && bracket != std::string::npos) {
-      what = what.substr(bracket + 2);
-    }
-    throw FormatError(source_name, line, "", "invalid JSON: " + what);
+    throw FormatError(source_name, line, "", "invalid JSON: " + WithoutExceptionId(e));
+  } catch (const nlohmann::json::exception& e) {
+    // Found by fuzzing: a number beyond double's range ("1e400") is out_of_range.406,
+    // which carries no position.
+    throw FormatError(source_name, 0, "", "invalid JSON: " + WithoutExceptionId(e));
   }
 }
 

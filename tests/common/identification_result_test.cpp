@@ -230,6 +230,13 @@ TEST(IdentificationResultErrors, SyntaxErrorNamesTheLine) {
                 "r.json", 4, "", "invalid JSON"));
   EXPECT_TRUE(
       FailsWith([] { ParseIdentificationResult("", "r.json"); }, "r.json", 1, "", "invalid JSON"));
+  // Found by fuzzing: nlohmann's number overflow escaped as its own exception.
+  EXPECT_TRUE(FailsWith(
+      [] {
+        ParseIdentificationResult(ResultWith("\"value\": 0.0610", "\"value\": 0.1E61962439483"),
+                                  "r.json");
+      },
+      "r.json", 0, "", "invalid JSON: number overflow parsing '0.1E61962439483'"));
   const std::string path = TempPath("absent.json");
   EXPECT_TRUE(FailsWith([&] { ReadIdentificationResult(path); }, path, 0, "", "cannot open"));
 }
