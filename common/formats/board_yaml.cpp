@@ -2,7 +2,6 @@
 #include "common/formats/board_yaml.h"
 
 #include <algorithm>
-#include <limits>
 
 #include "common/formats/csv_table.h"
 #include "common/formats/number_text.h"
@@ -17,11 +16,19 @@ std::string Joined(const std::vector<std::string>& names) {
   return text;
 }
 
-int Count(const YamlMap& map, const std::string& key, int64_t minimum) {
+// Limits checked before anything is allocated from these numbers (tagRows: 2147483647
+// ended in bad_alloc after 36 s): no printable board has more tags or corners per side,
+// and no tag family more ids.
+constexpr int64_t kMaxPerSide = 200;
+constexpr int64_t kMaxFirstId = 100000;
+constexpr double kMaxSize_m = 10.0;
+
+int Count(const YamlMap& map, const std::string& key, int64_t minimum,
+          int64_t maximum = kMaxPerSide) {
   const int64_t value = map.Int(key);
-  if (value < minimum || value > std::numeric_limits<int>::max()) {
-    map.Fail(key, "expected an integer >= " + std::to_string(minimum) + ", got " +
-                      std::to_string(value));
+  if (value < minimum || value > maximum) {
+    map.Fail(key, "expected an integer in [" + std::to_string(minimum) + ", " +
+                      std::to_string(maximum) + "], got " + std::to_string(value));
   }
   return static_cast<int>(value);
 }
@@ -36,6 +43,16 @@ AprilGridLayout ReadLayout(const YamlMap& root) {
   root.Fail(kLayoutKey, "unknown layout '" + name + "', expected 'kalibr' or 'legacy'");
 }
 
+// A positive size no larger than kMaxSize_m (a ratio for tagSpacing).
+double Size(const YamlMap& map, const std::string& key) {
+  const double value = map.PositiveDouble(key);
+  if (value > kMaxSize_m) {
+    map.Fail(key, "expected at most " + FormatDouble(kMaxSize_m, key) + ", got " +
+                      FormatDouble(value, key));
+  }
+  return value;
+}
+
 AprilGridSpec ReadAprilGrid(const YamlMap& root) {
   AprilGridSpec spec;
   if (root.Has("tagFamily")) {
@@ -48,9 +65,9 @@ AprilGridSpec ReadAprilGrid(const YamlMap& root) {
   }
   spec.cols = Count(root, "tagCols", 1);
   spec.rows = Count(root, "tagRows", 1);
-  spec.tag_size = root.PositiveDouble("tagSize");
-  spec.tag_spacing = root.PositiveDouble("tagSpacing");
-  if (root.Has("firstId")) spec.first_id = Count(root, "firstId", 0);
+  spec.tag_size = Size(root, "tagSize");
+  spec.tag_spacing = Size(root, "tagSpacing");
+  if (root.Has("firstId")) spec.first_id = Count(root, "firstId", 0, kMaxFirstId);
   if (root.Has(kLayoutKey)) spec.layout = ReadLayout(root);
   return spec;
 }
@@ -59,8 +76,8 @@ CheckerboardSpec ReadCheckerboard(const YamlMap& root) {
   CheckerboardSpec spec;
   spec.cols = Count(root, "targetCols", 2);
   spec.rows = Count(root, "targetRows", 2);
-  spec.col_spacing = root.PositiveDouble("colSpacingMeters");
-  spec.row_spacing = root.PositiveDouble("rowSpacingMeters");
+  spec.col_spacing = Size(root, "colSpacingMeters");
+  spec.row_spacing = Size(root, "rowSpacingMeters");
   return spec;
 }
 

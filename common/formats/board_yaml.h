@@ -20,7 +20,9 @@ const std::vector<std::string>& AprilTagFamilies();
 /// (inner corners, >= 2), colSpacingMeters, rowSpacingMeters (positive). An unknown
 /// target_type is an error naming it and the accepted ones. Other keys (Kalibr's
 /// codeOffset...) are ignored, except a known key spelt with other letter case
-/// ("firstID"), which is an error rather than a silent default.
+/// ("firstID"), which is an error rather than a silent default. Limits, checked before
+/// anything is allocated: at most 200 tags or inner corners per side, firstId at most
+/// 100000, sizes and tagSpacing at most 10.
 BoardSpec ParseBoardYaml(const std::string& text, const std::string& source_name);
 BoardSpec ReadBoardYaml(const std::string& path);
 

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/formats/file_output.h"
 #include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
 
@@ -82,6 +83,12 @@ CsvTable CsvTable::Parse(const std::string& text, const std::string& source_name
     std::string_view line = rest.substr(0, newline);
     rest = (newline == std::string_view::npos) ? std::string_view() : rest.substr(newline + 1);
     const std::string_view trimmed = Trim(line);
+    // Old Mac line ends (CR alone) would read as one long line: say so instead.
+    if (trimmed.find('\r') != std::string_view::npos) {
+      throw FormatError(source_name, line_no, "",
+                        "a carriage return inside a line: line ends must be LF or CRLF, not CR "
+                        "alone");
+    }
     if (trimmed.empty() || trimmed.front() == '#') continue;
     std::vector<std::string> cells = SplitLine(line, source_name, line_no);
     if (table.header_.empty()) {
@@ -198,11 +205,7 @@ std::string CsvQuote(const std::string& cell) {
 }
 
 void WriteTextFile(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error(path + ": cannot open for writing");
-  out << text;
-  out.close();
-  if (!out) throw std::runtime_error(path + ": write failed");
+  WriteFileAtomically(path, text);
 }
 
 std::string ReadTextFile(const std::string& path) {

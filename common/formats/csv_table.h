@@ -16,7 +16,8 @@ class CsvTable {
  public:
   /// Splits `text` into header and rows; `source_name` (a path) goes into messages.
   /// Throws FormatError on an empty file, a duplicate or empty header name, a row
-  /// with more or fewer fields than the header, or an unterminated quote.
+  /// with more or fewer fields than the header, an unterminated quote, or a
+  /// carriage return inside a line (CR-only line ends; LF and CRLF are read).
   static CsvTable Parse(const std::string& text, const std::string& source_name);
   /// Reads the file at `path` and parses it; an unreadable file is a FormatError.
   static CsvTable Read(const std::string& path);
@@ -64,7 +65,8 @@ class CsvTable {
 /// surrounding spaces (which the reader would otherwise trim).
 std::string CsvQuote(const std::string& cell);
 
-/// Writes `text` to `path`; throws std::runtime_error naming the path on failure.
+/// Replaces `path` with `text` atomically (WriteFileAtomically, file_output.h: a failed
+/// write leaves the previous file whole); throws std::runtime_error naming the path.
 void WriteTextFile(const std::string& path, const std::string& text);
 
 /// Reads the whole file; throws FormatError(path, 0, "", ...) when it cannot be read.

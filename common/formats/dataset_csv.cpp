@@ -16,11 +16,16 @@ namespace {
 const std::vector<std::string> kRequired = {"pose_id", "utime", "q1", "q2", "q3", "q4", "x",
                                             "y",       "z",     "qw", "qx", "qy", "qz"};
 
-std::optional<double> PositiveSigma(const CsvTable& table, size_t row, const char* column) {
+// A sigma the weighted cost can use: 1/sigma^2 of a sigma below ~1e-154 overflows and
+// the identification never ends, so sigmas are bounded to what a camera can measure.
+std::optional<double> BoundedSigma(const CsvTable& table, size_t row, const char* column,
+                                   const SigmaBounds& bounds, const std::string& unit) {
   const std::optional<double> sigma = table.GetOptionalDouble(row, column);
-  if (sigma && !(*sigma > 0.0)) {
+  if (sigma && !(*sigma >= bounds.min && *sigma <= bounds.max)) {
     table.Fail(row, column,
-               "expected a positive standard deviation, got " + FormatDouble(*sigma, column));
+               "expected a standard deviation in [" + FormatDouble(bounds.min, column) + ", " +
+                   FormatDouble(bounds.max, column) + "] " + unit + ", got " +
+                   FormatDouble(*sigma, column));
   }
   return sigma;
 }
@@ -49,8 +54,8 @@ std::vector<DatasetRow> ParseDatasetCsv(const std::string& text, const std::stri
         table.Fail(r, "set", "expected 'calib' or 'valid', got '" + set + "'");
       }
     }
-    row.sigma_t = PositiveSigma(table, r, "sigma_t");
-    row.sigma_r = PositiveSigma(table, r, "sigma_r");
+    row.sigma_t = BoundedSigma(table, r, "sigma_t", kSigmaTBounds, "m");
+    row.sigma_r = BoundedSigma(table, r, "sigma_r", kSigmaRBounds, "rad");
     rows.push_back(row);
   }
   return rows;

@@ -25,11 +25,21 @@ struct DatasetRow {
   std::optional<double> sigma_r;  ///< per-pose rotation std, rad
 };
 
+/// The standard deviations a dataset row may carry: from a nanometre (nanoradian), far
+/// below any camera's, up to a metre (half a turn). Writers of datasets (the campaign)
+/// must not record a sigma outside them.
+struct SigmaBounds {
+  double min;
+  double max;
+};
+inline constexpr SigmaBounds kSigmaTBounds{1e-9, 1.0};                     // m
+inline constexpr SigmaBounds kSigmaRBounds{1e-9, 3.14159265358979323846};  // rad
+
 /// Reads a dataset CSV; throws FormatError naming file, line and field on any
 /// malformed input (missing column or field, non-number, non-unit quaternion,
 /// duplicate pose_id, unknown set). `source_name` is used in messages. The optional
 /// `set` column must hold calib or valid on every row; `sigma_t`/`sigma_r` cells may be
-/// empty (absent) but must be positive numbers when given.
+/// empty (absent) but must lie within kSigmaTBounds / kSigmaRBounds when given.
 std::vector<DatasetRow> ReadDatasetCsv(const std::string& path);
 std::vector<DatasetRow> ParseDatasetCsv(const std::string& text, const std::string& source_name);
 

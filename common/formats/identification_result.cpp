@@ -3,6 +3,8 @@
 // the extra keys of the solver's account.
 #include "common/formats/identification_result.h"
 
+#include <cmath>
+#include <numbers>
 #include <set>
 
 #include <nlohmann/json.hpp>
@@ -14,10 +16,53 @@
 namespace h4 {
 namespace {
 
+constexpr double kPi = std::numbers::pi;
+
 using Ordered = nlohmann::ordered_json;
+
+// The lengths of Models 12 and 31 (common/README.md): an arm, forearm, nacelle or base
+// radius is positive, like their robot.yaml keys.
+bool IsLength(const std::string& name) {
+  static const std::set<std::string> lengths = {"h",        "arm",      "forearm",  "R",
+                                                "arm1",     "arm2",     "arm3",     "arm4",
+                                                "forearm1", "forearm2", "forearm3", "forearm4"};
+  return lengths.count(name) > 0;
+}
+
+// Angles of the models (alpha, q0, psi, beta, rpy) are radians; a wrapped angle is within
+// one turn.
+bool IsAngle(const std::string& name) {
+  for (const char* prefix : {"alpha", "q0", "psi", "beta"}) {
+    if (name.rfind(prefix, 0) == 0) return true;
+  }
+  return false;
+}
+
+// A value the kinematics can use: lengths positive, every position within kMaxRobotSize_m
+// of the base, every angle within a turn. A result edited or damaged by hand is refused
+// here, naming the field, instead of driving ik or the controller export.
+void RequireSensibleValue(const JsonValue& field, const std::string& name, double value) {
+  if (IsLength(name) && !(value > 0.0)) {
+    field.Fail("expected a positive length for " + name + ", got " + FormatDouble(value, name));
+  }
+  if (IsAngle(name) && std::abs(value) > 2.0 * kPi) {
+    field.Fail("expected an angle within one turn (|" + name + "| <= 2 pi rad), got " +
+               FormatDouble(value, name));
+  }
+  if (!IsAngle(name) && std::abs(value) > kMaxRobotSize_m) {
+    field.Fail("expected |" + name + "| <= " + FormatDouble(kMaxRobotSize_m, name) + " m, got " +
+               FormatDouble(value, name));
+  }
+}
 
 RigidTransform ReadTransform(const JsonValue& value) {
   const std::vector<double> t = value["translation"].Numbers(3);
+  for (size_t i = 0; i < 3; ++i) {
+    if (std::abs(t[i]) > kMaxRobotSize_m) {
+      value["translation"].At(i).Fail("expected a translation within " +
+                                      FormatDouble(kMaxRobotSize_m, "translation") + " m");
+    }
+  }
   const std::vector<double> rpy = value["rpy"].Numbers(3);
   return RigidTransform::FromTranslationRpy({t[0], t[1], t[2]}, {rpy[0], rpy[1], rpy[2]});
 }
@@ -43,6 +88,7 @@ void ReadParameters(const JsonValue& list, IdentificationResult* result) {
     if (p.name.empty()) entry["name"].Fail("expected a parameter name, got an empty string");
     if (!names.insert(p.name).second) entry["name"].Fail("parameter '" + p.name + "' given twice");
     p.value = entry["value"].Number();
+    RequireSensibleValue(entry["value"], p.name, p.value);
     p.apriori = entry["apriori"].Number();
     const std::string status = entry["status"].String();
     if (status != "identified" && status != "fixed") {

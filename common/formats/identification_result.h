@@ -56,12 +56,17 @@ struct IdentificationResult {
 /// Reads/writes the JSON; reading throws FormatError (file, field path such as
 /// "parameters[3].value", expectation; line 0 except for a syntax error, which gives the
 /// line). Required: formats.md's keys; model "12" or "31"; parameter names unique; std
-/// null for a fixed parameter (a number or null otherwise, >= 0); every `fixed` entry
+/// null for a fixed parameter (a number or null otherwise, >= 0); parameter values usable
+/// by the kinematics (lengths h, arm, forearm, R, arm1..4, forearm1..4 positive; angles
+/// alpha*, q0*, psi*, beta* within 2 pi; every other value and the X_BC / X_TE
+/// translations within kMaxRobotSize_m); every `fixed` entry
 /// names a parameter with status "fixed"; RMS values >= 0; pose ids integers. The extra
 /// keys may be absent or null. The writer writes every key (absent optionals as null,
 /// std as null for fixed parameters), shortest round-trip numbers, and throws
 /// std::invalid_argument on a non-finite number (JSON has no NaN).
 IdentificationResult ReadIdentificationResult(const std::string& path);
+/// No H4 parameter or placement is larger than this (m): a bound on values read back.
+inline constexpr double kMaxRobotSize_m = 10.0;
 IdentificationResult ParseIdentificationResult(const std::string& text,
                                                const std::string& source_name);
 void WriteIdentificationResult(const std::string& path, const IdentificationResult& result);

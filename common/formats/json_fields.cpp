@@ -9,15 +9,61 @@
 namespace h4 {
 namespace {
 
+// Only called on values of bounded depth (LoadJson refuses deeper documents); invalid
+// UTF-8 in a string is shown replaced rather than thrown as nlohmann's own error.
 std::string Describe(const nlohmann::json& value) {
-  std::string text = value.dump();
+  std::string text = value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   if (text.size() > 40) text = text.substr(0, 37) + "...";
   return std::string(value.type_name()) + " " + text;
+}
+
+// Refuses a document nested deeper than kMaxJsonDepth before it is parsed: nlohmann's
+// dump and destruction recurse over the nesting, so 100,000 levels overflow the stack. One
+// pass over the text, brackets inside strings skipped; the error names the line.
+void RequireBoundedDepth(const std::string& text, const std::string& source_name) {
+  int depth = 0;
+  int line = 1;
+  bool in_string = false;
+  bool escaped = false;
+  for (const char c : text) {
+    if (c == '\n') ++line;
+    if (in_string) {
+      if (escaped) {
+        escaped = false;
+      } else if (c == '\\') {
+        escaped = true;
+      } else if (c == '"') {
+        in_string = false;
+      }
+      continue;
+    }
+    if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth) {
+        throw FormatError(source_name, line, "",
+                          "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+      }
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
+// nlohmann's message without its "[json.exception.parse_error.101] " prefix.
+std::string WithoutExceptionId(const nlohmann::json::exception& e) {
+  std::string what = e.what();
+  const size_t bracket = what.find("] ");
+  if (what.rfind("[json.exception", 0) == 0 && bracket != std::string::npos) {
+    what = what.substr(bracket + 2);
+  }
+  return what;
 }
 
 }  // namespace
 
 nlohmann::json LoadJson(const std::string& text, const std::string& source_name) {
+  RequireBoundedDepth(text, source_name);
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
@@ -25,12 +71,11 @@ nlohmann::json LoadJson(const std::string& text, const std::string& source_name)
     const size_t end = std::min(text.size(), e.byte > 0 ? e.byte - 1 : 0);
     const int line =
         1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(end), '\n'));
-    std::string what = e.what();
-    const size_t bracket = what.find("] ");
-    if (what.rfind("[json.exception", 0) == 0 && bracket != std::string::npos) {
-      what = what.substr(bracket + 2);
-    }
-    throw FormatError(source_name, line, "", "invalid JSON: " + what);
+    throw FormatError(source_name, line, "", "invalid JSON: " + WithoutExceptionId(e));
+  } catch (const nlohmann::json::exception& e) {
+    // Found by fuzzing: a number beyond double's range ("1e400") is out_of_range.406,
+    // which carries no position.
+    throw FormatError(source_name, 0, "", "invalid JSON: " + WithoutExceptionId(e));
   }
 }
 

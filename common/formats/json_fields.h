@@ -13,7 +13,12 @@
 
 namespace h4 {
 
-/// Parses `text`; a syntax error becomes FormatError(source, line, "", message).
+/// Deepest nesting of arrays and objects LoadJson accepts (an identification result
+/// needs 3).
+inline constexpr int kMaxJsonDepth = 64;
+
+/// Parses `text`; a syntax error, or nesting deeper than kMaxJsonDepth (checked before
+/// parsing), becomes FormatError(source, line, "", message).
 nlohmann::json LoadJson(const std::string& text, const std::string& source_name);
 
 /// A JSON value and its path, for reading fields of it.

@@ -1,6 +1,9 @@
 // Poses CSV and fk output; see poses_csv.h.
 #include "common/formats/poses_csv.h"
 
+#include <cmath>
+#include <numbers>
+
 #include "common/formats/csv_table.h"
 #include "common/formats/number_text.h"
 #include "common/formats/pose_columns.h"
@@ -11,13 +14,26 @@ namespace {
 
 const std::vector<std::string> kPoseColumns = {"pose_id", "X", "Y", "Z", "theta"};
 
+// A cell within [-limit, limit]; `unit` names the unit in the message.
+double Bounded(const CsvTable& table, size_t r, const char* column, double limit,
+               const std::string& unit) {
+  const double value = table.GetDouble(r, column);
+  if (std::abs(value) > limit) {
+    table.Fail(r, column,
+               "expected |" + std::string(column) + "| <= " + FormatDouble(limit, column) + " " +
+                   unit + ", got " + FormatDouble(value, column));
+  }
+  return value;
+}
+
 EndEffectorPoseRow ReadEndEffectorPose(const CsvTable& table, size_t r, PoseIdCheck* ids) {
   EndEffectorPoseRow row;
   row.pose_id = ids->Read(table, r);
-  row.X = table.GetDouble(r, "X");
-  row.Y = table.GetDouble(r, "Y");
-  row.Z = table.GetDouble(r, "Z");
-  row.theta = table.GetDouble(r, "theta");
+  row.X = Bounded(table, r, "X", kMaxEndEffectorPosition_m, "m");
+  row.Y = Bounded(table, r, "Y", kMaxEndEffectorPosition_m, "m");
+  row.Z = Bounded(table, r, "Z", kMaxEndEffectorPosition_m, "m");
+  // theta = 20 is degrees given by mistake: the H4 turns less than half a turn each way.
+  row.theta = Bounded(table, r, "theta", std::numbers::pi, "rad (pi)");
   return row;
 }
 

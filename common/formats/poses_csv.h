@@ -23,8 +23,12 @@ struct FkRow {
   RigidTransform X_CT;      ///< board pose in the camera frame it implies
 };
 
+/// No end-effector position read from a file is farther than this from the base (m).
+inline constexpr double kMaxEndEffectorPosition_m = 10.0;
+
 /// Poses CSV; throws FormatError naming file, line and field on a missing column or
-/// field, a non-number or a duplicate pose_id.
+/// field, a non-number, a duplicate pose_id, |X|, |Y| or |Z| above
+/// kMaxEndEffectorPosition_m, or |theta| above pi (degrees given by mistake).
 std::vector<EndEffectorPoseRow> ParsePosesCsv(const std::string& text,
                                               const std::string& source_name);
 std::vector<EndEffectorPoseRow> ReadPosesCsv(const std::string& path);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <map>
+#include <string_view>
 
 #include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
@@ -18,9 +19,86 @@ std::string Describe(const YAML::Node& node) {
   return "'" + node.Scalar() + "'";
 }
 
+// yaml-cpp 0.7 parses nested collections recursively and has no depth limit: a document
+// nested 100,000 deep overflows the stack. Nesting comes from flow brackets (counted
+// across lines, outside quotes and comments), from indentation, and from compact
+// indicators at the start of a line ("- - - x"); each is bounded before parsing. A bracket
+// in a plain or block scalar counts too: only a file with more than kMaxYamlDepth of them
+// open is refused, which no file of ours has.
+class YamlDepthCheck {
+ public:
+  explicit YamlDepthCheck(const std::string& source_name) : source_(source_name) {}
+
+  // Quotes are followed within a line only (so an apostrophe in a plain scalar cannot
+  // hide the lines after it); a quote opens after a space, a bracket, ',' or ':'.
+  void Line(std::string_view line) {
+    ++line_no_;
+    char quote = 0;
+    // Checked in flow context too: a '[' in a plain scalar looks like an open bracket.
+    const size_t start = BlockIndent(line);
+    for (size_t i = start; i < line.size(); ++i) {
+      const char c = line[i];
+      if (quote != 0) {
+        if (c == '\\' && quote == '"') {
+          ++i;  // an escaped character
+        } else if (c == quote) {
+          quote = 0;
+        }
+        continue;
+      }
+      const char before = i == start ? ' ' : line[i - 1];
+      const bool after_separator =
+          std::string_view(" \t[{,:").find(before) != std::string_view::npos;
+      if (c == '#' && (before == ' ' || before == '\t')) return;
+      if ((c == '"' || c == '\'') && after_separator) quote = c;
+      if (c == '[' || c == '{') Require(++flow_ <= kMaxYamlDepth, "flow collections nested");
+      if ((c == ']' || c == '}') && flow_ > 0) --flow_;
+    }
+  }
+
+ private:
+  // Skips the indentation and the compact indicators of a block line; returns where the
+  // content starts.
+  size_t BlockIndent(std::string_view line) {
+    size_t i = 0;
+    while (i < line.size() && line[i] == ' ') ++i;
+    Require(i <= kMaxYamlIndent, "a line indented");
+    int indicators = 0;
+    while (i < line.size() && (line[i] == '-' || line[i] == '?' || line[i] == ':') &&
+           (i + 1 == line.size() || line[i + 1] == ' ' || line[i + 1] == '\t')) {
+      Require(++indicators <= kMaxYamlDepth, "block collections nested");
+      ++i;
+      while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+    }
+    return i;
+  }
+
+  void Require(bool within, const std::string& what) const {
+    if (within) return;
+    throw FormatError(source_, line_no_, "",
+                      what + " deeper than the limit (" + std::to_string(kMaxYamlDepth) +
+                          " levels, " + std::to_string(kMaxYamlIndent) + " columns)");
+  }
+
+  std::string source_;
+  int line_no_ = 0;
+  int flow_ = 0;
+};
+
+void RequireBoundedYamlDepth(const std::string& text, const std::string& source_name) {
+  YamlDepthCheck check(source_name);
+  std::string_view rest(text);
+  while (!rest.empty()) {
+    const size_t end = rest.find('\n');
+    check.Line(rest.substr(0, end));
+    rest = end == std::string_view::npos ? std::string_view() : rest.substr(end + 1);
+  }
+}
+
 }  // namespace
 
 YAML::Node LoadYaml(const std::string& text, const std::string& source_name) {
+  RequireBoundedYamlDepth(text, source_name);
   try {
     return YAML::Load(text);
   } catch (const YAML::Exception& e) {

@@ -14,7 +14,13 @@
 
 namespace h4 {
 
-/// Parses YAML text; a syntax error becomes a FormatError with yaml-cpp's line.
+/// Deepest nesting LoadYaml accepts (flow brackets, or compact "- - x" indicators on one
+/// line), and the deepest indentation (columns): yaml-cpp recurses once per level.
+inline constexpr int kMaxYamlDepth = 64;
+inline constexpr size_t kMaxYamlIndent = 256;
+
+/// Parses YAML text; a syntax error, or nesting beyond kMaxYamlDepth / kMaxYamlIndent
+/// (checked before parsing), becomes a FormatError with the line.
 YAML::Node LoadYaml(const std::string& text, const std::string& source_name);
 
 class YamlMap {

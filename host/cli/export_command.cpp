@@ -2,12 +2,12 @@
 // keys of formats.md (the control law reads model12: h, arm, forearm, R, d, alpha, q0 and
 // the assembly signs). A Model 31 result exports its own model31: block (the model12 block
 // the format requires then comes from the a priori --robot).
-#include <fstream>
 #include <memory>
 #include <stdexcept>
 
 #include <spdlog/spdlog.h>
 
+#include "common/formats/file_output.h"
 #include "common/formats/identification_result.h"
 #include "common/formats/robot_yaml.h"
 #include "host/cli/commands.h"
@@ -25,6 +25,8 @@ struct ExportOptions {
 };
 
 void Run(const ExportOptions& options) {
+  RequireOutputIsNotAnInput({"--out", options.out_path},
+                            {{"--result", options.result_path}, {"--robot", options.robot_path}});
   const IdentificationResult result = ReadIdentificationResult(options.result_path);
   std::optional<RobotDescription> apriori;
   if (!options.robot_path.empty()) apriori = ReadRobotYaml(options.robot_path);
@@ -52,10 +54,7 @@ void Run(const ExportOptions& options) {
              " in the model31 block (model12 is the a priori of " + options.robot_path +
              "; X_BC is the camera in B31, the base frame of Model 31)\n";
   }
-  std::ofstream file(options.out_path);
-  file << header << FormatRobotYaml(out);
-  file.close();
-  if (!file) throw std::runtime_error("cannot write " + options.out_path);
+  WriteFileAtomically(options.out_path, header + FormatRobotYaml(out));
   spdlog::info("wrote the Model {} controller parameters to {}", result.model, options.out_path);
 }
 

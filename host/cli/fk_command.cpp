@@ -8,6 +8,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/formats/file_output.h"
 #include "common/formats/joints_csv.h"
 #include "common/formats/poses_csv.h"
 #include "common/geometry/rotation.h"
@@ -49,6 +50,12 @@ void Compare(const std::vector<FkRow>& predicted, const std::string& reference_p
 }
 
 void Run(const FkCommandOptions& options) {
+  RequireOutputIsNotAnInput({"--out", options.out_path},
+                            {{"--joints", options.joints_path},
+                             {"--compare", options.compare_path},
+                             {"--result", options.robot.result_path},
+                             {"--robot", options.robot.robot_path},
+                             {"--assembly-from", options.robot.assembly_robot_path}});
   std::string description;
   const IdentifiedRobot robot = LoadRobot(options.robot, &description);
   const std::vector<JointsRow> joints = ReadJointsCsv(options.joints_path);

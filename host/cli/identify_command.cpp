@@ -1,12 +1,14 @@
 // `h4cal identify`: Model 12 or Model 31 identification from a robot.yaml and a paired
 // dataset (paper II-III; the solver is host/identification), writing the result JSON of
 // formats.md. `--from result12.json` starts Model 31 from a Model 12 result (paper IV.C).
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include <spdlog/spdlog.h>
 
 #include "common/formats/dataset_csv.h"
+#include "common/formats/file_output.h"
 #include "common/formats/identification_result.h"
 #include "common/formats/robot_yaml.h"
 #include "host/cli/commands.h"
@@ -23,6 +25,7 @@ struct IdentifyCommandOptions {
   std::string data_path;
   std::string model = "12";
   int validation = 10;
+  bool validation_given = false;  ///< --validation on the command line (not the default)
   uint64_t seed = 1;
   std::string from_path;
   std::string out_path;
@@ -64,13 +67,44 @@ void PrintHeadline(const IdentificationOutcome& outcome) {
   std::printf("  %d iterations, %.3f s\n", outcome.summary.iterations, outcome.summary.seconds);
 }
 
+// --validation draws held-out poses only from a dataset without a `set` column, and at
+// most half of it (SplitDataset): asking for more is an error, not a silent cap. The
+// split must leave calibration poses (a header-only file, a `set` column of only
+// `valid`, the validation output of `h4cal simulate`).
+void RequireUsableSplit(const IdentifyCommandOptions& options,
+                        const std::vector<DatasetRow>& rows) {
+  // With --from the split is the Model 12 result's; the identification checks that one.
+  if (!options.from_path.empty()) return;
+  const size_t calib = SplitDataset(rows, options.validation, options.seed).calib.size();
+  if (calib < kMinimumCalibrationPoses) {
+    throw std::invalid_argument(options.data_path + ": identification needs at least " +
+                                std::to_string(kMinimumCalibrationPoses) +
+                                " calibration poses, the file has " + std::to_string(calib) +
+                                " (of " + std::to_string(rows.size()) +
+                                " rows; rows with set 'valid' are held out)");
+  }
+  const bool has_set =
+      std::any_of(rows.begin(), rows.end(), [](const DatasetRow& r) { return r.set.has_value(); });
+  const size_t most = rows.size() / 2;
+  if (options.validation_given && !has_set && static_cast<size_t>(options.validation) > most) {
+    throw std::invalid_argument("--validation " + std::to_string(options.validation) +
+                                ": at most half of the " + std::to_string(rows.size()) +
+                                " poses of " + options.data_path + " can be held out (" +
+                                std::to_string(most) + ")");
+  }
+}
+
 void Run(const IdentifyCommandOptions& options, const std::string& command_line) {
   std::string algorithm_why;
   if (!IsValidNloptAlgorithm(options.algorithm, &algorithm_why)) {
     throw std::invalid_argument("--algorithm: " + algorithm_why);
   }
+  RequireOutputIsNotAnInput({"--out", options.out_path}, {{"--robot", options.robot_path},
+                                                          {"--data", options.data_path},
+                                                          {"--from", options.from_path}});
   const RobotDescription robot = ReadRobotYaml(options.robot_path);
   const std::vector<DatasetRow> rows = ReadDatasetCsv(options.data_path);
+  RequireUsableSplit(options, rows);
   IdentificationOptions id_options;
   if (!ParseCostKind(options.estimator, &id_options.estimator)) {
     throw std::invalid_argument("--estimator: expected measurement, joint or implicit, got '" +
@@ -180,8 +214,10 @@ void AddIdentifyCommand(CLI::App& app) {
   command->add_option("--report", options->report_dir,
                       "Also validate on the held-out poses and write DIR/report.html");
   command->footer("Exit code 3: the result was written but is not usable (see the log).");
-  command->callback(
-      [options, command] { Run(*options, "h4cal identify " + ReportCommandLine(*command)); });
+  command->callback([options, command] {
+    options->validation_given = command->count("--validation") > 0;
+    Run(*options, "h4cal identify " + ReportCommandLine(*command));
+  });
 }
 
 }  // namespace h4::host::cli

@@ -2,6 +2,7 @@
 // (formats.md poses CSV) to joint readings; unreachable rows are reported, not NaN.
 #include <spdlog/spdlog.h>
 
+#include "common/formats/file_output.h"
 #include "common/formats/joints_csv.h"
 #include "common/formats/poses_csv.h"
 #include "host/cli/commands.h"
@@ -17,6 +18,11 @@ struct IkCommandOptions {
 };
 
 void Run(const IkCommandOptions& options) {
+  RequireOutputIsNotAnInput({"--out", options.out_path},
+                            {{"--poses", options.poses_path},
+                             {"--result", options.robot.result_path},
+                             {"--robot", options.robot.robot_path},
+                             {"--assembly-from", options.robot.assembly_robot_path}});
   std::string description;
   const IdentifiedRobot robot = LoadRobot(options.robot, &description);
   const std::vector<EndEffectorPoseRow> poses = ReadPosesCsv(options.poses_path);

@@ -39,6 +39,14 @@ IdentifiedRobot LoadRobot(const RobotSourceOptions& options, std::string* descri
     return RebuildFromResult(result, assembly);
   }
   const RobotDescription robot = ReadRobotYaml(options.robot_path);
+  if (robot.model31) {
+    // A Model 31 export (h4cal export) carries the a priori model12 block the format
+    // requires; using it would put every pose ~0.1 m off without a word.
+    throw std::invalid_argument(
+        options.robot_path +
+        ": has a model31 block, and --robot uses the model12 block only (in a Model 31 "
+        "export it is the a priori); give the Model 31 identification result with --result");
+  }
   if (description) *description = "a priori Model 12 of " + options.robot_path;
   return IdentifiedRobot{std::make_unique<Model12>(robot.model12, robot.assembly), robot.X_BC,
                          robot.X_TE};

@@ -19,7 +19,8 @@ struct RobotSourceOptions {
 /// Adds --result / --robot (exactly one required) to a subcommand.
 void AddRobotSourceOptions(CLI::App* command, RobotSourceOptions* options);
 
-/// Loads the robot; throws with the file's name on any problem.
+/// Loads the robot; throws with the file's name on any problem, and refuses a --robot
+/// file with a model31 block (its model12 block is not the robot it describes).
 IdentifiedRobot LoadRobot(const RobotSourceOptions& options, std::string* description);
 
 }  // namespace h4::host::cli

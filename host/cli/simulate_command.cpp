@@ -64,6 +64,11 @@ void Run(const SimulateOptions& options) {
   if (dataset.rows.empty()) {
     throw std::runtime_error("no planned pose is reachable by the true robot");
   }
+  if (static_cast<size_t>(options.valid) > dataset.rows.size()) {
+    throw std::invalid_argument("--validation " + std::to_string(options.valid) + ": only " +
+                                std::to_string(dataset.rows.size()) +
+                                " poses are planned and reachable");
+  }
 
   fs::create_directories(options.out_dir);
   const fs::path dir(options.out_dir);

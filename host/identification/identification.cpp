@@ -32,15 +32,32 @@ double Rms(const Eigen::VectorXd& r) {
   return r.size() > 0 ? std::sqrt(r.squaredNorm() / static_cast<double>(r.size())) : 0.0;
 }
 
-void FixUserParameters(const IdentificationOptions& options, ParameterVector* p,
-                       std::vector<std::string>* log) {
+// Names are checked up front (RequireIdentifiableInput): every one is known here.
+void FixUserParameters(const IdentificationOptions& options, ParameterVector* p) {
   for (const std::string& name : options.fixed_parameters) {
     const int index = p->IndexOf(name);
-    if (index < 0) {
-      log->push_back("ignored unknown fixed parameter " + name);
-      continue;
-    }
-    p->Fix(index, "fixed by the user");
+    if (index >= 0) p->Fix(index, "fixed by the user");
+  }
+}
+
+// The preconditions of IdentifyFromStart that are the caller's input, not the solver's
+// outcome: calibration poses to fit, and fixed-parameter names the model has (a typo
+// silently ignored would identify a parameter the user meant to keep).
+void RequireIdentifiableInput(const KinematicModel& model, const ParameterVector& start,
+                              const std::vector<DatasetRow>& calib,
+                              const IdentificationOptions& options) {
+  if (calib.size() < kMinimumCalibrationPoses) {
+    throw std::invalid_argument("identification needs at least " +
+                                std::to_string(kMinimumCalibrationPoses) +
+                                " calibration poses, got " + std::to_string(calib.size()) +
+                                " (rows with set 'valid' are held out)");
+  }
+  for (const std::string& name : options.fixed_parameters) {
+    if (start.IndexOf(name) >= 0) continue;
+    std::string known;
+    for (const std::string& n : start.names()) known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("cannot fix '" + name + "': not a parameter of Model " +
+                                model.name() + "; the parameters are: " + known);
   }
 }
 
@@ -70,6 +87,27 @@ std::vector<DatasetRow> ConsistentRows(const KinematicModel& model, const Parame
 
 namespace {
 
+// A stage whose parameters are all fixed (the user fixed X_BC and X_TE in a placement
+// stage, or every parameter): there is nothing to minimise, the start is the solution.
+StageSummary NothingToFit(const IdentificationCost& cost, const ParameterVector& p,
+                          std::chrono::steady_clock::time_point stage_start, StageSummary* stage,
+                          SolutionJacobian* solution) {
+  Eigen::VectorXd r;
+  Eigen::MatrixXd* J_solution = solution != nullptr ? &solution->J : nullptr;
+  std::string why;
+  if (!cost.Evaluate(p, &r, J_solution, &why)) {
+    stage->evaluable = false;
+    stage->message = "cannot evaluate the cost: " + why;
+    return *stage;
+  }
+  if (solution != nullptr) solution->r = r;
+  stage->rms_after = Rms(r);
+  stage->ok = true;
+  stage->message = "nothing to fit: every parameter of this stage is fixed";
+  stage->seconds = SecondsSince(stage_start);
+  return *stage;
+}
+
 // One cost stage: identifiability at the start, NLopt, LM polish. `p` carries the values
 // in and out; its mask on return is this stage's. `placement_only` fixes the kinematics.
 // A parameter the analysis fixes takes its value in `reference` (the start: the a priori
@@ -89,8 +127,7 @@ StageSummary RunStage(CostKind kind, bool placement_only, const KinematicModel& 
   stage.poses = static_cast<int>(rows.size());
   const IdentificationCost cost(kind, model, rows, options.cost);
   p->FreeAll();
-  std::vector<std::string> ignored;
-  FixUserParameters(options, p, &ignored);
+  FixUserParameters(options, p);
   if (placement_only) {
     for (int k = 0; k < p->kinematic_count(); ++k) p->Fix(k, "placement stage");
   }
@@ -103,6 +140,7 @@ StageSummary RunStage(CostKind kind, bool placement_only, const KinematicModel& 
     return stage;
   }
   stage.rms_before = Rms(r);
+  if (p->free_count() == 0) return NothingToFit(cost, *p, stage_start, &stage, solution);
   const auto analysis_start = std::chrono::steady_clock::now();
   const IdentificationCost analysis_cost(kind, model, ConsistentRows(model, *p, rows),
                                          options.cost);
@@ -240,6 +278,7 @@ IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const Param
                                         const std::vector<DatasetRow>& calib,
                                         const std::vector<DatasetRow>& valid,
                                         const IdentificationOptions& options) {
+  RequireIdentifiableInput(model, start, calib, options);
   const auto clock_start = std::chrono::steady_clock::now();
   IdentificationOutcome out{{}, {}, start, {}, {}, {}};
   IdentificationSummary& summary = out.summary;

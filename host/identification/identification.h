@@ -116,7 +116,8 @@ std::vector<DatasetRow> ConsistentRows(const KinematicModel& model, const Parame
                                        const std::vector<DatasetRow>& rows);
 
 /// Identification from an a priori: `apriori_model` (12 or 31) with X_BC / X_TE in its base
-/// frame; `calib` for identification, `valid` held out (may be empty).
+/// frame; `calib` for identification, `valid` held out (may be empty). Throws as
+/// IdentifyFromStart on bad input.
 IdentificationOutcome Identify(const KinematicModel& apriori_model,
                                const RigidTransform& X_BC_apriori,
                                const RigidTransform& X_TE_apriori,
@@ -124,8 +125,15 @@ IdentificationOutcome Identify(const KinematicModel& apriori_model,
                                const std::vector<DatasetRow>& valid,
                                const IdentificationOptions& options);
 
+/// Fewer calibration poses than this cannot be identified (and 3 are the least the prior
+/// analysis of the rotation axis needs).
+inline constexpr size_t kMinimumCalibrationPoses = 3;
+
 /// The same from an explicit start (e.g. a converted Model 12 result) with `apriori` only
 /// reported; parameters fixed by the analysis keep the start's values. No prior analysis.
+/// Throws std::invalid_argument (preconditions on the input, checked before any work):
+/// fewer than kMinimumCalibrationPoses rows in `calib`, or a name in
+/// options.fixed_parameters that is not one of start.names() (the message lists them).
 IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const ParameterVector& apriori,
                                         const ParameterVector& start,
                                         const std::vector<DatasetRow>& calib,

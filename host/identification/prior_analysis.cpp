@@ -1,6 +1,7 @@
 // Prior kinematic analysis of the rotation axis (paper III.B); see prior_analysis.h.
 #include "host/identification/prior_analysis.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -14,12 +15,45 @@ namespace {
 
 constexpr double kDeg = 180.0 / std::numbers::pi;
 
+// Poses at each end of the provisional angle order that are tried as partners.
+constexpr size_t kPartnersPerEnd = 4;
+
 struct AxisEstimate {
   bool ok = false;
   Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
   double spread_deg = 0.0;
   int used = 0;
+  int64_t rotations_compared = 0;
 };
+
+// The poses that can be farthest (in angle) from any pose. The board turns about one
+// axis, so the pose farthest from any pose is one with an extreme angle about it: a
+// provisional axis (pose 0 to the pose farthest from it) orders the poses by angle, and the
+// kPartnersPerEnd lowest and highest are the candidates. This keeps the analysis at
+// O(n log n) (the sort) instead of comparing every pair (11 s for 8,000 rows, days for a
+// million).
+template <typename Relative>
+std::vector<size_t> PartnerCandidates(size_t n, const Relative& relative,
+                                      int64_t* rotations_compared) {
+  std::vector<Eigen::Vector3d> w_from_0(n);
+  size_t farthest = 0;
+  for (size_t k = 0; k < n; ++k) {
+    w_from_0[k] = So3Log(relative(k, 0));
+    if (w_from_0[k].norm() > w_from_0[farthest].norm()) farthest = k;
+  }
+  *rotations_compared += static_cast<int64_t>(n);
+  const Eigen::Vector3d axis = w_from_0[farthest].norm() > 0.0
+                                   ? Eigen::Vector3d(w_from_0[farthest].normalized())
+                                   : Eigen::Vector3d::UnitZ();
+  std::vector<std::pair<double, size_t>> by_angle(n);
+  for (size_t k = 0; k < n; ++k) by_angle[k] = {w_from_0[k].dot(axis), k};
+  std::sort(by_angle.begin(), by_angle.end());
+  std::vector<size_t> candidates;
+  for (size_t i = 0; i < n; ++i) {
+    if (i < kPartnersPerEnd || i + kPartnersPerEnd >= n) candidates.push_back(by_angle[i].second);
+  }
+  return candidates;
+}
 
 // For each pose, the rotation to the pose farthest from it in angle gives one axis
 // estimate (sign-aligned with `reference`); the mean is their angle-weighted sum.
@@ -28,13 +62,15 @@ template <typename Relative>
 AxisEstimate EstimateAxis(size_t n, const Relative& relative, const Eigen::Vector3d& reference,
                           double min_rotation) {
   AxisEstimate out;
+  const std::vector<size_t> candidates = PartnerCandidates(n, relative, &out.rotations_compared);
   std::vector<Eigen::Vector3d> w_per_pose;
   for (size_t j = 0; j < n; ++j) {
     Eigen::Vector3d best = Eigen::Vector3d::Zero();
-    for (size_t k = 0; k < n; ++k) {
+    for (size_t k : candidates) {
       const Eigen::Vector3d w = So3Log(relative(j, k));
       if (w.norm() > best.norm()) best = w;
     }
+    out.rotations_compared += static_cast<int64_t>(candidates.size());
     if (best.norm() < min_rotation) continue;
     if (best.dot(reference) < 0) best = -best;
     w_per_pose.push_back(best);
@@ -83,6 +119,7 @@ PriorAnalysis AnalyzeRotationAxis(const std::vector<DatasetRow>& rows,
   const AxisEstimate in_T = EstimateAxis(
       rows.size(), [&](size_t j, size_t k) { return Eigen::Matrix3d(R(j).transpose() * R(k)); },
       R_TE0 * Eigen::Vector3d::UnitZ(), options.min_rotation);
+  out.rotations_compared = in_C.rotations_compared + in_T.rotations_compared;
   if (!in_C.ok || !in_T.ok) {
     out.message =
         "prior analysis: the poses do not turn enough about the axis (need pairs "

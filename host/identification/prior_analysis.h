@@ -6,6 +6,7 @@
 // z axes agree with the data, to start the identification from a rough a priori.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,8 @@ struct PriorAnalysis {
   double axis_spread_deg = 0.0;
   double axis_spread_T_deg = 0.0;  ///< the same for the axis in T
   int poses_used = 0;
+  /// Relative rotations evaluated (a few per pose: the work is linear in the pose count).
+  int64_t rotations_compared = 0;
   /// Per row: rotation angle about the axis relative to the first row, rad (theta_j - theta_0).
   std::vector<double> relative_theta;
   /// The a priori placements turned (minimally) so that R_BC^T z_B = axis_C and

@@ -4,12 +4,12 @@
 #include "host/report/html_report.h"
 
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
 #include <spdlog/fmt/fmt.h>
 
+#include "common/formats/file_output.h"
 #include "common/text/markup_escape.h"
 #include "host/report/report_figures.h"
 #include "host/report/report_tables.h"
@@ -112,10 +112,7 @@ std::string WriteHtmlReport(const std::string& dir, const ValidationInputs& inpu
   const std::string html = FormatHtmlReport(inputs, report, command);
   std::filesystem::create_directories(dir);
   const std::string path = (std::filesystem::path(dir) / "report.html").string();
-  std::ofstream out(path);
-  out << html;
-  out.close();
-  if (!out) throw std::runtime_error("cannot write " + path);
+  WriteFileAtomically(path, html);
   return path;
 }
 

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "common/formats/file_output.h"
 #include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
 #include "common/formats/robot_yaml.h"
@@ -37,10 +38,7 @@ std::string FormatTruthYaml(const SimulationTruth& truth) {
 }
 
 void WriteTruthYaml(const std::string& path, const SimulationTruth& truth) {
-  const std::string text = FormatTruthYaml(truth);
-  std::ofstream out(path);
-  out << text;
-  if (!out) throw FormatError(path, 0, "", "cannot write the truth file");
+  WriteFileAtomically(path, FormatTruthYaml(truth));
 }
 
 SimulationTruth ParseTruthYaml(const std::string& text, const std::string& source_name) {

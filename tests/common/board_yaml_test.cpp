@@ -175,7 +175,7 @@ TEST(BoardYamlErrors, NonPositiveCountsAndSizes) {
     return text;
   };
   EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(with("tagCols: 6", "tagCols: 0"), "b.yaml"); },
-                        "b.yaml", 3, "tagCols", "expected an integer >= 1, got 0"));
+                        "b.yaml", 3, "tagCols", "expected an integer in [1, 200], got 0"));
   EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(with("tagRows: 6", "tagRows: 6.5"), "b.yaml"); },
                         "b.yaml", 4, "tagRows", "expected an integer"));
   EXPECT_TRUE(
@@ -185,17 +185,43 @@ TEST(BoardYamlErrors, NonPositiveCountsAndSizes) {
       FailsWith([&] { ParseBoardYaml(with("tagSpacing: 0.25", "tagSpacing: 0"), "b.yaml"); },
                 "b.yaml", 6, "tagSpacing", "positive"));
   EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(with("firstId: 0", "firstId: -1"), "b.yaml"); },
-                        "b.yaml", 7, "firstId", ">= 0"));
+                        "b.yaml", 7, "firstId", "in [0, 100000], got -1"));
   EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(with("tagSize: 0.024", "tagSize: 24mm"), "b.yaml"); },
                         "b.yaml", 5, "tagSize", "expected a number, got '24mm'"));
   std::string chess = kCheckerboard;
   chess.replace(chess.find("targetRows: 6"), 13, "targetRows: 1");
-  EXPECT_TRUE(
-      FailsWith([&] { ParseBoardYaml(chess, "c.yaml"); }, "c.yaml", 3, "targetRows", ">= 2"));
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(chess, "c.yaml"); }, "c.yaml", 3, "targetRows",
+                        "in [2, 200], got 1"));
   chess = kCheckerboard;
   chess.erase(chess.find("rowSpacingMeters"));
   EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(chess, "c.yaml"); }, "c.yaml", 0, "rowSpacingMeters",
                         "missing key"));
+}
+
+// Issue 13: tagRows: 2147483647 ended in bad_alloc after 36 s. Counts and sizes are
+// bounded when read, before anything is allocated from them.
+TEST(BoardYamlErrors, CountsAndSizesAboveTheLimitsNameTheField) {
+  const auto with = [](const std::string& base, const std::string& from, const std::string& to) {
+    std::string text = base;
+    text.replace(text.find(from), from.size(), to);
+    return text;
+  };
+  EXPECT_TRUE(FailsWith(
+      [&] { ParseBoardYaml(with(kAprilGrid, "tagRows: 6", "tagRows: 2147483647"), "b.yaml"); },
+      "b.yaml", 4, "tagRows", "expected an integer in [1, 200], got 2147483647"));
+  EXPECT_TRUE(
+      FailsWith([&] { ParseBoardYaml(with(kAprilGrid, "tagCols: 6", "tagCols: 201"), "b.yaml"); },
+                "b.yaml", 3, "tagCols", "[1, 200]"));
+  EXPECT_TRUE(FailsWith(
+      [&] { ParseBoardYaml(with(kAprilGrid, "firstId: 0", "firstId: 4000000000"), "b.yaml"); },
+      "b.yaml", 7, "firstId", "[0, 100000]"));
+  EXPECT_TRUE(FailsWith(
+      [&] { ParseBoardYaml(with(kAprilGrid, "tagSize: 0.024", "tagSize: 1e300"), "b.yaml"); },
+      "b.yaml", 5, "tagSize", "at most 10"));
+  EXPECT_TRUE(FailsWith(
+      [&] { ParseBoardYaml(with(kCheckerboard, "targetRows: 6", "targetRows: 100000"), "b.yaml"); },
+      "b.yaml", 3, "targetRows", "[2, 200]"));
+  EXPECT_NO_THROW(ParseBoardYaml(with(kAprilGrid, "tagRows: 6", "tagRows: 200"), "b.yaml"));
 }
 
 }  // namespace

@@ -71,6 +71,17 @@ TEST(CsvTable, RejectsMalformedStructure) {
                         "after a quoted field"));
 }
 
+// Issue 13: a file with CR-only line ends read as one header line and no row, and
+// identify crashed on it. LF and CRLF are line ends; a CR alone is named.
+TEST(CsvTable, CarriageReturnAloneIsAnErrorNamingTheLine) {
+  EXPECT_TRUE(FailsWith([] { CsvTable::Parse("a,b\r1,2\r3,4\r", "cr.csv"); }, "cr.csv", 1, "",
+                        "carriage return inside a line"));
+  EXPECT_TRUE(FailsWith([] { CsvTable::Parse("a,b\n1,2\r3,4\n", "cr.csv"); }, "cr.csv", 2, "",
+                        "LF or CRLF"));
+  const CsvTable crlf = CsvTable::Parse("a,b\r\n1,2\r\n3,4\r\n", "crlf.csv");
+  EXPECT_EQ(crlf.num_rows(), 2u);
+}
+
 TEST(CsvQuote, QuotesOnlyWhatTheReaderWouldAlter) {
   EXPECT_EQ(CsvQuote("img_001.png"), "img_001.png");
   EXPECT_EQ(CsvQuote("a,b"), "\"a,b\"");

@@ -197,10 +197,32 @@ TEST(DatasetCsvErrors, NonPositiveSigma) {
   const std::string header = kDatasetHeader + ",sigma_t,sigma_r";
   EXPECT_TRUE(FailsWith(
       [&] { ParseDatasetCsv(header + "\n1,100,0,0,0,0,0,0,1,1,0,0,0,-0.001,0.01\n", "d.csv"); },
-      "d.csv", 2, "sigma_t", "positive"));
+      "d.csv", 2, "sigma_t", "expected a standard deviation in"));
   EXPECT_TRUE(FailsWith(
       [&] { ParseDatasetCsv(header + "\n1,100,0,0,0,0,0,0,1,1,0,0,0,0.001,0\n", "d.csv"); },
-      "d.csv", 2, "sigma_r", "positive"));
+      "d.csv", 2, "sigma_r", "expected a standard deviation in"));
+}
+
+// Issue 13: identify looped forever on a sigma below ~1e-154 (1/sigma^2 overflows); such
+// sigmas, and absurdly large ones, are refused at load.
+TEST(DatasetCsvErrors, SigmaOutsidePhysicalBounds) {
+  const std::string header = kDatasetHeader + ",sigma_t,sigma_r";
+  const auto row = [&](const std::string& sigmas) {
+    return header + "\n1,100,0,0,0,0,0,0,1,1,0,0,0," + sigmas + "\n";
+  };
+  EXPECT_TRUE(FailsWith([&] { ParseDatasetCsv(row("1e-160,0.01"), "d.csv"); }, "d.csv", 2,
+                        "sigma_t", "expected a standard deviation in [1e-09, 1] m, got 1e-160"));
+  EXPECT_TRUE(FailsWith([&] { ParseDatasetCsv(row("1e-320,0.01"), "d.csv"); }, "d.csv", 2,
+                        "sigma_t", "expected a standard deviation in"));
+  EXPECT_TRUE(FailsWith([&] { ParseDatasetCsv(row("0.001,1e-200"), "d.csv"); }, "d.csv", 2,
+                        "sigma_r", "rad"));
+  EXPECT_TRUE(FailsWith([&] { ParseDatasetCsv(row("5,0.01"), "d.csv"); }, "d.csv", 2, "sigma_t",
+                        "expected a standard deviation in"));
+  EXPECT_TRUE(FailsWith([&] { ParseDatasetCsv(row("0.001,4"), "d.csv"); }, "d.csv", 2, "sigma_r",
+                        "expected a standard deviation in"));
+  const std::vector<DatasetRow> rows = ParseDatasetCsv(row("1e-9,3.14159"), "d.csv");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].sigma_t, 1e-9);
 }
 
 TEST(DatasetCsvErrors, MissingFileIsNamed) {

@@ -178,6 +178,49 @@ TEST(IdentificationResultErrors, NameTheJsonPath) {
   EXPECT_TRUE(fails("[1, 2]", "", "expected an object"));
 }
 
+// Issue 13: ik and export accepted a result with a negative arm length. Values are
+// checked on load like robot.yaml's, naming the JSON path.
+TEST(IdentificationResultErrors, ValuesTheKinematicsCannotUseNameTheField) {
+  const auto fails = [](const std::string& text, const std::string& field,
+                        const std::string& expected) {
+    return FailsWith([&] { ParseIdentificationResult(text, "r.json"); }, "r.json", 0, field,
+                     expected);
+  };
+  EXPECT_TRUE(fails(ResultWith("\"value\": 0.0610", "\"value\": -0.0610"), "parameters[0].value",
+                    "expected a positive length for h, got -0.061"));
+  EXPECT_TRUE(fails(ResultWith("\"value\": 0.0610", "\"value\": 0"), "parameters[0].value",
+                    "positive length"));
+  EXPECT_TRUE(fails(
+      ResultWith("{\"name\": \"d\", \"value\": 0.0", "{\"name\": \"alpha1\", \"value\": 20.0"),
+      "parameters[1].value", "within one turn"));
+  EXPECT_TRUE(
+      fails(ResultWith("{\"name\": \"d\", \"value\": 0.0", "{\"name\": \"d\", \"value\": 1e308"),
+            "parameters[1].value", "expected |d| <= 10 m"));
+  EXPECT_TRUE(
+      fails(ResultWith("[0, 0, -1.05]", "[0, 0, -1e300]"), "X_BC.translation[2]", "within 10 m"));
+}
+
+// Issue 13: a JSON nested 100,000 deep crashed fk, ik, export, validate and identify --from
+// (the error message printed the value recursively). The depth is checked before parsing.
+TEST(IdentificationResultErrors, DeepNestingIsRefusedBeforeParsing) {
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  EXPECT_TRUE(FailsWith([&] { ParseIdentificationResult(deep, "deep.json"); }, "deep.json", 1, "",
+                        "JSON nested deeper than 64 levels"));
+  const std::string deep_object = "{\n\"a\":\n" + std::string(65, '[') + std::string(65, ']') + "}";
+  EXPECT_TRUE(FailsWith([&] { ParseIdentificationResult(deep_object, "deep.json"); }, "deep.json",
+                        3, "", "nested deeper"));
+  // Brackets inside strings (escaped quotes too) are text, not nesting.
+  const std::string log = "\"log\": [\"\\\"" + std::string(200, '[') + "\"],";
+  const IdentificationResult r = ParseIdentificationResult(
+      ResultWith("\"model\": \"12\",", "\"model\": \"12\", " + log), "r.json");
+  ASSERT_EQ(r.log.size(), 1u);
+  EXPECT_EQ(r.log[0].size(), 201u);
+  // 64 levels are accepted by the depth check (and then fail as the wrong document).
+  const std::string at_limit = std::string(64, '[') + std::string(64, ']');
+  EXPECT_TRUE(FailsWith([&] { ParseIdentificationResult(at_limit, "r.json"); }, "r.json", 0, "",
+                        "expected an object"));
+}
+
 TEST(IdentificationResultErrors, SyntaxErrorNamesTheLine) {
   EXPECT_TRUE(FailsWith(
       [] { ParseIdentificationResult(ResultWith("\"valid\": [4]", "\"valid\": [4,]"), "r.json"); },
@@ -187,6 +230,13 @@ TEST(IdentificationResultErrors, SyntaxErrorNamesTheLine) {
                 "r.json", 4, "", "invalid JSON"));
   EXPECT_TRUE(
       FailsWith([] { ParseIdentificationResult("", "r.json"); }, "r.json", 1, "", "invalid JSON"));
+  // Found by fuzzing: nlohmann's number overflow escaped as its own exception.
+  EXPECT_TRUE(FailsWith(
+      [] {
+        ParseIdentificationResult(ResultWith("\"value\": 0.0610", "\"value\": 0.1E61962439483"),
+                                  "r.json");
+      },
+      "r.json", 0, "", "invalid JSON: number overflow parsing '0.1E61962439483'"));
   const std::string path = TempPath("absent.json");
   EXPECT_TRUE(FailsWith([&] { ReadIdentificationResult(path); }, path, 0, "", "cannot open"));
 }

@@ -82,6 +82,20 @@ TEST(PosesCsvErrors, NameLineAndField) {
                 "p.csv", 3, "pose_id", "duplicate"));
 }
 
+// Issue 13: ik accepted theta = 20 (degrees by mistake) and positions of 1e308 m.
+TEST(PosesCsvErrors, ThetaAndPositionsOutOfRange) {
+  const auto parse = [](const std::string& row) {
+    return [row] { ParsePosesCsv("pose_id,X,Y,Z,theta\n" + row + "\n", "p.csv"); };
+  };
+  EXPECT_TRUE(
+      FailsWith(parse("1,0,0,-0.45,20"), "p.csv", 2, "theta", "expected |theta| <= 3.14159"));
+  EXPECT_TRUE(FailsWith(parse("1,0,0,-0.45,-3.2"), "p.csv", 2, "theta", "got -3.2"));
+  EXPECT_TRUE(FailsWith(parse("1,1e308,0,-0.45,0"), "p.csv", 2, "X", "expected |X| <= 10 m"));
+  EXPECT_TRUE(FailsWith(parse("1,0,-11,-0.45,0"), "p.csv", 2, "Y", "10 m"));
+  EXPECT_TRUE(FailsWith(parse("1,0,0,1e300,0"), "p.csv", 2, "Z", "10 m"));
+  EXPECT_NO_THROW(parse("1,0.2,-0.2,-0.6,3.14159")());
+}
+
 TEST(FkCsv, RoundTripAndHeader) {
   std::vector<FkRow> rows(2);
   rows[0].pose = {5, 0.1, 0.2, -0.45, 0.3};

@@ -218,5 +218,30 @@ TEST(RobotYamlErrors, DuplicateKeyAndBadSyntax) {
                         "model12", "expected a mapping of keys to values, got a list"));
 }
 
+// yaml-cpp recurses once per nesting level without a limit: a file nested 100,000 deep
+// overflowed the stack. The depth is checked before parsing, naming the line.
+TEST(RobotYamlErrors, DeepNestingIsRefusedBeforeParsing) {
+  const std::string flow = kExample + "extra: " + std::string(100000, '[') + "\n";
+  EXPECT_TRUE(FailsWith([&] { ParseRobotYaml(flow, "r.yaml"); }, "r.yaml", 19, "",
+                        "flow collections nested deeper than the limit"));
+  std::string compact = kExample + "extra:\n";
+  for (int i = 0; i < 100000; ++i) compact += "- ";
+  compact += "x\n";
+  EXPECT_TRUE(FailsWith([&] { ParseRobotYaml(compact, "r.yaml"); }, "r.yaml", 20, "",
+                        "block collections nested deeper"));
+  const std::string indented = kExample + "extra:\n" + std::string(300, ' ') + "a: 1\n";
+  EXPECT_TRUE(
+      FailsWith([&] { ParseRobotYaml(indented, "r.yaml"); }, "r.yaml", 20, "", "a line indented"));
+  // Brackets in quotes and comments, and an apostrophe, are not nesting.
+  const std::string text = kExample + "note: don't [ stop\nother: \"" + std::string(100, '[') +
+                           "\"  # " + std::string(100, '{') + "\n";
+  EXPECT_NO_THROW(ParseRobotYaml(text, "r.yaml"));
+  // ... and a bracket in a plain scalar does not switch the block checks off.
+  std::string after_bracket = kExample + "note: a [\nextra:\n";
+  for (int i = 0; i < 100000; ++i) after_bracket += "- ";
+  EXPECT_TRUE(FailsWith([&] { ParseRobotYaml(after_bracket + "x\n", "r.yaml"); }, "r.yaml", 21, "",
+                        "block collections nested deeper"));
+}
+
 }  // namespace
 }  // namespace h4

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <iostream>
 #include <numbers>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -396,6 +397,64 @@ TEST(DatasetSplitTest, UsesTheSetColumnElseASeededDraw) {
   ASSERT_EQ(a.valid.size(), 10u);
   for (size_t k = 0; k < a.valid.size(); ++k) EXPECT_EQ(a.valid[k].pose_id, b.valid[k].pose_id);
   EXPECT_NE(a.how.find("seed 3"), std::string::npos);
+}
+
+// Issue 13: identify crashed (SIGSEGV) on a dataset with no calibration row.
+TEST(IdentificationInputTest, TooFewCalibrationPosesAreRefusedWithTheCount) {
+  const Scenario s = MakeScenario(TrueGeometry::kPaperTable2, 1, false);
+  const RobotDescription robot = PaperAprioriRobot();
+  Model12 apriori(robot.model12);
+  for (size_t n : {size_t{0}, size_t{2}}) {
+    const std::vector<DatasetRow> calib(s.calib.begin(), s.calib.begin() + static_cast<long>(n));
+    try {
+      Identify(apriori, robot.X_BC, robot.X_TE, calib, s.valid, IdentificationOptions{});
+      FAIL() << "no exception for " << n << " calibration poses";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(
+          std::string(e.what()).find("at least 3 calibration poses, got " + std::to_string(n)),
+          std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+// Issue 13: a --fix typo was ignored and the parameter identified.
+TEST(IdentificationInputTest, UnknownFixedParameterIsRefusedListingTheNames) {
+  const Scenario s = MakeScenario(TrueGeometry::kPaperTable2, 1, false);
+  const RobotDescription robot = PaperAprioriRobot();
+  Model12 apriori(robot.model12);
+  IdentificationOptions options;
+  options.fixed_parameters = {"X_BC.tx", "X_BC.tq"};
+  try {
+    Identify(apriori, robot.X_BC, robot.X_TE, s.calib, s.valid, options);
+    FAIL() << "no exception";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("cannot fix 'X_BC.tq': not a parameter of Model 12"), std::string::npos)
+        << what;
+    EXPECT_NE(what.find("h, arm, forearm"), std::string::npos) << what;
+    EXPECT_NE(what.find("X_TE.rz"), std::string::npos) << what;
+  }
+}
+
+// Issue 13: --fix of all twelve X_BC / X_TE parameters crashed: the placement stage had
+// nothing to fit. It now keeps the fixed placement and fits the kinematics.
+TEST(IdentificationInputTest, FixingTheWholePlacementLeavesTheKinematicsToFit) {
+  const Scenario s = MakeScenario(TrueGeometry::kPerturbedModel12, 7, false);
+  Model12 apriori(s.truth.model12);
+  IdentificationOptions options;
+  options.reject_outliers = false;
+  options.fixed_parameters = TransformParameterNames();
+  const IdentificationOutcome out =
+      Identify(apriori, s.truth.X_BC, s.truth.X_TE, s.calib, s.valid, options);
+  ASSERT_FALSE(out.summary.stages.empty());
+  EXPECT_EQ(out.summary.stages.front().message,
+            "nothing to fit: every parameter of this stage is fixed");
+  EXPECT_TRUE(out.parameters.X_BC().IsNearlyEqualTo(s.truth.X_BC, 1e-9, 1e-9));
+  EXPECT_TRUE(out.summary.usable) << out.summary.FullReport();
+  for (const std::string& name : TransformParameterNames()) {
+    EXPECT_TRUE(out.result.Find(name) != nullptr && out.result.Find(name)->fixed) << name;
+  }
 }
 
 }  // namespace

@@ -35,4 +35,127 @@ printf 'pose_id,q1,q2,q3,q4\n1,0,0,0,0\n' > "$dir/joints.csv"
 rc=$?
 [ $rc -eq 3 ] || fail "fk of impossible joints exited $rc, expected 3"
 ! grep -qi nan "$dir/fk.csv" || fail "fk wrote NaN"
+
+# --- Issue 13: crashes, hangs, data loss and silent errors on files and options. -------------
+# `expect_error NAME PATTERN CMD...`: CMD exits 1 (an error, not a crash: 134/139 are
+# signals, 124 a hang stopped by timeout) and its message matches PATTERN.
+expect_error() {
+  local name=$1 pattern=$2
+  shift 2
+  local out rc
+  out=$(timeout 60 "$@" 2>&1)
+  rc=$?
+  [ $rc -eq 1 ] || fail "$name: exit code $rc, expected 1 (error): $out"
+  echo "$out" | grep -q -- "$pattern" || fail "$name: message does not match '$pattern': $out"
+}
+robot="$dir/sim/robot.yaml"
+
+# Datasets with no calibration row: header only, CR-only line ends, a set column of only
+# 'valid', and simulate's output with every pose held out.
+head -1 "$dir/sim/dataset.csv" > "$dir/header_only.csv"
+expect_error "header-only dataset" "header_only.csv: identification needs at least 3 calibration" \
+  "$h4cal" identify --robot "$robot" --data "$dir/header_only.csv" --out "$dir/r.json"
+tr '\n' '\r' < "$dir/sim/dataset.csv" > "$dir/cr_only.csv"
+expect_error "CR-only line ends" "cr_only.csv:1: a carriage return inside a line" \
+  "$h4cal" identify --robot "$robot" --data "$dir/cr_only.csv" --out "$dir/r.json"
+# simulate's columns: pose_id,utime,q1..q4,x,y,z,qw,qx,qy,qz,set,sigma_t,sigma_r
+head -1 "$dir/sim/dataset.csv" | grep -q ',qz,set,sigma_t,sigma_r$' || fail "simulate's columns changed"
+awk -F, 'BEGIN{OFS=","} NR>1 {$14="valid"} {print}' "$dir/sim/dataset.csv" > "$dir/all_valid.csv"
+expect_error "set column of only valid" "all_valid.csv: identification needs at least 3" \
+  "$h4cal" identify --robot "$robot" --data "$dir/all_valid.csv" --out "$dir/r.json"
+"$h4cal" simulate --truth 12 --validation 81 --out-dir "$dir/sim81" > /dev/null 2>&1 ||
+  fail "simulate --validation 81"
+expect_error "simulate --validation 81 output" "identification needs at least 3 calibration" \
+  "$h4cal" identify --robot "$dir/sim81/robot.yaml" --data "$dir/sim81/dataset.csv" \
+  --out "$dir/r.json"
+expect_error "simulate --validation above the plan" "--validation 1000: only 81 poses" \
+  "$h4cal" simulate --truth 12 --validation 1000 --out-dir "$dir/sim1000"
+[ ! -e "$dir/r.json" ] || fail "a result was written for a dataset without calibration rows"
+
+# --validation above half the dataset is an error, not a silent 40.
+cut -d, -f1-13 "$dir/sim/dataset.csv" > "$dir/no_set.csv"
+expect_error "--validation 1000" "--validation 1000: at most half of the 81 poses" \
+  "$h4cal" identify --robot "$robot" --data "$dir/no_set.csv" --validation 1000 --out "$dir/r.json"
+
+# --fix: a typo is an error listing the parameters; all twelve placement parameters fixed
+# is a valid (if poor) identification, not a crash.
+expect_error "--fix typo" "cannot fix 'X_BC.tq'.*X_BC.tx" \
+  "$h4cal" identify --robot "$robot" --data "$dir/sim/dataset.csv" --fix X_BC.tq --out "$dir/r.json"
+placement=X_BC.tx,X_BC.ty,X_BC.tz,X_BC.rx,X_BC.ry,X_BC.rz,X_TE.tx,X_TE.ty,X_TE.tz,X_TE.rx,X_TE.ry,X_TE.rz
+out=$(timeout 120 "$h4cal" identify --robot "$robot" --data "$dir/sim/dataset.csv" \
+  --fix "$placement" --out "$dir/fixed12.json" 2>&1)
+rc=$?
+[ $rc -eq 0 ] || [ $rc -eq 3 ] || fail "identify --fix of all of X_BC, X_TE exited $rc: $out"
+[ -s "$dir/fixed12.json" ] || fail "identify --fix of all of X_BC, X_TE wrote no result"
+
+# A sigma too small to weigh (1/sigma^2 overflows): refused at load, naming line and field.
+awk -F, 'BEGIN{OFS=","} NR==3 {$15="1e-160"} {print}' "$dir/sim/dataset.csv" > "$dir/tiny_sigma.csv"
+expect_error "sigma 1e-160" "tiny_sigma.csv:3: field 'sigma_t': expected a standard deviation in" \
+  "$h4cal" identify --robot "$robot" --data "$dir/tiny_sigma.csv" --out "$dir/r.json"
+
+# JSON nested 100,000 deep: an error naming the file, never a stack overflow.
+{ head -c 100000 /dev/zero | tr '\0' '['; head -c 100000 /dev/zero | tr '\0' ']'; } > "$dir/deep.json"
+for cmd in fk ik export; do
+  case $cmd in
+    fk) args=(--joints "$dir/joints.csv" --out "$dir/deep_out.csv") ;;
+    ik) printf 'pose_id,X,Y,Z,theta\n1,0,0,-0.45,0\n' > "$dir/poses.csv"
+        args=(--poses "$dir/poses.csv" --out "$dir/deep_out.csv") ;;
+    export) args=(--out "$dir/deep_out.yaml") ;;
+  esac
+  expect_error "$cmd on deep JSON" "deep.json:1: JSON nested deeper than 64 levels" \
+    "$h4cal" "$cmd" --result "$dir/deep.json" "${args[@]}"
+done
+expect_error "identify --from deep JSON" "deep.json:1: JSON nested deeper than 64" \
+  "$h4cal" identify --robot "$robot" --data "$dir/sim/dataset.csv" --model 31 \
+  --from "$dir/deep.json" --out "$dir/r.json"
+"$h4cal" identify --robot "$robot" --data "$dir/sim/dataset.csv" --out "$dir/r12.json" \
+  > /dev/null 2>&1 || fail "identify 12"
+mkdir -p "$dir/sim_deep" && cp -r "$dir/sim/"* "$dir/sim_deep/" && cp "$dir/deep.json" "$dir/sim_deep/result12.json"
+expect_error "validate on deep JSON" "result12.json:1: JSON nested deeper than 64" \
+  "$h4cal" validate --sim-dir "$dir/sim_deep"
+
+# An output that is an input is refused, by path, through a hard link, and the file is kept.
+cp "$dir/sim/dataset.csv" "$dir/keep.csv"
+sum_before=$(md5sum < "$dir/keep.csv")
+expect_error "--out equal to --data" "--out .*keep.csv is the same file as --data" \
+  "$h4cal" identify --robot "$robot" --data "$dir/keep.csv" --out "$dir/keep.csv"
+ln -f "$dir/keep.csv" "$dir/keep_link.csv"
+expect_error "--out a hard link of --data" "is the same file as --data" \
+  "$h4cal" identify --robot "$robot" --data "$dir/keep.csv" --out "$dir/keep_link.csv"
+expect_error "fk --out equal to --joints" "is the same file as --joints" \
+  "$h4cal" fk --robot "$robot" --joints "$dir/joints.csv" --out "$dir/./joints.csv"
+[ "$(md5sum < "$dir/keep.csv")" = "$sum_before" ] || fail "the dataset was overwritten"
+
+# A failed write (file size limit: the write fails with EFBIG) keeps the previous result.
+cp "$dir/r12.json" "$dir/previous.json"
+(trap '' XFSZ; ulimit -f 4; "$h4cal" identify --robot "$robot" --data "$dir/sim/dataset.csv" \
+  --out "$dir/r12.json" > "$dir/efbig.log" 2>&1)
+rc=$?
+[ $rc -eq 1 ] || fail "identify with a failing write exited $rc: $(cat "$dir/efbig.log")"
+cmp -s "$dir/r12.json" "$dir/previous.json" || fail "a failed write changed the previous result"
+! ls -a "$dir" | grep -q '\.tmp-' || fail "a temporary file was left behind"
+
+# A result with a negative arm length is refused by ik and export, naming the field.
+sed '/"name": "arm",/{n;s/"value": /"value": -/}' "$dir/r12.json" > "$dir/negative_arm.json"
+grep -q '"value": -0\.' "$dir/negative_arm.json" || fail "the negative arm was not written"
+expect_error "ik with a negative arm" "negative_arm.json: field 'parameters\[1\].value': expected a positive length" \
+  "$h4cal" ik --result "$dir/negative_arm.json" --poses "$dir/poses.csv" --out "$dir/j.csv"
+expect_error "export with a negative arm" "field 'parameters\[1\].value': expected a positive length" \
+  "$h4cal" export --result "$dir/negative_arm.json" --out "$dir/c.yaml"
+
+# ik poses out of range: theta in degrees by mistake, an absurd position.
+printf 'pose_id,X,Y,Z,theta\n1,0,0,-0.45,20\n' > "$dir/theta_deg.csv"
+expect_error "ik theta 20" "theta_deg.csv:2: field 'theta': expected |theta| <= " \
+  "$h4cal" ik --robot "$robot" --poses "$dir/theta_deg.csv" --out "$dir/j.csv"
+printf 'pose_id,X,Y,Z,theta\n1,1e308,0,-0.45,0\n' > "$dir/huge.csv"
+expect_error "ik X 1e308" "huge.csv:2: field 'X'" \
+  "$h4cal" ik --robot "$robot" --poses "$dir/huge.csv" --out "$dir/j.csv"
+
+# fk --robot on a Model 31 export would use its a priori model12 block: refused.
+"$h4cal" identify --robot "$robot" --data "$dir/sim/dataset.csv" --model 31 \
+  --from "$dir/r12.json" --out "$dir/r31from12.json" > /dev/null 2>&1 || fail "identify 31 --from"
+"$h4cal" export --result "$dir/r31from12.json" --robot "$robot" --out "$dir/c31.yaml" \
+  > /dev/null 2>&1 || fail "export 31"
+expect_error "fk --robot on a Model 31 export" "c31.yaml: has a model31 block" \
+  "$h4cal" fk --robot "$dir/c31.yaml" --joints "$dir/joints.csv" --out "$dir/fk31.csv"
 echo "PASS"
