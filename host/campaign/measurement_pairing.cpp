@@ -74,12 +74,13 @@ MessageProblem CheckBoardPose(const h4msgs::board_pose_t& msg, std::string* why)
   }
   for (int i = 0; i < 6; ++i) {
     const double sigma = std::sqrt(msg.covariance[i * 6 + i]);
-    if (sigma < kMinMeasurementSigma || sigma > kMaxMeasurementSigma) {
+    const SigmaBounds& bounds = i < 3 ? kSigmaTBounds : kSigmaRBounds;
+    if (sigma < bounds.min || sigma > bounds.max) {
       *why = fmt::format(
           "board pose {}: covariance diagonal element {} ({:g}) is a standard "
           "deviation of {:g} {}, outside [{:g}, {:g}]: not a camera measurement",
-          msg.pose_id, i, msg.covariance[i * 6 + i], sigma, i < 3 ? "m" : "rad",
-          kMinMeasurementSigma, kMaxMeasurementSigma);
+          msg.pose_id, i, msg.covariance[i * 6 + i], sigma, i < 3 ? "m" : "rad", bounds.min,
+          bounds.max);
       return MessageProblem::kNonPhysicalCovariance;
     }
   }

@@ -31,20 +31,18 @@ enum class MessageProblem {
   kNone,
   kImpossibleValues,  ///< non-finite, non-unit quaternion, board behind the camera, ...
   kWrongJointCount,   ///< an H4 has 4 joints
-  /// a positive covariance whose standard deviations no camera measures: below
-  /// kMinMeasurementSigma (a 1e-320 variance would give the dataset a sigma of ~1e-160,
-  /// and the identification weights of 1e320) or above kMaxMeasurementSigma
+  /// a positive covariance whose standard deviations no camera measures (outside the
+  /// dataset's kSigmaTBounds / kSigmaRBounds: a 1e-320 variance would give the dataset a
+  /// sigma of ~1e-160, and the identification weights of 1e320)
   kNonPhysicalCovariance,
 };
 
-/// [m or rad] Bounds on each standard deviation of a board pose's covariance diagonal. No
-/// camera measures a board to a picometre (or picoradian): such a sigma comes from a fit
-/// with next to no residual, and would weigh its row 1e24 times. The floor stays far below
-/// what the fit reports for rendered images (the live_campaign test's camera: sigma_t from
-/// 1.1e-6 m, sigma_r from 7.2e-6 rad), so the simulated camera is not refused. A metre (or
-/// a radian) says nothing of the robot.
-inline constexpr double kMinMeasurementSigma = 1e-12;
-inline constexpr double kMaxMeasurementSigma = 1.0;
+/// Bounds on each standard deviation of a board pose's covariance diagonal: the dataset's
+/// own (kSigmaTBounds for the translation, m; kSigmaRBounds for the rotation, rad), so that
+/// every row the campaign records loads back. No camera measures a board to a nanometre:
+/// such a sigma comes from a fit with next to no residual and would weigh its row 1e18
+/// times more than a real one. The floor stays far below what the fit reports for rendered
+/// images (the live_campaign test's camera: sigma_t from 1.1e-6 m, sigma_r from 7.2e-6 rad).
 
 /// Checks a joint state and converts it; `why` says what is wrong.
 MessageProblem CheckJointState(const h4msgs::joint_state_t& msg, JointReading* reading,
@@ -53,7 +51,7 @@ MessageProblem CheckJointState(const h4msgs::joint_state_t& msg, JointReading* r
 /// Checks the numbers of a board pose whose status is OK: finite translation with the board
 /// in front of the camera (z > 0) and within 20 m, unit quaternion (1e-3), finite covariance
 /// with a positive diagonal (else kImpossibleValues) whose square roots lie within
-/// [kMinMeasurementSigma, kMaxMeasurementSigma] (else kNonPhysicalCovariance). Statuses
+/// the dataset's kSigmaTBounds / kSigmaRBounds (else kNonPhysicalCovariance). Statuses
 /// other than OK are not "impossible": the caller retries them.
 MessageProblem CheckBoardPose(const h4msgs::board_pose_t& msg, std::string* why);
 
