@@ -121,6 +121,7 @@ TEST(BoardRendererTest, GradientScalesBlackAndWhiteLevelsByTheRequestedFraction)
   board.cols = 1;
   board.rows = 1;
   board.tag_size = 0.08;  // 80 px tag, 10 px cells; white margin of 80 px around it
+  board.layout = AprilGridLayout::kH4Legacy;  // 1-cell border, no corner squares
   RenderOptions options = RenderOptions::Clean();
   options.blur_sigma_px = 0;
   options.noise_sigma = 0;

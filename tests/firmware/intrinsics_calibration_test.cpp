@@ -310,6 +310,7 @@ struct TempDir {
 std::vector<std::string> RenderGridViews(const CameraIntrinsics& camera, int count,
                                          const fs::path& dir) {
   AprilGridSpec grid;  // 6 x 6 tag36h11, 30 mm, spacing 0.25 (boards/aprilgrid_6x6_30mm.yaml)
+  grid.layout = AprilGridLayout::kH4Legacy;
   RenderOptions render;
   render.samples_per_pixel = 34;
   const BoardRenderer renderer(grid, camera, render);

@@ -142,7 +142,7 @@ TEST(CheckBoardPoseTest, RefusesStandardDeviationsNoCameraMeasures) {
   EXPECT_EQ(CheckBoardPose(m, &why), MessageProblem::kNonPhysicalCovariance);
 
   m = GoodBoardPose();
-  for (int i = 0; i < 6; ++i) m.covariance[i * 7] = 1e-20;  // 100 pm, 100 prad: still accepted
+  for (int i = 0; i < 6; ++i) m.covariance[i * 7] = 1e-16;  // 10 nm, 10 nrad: still accepted
   EXPECT_EQ(CheckBoardPose(m, &why), MessageProblem::kNone) << why;
 }
 
