@@ -198,6 +198,26 @@ double PixelScaleAt(const IdealPixelMap& map, const Eigen::Vector2d& uv) {
   return (map.At(mu + 1, mv) - map.At(mu, mv)).norm();
 }
 
+// Thickness of the quad's black border next to side k (from corner k to k+1), ideal
+// coordinates: the distance to the opposite side over the cell count; 0 when unknown.
+double BorderThickness(const std::array<Eigen::Vector2d, 4>& ideal, size_t k, int border_cells) {
+  if (border_cells <= 0) return 0;
+  const Eigen::Vector2d mid = 0.5 * (ideal[k] + ideal[(k + 1) % 4]);
+  const Eigen::Vector2d& c = ideal[(k + 2) % 4];
+  const Eigen::Vector2d& d = ideal[(k + 3) % 4];
+  Eigen::Vector2d n_opposite(-(d - c).y(), (d - c).x());
+  n_opposite.normalize();
+  return std::abs(n_opposite.dot(mid - c)) / border_cells;
+}
+
+// How far the band reaches into the dark side: band_px, less where the border's inner
+// edge (and its blurred tail, blur_sigma in ideal coordinates) would enter it.
+double DarkSideWidth(const EdgeFitOptions& options, double thickness, double blur_sigma) {
+  if (thickness <= 0) return options.band_px;
+  const double clearance = options.inner_clearance_px + options.inner_clearance_blur * blur_sigma;
+  return std::clamp(thickness - clearance, 1.0, options.band_px);
+}
+
 }  // namespace
 
 bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
@@ -223,20 +243,13 @@ bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
     n.normalize();
     if (n.dot(line.mid - centre) < 0) n = -n;  // outward: from the dark border to the white
     line.phi = std::atan2(n.y(), n.x());
-    double band_in = options.band_px;
-    if (options.border_cells > 0) {
-      // Border thickness: distance to the opposite side over the cell count.
-      const Eigen::Vector2d& c = ideal[(k + 2) % 4];
-      const Eigen::Vector2d& d = ideal[(k + 3) % 4];
-      Eigen::Vector2d n_opposite(-(d - c).y(), (d - c).x());
-      n_opposite.normalize();
-      const double thickness = std::abs(n_opposite.dot(line.mid - c)) / options.border_cells;
-      band_in = std::clamp(thickness - 2.5, 1.0, options.band_px);
-    }
+    const double thickness = BorderThickness(ideal, k, options.border_cells);
     const double pixel_scale = PixelScaleAt(map, (*corners)[k]);
     double level_a = 0, level_b = 0, s = 0.8;
     bool levels_set = false;
     for (int pass = 0; pass < options.passes; ++pass) {
+      // s is the previous pass's fitted blur (the initial guess on the first pass).
+      const double band_in = DarkSideWidth(options, thickness, s);
       const std::vector<Sample> samples = SelectBand(
           image32f, map, line, (*corners)[k], (*corners)[(k + 1) % 4], a, b, options, band_in);
       if (static_cast<int>(samples.size()) < options.min_pixels) return false;
