@@ -8,6 +8,7 @@
 // Usage: h4_measure_response [scenes=12] [erosion=affine|global|tag|none] [seed=1]
 //        [covariance=residual|group] [corner_floor_px=0.0025]
 //        [inner_clearance_px=2.5] [inner_clearance_blur=0] [conditions=all|blur]
+//        [inner_edge=inner|clear]
 // (the last three: the edge fit's dark-side clearance from the tag border's inner edge,
 // edge_refinement.h; "blur" runs only the blur 1.4 rows).
 #include <chrono>
@@ -85,6 +86,7 @@ int main(int argc, char** argv) {
   if (argc > 6) edge_fit.inner_clearance_px = std::atof(argv[6]);
   if (argc > 7) edge_fit.inner_clearance_blur = std::atof(argv[7]);
   const bool blur_rows_only = argc > 8 && std::string(argv[8]) == "blur";
+  if (argc > 9) edge_fit.model_inner_edge = std::string(argv[9]) != "clear";
   options.pose.covariance =
       covariance == "group" ? CovarianceModel::kEdgeGroup : CovarianceModel::kResidual;
   options.pose.erosion = erosion == "none"     ? ErosionModel::kNone
@@ -99,10 +101,10 @@ int main(int argc, char** argv) {
   }
   std::printf(
       "erosion model %s, covariance %s, corner floor %.4f px, %d scenes per condition, seed %llu\n"
-      "dark-side clearance %.2f px + %.2f blur sigma\n",
+      "dark-side clearance %.2f px + %.2f blur sigma, inner edge %s\n",
       erosion.c_str(), covariance.c_str(), options.pose.corner_floor_px, count,
       static_cast<unsigned long long>(seed), edge_fit.inner_clearance_px,
-      edge_fit.inner_clearance_blur);
+      edge_fit.inner_clearance_blur, edge_fit.model_inner_edge ? "modelled" : "kept clear");
   std::printf("%-46s %6s %9s %10s %7s %7s %10s\n", "condition", "scenes", "e_t_mm", "e_r_deg",
               "sig/t", "sig/r", "erosion_px");
   const auto poses = scenes::RandomPoses(count, seed);
