@@ -269,9 +269,12 @@ double DarkSideWidth(const EdgeFitOptions& options, double thickness, double blu
 // Value of the pixel nearest to the ideal point p, or NaN outside the image.
 double ValueAt(const cv::Mat& image, const IdealPixelMap& map, const Eigen::Vector2d& p) {
   const Eigen::Vector2d uv = map.PixelFromIdeal(p);
+  // Bounds checked in floating point first: rounding a NaN or huge value is not defined.
+  if (!(uv.x() > -0.5 && uv.y() > -0.5 && uv.x() < image.cols - 0.5 && uv.y() < image.rows - 0.5)) {
+    return NAN;
+  }
   const int u = static_cast<int>(std::lround(uv.x())), v = static_cast<int>(std::lround(uv.y()));
-  if (!uv.allFinite() || u < 0 || v < 0 || u >= image.cols || v >= image.rows) return NAN;
-  return image.at<float>(v, u);
+  return image.at<float>(std::min(v, image.rows - 1), std::min(u, image.cols - 1));
 }
 
 // Reads, from the image, which cells of the row inside side a -> b (outward normal n) are
