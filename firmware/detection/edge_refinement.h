@@ -30,9 +30,10 @@ struct EdgeFitOptions {
   /// 1 px. Used only with border_cells > 0.
   double inner_clearance_px = 2.5;
   double inner_clearance_blur = 0.0;
-  /// Fit the inner edge too where the data cell next to the border is white (cells read
-  /// from the image), I = a + b (F(d) + w(t) (1 - F(d + thickness))), instead of only
-  /// keeping clear of it. Used only with border_cells > 0.
+  /// Also fit the inner edge's tail that still reaches the band where the data cell next to
+  /// the border is white (cells read from the image at their centres),
+  /// I = a + b (F(d) + w(t) (1 - F(d + thickness))): a wider clearance would leave too few
+  /// dark pixels on borders of 5-7 px. Used only with border_cells > 0.
   bool model_inner_edge = true;
   double corner_clearance_px = 3.0;  ///< pixels this close to a corner (along the side) skipped
   int passes = 2;                    ///< select the band around the current line this many times
