@@ -7,6 +7,10 @@
 // <= 0.01 mm).
 // Usage: h4_measure_response [scenes=12] [erosion=affine|global|tag|none] [seed=1]
 //        [covariance=residual|group] [corner_floor_px=0.0025]
+//        [inner_clearance_px=2.5] [inner_clearance_blur=0] [conditions=all|blur]
+//        [inner_edge=inner|clear]
+// (the last three: the edge fit's dark-side clearance from the tag border's inner edge,
+// edge_refinement.h; "blur" runs only the blur 1.4 rows).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -78,6 +82,11 @@ int main(int argc, char** argv) {
   const std::string covariance = argc > 4 ? argv[4] : "residual";
   PipelineOptions options;
   if (argc > 5) options.pose.corner_floor_px = std::atof(argv[5]);
+  EdgeFitOptions& edge_fit = options.detector.edge_fit;
+  if (argc > 6) edge_fit.inner_clearance_px = std::atof(argv[6]);
+  if (argc > 7) edge_fit.inner_clearance_blur = std::atof(argv[7]);
+  const bool blur_rows_only = argc > 8 && std::string(argv[8]) == "blur";
+  if (argc > 9) edge_fit.model_inner_edge = std::string(argv[9]) != "clear";
   options.pose.covariance =
       covariance == "group" ? CovarianceModel::kEdgeGroup : CovarianceModel::kResidual;
   options.pose.erosion = erosion == "none"     ? ErosionModel::kNone
@@ -91,15 +100,18 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::printf(
-      "erosion model %s, covariance %s, corner floor %.4f px, %d scenes per condition, seed %llu\n",
+      "erosion model %s, covariance %s, corner floor %.4f px, %d scenes per condition, seed %llu\n"
+      "dark-side clearance %.2f px + %.2f blur sigma, inner edge %s\n",
       erosion.c_str(), covariance.c_str(), options.pose.corner_floor_px, count,
-      static_cast<unsigned long long>(seed));
+      static_cast<unsigned long long>(seed), edge_fit.inner_clearance_px,
+      edge_fit.inner_clearance_blur, edge_fit.model_inner_edge ? "modelled" : "kept clear");
   std::printf("%-46s %6s %9s %10s %7s %7s %10s\n", "condition", "scenes", "e_t_mm", "e_r_deg",
               "sig/t", "sig/r", "erosion_px");
   const auto poses = scenes::RandomPoses(count, seed);
   cv::RNG rng(seed + 7);
   const auto start = std::chrono::steady_clock::now();
   for (const Condition& condition : Conditions()) {
+    if (blur_rows_only && condition.name.rfind("blur 1.4", 0) != 0) continue;
     Sums sums;
     for (size_t i = 0; i < poses.size(); ++i) {
       RenderOptions render;

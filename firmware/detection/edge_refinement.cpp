@@ -14,6 +14,7 @@ namespace {
 struct Sample {
   Eigen::Vector2d q;  // ideal coordinates relative to the side's midpoint
   double value;
+  double t;  // ideal distance along the side from its first corner
 };
 
 struct Line {
@@ -52,7 +53,7 @@ std::vector<Sample> SelectBand(const cv::Mat& image, const IdealPixelMap& map, c
       if (d > options.band_px || d < -band_in) continue;
       const double t = along.dot(map.At(u, v) - a);
       if (t < options.corner_clearance_px || t > length - options.corner_clearance_px) continue;
-      samples.push_back({q, static_cast<double>(row[u])});
+      samples.push_back({q, static_cast<double>(row[u]), t});
     }
   }
   return samples;
@@ -122,9 +123,53 @@ Profile ProfileFor(const Eigen::Vector2d& n, double pixel_scale) {
   return p;
 }
 
-// Gauss-Newton on (phi, c, a, b, s) for I = a + b F(n . q - c; s).
-bool FitEdge(const std::vector<Sample>& samples, int iterations, double pixel_scale, Line* line,
-             double* a, double* b, double* s, double* rms) {
+// The black border's inner edge, `thickness` inside the side, seen where the data cell
+// next to the border is white: a rectangle [t_j, t_j + cell] along the side, beyond
+// d = -thickness. Blurred by a Gaussian it adds w(t) (1 - F(d + thickness)) to the unit
+// step, w(t) = sum over white cells of Phi((t - t_j) / s) - Phi((t - t_j - cell) / s)
+// (separable; the pixel's width along the side is neglected there).
+struct InnerEdge {
+  bool enabled = false;
+  double thickness = 0;
+  double cell = 0;
+  std::vector<bool> white;  // cells along the side's inner row, from its first corner
+
+  bool WhiteAt(int j) const {
+    return j >= 0 && j < static_cast<int>(white.size()) && white[static_cast<size_t>(j)];
+  }
+  // White fraction seen at t (only the cell at t and its neighbours reach it).
+  double Weight(double t, double s) const {
+    const int j0 = static_cast<int>(std::floor(t / cell));
+    if (WhiteAt(j0 - 1) == WhiteAt(j0) && WhiteAt(j0) == WhiteAt(j0 + 1))
+      return WhiteAt(j0) ? 1 : 0;
+    double w = 0;
+    for (int j = j0 - 1; j <= j0 + 1; ++j) {
+      if (!WhiteAt(j)) continue;
+      w += PhiAndPdf((t - j * cell) / s).phi - PhiAndPdf((t - (j + 1) * cell) / s).phi;
+    }
+    return w;
+  }
+};
+
+// Adds the inner edge's term to a sample's unit profile F and its derivatives (w(t)'s own
+// dependence on s is left out of the Jacobian: with an exact model the residuals vanish at
+// the true edge, which stays the fixed point; the approximation only slows convergence).
+void AddInnerEdge(const InnerEdge& inner, const Profile& profile, double t, double d, double s,
+                  double* F, double* dF_dd, double* dF_ds) {
+  const double d_inner = d + inner.thickness;
+  if (!inner.enabled || d_inner > 4.0 * s + 1.0) return;  // tail below 3e-5
+  const double w = inner.Weight(t, s);
+  if (w == 0) return;
+  double G, dG_dd, dG_ds;
+  profile.Eval(d_inner, s, &G, &dG_dd, &dG_ds);
+  *F += w * (1.0 - G);
+  *dF_dd -= w * dG_dd;
+  *dF_ds -= w * dG_ds;
+}
+
+// Gauss-Newton on (phi, c, a, b, s) for I = a + b (F(n . q - c; s) + inner edge term).
+bool FitEdge(const std::vector<Sample>& samples, int iterations, double pixel_scale,
+             const InnerEdge& inner, Line* line, double* a, double* b, double* s, double* rms) {
   for (int it = 0; it < iterations; ++it) {
     Eigen::Matrix<double, 5, 5> H5 = Eigen::Matrix<double, 5, 5>::Zero();
     Eigen::Matrix<double, 5, 1> g = Eigen::Matrix<double, 5, 1>::Zero();
@@ -135,6 +180,7 @@ bool FitEdge(const std::vector<Sample>& samples, int iterations, double pixel_sc
       const double d = n.dot(sample.q) - line->c;
       double F, dF_dd, dF_ds;
       profile.Eval(d, *s, &F, &dF_dd, &dF_ds);
+      AddInnerEdge(inner, profile, sample.t, d, *s, &F, &dF_dd, &dF_ds);
       const double r = *a + *b * F - sample.value;
       const double dI_dd = *b * dF_dd;
       Eigen::Matrix<double, 5, 1> J;
@@ -158,7 +204,9 @@ bool FitEdge(const std::vector<Sample>& samples, int iterations, double pixel_sc
   const Profile profile = ProfileFor(n, pixel_scale);
   for (const Sample& sample : samples) {
     double F, dF_dd, dF_ds;
-    profile.Eval(n.dot(sample.q) - line->c, *s, &F, &dF_dd, &dF_ds);
+    const double d = n.dot(sample.q) - line->c;
+    profile.Eval(d, *s, &F, &dF_dd, &dF_ds);
+    AddInnerEdge(inner, profile, sample.t, d, *s, &F, &dF_dd, &dF_ds);
     const double r = *a + *b * F - sample.value;
     sum += r * r;
   }
@@ -198,6 +246,64 @@ double PixelScaleAt(const IdealPixelMap& map, const Eigen::Vector2d& uv) {
   return (map.At(mu + 1, mv) - map.At(mu, mv)).norm();
 }
 
+// Thickness of the quad's black border next to side k (from corner k to k+1), ideal
+// coordinates: the distance to the opposite side over the cell count; 0 when unknown.
+double BorderThickness(const std::array<Eigen::Vector2d, 4>& ideal, size_t k, int border_cells) {
+  if (border_cells <= 0) return 0;
+  const Eigen::Vector2d mid = 0.5 * (ideal[k] + ideal[(k + 1) % 4]);
+  const Eigen::Vector2d& c = ideal[(k + 2) % 4];
+  const Eigen::Vector2d& d = ideal[(k + 3) % 4];
+  Eigen::Vector2d n_opposite(-(d - c).y(), (d - c).x());
+  n_opposite.normalize();
+  return std::abs(n_opposite.dot(mid - c)) / border_cells;
+}
+
+// How far the band reaches into the dark side: band_px, less where the border's inner
+// edge (and its blurred tail, blur_sigma in ideal coordinates) would enter it.
+double DarkSideWidth(const EdgeFitOptions& options, double thickness, double blur_sigma) {
+  if (thickness <= 0) return options.band_px;
+  const double clearance = options.inner_clearance_px + options.inner_clearance_blur * blur_sigma;
+  return std::clamp(thickness - clearance, 1.0, options.band_px);
+}
+
+// Value of the pixel nearest to the ideal point p, or NaN outside the image.
+double ValueAt(const cv::Mat& image, const IdealPixelMap& map, const Eigen::Vector2d& p) {
+  const Eigen::Vector2d uv = map.PixelFromIdeal(p);
+  // Bounds checked in floating point first: rounding a NaN or huge value is not defined.
+  if (!(uv.x() > -0.5 && uv.y() > -0.5 && uv.x() < image.cols - 0.5 && uv.y() < image.rows - 0.5)) {
+    return NAN;
+  }
+  const int u = static_cast<int>(std::lround(uv.x())), v = static_cast<int>(std::lround(uv.y()));
+  return image.at<float>(std::min(v, image.rows - 1), std::min(u, image.cols - 1));
+}
+
+// Reads, from the image, which cells of the row inside side a -> b (outward normal n) are
+// white: each cell's centre against the mean of the border's black corner cells and the
+// white quiet zone outside the side. The tag was decoded, so its cells are clear. The
+// border's own cells at both ends stay black.
+InnerEdge ReadInnerEdge(const cv::Mat& image, const IdealPixelMap& map, const Eigen::Vector2d& a,
+                        const Eigen::Vector2d& b, const Eigen::Vector2d& n, double thickness,
+                        int border_cells) {
+  InnerEdge inner;
+  if (border_cells < 3 || thickness <= 0) return inner;
+  const Eigen::Vector2d along = (b - a).normalized();
+  inner.thickness = thickness;
+  inner.cell = (b - a).norm() / border_cells;
+  const auto centre = [&](int j) {
+    return a + (j + 0.5) * inner.cell * along - 1.5 * thickness * n;
+  };
+  const double black =
+      0.5 * (ValueAt(image, map, centre(0)) + ValueAt(image, map, centre(border_cells - 1)));
+  const double white = ValueAt(image, map, 0.5 * (a + b) + 1.5 * thickness * n);
+  if (!(white - black > 1.0)) return inner;
+  inner.white.assign(static_cast<size_t>(border_cells), false);
+  for (int j = 1; j + 1 < border_cells; ++j) {
+    inner.white[static_cast<size_t>(j)] = ValueAt(image, map, centre(j)) > 0.5 * (black + white);
+  }
+  inner.enabled = true;
+  return inner;
+}
+
 }  // namespace
 
 bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
@@ -223,20 +329,17 @@ bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
     n.normalize();
     if (n.dot(line.mid - centre) < 0) n = -n;  // outward: from the dark border to the white
     line.phi = std::atan2(n.y(), n.x());
-    double band_in = options.band_px;
-    if (options.border_cells > 0) {
-      // Border thickness: distance to the opposite side over the cell count.
-      const Eigen::Vector2d& c = ideal[(k + 2) % 4];
-      const Eigen::Vector2d& d = ideal[(k + 3) % 4];
-      Eigen::Vector2d n_opposite(-(d - c).y(), (d - c).x());
-      n_opposite.normalize();
-      const double thickness = std::abs(n_opposite.dot(line.mid - c)) / options.border_cells;
-      band_in = std::clamp(thickness - 2.5, 1.0, options.band_px);
-    }
+    const double thickness = BorderThickness(ideal, k, options.border_cells);
     const double pixel_scale = PixelScaleAt(map, (*corners)[k]);
+    const InnerEdge inner =
+        options.model_inner_edge
+            ? ReadInnerEdge(image32f, map, a, b, line.n(), thickness, options.border_cells)
+            : InnerEdge{};
     double level_a = 0, level_b = 0, s = 0.8;
     bool levels_set = false;
     for (int pass = 0; pass < options.passes; ++pass) {
+      // s is the previous pass's fitted blur (the initial guess on the first pass).
+      const double band_in = DarkSideWidth(options, thickness, s);
       const std::vector<Sample> samples = SelectBand(
           image32f, map, line, (*corners)[k], (*corners)[(k + 1) % 4], a, b, options, band_in);
       if (static_cast<int>(samples.size()) < options.min_pixels) return false;
@@ -257,7 +360,8 @@ bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
         levels_set = true;
       }
       double rms = 0;
-      if (!FitEdge(samples, options.iterations, pixel_scale, &line, &level_a, &level_b, &s, &rms)) {
+      if (!FitEdge(samples, options.iterations, pixel_scale, inner, &line, &level_a, &level_b, &s,
+                   &rms)) {
         return false;
       }
       // Something else in the band (an occluder, a shadow, a neighbour): not a clean step.
