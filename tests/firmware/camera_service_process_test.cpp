@@ -64,11 +64,10 @@ TEST(CameraServiceProcessTest, ChildInNamespace) {
       channels::kCameraStatus, [&](const h4msgs::camera_status_t& m) { statuses.push_back(m); });
 
   pid_t pid = 0;
-  // The clean renderer: this checks the process and the bus, with the depth tolerance of
-  // the measuring pipeline on ideal images (the processed preset's bias is measured by
-  // firmware/bench/measure_accuracy).
-  ASSERT_TRUE(Spawn({binary, "run", "--source", "sim", "--sim-preset", "clean", "--board", board,
-                     "--camera", camera, "--lcm-url", kUrl, "--camera-id", "proc-cam"},
+  // The processed preset, as a camera module delivers its frames (sRGB-like response,
+  // defocus, gradient, shot noise), with the depth tolerance below.
+  ASSERT_TRUE(Spawn({binary, "run", "--source", "sim", "--sim-preset", "processed", "--board",
+                     board, "--camera", camera, "--lcm-url", kUrl, "--camera-id", "proc-cam"},
                     &pid));
 
   // Wait for the first heartbeat: the service is up and subscribed.

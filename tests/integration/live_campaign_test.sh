@@ -65,9 +65,9 @@ PLAN
 
 "$h4cal" sim-robot --truth sim/truth.yaml --joint-speed 2 --settle-time 0.1 > sim_robot.log 2>&1 &
 robot=$!; pids+=($robot)
-# The clean renderer: the held-out thresholds below are those of the pipeline on ideal
-# images (the processed preset's camera bias is measured by firmware/bench/measure_accuracy).
-"$h4cam" run --source sim --sim-preset clean --board "$src/boards/aprilgrid_6x6_30mm.yaml" \
+# The processed preset (the default): frames as a camera module's ISP delivers them
+# (sRGB-like response, defocus, illumination gradient, shot noise).
+"$h4cam" run --source sim --sim-preset processed --board "$src/boards/aprilgrid_6x6_30mm.yaml" \
   --camera "$src/boards/sim_camera_1024x768.yaml" --camera-id sim > camera.log 2>&1 &
 camera=$!; pids+=($camera)
 lcm-logger --quiet -f campaign.lcmlog > logger.log 2>&1 &
