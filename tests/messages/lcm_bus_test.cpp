@@ -16,21 +16,13 @@
 #include <sys/wait.h>
 
 #include "messages/channels.h"
+#include "tests/messages/wire_bytes.h"
 
 namespace h4::bus {
 namespace {
 
-template <class Msg>
-std::vector<uint8_t> Encode(const Msg& msg) {
-  std::vector<uint8_t> bytes(static_cast<size_t>(msg.getEncodedSize()));
-  msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  return bytes;
-}
-
-void PutBigEndian32(std::vector<uint8_t>* bytes, size_t pos, int32_t value) {
-  const auto u = static_cast<uint32_t>(value);
-  for (int i = 0; i < 4; ++i) (*bytes)[pos + static_cast<size_t>(i)] = uint8_t(u >> (24 - 8 * i));
-}
+using wire_bytes::Encode;
+using wire_bytes::PutBigEndian32;
 
 h4msgs::board_pose_t GoodBoardPose(int64_t pose_id) {
   h4msgs::board_pose_t m{};

@@ -13,17 +13,13 @@
 
 #include "messages/bus/lcm_bus.h"
 #include "messages/bus/wire_layouts.h"
+#include "tests/messages/wire_bytes.h"
 
 namespace h4::bus {
 namespace {
 
-template <class Msg>
-std::vector<uint8_t> Encode(const Msg& msg) {
-  std::vector<uint8_t> bytes(static_cast<size_t>(msg.getEncodedSize()));
-  EXPECT_EQ(msg.encode(bytes.data(), 0, static_cast<int>(bytes.size())),
-            static_cast<int>(bytes.size()));
-  return bytes;
-}
+using wire_bytes::Encode;
+using wire_bytes::PutBigEndian32;
 
 template <class Msg>
 bool Accepted(const std::vector<uint8_t>& bytes, std::string* why = nullptr) {
@@ -32,11 +28,6 @@ bool Accepted(const std::vector<uint8_t>& bytes, std::string* why = nullptr) {
       CheckEncodedMessage(bytes.data(), bytes.size(), LayoutOf<Msg>(), WireLimits{}, &reason);
   if (why) *why = reason;
   return ok;
-}
-
-void PutBigEndian32(std::vector<uint8_t>* bytes, size_t pos, int32_t value) {
-  const auto u = static_cast<uint32_t>(value);
-  for (int i = 0; i < 4; ++i) (*bytes)[pos + static_cast<size_t>(i)] = uint8_t(u >> (24 - 8 * i));
 }
 
 h4msgs::board_pose_t SampleBoardPose() {
