@@ -39,7 +39,7 @@ namespace fs = std::filesystem;
 
 const std::string kH4cal = H4_BINARY_DIR "/host/h4cal";
 
-std::string Slurp(const std::string& path) {
+std::string LogOrDatasetText(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::ostringstream s;
   s << in.rdbuf();
@@ -50,7 +50,7 @@ std::string Slurp(const std::string& path) {
 int RunProgram(const std::string& args, std::string* output) {
   const std::string log = fs::temp_directory_path() / ("h4_collect_" + std::to_string(getpid()));
   const int status = std::system((args + " > " + log + " 2>&1").c_str());
-  *output = Slurp(log);
+  *output = LogOrDatasetText(log);
   fs::remove(log);
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
@@ -235,20 +235,20 @@ TEST_F(CollectCommandTest, ASecondCampaignOnTheSameDatasetIsRefusedAndTheFileSta
   ASSERT_EQ(posix_spawn(&first, argv[0], &actions, nullptr, argv.data(), environ), 0);
   posix_spawn_file_actions_destroy(&actions);
   const bool locked = WaitUntilLockedByAnother(out_);
-  const std::string before = Slurp(out_);
+  const std::string before = LogOrDatasetText(out_);
 
   const int second = RunProgram(Collect("--from-log " + log_), &output);
   ::kill(first, SIGINT);
   int status = 0;
   ::waitpid(first, &status, 0);
 
-  ASSERT_TRUE(locked) << "the first campaign never locked " << out_ << ": " << Slurp(first_log);
+  ASSERT_TRUE(locked) << "the first campaign never locked " << out_ << ": " << LogOrDatasetText(first_log);
   EXPECT_EQ(second, 1) << output;
   EXPECT_NE(output.find("another campaign is writing it (process " + std::to_string(first)),
             std::string::npos)
       << output;
-  EXPECT_EQ(Slurp(out_), before);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << Slurp(first_log);
+  EXPECT_EQ(LogOrDatasetText(out_), before);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << LogOrDatasetText(first_log);
   EXPECT_EQ(ReadDatasetCsv(out_).size(), 2u);
 }
 
@@ -288,7 +288,7 @@ TEST_F(CollectCommandTest, KilledAtRandomPointsAndResumedWritesTheSameDatasetAsO
     ::waitpid(pid, &status, 0);
   }
   ASSERT_EQ(RunProgram(Collect("--from-log " + log_), &output), 0) << output;
-  EXPECT_EQ(Slurp(out_), Slurp(reference));
+  EXPECT_EQ(LogOrDatasetText(out_), LogOrDatasetText(reference));
   EXPECT_GT(killed, 0) << "no run was killed: nothing was tested";
 }
 
