@@ -1,4 +1,4 @@
-// The offline board poses CSV written by `h4cam measure --out` (formats.md):
+// The offline board poses CSV written by `h4cam measure --out` (common/formats/README.md):
 //   image,x,y,z,qw,qx,qy,qz,corners,rms_px,sigma_t,sigma_r
 // One row per measurement; an image with no board gives a row with empty pose fields.
 #pragma once

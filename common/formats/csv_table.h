@@ -1,4 +1,4 @@
-// A small CSV table shared by the CSV formats (formats.md): a required header, columns
+// A small CSV table shared by the CSV formats (common/formats/README.md): a required header, columns
 // in any order, extra columns ignored, blank and '#' comment lines skipped, CRLF
 // tolerated, cells trimmed of spaces, RFC 4180 double quotes within a line. Every
 // getter checks its cell strictly and throws FormatError(file, line, column, what).

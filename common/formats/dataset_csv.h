@@ -1,4 +1,4 @@
-// The paired dataset CSV (formats.md): one row per robot pose, encoder readings q1..q4
+// The paired dataset CSV (common/formats/README.md): one row per robot pose, encoder readings q1..q4
 // and the camera's measurement X_CT of the board.
 //   pose_id,utime,q1,q2,q3,q4,x,y,z,qw,qx,qy,qz[,set][,sigma_t,sigma_r]
 #pragma once

@@ -1,5 +1,5 @@
-// The identification result JSON (formats.md "Identification result"); see
-// identification_result.h. Keys are written in the order formats.md lists them, then
+// The identification result JSON (common/formats/README.md "Identification result"); see
+// identification_result.h. Keys are written in the order common/formats/README.md lists them, then
 // the extra keys of the solver's account.
 #include "common/formats/identification_result.h"
 

@@ -1,4 +1,4 @@
-// The identification result JSON (formats.md, `h4cal identify --out`), read back by
+// The identification result JSON (common/formats/README.md, `h4cal identify --out`), read back by
 // fk, ik, validate, report and the controller export.
 #pragma once
 
@@ -13,7 +13,7 @@
 namespace h4 {
 
 struct ResultParameter {
-  std::string name;           ///< kinematics.md name: "h", "alpha1", "x2", "X_BC.tx", ...
+  std::string name;           ///< common/README.md name: "h", "alpha1", "x2", "X_BC.tx", ...
   double value = 0.0;         ///< identified (or fixed) value, SI
   double apriori = 0.0;       ///< a priori value, SI
   std::optional<double> std;  ///< one-sigma from the covariance; empty when fixed
@@ -40,7 +40,7 @@ struct IdentificationResult {
   std::array<double, 4> valid_rms_rad{};
   std::vector<int64_t> calib_poses, valid_poses, rejected_poses;
 
-  // Extra keys (formats.md lets a program write more): the solver's account.
+  // Extra keys (common/formats/README.md lets a program write more): the solver's account.
   std::string estimator;                   ///< "measurement" | "joint" (eq. 3) | "implicit" (eq. 5)
   std::optional<double> condition_number;  ///< of the scaled identification Jacobian
   std::vector<CorrelatedPair> correlations;    ///< pairs with |rho| > 0.9
@@ -55,7 +55,7 @@ struct IdentificationResult {
 
 /// Reads/writes the JSON; reading throws FormatError (file, field path such as
 /// "parameters[3].value", expectation; line 0 except for a syntax error, which gives the
-/// line). Required: formats.md's keys; model "12" or "31"; parameter names unique; std
+/// line). Required: common/formats/README.md's keys; model "12" or "31"; parameter names unique; std
 /// null for a fixed parameter (a number or null otherwise, >= 0); parameter values usable
 /// by the kinematics (lengths h, arm, forearm, R, arm1..4, forearm1..4 positive; angles
 /// alpha*, q0*, psi*, beta* within 2 pi; every other value and the X_BC / X_TE

@@ -1,4 +1,4 @@
-// The joints CSV (formats.md): `pose_id,q1,q2,q3,q4`, encoder readings in rad. Input of
+// The joints CSV (common/formats/README.md): `pose_id,q1,q2,q3,q4`, encoder readings in rad. Input of
 // `h4cal fk`, output of `h4cal ik`.
 #pragma once
 

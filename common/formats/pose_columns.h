@@ -1,5 +1,5 @@
 // The seven columns x,y,z,qw,qx,qy,qz that carry a measured board pose X_CT in the
-// dataset, fk output and board poses CSVs (formats.md): translation in m, unit
+// dataset, fk output and board poses CSVs (common/formats/README.md): translation in m, unit
 // quaternion w first (any sign; norm 1 within 1e-3).
 #pragma once
 
@@ -14,7 +14,7 @@ namespace h4 {
 /// The column names, in the order written.
 const std::vector<std::string>& PoseColumnNames();
 
-/// Tolerance on the quaternion norm (formats.md).
+/// Tolerance on the quaternion norm (common/formats/README.md).
 inline constexpr double kQuaternionNormTolerance = 1e-3;
 
 /// Reads the pose of row `row`; a non-number names its column, a quaternion whose norm

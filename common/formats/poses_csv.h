@@ -1,4 +1,4 @@
-// The poses CSV (formats.md): `pose_id,X,Y,Z,theta`, end-effector poses X_BE in the
+// The poses CSV (common/formats/README.md): `pose_id,X,Y,Z,theta`, end-effector poses X_BE in the
 // base frame (m, rad), input of `h4cal ik`; and the fk output
 // `pose_id,X,Y,Z,theta,x,y,z,qw,qx,qy,qz`: the end-effector pose and the board pose
 // X_CT = inv(X_BC) * X_BE * inv(X_TE) it implies.

@@ -116,7 +116,7 @@ std::string FormatRobotYaml(const RobotDescription& robot) {
   const Model12Parameters& m12 = robot.model12;
   std::string text =
       "# a priori description of the H4 and of the measurement set-up (SI units: m, rad)\n"
-      "# names: docs/kinematics.md; layout: docs/formats.md \"Robot description\"\n";
+      "# names: common/README.md; layout: common/formats/README.md \"Robot description\"\n";
   text += "model12:\n  h: " + FormatDouble(m12.h, "model12.h") +
           "\n  arm: " + FormatDouble(m12.arm, "model12.arm") +
           "\n  forearm: " + FormatDouble(m12.forearm, "model12.forearm") +

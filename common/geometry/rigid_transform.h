@@ -13,7 +13,7 @@ class RigidTransform {
   /// From a rotation matrix R_AB (assumed orthonormal) and translation p_AB (m).
   RigidTransform(const Eigen::Matrix3d& R_AB, const Eigen::Vector3d& p_AB) : R_(R_AB), p_(p_AB) {}
 
-  /// From translation (m) and roll-pitch-yaw (rad), R = Rz Ry Rx (kinematics.md).
+  /// From translation (m) and roll-pitch-yaw (rad), R = Rz Ry Rx (common/README.md).
   static RigidTransform FromTranslationRpy(const Eigen::Vector3d& translation,
                                            const Eigen::Vector3d& rpy);
   /// From translation (m) and unit quaternion (w, x, y, z).
@@ -50,7 +50,7 @@ class RigidTransform {
 
 /// The 6-vector error of `predicted` against `measured`: (rotation vector of
 /// R_measured^T R_predicted, p_predicted - p_measured) in rad and m, the residual
-/// log(X_measured^-1 * X_predicted) of kinematics.md's measurement-space cost
+/// log(X_measured^-1 * X_predicted) of common/README.md's measurement-space cost
 /// (translation part expressed in the parent frame).
 Eigen::Matrix<double, 6, 1> PoseError(const RigidTransform& measured,
                                       const RigidTransform& predicted);

@@ -1,4 +1,4 @@
-// Rotations in SO(3): roll-pitch-yaw (kinematics.md: R = Rz(rz) Ry(ry) Rx(rx)),
+// Rotations in SO(3): roll-pitch-yaw (common/README.md: R = Rz(rz) Ry(ry) Rx(rx)),
 // unit quaternions, the exponential and logarithm maps, and angle wrapping.
 #pragma once
 
@@ -8,7 +8,7 @@
 namespace h4 {
 
 /// Wraps an angle (rad) to (-pi, pi]. Every difference of joint angles is wrapped
-/// (kinematics.md: the H4's readings sit near +-pi).
+/// (common/README.md: the H4's readings sit near +-pi).
 double WrapAngle(double angle);
 
 /// R = Rz(rpy[2]) * Ry(rpy[1]) * Rx(rpy[0]) (fixed-axis roll, pitch, yaw), rad.

@@ -1,5 +1,5 @@
 // The a priori description of an H4 and of its measurement set-up (robot.yaml,
-// formats.md), with the parameters of Models 12 and 31 as kinematics.md names them.
+// common/formats/README.md), with the parameters of Models 12 and 31 as common/README.md names them.
 #pragma once
 
 #include <array>
@@ -51,7 +51,7 @@ struct RobotDescription {
   RigidTransform X_TE;  ///< a priori end-effector pose in board frame T
 };
 
-/// The exact Model 31 equivalent of a Model 12 robot (kinematics.md, "Nominal Model 31").
+/// The exact Model 31 equivalent of a Model 12 robot (common/README.md, "Nominal Model 31").
 Model31Parameters NominalModel31(const Model12Parameters& m12);
 
 /// Model 31 parameters of a description: its model31 block, else NominalModel31(model12).

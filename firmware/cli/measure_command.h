@@ -1,5 +1,5 @@
 // `h4cam measure --board B.yaml --camera camera.yaml [--group 10] IMAGES... --out
-// poses.csv`: offline board poses (formats.md "Offline board poses") from image files,
+// poses.csv`: offline board poses (common/formats/README.md "Offline board poses") from image files,
 // each group of N consecutive images averaged into one measurement, one row per group
 // (empty pose fields when the group gives no usable pose). Progress on stderr.
 #pragma once

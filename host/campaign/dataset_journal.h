@@ -22,7 +22,7 @@ namespace h4::host {
 class DatasetJournal {
  public:
   /// Opens (creating it with the header when absent or empty) `path`. An existing file must
-  /// have the campaign's columns (formats.md's dataset with sigma_t, sigma_r) and parse;
+  /// have the campaign's columns (common/formats/README.md's dataset with sigma_t, sigma_r) and parse;
   /// a last line cut by a crash (no newline) is removed with a warning. Throws FormatError
   /// or std::runtime_error naming the file on anything else, including when another
   /// process holds the file (its pid named when /proc/locks tells it).

@@ -1,5 +1,5 @@
 // `h4cal export`: the identified parameters for the robot's controller, in the robot.yaml
-// keys of formats.md (the control law reads model12: h, arm, forearm, R, d, alpha, q0 and
+// keys of common/formats/README.md (the control law reads model12: h, arm, forearm, R, d, alpha, q0 and
 // the assembly signs). A Model 31 result exports its own model31: block (the model12 block
 // the format requires then comes from the a priori --robot).
 #include <memory>

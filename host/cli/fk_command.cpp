@@ -1,4 +1,4 @@
-// `h4cal fk`: forward kinematics of joint readings (formats.md "Joints CSV and poses CSV"):
+// `h4cal fk`: forward kinematics of joint readings (common/formats/README.md "Joints CSV and poses CSV"):
 // the end-effector pose in B and the board pose X_CT = inv(X_BC) X_BE inv(X_TE) it implies.
 // With --compare, the board poses are scored against reference ones (e.g. a simulation's
 // truth): the figure of issue "Host solver".

@@ -1,6 +1,6 @@
 // `h4cal identify`: Model 12 or Model 31 identification from a robot.yaml and a paired
 // dataset (paper II-III; the solver is host/identification), writing the result JSON of
-// formats.md. `--from result12.json` starts Model 31 from a Model 12 result (paper IV.C).
+// common/formats/README.md. `--from result12.json` starts Model 31 from a Model 12 result (paper IV.C).
 #include <algorithm>
 #include <cmath>
 #include <numbers>

@@ -1,5 +1,5 @@
 // `h4cal ik`: closed-form inverse kinematics (paper eq. (2)) of end-effector poses
-// (formats.md poses CSV) to joint readings; unreachable rows are reported, not NaN.
+// (common/formats/README.md poses CSV) to joint readings; unreachable rows are reported, not NaN.
 #include <spdlog/spdlog.h>
 
 #include "common/formats/file_output.h"

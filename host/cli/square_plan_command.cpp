@@ -1,5 +1,5 @@
 // `h4cal square-plan`: the commanded points of the square-path validation (paper IV.D) as a
-// poses CSV (formats.md: pose_id,X,Y,Z,theta in B), for `h4cal collect --plan --controller`
+// poses CSV (common/formats/README.md: pose_id,X,Y,Z,theta in B), for `h4cal collect --plan --controller`
 // to drive a real robot through with the Model 12 IK control law. The points are those of
 // the simulated square (host/validation/square_path.h, SquarePoints), so `h4cal validate
 // --square-plan --square-measured` compares the measured path with the same square.

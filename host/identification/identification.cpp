@@ -111,7 +111,7 @@ StageSummary NothingToFit(const IdentificationCost& cost, const ParameterVector&
 // One cost stage: identifiability at the start, NLopt, LM polish. `p` carries the values
 // in and out; its mask on return is this stage's. `placement_only` fixes the kinematics.
 // A parameter the analysis fixes takes its value in `reference` (the start: the a priori
-// after the prior analysis, or the --from result): kinematics.md, "Fixed parameters keep
+// after the prior analysis, or the --from result): common/README.md, "Fixed parameters keep
 // their a priori value". Without this, an earlier stage whose cost does not share the
 // null direction would leave it wherever that stage drifted it. `solution` (may be null)
 // receives the residuals and Jacobian at the stage's solution, computed once here for

@@ -1,4 +1,4 @@
-// Kinematic identification of an H4 (paper II-III, kinematics.md "Identification"): from a
+// Kinematic identification of an H4 (paper II-III, common/README.md "Identification"): from a
 // rough a priori robot and a paired dataset to a filled IdentificationResult. Stages:
 //  1. prior analysis of the rotation axis (paper III.B) turns the a priori X_BC / X_TE so
 //     that their z axes agree with the measured axis;
@@ -54,7 +54,7 @@ struct IdentificationOptions {
   LmOptions lm;
   CostOptions cost;
   IdentifiabilityOptions identifiability;
-  /// Parameters the user fixes at their start value (kinematics.md names).
+  /// Parameters the user fixes at their start value (common/README.md names).
   std::vector<std::string> fixed_parameters;
   /// Outlier rejection: a pose whose residual norm exceeds outlier_factor times the median
   /// pose residual norm is rejected and the estimator refitted, at most max_outlier_rounds
@@ -101,7 +101,7 @@ struct IdentificationSummary {
 };
 
 struct IdentificationOutcome {
-  IdentificationResult result;  ///< filled entirely (formats.md)
+  IdentificationResult result;  ///< filled entirely (common/formats/README.md)
   IdentificationSummary summary;
   ParameterVector parameters;  ///< the final vector with its fixed mask
   Uncertainty uncertainty;

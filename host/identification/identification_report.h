@@ -1,4 +1,4 @@
-// Filling the IdentificationResult of an identification (formats.md): parameters with a
+// Filling the IdentificationResult of an identification (common/formats/README.md): parameters with a
 // priori values, standard deviations and status, fixed parameters with reasons, joint
 // residuals, held-out board pose error, covariance figures and the log.
 #pragma once

@@ -1,4 +1,4 @@
-// The identification parameter vector (kinematics.md, "Identification"): the kinematic
+// The identification parameter vector (common/README.md, "Identification"): the kinematic
 // parameters of a model followed by X_BC and X_TE as (tx ty tz rx ry rz), R = Rz Ry Rx,
 // named "X_BC.tx" ... "X_TE.rz", with a free/fixed mask that records why a parameter is
 // fixed. Also the Model 12 -> Model 31 conversion of a parameter set (paper III.C).
@@ -41,7 +41,7 @@ class ParameterVector {
   const Eigen::VectorXd& values() const { return values_; }
   /// Precondition: v.size() == size().
   void set_values(const Eigen::VectorXd& v) { values_ = v; }
-  /// Index of a parameter by kinematics.md name, or -1.
+  /// Index of a parameter by common/README.md name, or -1.
   int IndexOf(const std::string& name) const;
 
   Eigen::VectorXd kinematic_values() const { return values_.head(kinematic_count_); }

@@ -2,7 +2,7 @@
 // Jacobians the identification costs need: the end-effector pose (X, Y, Z, theta) from a
 // measured X_CT (costs (3) and (5)), and the board-pose error of the measurement-space
 // cost, log(X_CT_measured^-1 * X_CT_predicted), X_CT_predicted = inv(X_BC) X_BE inv(X_TE).
-// Transforms are parameterised as (tx, ty, tz, rx, ry, rz), R = Rz Ry Rx (kinematics.md).
+// Transforms are parameterised as (tx, ty, tz, rx, ry, rz), R = Rz Ry Rx (common/README.md).
 #pragma once
 
 #include <Eigen/Core>

@@ -1,4 +1,4 @@
-// The interface both H4 kinematic models implement (kinematics.md): Model 12, the
+// The interface both H4 kinematic models implement (common/README.md): Model 12, the
 // design model (paper eq. (1)-(2)), and Model 31, the calibration model (eq. (4)).
 // Identification, simulation and validation are written against this interface only.
 #pragma once
@@ -34,7 +34,7 @@ class KinematicModel {
 
   /// "12" or "31".
   virtual std::string name() const = 0;
-  /// kinematics.md names, in the order of parameters(): Model 12: h, arm, forearm, R, d,
+  /// common/README.md names, in the order of parameters(): Model 12: h, arm, forearm, R, d,
   /// alpha1..alpha4, q01..q04 (13, d inert); Model 31: x2 y2 z2 x3 y3 z3 x4 y4 z4,
   /// psi1..psi4, beta1..beta4, q01..q04, arm1..arm4, forearm1..forearm4, h, d (31).
   virtual const std::vector<std::string>& parameter_names() const = 0;
@@ -48,7 +48,7 @@ class KinematicModel {
   /// same point expressed in B31).
   virtual EePose WorkspaceCentre() const = 0;
 
-  /// Closed-form inverse kinematics per leg (eq. (2), atan2 form; kinematics.md).
+  /// Closed-form inverse kinematics per leg (eq. (2), atan2 form; common/README.md).
   virtual IkResult InverseKinematics(const EePose& x) const = 0;
 
   /// Implicit closure equations, one per leg, f_i = |closing vector|^2 - forearm_i^2

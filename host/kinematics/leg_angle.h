@@ -1,5 +1,5 @@
 // The closed-form solution shared by both models' inverse kinematics (paper eq. (2), in
-// the atan2 form of kinematics.md): the leg angle phi with M cos phi + N sin phi = G.
+// the atan2 form of common/README.md): the leg angle phi with M cos phi + N sin phi = G.
 #pragma once
 
 namespace h4::host {

@@ -13,7 +13,7 @@ namespace h4::host {
 /// X_BE = (Rz(theta), [X, Y, Z]).
 RigidTransform TransformFromEePose(const EePose& x);
 
-/// (X, Y, Z) = p_BE, theta = atan2(R_BE(1,0), R_BE(0,0)) (kinematics.md). When `tilt` is
+/// (X, Y, Z) = p_BE, theta = atan2(R_BE(1,0), R_BE(0,0)) (common/README.md). When `tilt` is
 /// given it receives the rotation vector of Rz(theta)^T R_BE (rad, in E): what remains of
 /// R_BE after the rotation about z_B, zero for an ideal 4-DoF robot.
 EePose EePoseFromTransform(const RigidTransform& X_BE, Eigen::Vector3d* tilt = nullptr);

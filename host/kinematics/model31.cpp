@@ -14,12 +14,12 @@
 namespace h4::host {
 namespace {
 
-// Parameter indices in the kinematics.md order.
+// Parameter indices in the common/README.md order.
 constexpr int kP = 0, kPsi = 9, kBeta = 13, kQ0 = 17, kArm = 21, kForearm = 25, kH = 29, kD = 30;
 
 constexpr double kCentreZ = -0.45;  // grid centre depth below the base joints, m
 
-// V = sin(phi) a + cos(phi) b (kinematics.md), a and b orthonormal.
+// V = sin(phi) a + cos(phi) b (common/README.md), a and b orthonormal.
 Eigen::Vector3d AxisA(double psi, double beta) {
   return {std::cos(beta) * std::sin(psi), -std::cos(beta) * std::cos(psi), -std::sin(beta)};
 }

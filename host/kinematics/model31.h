@@ -1,4 +1,4 @@
-// Model 31, the H4 calibration model (paper eq. (4), kinematics.md "Model 31"): per-leg
+// Model 31, the H4 calibration model (paper eq. (4), common/README.md "Model 31"): per-leg
 // closed-form inverse kinematics, closure equations f_i = |arm_i V_i + W_i|^2 - forearm_i^2
 // and their analytic Jacobians; and the nominal map from Model 12's base B to B31.
 #pragma once
@@ -66,7 +66,7 @@ class Model31 final : public KinematicModel {
   EePose centre_ = EePose::Zero();
 };
 
-/// The nominal X_B31B (kinematics.md): B31 = B translated, so that a pose maps by
+/// The nominal X_B31B (common/README.md): B31 = B translated, so that a pose maps by
 /// X31 = X12 + R cos alpha1, Y31 = Y12 + R sin alpha1 - d, Z31 = Z12 (theta unchanged).
 /// Then X_B31C = X_B31B * X_BC, and NominalModel31(m12) at X_B31B * X_BE gives Model 12's joints.
 RigidTransform NominalX_B31B(const Model12Parameters& m12);

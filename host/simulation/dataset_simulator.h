@@ -1,4 +1,4 @@
-// Simulated paired datasets (formats.md dataset CSV rows): for each planned pose, the true
+// Simulated paired datasets (common/formats/README.md dataset CSV rows): for each planned pose, the true
 // joints from the true robot's inverse kinematics and the board pose X_CT from the true
 // chain of eq. (6), X_CT = inv(X_BC) * X_BE * inv(X_TE), with seeded Gaussian noise on the
 // encoders and on X_CT, and a seeded calib/valid split.

@@ -1,6 +1,6 @@
 // The robot of the reference paper (Renaud et al., ICRA 2003): Table 2's a priori and
 // "Identified" Model 12 parameters, and a default camera/board placement consistent with
-// formats.md's robot.yaml example (camera 1.05 m below the base looking up at the board
+// common/formats/README.md's robot.yaml example (camera 1.05 m below the base looking up at the board
 // under the nacelle).
 #pragma once
 

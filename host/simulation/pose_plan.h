@@ -1,5 +1,5 @@
 // Pose plans: the end-effector poses a campaign or a simulation visits, independent of how
-// they were loaded (the poses CSV of formats.md, or generated), and the paper's 81-pose grid.
+// they were loaded (the poses CSV of common/formats/README.md, or generated), and the paper's 81-pose grid.
 #pragma once
 
 #include <cstdint>
@@ -29,7 +29,7 @@ struct GridOptions {
 /// vary slowest to fastest; pose ids count up from first_pose_id.
 PosePlan GridPosePlan(const GridOptions& options = GridOptions{});
 
-/// From / to the poses CSV rows (formats.md).
+/// From / to the poses CSV rows (common/formats/README.md).
 PosePlan PosePlanFromRows(const std::vector<EndEffectorPoseRow>& rows);
 std::vector<EndEffectorPoseRow> RowsFromPosePlan(const PosePlan& plan);
 

@@ -14,7 +14,7 @@
 namespace h4::host {
 
 /// The truth. The pose plan and X_BC live in Model 12's base B; a Model 31 geometry lives
-/// in B31 = NominalX_B31B(model12) * B (kinematics.md's nominal map).
+/// in B31 = NominalX_B31B(model12) * B (common/README.md's nominal map).
 struct SimulatedRobot {
   /// The true Model 12 (truth_model "12"), or the a priori Model 12 that defines B and B31
   /// when the truth is a Model 31 geometry.

@@ -1,4 +1,4 @@
-// The truth file of a simulation: the true robot in the robot.yaml layout of formats.md
+// The truth file of a simulation: the true robot in the robot.yaml layout of common/formats/README.md
 // (so it can be passed as --robot to evaluate with the true geometry) plus a `simulation:`
 // block, which robot.yaml readers ignore, with the truth model, the camera in B31, the
 // seeds and the noise settings.

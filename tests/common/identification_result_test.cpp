@@ -1,4 +1,4 @@
-// Identification result JSON: formats.md's keys read with known values, exact round
+// Identification result JSON: common/formats/README.md's keys read with known values, exact round
 // trip, and malformed documents with the JSON path and the line of a syntax error.
 #include "common/formats/identification_result.h"
 

@@ -1,4 +1,4 @@
-// Robot description YAML: formats.md's example, the optional blocks, exact round trip,
+// Robot description YAML: common/formats/README.md's example, the optional blocks, exact round trip,
 // and every kind of malformed value with its line and field.
 #include "common/formats/robot_yaml.h"
 
@@ -10,7 +10,7 @@
 namespace h4 {
 namespace {
 
-// formats.md's example, line for line (line 1 is the comment).
+// common/formats/README.md's example, line for line (line 1 is the comment).
 const std::string kExample =
     R"(# a priori description of the H4 and of the measurement set-up (SI units)
 model12:

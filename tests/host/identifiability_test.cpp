@@ -53,7 +53,7 @@ TEST(IdentifiabilityTest, Model12MeasurementSpaceAlsoIdentifiesTheBoardTilt) {
 }
 
 TEST(IdentifiabilityTest, Model31FixesDAndAnAngleAboutZbNotTheBoardAngle) {
-  // kinematics.md: fixing X_TE.rz (the paper's choice) leaves a null direction made of
+  // common/README.md: fixing X_TE.rz (the paper's choice) leaves a null direction made of
   // X_BC.rz and the base joints; the analysis must fix X_BC.rz instead.
   for (CostKind kind : {CostKind::kJointSpace, CostKind::kImplicit, CostKind::kMeasurement}) {
     const std::vector<std::string> fixed = FixedNames(Analyze(testing::TrueModel31Setup(), kind));

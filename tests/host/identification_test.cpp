@@ -169,7 +169,7 @@ TEST(IdentificationTest, ConvergesFromTheRoughAprioriForEveryEstimator) {
     const IdentificationOutcome out = IdentifyScenario(s, "12", options);
     EXPECT_TRUE(out.summary.usable) << ToString(estimator) << "\n" << out.summary.FullReport();
     EXPECT_LT(HeldOutTruthError(out, s).first, 0.5e-3) << ToString(estimator);
-    // kinematics.md: fixed parameters keep their a priori value, whatever the warm-up
+    // common/README.md: fixed parameters keep their a priori value, whatever the warm-up
     // stages did to them before the analysis fixed them.
     for (const char* name : {"X_TE.tz", "d"}) {
       const ResultParameter* fixed = out.result.Find(name);

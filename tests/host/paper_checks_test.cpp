@@ -1,4 +1,4 @@
-// The checks of kinematics.md ("Checks against the paper"): with Table 2's a priori and
+// The checks of common/README.md ("Checks against the paper"): with Table 2's a priori and
 // identified Model 12 parameters over the paper's 81-pose grid, the joint differences and
 // the forward-kinematics pose error reproduce the paper's published figures (within 10%).
 #include <cmath>

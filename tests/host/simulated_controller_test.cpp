@@ -113,7 +113,7 @@ TEST_F(SimulatedControllerTest, PoseTargetEndsAtTheAprioriModelsJointsNotTheTrue
   const IkResult true_ik = Model12(truth_.model12, truth_.assembly).InverseKinematics(target);
   ASSERT_TRUE(apriori_ik.ok() && true_ik.ok());
   EXPECT_LT(MaxWrappedDifference(controller_.true_joints(), apriori_ik.q), 1e-12);
-  // Table 2's a priori misses the truth by several centiradians (kinematics.md).
+  // Table 2's a priori misses the truth by several centiradians (common/README.md).
   EXPECT_GT(MaxWrappedDifference(controller_.true_joints(), true_ik.q), 0.02);
   // So the true end-effector is not where the campaign asked (about 26 mm on average).
   EXPECT_GT((controller_.true_X_BE().translation() - target.head<3>()).norm(), 0.005);
