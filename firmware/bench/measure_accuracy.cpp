@@ -9,6 +9,8 @@
 //
 // Usage: h4_measure_accuracy [condition=NAME|every] [depth=range|near|far|every]
 //                            [scenes=20] [seed=1] [refinement=edge|subpix|none] [rows]
+//                            [corner_floor_px=0.0015] [covariance=edge_noise|residual|group]
+//                            [corner_floor_erosion_gain=0.02] (PoseOptions' fields)
 // Conditions: clean, blur1.4, gamma0.7+blur0.7, srgb+blur1.0, gradient, all (the
 // "processed" preset: sRGB, defocus, gradient, vignetting, shot noise). Depths: range
 // 0.45-0.65 m, near 0.44-0.46 m, far 0.64-0.66 m. `rows` prints every scene.
@@ -64,6 +66,9 @@ struct Args {
   int scenes = 20;
   uint64_t seed = 1;
   bool rows = false;
+  double corner_floor_px = PoseOptions{}.corner_floor_px;
+  double corner_floor_erosion_gain = PoseOptions{}.corner_floor_erosion_gain;
+  std::string covariance;
 };
 
 bool ParseArgs(int argc, char** argv, Args* args) {
@@ -84,6 +89,13 @@ bool ParseArgs(int argc, char** argv, Args* args) {
       args->scenes = std::atoi((eq == std::string::npos ? arg : value).c_str());
     } else if (key == "seed") {
       args->seed = std::strtoull(value.c_str(), nullptr, 10);
+    } else if (key == "covariance" &&
+               (value == "residual" || value == "group" || value == "edge_noise")) {
+      args->covariance = value;
+    } else if (key == "corner_floor_erosion_gain") {
+      args->corner_floor_erosion_gain = std::atof(value.c_str());
+    } else if (key == "corner_floor_px") {
+      args->corner_floor_px = std::atof(value.c_str());
     } else {
       std::fprintf(stderr, "unknown argument '%s'\n", arg.c_str());
       return false;
@@ -183,10 +195,12 @@ Result RunCondition(const Condition& condition, const DepthRange& depth, const A
       auto error_mm = [&](bool ok, const RigidTransform& X) {
         return ok ? (X.translation() - X_CT.translation()).norm() * 1e3 : NAN;
       };
-      std::printf("  %s %s scene %zu z %.3f m: h4cam %s %.4f mm, baseline %.4f mm\n",
-                  condition.name, depth.name, i, X_CT.translation().z(), ToString(m.status),
-                  error_mm(m.ok(), m.X_CT),
-                  error_mm(plain_pose.has_value(), plain_pose.value_or(X_CT)));
+      std::printf(
+          "  %s %s scene %zu z %.3f m: h4cam %s %.4f mm (sigma %.4f mm, rms %.4f px, erosion "
+          "%.3f px), baseline %.4f mm\n",
+          condition.name, depth.name, i, X_CT.translation().z(), ToString(m.status),
+          error_mm(m.ok(), m.X_CT), m.sigma_t * 1e3, m.rms_px, m.erosion_px,
+          error_mm(plain_pose.has_value(), plain_pose.value_or(X_CT)));
     }
   }
   result.pipeline.has_sigma = true;
@@ -221,6 +235,11 @@ int main(int argc, char** argv) {
   options.detector.refinement = args.refinement == "subpix" ? CornerRefinement::kCornerSubPix
                                 : args.refinement == "none" ? CornerRefinement::kNone
                                                             : CornerRefinement::kEdgeFit;
+  options.pose.corner_floor_px = args.corner_floor_px;
+  options.pose.corner_floor_erosion_gain = args.corner_floor_erosion_gain;
+  if (args.covariance == "residual") options.pose.covariance = CovarianceModel::kResidual;
+  if (args.covariance == "group") options.pose.covariance = CovarianceModel::kEdgeGroup;
+  if (args.covariance == "edge_noise") options.pose.covariance = CovarianceModel::kEdgeNoise;
   std::vector<Condition> conditions;
   for (const Condition& c : AllConditions()) {
     if (args.condition == "every" || args.condition == c.name) conditions.push_back(c);

@@ -6,7 +6,7 @@
 // the goals of issue 12: <= 0.03 mm, <= 0.005 deg, sigma/actual within 0.5..2 (clean scenes
 // <= 0.01 mm).
 // Usage: h4_measure_response [scenes=12] [erosion=affine|global|tag|none] [seed=1]
-//        [covariance=residual|group] [corner_floor_px=0.0025]
+//        [covariance=edge_noise|residual|group] [corner_floor_px=0.0015]
 //        [inner_clearance_px=2.5] [inner_clearance_blur=0] [conditions=all|blur]
 //        [inner_edge=inner|clear]
 // (the last three: the edge fit's dark-side clearance from the tag border's inner edge,
@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
   const uint64_t seed = argc > 3 ? std::strtoull(argv[3], nullptr, 10) : 1;
   const AprilGridSpec board = scenes::PaperBoard();
   const CameraIntrinsics camera = scenes::PaperCamera();
-  const std::string covariance = argc > 4 ? argv[4] : "residual";
+  const std::string covariance = argc > 4 ? argv[4] : "edge_noise";
   PipelineOptions options;
   if (argc > 5) options.pose.corner_floor_px = std::atof(argv[5]);
   EdgeFitOptions& edge_fit = options.detector.edge_fit;
@@ -87,8 +87,9 @@ int main(int argc, char** argv) {
   if (argc > 7) edge_fit.inner_clearance_blur = std::atof(argv[7]);
   const bool blur_rows_only = argc > 8 && std::string(argv[8]) == "blur";
   if (argc > 9) edge_fit.model_inner_edge = std::string(argv[9]) != "clear";
-  options.pose.covariance =
-      covariance == "group" ? CovarianceModel::kEdgeGroup : CovarianceModel::kResidual;
+  options.pose.covariance = covariance == "group"        ? CovarianceModel::kEdgeGroup
+                            : covariance == "edge_noise" ? CovarianceModel::kEdgeNoise
+                                                         : CovarianceModel::kResidual;
   options.pose.erosion = erosion == "none"     ? ErosionModel::kNone
                          : erosion == "affine" ? ErosionModel::kAffine
                          : erosion == "tag"    ? ErosionModel::kPerTag

@@ -118,9 +118,11 @@ BoardDetection BoardDetector::DetectAprilGrid(const cv::Mat& image8, const cv::M
     // X-corners do not move under erosion (their directions stay zero).
     std::array<Eigen::Vector2d, 4> erosion_px{};
     for (Eigen::Vector2d& e : erosion_px) e.setZero();
+    std::array<CornerNoisePx, 4> noise_px{};
+    for (CornerNoisePx& n : noise_px) n.setZero();
     const bool edge_fitted = options_.refinement == CornerRefinement::kEdgeFit;
-    if (edge_fitted &&
-        !RefineQuadCorners(image32, *ideal_map_, options_.edge_fit, &tag.corners_px, &erosion_px)) {
+    if (edge_fitted && !RefineQuadCorners(image32, *ideal_map_, options_.edge_fit, &tag.corners_px,
+                                          &erosion_px, &noise_px)) {
       continue;
     }
     if (options_.refinement == CornerRefinement::kXCorner && !RefineTagXCorners(image32, &tag)) {
@@ -134,6 +136,7 @@ BoardDetection BoardDetector::DetectAprilGrid(const cv::Mat& image8, const cv::M
       corner.p_TQ = board_.corners()[static_cast<size_t>(corner.id)];
       corner.uv = tag.corners_px[static_cast<size_t>(k)];
       corner.erosion_px = erosion_px[static_cast<size_t>(k)];
+      corner.noise_px = noise_px[static_cast<size_t>(k)];
       if (edge_fitted) corner.edge_group = first / 4;
       detection.corners.push_back(corner);
       subpix.emplace_back(static_cast<float>(corner.uv.x()), static_cast<float>(corner.uv.y()));

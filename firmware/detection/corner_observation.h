@@ -5,6 +5,11 @@
 
 namespace h4::cam {
 
+/// A corner's pixel displacement per unit of the standardised fit noise of the four sides
+/// of its edge group (two columns per side: its angle and offset, whitened): the corners of
+/// a tag share these sources, so cov(corner i, corner j) = N_i N_j^T within a group.
+using CornerNoisePx = Eigen::Matrix<double, 2, 8>;
+
 struct CornerObservation {
   int id = -1;                                     ///< BoardModel corner id
   Eigen::Vector3d p_TQ = Eigen::Vector3d::Zero();  ///< position on the board (frame T), m
@@ -19,6 +24,9 @@ struct CornerObservation {
   /// are the intersections of its four fitted sides, so their errors are correlated); -1
   /// for a corner measured on its own. The pose covariance treats each group as one unit.
   int edge_group = -1;
+  /// How the edge fits' pixel noise moves this corner (CornerNoisePx); zero when unknown
+  /// (corners not measured by edge fits, or from an older detector).
+  CornerNoisePx noise_px = CornerNoisePx::Zero();
 };
 
 }  // namespace h4::cam

@@ -167,12 +167,27 @@ void AddInnerEdge(const InnerEdge& inner, const Profile& profile, double t, doub
   *dF_ds -= w * dG_ds;
 }
 
-// Gauss-Newton on (phi, c, a, b, s) for I = a + b (F(n . q - c; s) + inner edge term).
+// Gauss-Newton on (phi, c, a, b, s, k) for I = (1 + k tau) (a + b (F(n . q - c; s) + inner
+// edge term)), tau in [-1, 1] along the side: the light falling on a side changes along it
+// (an illumination gradient, vignetting), scaling its dark and bright levels together; a
+// model with constant levels would tilt the fitted line toward the darker end.
+// `line_covariance` receives the covariance of (phi, c) from the pixel noise the residuals
+// show (sigma^2 H^-1, marginal over the levels, blur and shading).
 bool FitEdge(const std::vector<Sample>& samples, int iterations, double pixel_scale,
-             const InnerEdge& inner, Line* line, double* a, double* b, double* s, double* rms) {
+             const InnerEdge& inner, Line* line, double* a, double* b, double* s, double* rms,
+             Eigen::Matrix2d* line_covariance) {
+  double t_min = samples.front().t, t_max = samples.front().t;
+  for (const Sample& sample : samples) {
+    t_min = std::min(t_min, sample.t);
+    t_max = std::max(t_max, sample.t);
+  }
+  const double t_mid = 0.5 * (t_min + t_max);
+  const double t_half = std::max(0.5 * (t_max - t_min), 1e-9);
+  double k = 0;
+  Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
   for (int it = 0; it < iterations; ++it) {
-    Eigen::Matrix<double, 5, 5> H5 = Eigen::Matrix<double, 5, 5>::Zero();
-    Eigen::Matrix<double, 5, 1> g = Eigen::Matrix<double, 5, 1>::Zero();
+    H.setZero();
+    Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
     const Eigen::Vector2d n = line->n();
     const Eigen::Vector2d n_perp(-n.y(), n.x());
     const Profile profile = ProfileFor(n, pixel_scale);
@@ -181,21 +196,25 @@ bool FitEdge(const std::vector<Sample>& samples, int iterations, double pixel_sc
       double F, dF_dd, dF_ds;
       profile.Eval(d, *s, &F, &dF_dd, &dF_ds);
       AddInnerEdge(inner, profile, sample.t, d, *s, &F, &dF_dd, &dF_ds);
-      const double r = *a + *b * F - sample.value;
-      const double dI_dd = *b * dF_dd;
-      Eigen::Matrix<double, 5, 1> J;
-      J << dI_dd * n_perp.dot(sample.q), -dI_dd, 1.0, F, *b * dF_ds;
-      H5.noalias() += J * J.transpose();
+      const double tau = (sample.t - t_mid) / t_half;
+      const double gain = 1.0 + k * tau;
+      const double level = *a + *b * F;
+      const double r = gain * level - sample.value;
+      const double dI_dd = gain * *b * dF_dd;
+      Eigen::Matrix<double, 6, 1> J;
+      J << dI_dd * n_perp.dot(sample.q), -dI_dd, gain, gain * F, gain * *b * dF_ds, tau * level;
+      H.noalias() += J * J.transpose();
       g.noalias() += J * r;
     }
-    H5.diagonal() *= 1.0 + 1e-9;
-    const Eigen::Matrix<double, 5, 1> step = H5.ldlt().solve(-g);
+    H.diagonal() *= 1.0 + 1e-9;
+    const Eigen::Matrix<double, 6, 1> step = H.ldlt().solve(-g);
     if (!step.allFinite()) return false;
     line->phi += step[0];
     line->c += step[1];
     *a += step[2];
     *b += step[3];
     *s = std::clamp(*s + step[4], 0.2, 5.0);
+    k = std::clamp(k + step[5], -0.5, 0.5);
     // Converged well below the noise of a line (~1e-3 px).
     if (std::abs(step[1]) < 1e-5 && std::abs(step[0]) < 1e-7) break;
   }
@@ -207,11 +226,16 @@ bool FitEdge(const std::vector<Sample>& samples, int iterations, double pixel_sc
     const double d = n.dot(sample.q) - line->c;
     profile.Eval(d, *s, &F, &dF_dd, &dF_ds);
     AddInnerEdge(inner, profile, sample.t, d, *s, &F, &dF_dd, &dF_ds);
-    const double r = *a + *b * F - sample.value;
+    const double gain = 1.0 + k * (sample.t - t_mid) / t_half;
+    const double r = gain * (*a + *b * F) - sample.value;
     sum += r * r;
   }
   *rms = std::sqrt(sum / static_cast<double>(samples.size()));
-  return std::isfinite(line->c) && *b > 0;
+  const double dof = static_cast<double>(samples.size()) - 6.0;
+  Eigen::FullPivLU<Eigen::Matrix<double, 6, 6>> lu(H);
+  if (dof <= 0 || !lu.isInvertible()) return false;
+  *line_covariance = (sum / dof) * lu.inverse().topLeftCorner<2, 2>();
+  return std::isfinite(line->c) && *b > 0 && line_covariance->allFinite();
 }
 
 bool Intersect(const Line& l1, const Line& l2, Eigen::Vector2d* p) {
@@ -222,6 +246,42 @@ bool Intersect(const Line& l1, const Line& l2, Eigen::Vector2d* p) {
   if (std::abs(A.determinant()) < 1e-6) return false;
   *p = A.inverse() * rhs;
   return true;
+}
+
+// Jacobian of the pixel position by the ideal position at p (central differences over a
+// tenth of a pixel, `pixel_scale` being a pixel's size in ideal coordinates).
+Eigen::Matrix2d PixelJacobian(const IdealPixelMap& map, const Eigen::Vector2d& p,
+                              double pixel_scale) {
+  const double h = 0.05 * pixel_scale;
+  Eigen::Matrix2d J;
+  for (int i = 0; i < 2; ++i) {
+    const Eigen::Vector2d step = h * Eigen::Vector2d::Unit(i);
+    J.col(i) = (map.PixelFromIdeal(p + step) - map.PixelFromIdeal(p - step)) / (2 * h);
+  }
+  return J;
+}
+
+// Pixel displacement of the corner p = l1 x l2 per unit of each line's standardised noise:
+// with n_i . (p - mid_i) = c_i, A = [n1^T; n2^T], dp = A^-1 [dc_i + n_perp_i . (mid_i - p)
+// dphi_i], and (dphi_i, dc_i) = L_i z_i, L_i L_i^T the line's covariance. Columns: z of
+// line l1 (2), then of l2 (2).
+Eigen::Matrix<double, 2, 4> CornerNoise(const Eigen::Matrix2d& pixel_jacobian, const Line& l1,
+                                        const Eigen::Matrix2d& L1, const Line& l2,
+                                        const Eigen::Matrix2d& L2, const Eigen::Vector2d& p) {
+  Eigen::Matrix2d A;
+  A.row(0) = l1.n().transpose();
+  A.row(1) = l2.n().transpose();
+  const Eigen::Matrix2d A_inverse = A.inverse();
+  const auto by_line = [&](const Line& l, int row, const Eigen::Matrix2d& L) {
+    const Eigen::Vector2d n_perp(-l.n().y(), l.n().x());
+    Eigen::Matrix2d dp_dline;  // columns: by phi, by c
+    dp_dline.col(0) = A_inverse.col(row) * n_perp.dot(l.mid - p);
+    dp_dline.col(1) = A_inverse.col(row);
+    return (pixel_jacobian * dp_dline * L).eval();
+  };
+  Eigen::Matrix<double, 2, 4> noise;
+  noise << by_line(l1, 0, L1), by_line(l2, 1, L2);
+  return noise;
 }
 
 // Pixel displacement of the corner p (ideal) of lines l1 and l2 when both move inward
@@ -308,7 +368,8 @@ InnerEdge ReadInnerEdge(const cv::Mat& image, const IdealPixelMap& map, const Ei
 
 bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
                        const EdgeFitOptions& options, std::array<Eigen::Vector2d, 4>* corners,
-                       std::array<Eigen::Vector2d, 4>* erosion_px) {
+                       std::array<Eigen::Vector2d, 4>* erosion_px,
+                       std::array<CornerNoisePx, 4>* noise_px) {
   if (image32f.type() != CV_32FC1 || image32f.cols != map.width() ||
       image32f.rows != map.height()) {
     return false;
@@ -320,6 +381,7 @@ bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
     centre += 0.25 * ideal[k];
   }
   std::array<Line, 4> lines;
+  std::array<Eigen::Matrix2d, 4> line_sqrt_covariance;
   for (size_t k = 0; k < 4; ++k) {
     const Eigen::Vector2d& a = ideal[k];
     const Eigen::Vector2d& b = ideal[(k + 1) % 4];
@@ -360,15 +422,20 @@ bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
         levels_set = true;
       }
       double rms = 0;
+      Eigen::Matrix2d line_covariance;
       if (!FitEdge(samples, options.iterations, pixel_scale, inner, &line, &level_a, &level_b, &s,
-                   &rms)) {
+                   &rms, &line_covariance)) {
         return false;
       }
+      Eigen::LLT<Eigen::Matrix2d> llt(line_covariance);
+      if (llt.info() != Eigen::Success) return false;
+      line_sqrt_covariance[k] = llt.matrixL();
       // Something else in the band (an occluder, a shadow, a neighbour): not a clean step.
       if (pass == options.passes - 1 && rms > options.max_residual * level_b) return false;
     }
   }
   std::array<Eigen::Vector2d, 4> refined, erosion;
+  std::array<CornerNoisePx, 4> noise;
   for (size_t k = 0; k < 4; ++k) {
     // Corner k joins side k-1 (from corner k-1 to k) and side k (from k to k+1).
     const Line& before = lines[(k + 3) % 4];
@@ -378,11 +445,20 @@ bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
     if (!refined[k].allFinite() || (refined[k] - (*corners)[k]).norm() > options.max_shift_px) {
       return false;
     }
-    erosion[k] = ErosionDirection(map, before, lines[k], p, PixelScaleAt(map, refined[k]));
+    const double pixel_scale = PixelScaleAt(map, refined[k]);
+    erosion[k] = ErosionDirection(map, before, lines[k], p, pixel_scale);
     if (!erosion[k].allFinite()) return false;
+    const Eigen::Matrix<double, 2, 4> by_two_lines =
+        CornerNoise(PixelJacobian(map, p, pixel_scale), before, line_sqrt_covariance[(k + 3) % 4],
+                    lines[k], line_sqrt_covariance[k], p);
+    if (!by_two_lines.allFinite()) return false;
+    noise[k].setZero();
+    noise[k].middleCols<2>(2 * static_cast<Eigen::Index>((k + 3) % 4)) = by_two_lines.leftCols<2>();
+    noise[k].middleCols<2>(2 * static_cast<Eigen::Index>(k)) = by_two_lines.rightCols<2>();
   }
   *corners = refined;
   if (erosion_px != nullptr) *erosion_px = erosion;
+  if (noise_px != nullptr) *noise_px = noise;
   return true;
 }
 

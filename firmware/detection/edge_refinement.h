@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include "firmware/detection/corner_observation.h"
 #include "firmware/detection/ideal_pixel_map.h"
 
 namespace h4::cam {
@@ -52,8 +53,12 @@ struct EdgeFitOptions {
 /// of uniform erosion of the quad (every side moving inward along its normal by one image
 /// pixel): a side's edge fit is biased that way when the image's response is not linear
 /// (corner_observation.h).
+/// When `noise_px` is given, it receives for each corner its pixel displacement per unit of
+/// the four sides' standardised fit noise (corner_observation.h: CornerNoisePx), from the
+/// pixel noise each side's residuals show.
 bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
                        const EdgeFitOptions& options, std::array<Eigen::Vector2d, 4>* corners,
-                       std::array<Eigen::Vector2d, 4>* erosion_px = nullptr);
+                       std::array<Eigen::Vector2d, 4>* erosion_px = nullptr,
+                       std::array<CornerNoisePx, 4>* noise_px = nullptr);
 
 }  // namespace h4::cam

@@ -187,6 +187,60 @@ Eigen::MatrixXd EdgeGroupCovariance(const std::vector<CornerObservation>& corner
   return correction * H_inverse * meat * H_inverse;
 }
 
+// Corner indices grouped by edge group (a corner outside any group is a group of its own).
+std::vector<std::vector<Eigen::Index>> CornersByEdgeGroup(
+    const std::vector<CornerObservation>& corners) {
+  std::vector<std::pair<int, Eigen::Index>> group_of;
+  for (size_t i = 0; i < corners.size(); ++i) {
+    const int group = corners[i].edge_group;
+    group_of.emplace_back(group >= 0 ? group : -1 - static_cast<int>(i),
+                          static_cast<Eigen::Index>(i));
+  }
+  std::sort(group_of.begin(), group_of.end());
+  std::vector<std::vector<Eigen::Index>> groups;
+  for (size_t k = 0; k < group_of.size(); ++k) {
+    if (k == 0 || group_of[k].first != group_of[k - 1].first) groups.emplace_back();
+    groups.back().push_back(group_of[k].second);
+  }
+  return groups;
+}
+
+// Covariance of the parameters from the edge fits' pixel noise: the corners of a tag are
+// the intersections of its four fitted sides, so their errors are correlated (a side's
+// angle noise moves its two corners in opposite directions, which the tag's centre hardly
+// feels). With Sigma = N N^T per group (CornerNoisePx), the estimate's covariance is
+// H^-1 J^T Sigma J H^-1. What the residuals show beyond that noise (bias of the edge model
+// under blur or a response curve, corners without a noise model) is added as independent
+// per coordinate: e^2 H^-1 with e^2 = max(0, |r|^2 - E|r|^2 - 2 s) / (m - p), where
+// E|r|^2 = trace(Sigma) - trace(J H^-1 J^T Sigma) is what the noise alone would leave and
+// s ~ sqrt(2 trace(Sigma^2)) its standard deviation: a residual sum within the noise's own
+// spread is no evidence of more error (a tag's 8 noise sources make |r|^2 spread ~20 %).
+Eigen::MatrixXd EdgeNoiseCovariance(const std::vector<CornerObservation>& corners,
+                                    const Eigen::MatrixXd& H_inverse, const Eigen::MatrixXd& J,
+                                    const Eigen::VectorXd& r) {
+  const Eigen::Index p = J.cols();
+  Eigen::MatrixXd propagated = Eigen::MatrixXd::Zero(p, p);
+  double expected_rss = 0, rss_variance = 0;
+  for (const std::vector<Eigen::Index>& group : CornersByEdgeGroup(corners)) {
+    Eigen::MatrixXd score_by_noise = Eigen::MatrixXd::Zero(p, CornerNoisePx::ColsAtCompileTime);
+    Eigen::Matrix<double, 8, 8> noise_gram = Eigen::Matrix<double, 8, 8>::Zero();
+    for (const Eigen::Index i : group) {
+      const CornerNoisePx& N = corners[static_cast<size_t>(i)].noise_px;
+      score_by_noise += J.middleRows(2 * i, 2).transpose() * N;
+      noise_gram += N.transpose() * N;
+    }
+    expected_rss += noise_gram.trace();
+    rss_variance += 2.0 * noise_gram.squaredNorm();  // 2 trace(Sigma_g^2)
+    const Eigen::MatrixXd parameters_by_noise = H_inverse * score_by_noise;
+    propagated += parameters_by_noise * parameters_by_noise.transpose();
+    expected_rss -= (score_by_noise.transpose() * parameters_by_noise).trace();
+  }
+  const double dof = static_cast<double>(r.size() - p);
+  const double beyond_noise = r.squaredNorm() - expected_rss - 2.0 * std::sqrt(rss_variance);
+  const double excess = dof > 0 ? std::max(0.0, beyond_noise) / dof : 0.0;
+  return propagated + excess * H_inverse;
+}
+
 // Fewer edge groups than this many per parameter: the cluster-robust estimate is too
 // noisy (its rank is at most the group count), the residual one is used.
 constexpr int kMinGroupsPerParameter = 3;
@@ -308,9 +362,14 @@ PoseEstimate EstimatePose(const std::vector<CornerObservation>& corners, const C
   const bool clustered =
       options.covariance == CovarianceModel::kEdgeGroup &&
       CountEdgeGroups(corners) >= kMinGroupsPerParameter * static_cast<int>(J.cols());
-  const Eigen::MatrixXd full =
-      (clustered ? EdgeGroupCovariance(corners, H_inverse, J, r) : (sigma2 * H_inverse).eval()) +
-      options.corner_floor_px * options.corner_floor_px * H_inverse;
+  const Eigen::MatrixXd fitted = options.covariance == CovarianceModel::kEdgeNoise
+                                     ? EdgeNoiseCovariance(corners, H_inverse, J, r)
+                                 : clustered ? EdgeGroupCovariance(corners, H_inverse, J, r)
+                                             : (sigma2 * H_inverse).eval();
+  const double erosion_px = basis.count() > 0 ? sol.state.erosion[0] : 0.0;
+  const double floor_px =
+      options.corner_floor_px + options.corner_floor_erosion_gain * erosion_px * erosion_px;
+  const Eigen::MatrixXd full = fitted + floor_px * floor_px * H_inverse;
   estimate.covariance = full.topLeftCorner<6, 6>();
   estimate.covariance = 0.5 * (estimate.covariance + estimate.covariance.transpose()).eval();
   if (basis.count() > 0) {

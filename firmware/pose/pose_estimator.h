@@ -1,8 +1,8 @@
 // Board pose X_CT from its corners in one image: planar PnP. Both IPPE solutions (on
 // undistorted points) start a Levenberg-Marquardt refinement of the pixel reprojection
 // error through the full distortion model; the one with the lower error wins (the planar
-// ambiguity). The covariance of the fit (CovarianceModel: cluster-robust over the tags by
-// default, else sigma^2 (J^T J)^-1 with sigma^2 from the residuals) is in the order of
+// ambiguity). The covariance of the fit (CovarianceModel: the edge fits' noise propagated
+// through the corners by default, else from the residuals) is in the order of
 // messages/README.md: translation p_CT in C (m), then the rotation vector (rad) of the
 // right perturbation R_CT * Exp(delta), delta in T.
 //
@@ -38,6 +38,10 @@ enum class ErosionModel {
 enum class CovarianceModel {
   kResidual,   ///< sigma^2 (J^T J)^-1, corners independent, sigma^2 from the residuals
   kEdgeGroup,  ///< cluster-robust: residuals of one edge group (a tag) taken as correlated
+  /// The edge fits' pixel noise propagated through the corners (CornerNoisePx, correlated
+  /// within a tag), plus the residuals' excess over what that noise explains, taken as
+  /// independent per corner; kResidual where no corner carries its noise.
+  kEdgeNoise,
 };
 
 struct PoseOptions {
@@ -52,18 +56,23 @@ struct PoseOptions {
   /// from its depth).
   ErosionModel erosion = ErosionModel::kAffine;
   int min_erosion_corners = 8;
-  /// kResidual: with the affine erosion fitted it keeps sigma/actual within 0.6-2 on the
-  /// conditions of firmware/bench/measure_response; kEdgeGroup over-reports there (up to
-  /// 2.6x under 1.4 px blur) although it is right when a tag's corners share a random
-  /// shift (tests/firmware/pose_estimator_test.cpp).
-  CovarianceModel covariance = CovarianceModel::kResidual;
-  /// Error per corner coordinate (px) that the residuals cannot show, added to the
-  /// covariance as independent: the part of the edge fit's bias that moves the pose along
-  /// with the corners, so that no residual sees it. Without it the reported sigma is ~0.5-0.7
-  /// of the actual error on clean renders, where the edge-fitted corners are within
-  /// 0.004-0.009 px of the truth (tests/firmware/board_detector_test.cpp); 0.0025 px brings
-  /// it to ~1 (measured with firmware/bench/measure_response). 0 = none.
-  double corner_floor_px = 0.0025;
+  /// kEdgeNoise: the corners of a tag share the noise of its four fitted sides, which moves
+  /// them in ways the pose hardly feels; kResidual takes them as independent and reported
+  /// up to 2.5x the actual error on clean renders (measurements in the README's vision
+  /// table, firmware/bench/measure_accuracy). Falls back to kResidual when no corner
+  /// carries its noise (X-corners, chessboards).
+  CovarianceModel covariance = CovarianceModel::kEdgeNoise;
+  /// Error per corner coordinate (px) that neither the residuals nor the edge fits' noise
+  /// can show, added to the covariance as independent: the part of the edge fit's bias
+  /// that moves the pose along with the corners (the edge-fitted corners of clean renders
+  /// are within 0.004-0.009 px of the truth, tests/firmware/board_detector_test.cpp). 0 =
+  /// none.
+  double corner_floor_px = 0.0015;
+  /// The floor grows by this gain times the square of the fitted erosion (px, at the image
+  /// centre): the affine erosion field leaves a remainder (per tag, from the response curve
+  /// and the defocus) that grows faster than the erosion and moves the pose with the
+  /// corners. 0 = a fixed floor.
+  double corner_floor_erosion_gain = 0.02;
 };
 
 struct PoseEstimate {

@@ -236,6 +236,83 @@ TEST(PoseEstimatorTest, CovarianceCountsTheErrorATagSharesOnce) {
   EXPECT_GT(std::sqrt(sum_sq[2] / independent[2]), 1.5);  // depth, the worst understated
 }
 
+// The noise of a tag's four fitted sides as the edge fit reports it (CornerNoisePx): side j
+// (from corner j to j+1) has angle noise sigma_phi (rad, about its midpoint) and offset noise
+// sigma_c (px); corner k, where sides k-1 and k meet, moves by A^-1 [delta_{k-1}; delta_k]
+// with A = [n_{k-1}^T; n_k^T] and delta_j = dc_j + n_perp_j . (mid_j - p) dphi_j.
+void SetTagSideNoise(double sigma_phi, double sigma_c, std::vector<CornerObservation>* corners) {
+  for (size_t first = 0; first + 3 < corners->size(); first += 4) {
+    auto at = [&](size_t k) { return (*corners)[first + k % 4].uv; };
+    auto normal = [&](size_t j) {
+      const Eigen::Vector2d d = at(j + 1) - at(j);
+      return Eigen::Vector2d(-d.y(), d.x()).normalized();
+    };
+    for (size_t k = 0; k < 4; ++k) {
+      const size_t sides[2] = {(k + 3) % 4, k};
+      Eigen::Matrix2d A;
+      A.row(0) = normal(sides[0]).transpose();
+      A.row(1) = normal(sides[1]).transpose();
+      const Eigen::Matrix2d A_inverse = A.inverse();
+      CornerObservation& corner = (*corners)[first + k];
+      corner.noise_px.setZero();
+      for (int row = 0; row < 2; ++row) {
+        const size_t j = sides[row];
+        const Eigen::Vector2d n = normal(j), n_perp(-n.y(), n.x());
+        const Eigen::Vector2d mid = 0.5 * (at(j) + at(j + 1));
+        const auto column = static_cast<Eigen::Index>(2 * j);
+        corner.noise_px.col(column) = A_inverse.col(row) * n_perp.dot(mid - corner.uv) * sigma_phi;
+        corner.noise_px.col(column + 1) = A_inverse.col(row) * sigma_c;
+      }
+      corner.edge_group = static_cast<int>(first / 4);
+    }
+  }
+}
+
+TEST(PoseEstimatorTest, CovarianceFollowsTheNoiseATagsSidesShare) {
+  // Corners moved by their sides' angle and offset noise: a side turning about its middle
+  // moves its two corners in opposite directions, which the tag's centre hardly feels.
+  // kEdgeNoise must match the Monte-Carlo spread; kResidual, taking the corners as
+  // independent, overstates it.
+  const BoardModel board(scenes::PaperBoard());
+  const CameraModel camera(scenes::PaperCamera());
+  const RigidTransform X_CT = scenes::BoardPose(scenes::PaperBoard(), 0.55, 0.3, 0.7, 0.2);
+  auto exact = Project(board, camera, X_CT, 0, nullptr);
+  SetTagSideNoise(0.002, 0.005, &exact);
+  cv::RNG rng(41);
+  const int trials = 200;
+  Eigen::Matrix<double, 6, 1> sum_sq = Eigen::Matrix<double, 6, 1>::Zero();
+  Eigen::Matrix<double, 6, 1> edge_noise = Eigen::Matrix<double, 6, 1>::Zero();
+  Eigen::Matrix<double, 6, 1> independent = Eigen::Matrix<double, 6, 1>::Zero();
+  PoseOptions options, residual;
+  options.erosion = residual.erosion = ErosionModel::kNone;
+  options.corner_floor_px = residual.corner_floor_px = 0;
+  options.covariance = CovarianceModel::kEdgeNoise;
+  residual.covariance = CovarianceModel::kResidual;
+  for (int t = 0; t < trials; ++t) {
+    auto corners = exact;
+    for (size_t first = 0; first < corners.size(); first += 4) {
+      Eigen::Matrix<double, 8, 1> z;
+      for (int i = 0; i < 8; ++i) z[i] = rng.gaussian(1.0);
+      for (size_t k = first; k < first + 4; ++k) corners[k].uv += corners[k].noise_px * z;
+    }
+    const PoseEstimate e = EstimatePose(corners, camera, options);
+    const PoseEstimate plain = EstimatePose(corners, camera, residual);
+    ASSERT_TRUE(e.ok() && plain.ok());
+    Eigen::Matrix<double, 6, 1> err;
+    err.head<3>() = e.X_CT.translation() - X_CT.translation();
+    err.tail<3>() = So3Log(X_CT.rotation().transpose() * e.X_CT.rotation());
+    sum_sq += err.cwiseAbs2() / trials;
+    edge_noise += e.covariance.diagonal() / trials;
+    independent += plain.covariance.diagonal() / trials;
+  }
+  for (int k = 0; k < 6; ++k) {
+    const double ratio = std::sqrt(sum_sq[k] / edge_noise[k]);
+    EXPECT_GT(ratio, 0.8) << k;
+    EXPECT_LT(ratio, 1.25) << k;
+  }
+  EXPECT_LT(std::sqrt(sum_sq[2] / independent[2]), 0.7);  // depth: independent overstates
+}
+
 TEST(PoseEstimatorTest, TooFewCornersIsReportedNotGuessed) {
   const BoardModel board(scenes::PaperBoard());
   const CameraModel camera(scenes::PaperCamera());
