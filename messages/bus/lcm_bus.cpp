@@ -27,6 +27,11 @@ int64_t NowUtime() {
 
 }  // namespace
 
+std::optional<BusAuth> BusAuthFromKeyFile(const std::string& key_path, AuthOptions options) {
+  if (key_path.empty()) return std::nullopt;
+  return BusAuth{ReadAuthKeyFile(key_path), std::move(options)};
+}
+
 LcmBus::LcmBus(const std::string& url, WireLimits limits, std::optional<BusAuth> auth)
     : url_(ResolveLcmUrl(url)), limits_(limits), lcm_(url_) {
   std::string why;

@@ -49,6 +49,10 @@ struct BusAuth {
   AuthOptions options;
 };
 
+/// The authentication of the key file at `key_path` with `options`; nullopt (off) when
+/// `key_path` is empty. Throws std::runtime_error naming the file (ReadAuthKeyFile).
+std::optional<BusAuth> BusAuthFromKeyFile(const std::string& key_path, AuthOptions options = {});
+
 /// Decodes `size` bytes as Msg after checking them against Msg's layout and `limits`;
 /// nullopt (with `why`) when they are not a valid Msg. Never throws on any input.
 template <class Msg>
@@ -96,7 +100,7 @@ class LcmBus {
                  [channel, handler = std::move(handler), this](const void* data, uint32_t size) {
                    if (!Authentic(channel, data, &size)) return;
                    std::string why;
-                   const std::optional<Msg> msg = DecodeMessage<Msg>(data, size, limits_, &why);
+                   const std::optional<Msg> msg = DecodeReceived<Msg>(channel, data, size, &why);
                    if (!msg) {
                      OnDecodeFailure(channel, LayoutOf<Msg>().type_name, size, why);
                      return;
@@ -146,6 +150,18 @@ class LcmBus {
                         Subscription* self);
   };
   void SubscribeRaw(const std::string& channel, RawHandler handler);
+  /// DecodeMessage, and on a channel this bus does not authenticate, a message signed by a
+  /// sender that does is read without its trailer, unchecked: without the key nothing can be
+  /// checked, and a signed campaign's log still replays into a listener without it.
+  template <class Msg>
+  std::optional<Msg> DecodeReceived(const std::string& channel, const void* data, uint32_t size,
+                                    std::string* why) const {
+    std::optional<Msg> msg = DecodeMessage<Msg>(data, size, limits_, why);
+    if (!msg && !authenticates(channel) && HasAuthTrailer(data, size)) {
+      msg = DecodeMessage<Msg>(data, size - kAuthTrailerBytes, limits_, why);
+    }
+    return msg;
+  }
   bool PublishEncoded(const std::string& channel, const std::vector<uint8_t>& encoded);
   /// True when the message may be decoded: `channel` is not authenticated, or the message
   /// is authentic (`*size` then excludes the trailer). Otherwise counted, logged, false.

@@ -53,6 +53,12 @@ int64_t ForgetAfterUs(const AuthOptions& options) {
 
 }  // namespace
 
+bool HasAuthTrailer(const void* data, size_t size) {
+  return size >= kAuthTrailerBytes &&
+         std::memcmp(static_cast<const uint8_t*>(data) + size - kAuthTrailerBytes, kMagic,
+                     sizeof kMagic) == 0;
+}
+
 bool AuthOptions::IsValid(std::string* why) const {
   auto fail = [why](const std::string& text) {
     if (why) *why = text;

@@ -49,6 +49,10 @@ struct AuthOptions {
   bool IsValid(std::string* why) const;
 };
 
+/// True when the last kAuthTrailerBytes of the `size` bytes at `data` start with the
+/// trailer's magic (whatever the rest: nothing is verified).
+bool HasAuthTrailer(const void* data, size_t size);
+
 /// Why a message was accepted or dropped.
 enum class AuthVerdict {
   kAccepted,
