@@ -7,6 +7,8 @@ find_package(nlohmann_json 3.10 REQUIRED)
 find_package(spdlog REQUIRED)
 find_package(CLI11 REQUIRED)
 pkg_check_modules(LCM REQUIRED IMPORTED_TARGET lcm)
+# libcrypto (libssl-dev): HMAC-SHA256 of authenticated bus messages (messages/bus).
+find_package(OpenSSL REQUIRED COMPONENTS Crypto)
 
 if(H4_BUILD_HOST)
   find_package(NLopt REQUIRED)

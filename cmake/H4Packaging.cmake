@@ -11,6 +11,9 @@
 # DT_NEEDED entries and maps each soname through the shlibs files of the sysroot's packages
 # (recorded by scripts/cross-build in <sysroot>/.h4-shlibs), as dpkg-shlibdeps would.
 
+# Shared libraries come from h4cam's DT_NEEDED entries either way, so libcrypto.so.3 (the
+# HMAC of authenticated bus messages, messages/bus) brings libssl3 into Depends without a
+# line here.
 # Packages every h4cam needs beyond its shared libraries: adduser for the postinst, and
 # libcamera-ipa: the image processing modules (Raspberry Pi, rkisp1, ...) that Debian's
 # libcamera only suggests, without which its pipeline handlers find no usable camera.

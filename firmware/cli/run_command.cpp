@@ -67,6 +67,7 @@ ServiceConfig ResolveRunConfig(const RunArgs& args) {
   if (args.board_path) config.board_path = *args.board_path;
   if (args.camera_path) config.camera_intrinsics_path = *args.camera_path;
   if (args.lcm_url) config.lcm_url = *args.lcm_url;
+  if (args.auth_key_path) config.auth_key_file = *args.auth_key_path;
   if (args.camera_id) config.camera_id = *args.camera_id;
   if (args.frames) config.frames_averaged = *args.frames;
   if (args.free_run_hz) config.free_run_hz = *args.free_run_hz;
@@ -80,7 +81,13 @@ ServiceConfig ResolveRunConfig(const RunArgs& args) {
 }
 
 int RunService(const ServiceConfig& config, std::ostream& err, const std::atomic<bool>& stop) {
-  bus::LcmBus bus(config.lcm_url);
+  std::optional<bus::BusAuth> auth;
+  try {
+    auth = bus::BusAuthFromKeyFile(config.auth_key_file);
+  } catch (const std::exception& e) {
+    return Fail(nullptr, config, e.what(), err);
+  }
+  bus::LcmBus bus(config.lcm_url, bus::WireLimits{}, std::move(auth));
   if (!bus.good()) return Fail(nullptr, config, bus.error(), err);
 
   std::unique_ptr<FrameSource> source;
@@ -134,7 +141,9 @@ int RunService(const ServiceConfig& config, std::ostream& err, const std::atomic
   NotifyReady();
   NotifyStatus("running: " + source->Describe() + " on " + bus.url());
   err << "h4cam run: " << source->Describe() << ", board " << options.board_id << ", LCM "
-      << bus.url() << "\n";
+      << bus.url()
+      << (config.auth_key_file.empty() ? "" : ", authenticated with " + config.auth_key_file)
+      << "\n";
   while (!stop.load()) node.Poll(std::chrono::milliseconds(100));
 
   NotifyStopping();
@@ -161,6 +170,10 @@ void AddRunCommand(CLI::App& app) {
                       "Rendered frames of --source sim: processed (default: a camera module's "
                       "sRGB output with defocus, gradient, shot noise) or clean");
   command->add_option("--lcm-url", args->lcm_url, "LCM URL (default $LCM_DEFAULT_URL, ttl=0)");
+  command->add_option("--auth-key", args->auth_key_path,
+                      "Authenticate board poses, capture requests and status with this "
+                      "pre-shared key file (owner-only, >= 32 bytes; the same as collect "
+                      "--auth-key; default lcm.auth_key_file, else off)");
   command->add_option(
       "--camera-id", args->camera_id,
       "libcamera camera id (also the name in the messages unless camera.name is set)");

@@ -22,6 +22,7 @@ namespace h4::cam {
 struct RunArgs {
   std::string config_path;
   std::optional<std::string> source, board_path, camera_path, lcm_url, camera_id;
+  std::optional<std::string> auth_key_path;  ///< --auth-key: overrides lcm.auth_key_file
   /// Image formation of `--source sim` (replaces the file's sim: block).
   std::optional<std::string> sim_preset;
   std::optional<int> frames;

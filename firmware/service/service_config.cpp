@@ -181,8 +181,9 @@ ServiceConfig ParseServiceConfig(const std::string& text, const std::string& sou
   }
   if (top.Has("lcm")) {
     const YamlMap l = top.Map("lcm");
-    l.RejectUnknownKeys({"url"});
+    l.RejectUnknownKeys({"url", "auth_key_file"});
     config.lcm_url = OptionalString(l, "url", "");
+    config.auth_key_file = OptionalString(l, "auth_key_file", "");
   }
   if (top.Has("sim")) config.sim_render = ParseSimBlock(top.Map("sim"));
   std::string why;

@@ -36,6 +36,9 @@ struct ServiceConfig {
 
   // lcm: block
   std::string lcm_url;  ///< "" = $LCM_DEFAULT_URL, else udpm with ttl=0
+  /// `lcm.auth_key_file`: the pre-shared key of authenticated messages (messages/README.md);
+  /// "" = authentication off (the default).
+  std::string auth_key_file;
 
   // sim: block, the image formation of `source: sim` (render_options.h). `sim.preset`
   // (clean | processed, default processed) sets every value; the other keys override it:

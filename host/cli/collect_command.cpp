@@ -31,6 +31,7 @@ struct CollectOptions {
   bool passive = false;
   std::string from_log;
   std::string lcm_url;
+  std::string auth_key_path;  ///< "" = authentication off
   CampaignOptions campaign;
   std::string identify_dir;
   std::string robot_path;
@@ -78,14 +79,22 @@ void PrintSummary(const Campaign& campaign, const DatasetJournal& journal, const
   std::printf(
       "  messages: %lld joint states, %lld board poses; not used: %lld impossible, "
       "%lld non-physical covariance, %lld unexpected pose id, %lld duplicate, "
-      "%lld unpaired, %lld undecodable; %lld retries\n",
+      "%lld unpaired, %lld undecodable, %lld not authentic; %lld retries\n",
       static_cast<long long>(c.joint_states), static_cast<long long>(c.board_poses),
       static_cast<long long>(c.impossible_values),
       static_cast<long long>(c.nonphysical_covariances),
       static_cast<long long>(c.unexpected_pose_ids), static_cast<long long>(c.duplicates),
       static_cast<long long>(c.unpaired), static_cast<long long>(bus.decode_failures()),
-      static_cast<long long>(c.retries));
+      static_cast<long long>(bus.auth_failures()), static_cast<long long>(c.retries));
   if (interrupted) std::printf("  run the same command again to resume\n");
+}
+
+/// The authentication of --auth-key (nullopt: off). A recorded log is old by definition:
+/// its messages' MACs and sequences are checked, not their age.
+std::optional<bus::BusAuth> CollectAuth(const CollectOptions& options, bool from_log) {
+  bus::AuthOptions auth_options;
+  auth_options.check_freshness = !from_log;
+  return bus::BusAuthFromKeyFile(options.auth_key_path, auth_options);
 }
 
 /// Model 12, then Model 31 from it (paper IV.C), validation and the report, in `dir`.
@@ -142,12 +151,15 @@ void Run(CollectOptions options, const std::string& command_line) {
                             : PosePlanFromRows(ReadPosesCsv(options.plan_path));
   if (plan.empty()) throw std::invalid_argument(options.plan_path + ": the pose plan is empty");
 
-  bus::LcmBus bus(from_log ? LogUrl(options.from_log) : options.lcm_url);
+  bus::LcmBus bus(from_log ? LogUrl(options.from_log) : options.lcm_url, bus::WireLimits{},
+                  CollectAuth(options, from_log));
   if (!bus.good()) {
     throw std::runtime_error(from_log ? options.from_log + ": cannot open the LCM log"
                                       : bus.error());
   }
-  spdlog::info("LCM: {}", bus.url());
+  spdlog::info(
+      "LCM: {}{}", bus.url(),
+      options.auth_key_path.empty() ? "" : ", authenticated with " + options.auth_key_path);
   DatasetJournal journal(options.out_path);
   Campaign campaign(bus, plan, journal, options.campaign);
   const std::atomic<bool>& stop = InstallStopSignalHandlers();
@@ -214,6 +226,11 @@ void AddCollectCommand(CLI::App& app) {
       ->check(CLI::ExistingFile);
   command->add_option("--lcm-url", options->lcm_url,
                       "LCM provider URL (default $LCM_DEFAULT_URL, else udpm with ttl=0)");
+  command->add_option("--auth-key", options->auth_key_path,
+                      "Authenticate board poses, capture requests and camera status with this "
+                      "pre-shared key file (owner-only, >= 32 bytes; the camera's "
+                      "lcm.auth_key_file): other messages on those channels are dropped and "
+                      "counted. Default off");
   command
       ->add_option("--frames", options->campaign.frame_count,
                    "Frames averaged per measurement (0: the camera's default)")

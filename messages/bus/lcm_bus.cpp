@@ -17,10 +17,26 @@ std::string ResolveLcmUrl(const std::string& url) {
   return kDefaultLcmUrl;
 }
 
-LcmBus::LcmBus(const std::string& url, WireLimits limits)
+namespace {
+
+int64_t NowUtime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+
+std::optional<BusAuth> BusAuthFromKeyFile(const std::string& key_path, AuthOptions options) {
+  if (key_path.empty()) return std::nullopt;
+  return BusAuth{ReadAuthKeyFile(key_path), std::move(options)};
+}
+
+LcmBus::LcmBus(const std::string& url, WireLimits limits, std::optional<BusAuth> auth)
     : url_(ResolveLcmUrl(url)), limits_(limits), lcm_(url_) {
   std::string why;
   if (!limits_.IsValid(&why)) throw std::invalid_argument(why);
+  if (auth) auth_ = std::make_unique<MessageAuthenticator>(auth->key, std::move(auth->options));
 }
 
 std::string LcmBus::error() const {
@@ -41,6 +57,35 @@ void LcmBus::Subscription::Receive(const lcm::ReceiveBuffer* rbuf, const std::st
 void LcmBus::SubscribeRaw(const std::string& channel, RawHandler handler) {
   subscriptions_.push_back(std::make_unique<Subscription>(Subscription{std::move(handler), this}));
   lcm_.subscribeFunction(channel, &Subscription::Receive, subscriptions_.back().get());
+}
+
+bool LcmBus::PublishEncoded(const std::string& channel, const std::vector<uint8_t>& encoded) {
+  int ret = 0;
+  if (authenticates(channel)) {
+    const std::vector<uint8_t> sealed =
+        auth_->Seal(channel, encoded.data(), encoded.size(), NowUtime());
+    ret = lcm_.publish(channel, sealed.data(), static_cast<unsigned>(sealed.size()));
+  } else {
+    ret = lcm_.publish(channel, encoded.data(), static_cast<unsigned>(encoded.size()));
+  }
+  if (ret != 0) OnPublishFailure(channel);
+  return ret == 0;
+}
+
+bool LcmBus::authenticates(const std::string& channel) const {
+  return auth_ != nullptr && auth_->Covers(channel);
+}
+
+bool LcmBus::Authentic(const std::string& channel, const void* data, uint32_t* size) {
+  if (!authenticates(channel)) return true;
+  size_t message_size = 0;
+  const AuthVerdict verdict = auth_->Open(channel, data, *size, NowUtime(), &message_size);
+  if (verdict != AuthVerdict::kAccepted) {
+    OnAuthFailure(channel, *size, verdict);
+    return false;
+  }
+  *size = static_cast<uint32_t>(message_size);
+  return true;
 }
 
 int LcmBus::Handle(std::chrono::milliseconds timeout) {
@@ -75,6 +120,28 @@ void LcmBus::OnDecodeFailure(const std::string& channel, const char* type, uint3
   if (!failures.throttle.Allow(WarningThrottle::Clock::now(), &suppressed)) return;
   spdlog::warn("lcm: dropped a message of {} bytes on {}: not a valid {}: {} ({} on {} so far{})",
                size, channel, type, why, failures.count, channel,
+               suppressed > 0 ? fmt::format(", {} not logged", suppressed) : std::string());
+}
+
+int64_t LcmBus::auth_failures(const std::string& channel) const {
+  const auto it = auth_failures_by_channel_.find(channel);
+  return it == auth_failures_by_channel_.end() ? 0 : it->second.count;
+}
+
+int64_t LcmBus::auth_failures(AuthVerdict verdict) const {
+  const auto it = auth_failures_by_verdict_.find(verdict);
+  return it == auth_failures_by_verdict_.end() ? 0 : it->second;
+}
+
+void LcmBus::OnAuthFailure(const std::string& channel, uint32_t size, AuthVerdict verdict) {
+  ++auth_failures_;
+  ++auth_failures_by_verdict_[verdict];
+  ChannelFailures& failures = auth_failures_by_channel_[channel];
+  ++failures.count;
+  int64_t suppressed = 0;
+  if (!failures.throttle.Allow(WarningThrottle::Clock::now(), &suppressed)) return;
+  spdlog::warn("lcm: dropped a message of {} bytes on {}: {} ({} on {} so far{})", size, channel,
+               ToString(verdict), failures.count, channel,
                suppressed > 0 ? fmt::format(", {} not logged", suppressed) : std::string());
 }
 

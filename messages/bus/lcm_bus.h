@@ -11,6 +11,10 @@
 // on an assertion (lcm.c: `!lcm->in_handle`; see messages/README.md).
 // So an exception from a handler (e.g. a full disk under the dataset journal) is caught at
 // the callback and rethrown by Handle() once LCM has returned.
+//
+// With a BusAuth (off by default), the messages of its channels are sealed on publish and
+// opened on receipt (message_auth.h): what is not authentic is counted and dropped before
+// the layout check, like a message that does not decode.
 #pragma once
 
 #include <chrono>
@@ -25,6 +29,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "messages/bus/message_auth.h"
 #include "messages/bus/warning_throttle.h"
 #include "messages/bus/wire_check.h"
 #include "messages/bus/wire_layouts.h"
@@ -37,6 +42,16 @@ inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 
 /// `url` if not empty, else $LCM_DEFAULT_URL if set and not empty, else kDefaultLcmUrl.
 std::string ResolveLcmUrl(const std::string& url);
+
+/// Message authentication of a bus: the pre-shared key and which channels it covers.
+struct BusAuth {
+  AuthKey key;
+  AuthOptions options;
+};
+
+/// The authentication of the key file at `key_path` with `options`; nullopt (off) when
+/// `key_path` is empty. Throws std::runtime_error naming the file (ReadAuthKeyFile).
+std::optional<BusAuth> BusAuthFromKeyFile(const std::string& key_path, AuthOptions options = {});
 
 /// Decodes `size` bytes as Msg after checking them against Msg's layout and `limits`;
 /// nullopt (with `why`) when they are not a valid Msg. Never throws on any input.
@@ -63,8 +78,11 @@ class LcmBus {
   static constexpr int kMaxMessagesPerHandle = 256;
 
   /// Connects to ResolveLcmUrl(url); good() is false (error() says why) when LCM fails.
-  /// Received messages are checked against `limits` (must be IsValid()).
-  explicit LcmBus(const std::string& url, WireLimits limits = {});
+  /// Received messages are checked against `limits` (must be IsValid()). With `auth`, the
+  /// messages of its channels are authenticated both ways (throws std::invalid_argument
+  /// when its key or options are not valid).
+  explicit LcmBus(const std::string& url, WireLimits limits = {},
+                  std::optional<BusAuth> auth = std::nullopt);
   LcmBus(const LcmBus&) = delete;
   LcmBus& operator=(const LcmBus&) = delete;
 
@@ -80,8 +98,9 @@ class LcmBus {
   void Subscribe(const std::string& channel, std::function<void(const Msg&)> handler) {
     SubscribeRaw(channel,
                  [channel, handler = std::move(handler), this](const void* data, uint32_t size) {
+                   if (!Authentic(channel, data, &size)) return;
                    std::string why;
-                   const std::optional<Msg> msg = DecodeMessage<Msg>(data, size, limits_, &why);
+                   const std::optional<Msg> msg = DecodeReceived<Msg>(channel, data, size, &why);
                    if (!msg) {
                      OnDecodeFailure(channel, LayoutOf<Msg>().type_name, size, why);
                      return;
@@ -90,12 +109,16 @@ class LcmBus {
                  });
   }
 
-  /// Encodes and publishes; false (logged) when LCM refuses.
+  /// Encodes (and seals, on an authenticated channel) and publishes; false (logged) when
+  /// LCM refuses.
   template <class Msg>
   bool Publish(const std::string& channel, const Msg& msg) {
-    const int ret = lcm_.publish(channel, &msg);
-    if (ret != 0) OnPublishFailure(channel);
-    return ret == 0;
+    std::vector<uint8_t> encoded(static_cast<size_t>(msg.getEncodedSize()));
+    if (msg.encode(encoded.data(), 0, static_cast<int>(encoded.size())) < 0) {
+      OnPublishFailure(channel);
+      return false;
+    }
+    return PublishEncoded(channel, encoded);
   }
 
   /// Dispatches the messages that arrive within `timeout` (0: only those already
@@ -107,6 +130,13 @@ class LcmBus {
   int64_t decode_failures() const { return decode_failures_; }
   int64_t decode_failures(const std::string& channel) const;
   int64_t publish_failures() const { return publish_failures_; }
+
+  /// True when messages of `channel` are authenticated on this bus.
+  bool authenticates(const std::string& channel) const;
+  /// Messages dropped as not authentic: in all, on one channel, for one reason.
+  int64_t auth_failures() const { return auth_failures_; }
+  int64_t auth_failures(const std::string& channel) const;
+  int64_t auth_failures(AuthVerdict verdict) const;
 
  private:
   using RawHandler = std::function<void(const void* data, uint32_t size)>;
@@ -120,6 +150,23 @@ class LcmBus {
                         Subscription* self);
   };
   void SubscribeRaw(const std::string& channel, RawHandler handler);
+  /// DecodeMessage, and on a channel this bus does not authenticate, a message signed by a
+  /// sender that does is read without its trailer, unchecked: without the key nothing can be
+  /// checked, and a signed campaign's log still replays into a listener without it.
+  template <class Msg>
+  std::optional<Msg> DecodeReceived(const std::string& channel, const void* data, uint32_t size,
+                                    std::string* why) const {
+    std::optional<Msg> msg = DecodeMessage<Msg>(data, size, limits_, why);
+    if (!msg && !authenticates(channel) && HasAuthTrailer(data, size)) {
+      msg = DecodeMessage<Msg>(data, size - kAuthTrailerBytes, limits_, why);
+    }
+    return msg;
+  }
+  bool PublishEncoded(const std::string& channel, const std::vector<uint8_t>& encoded);
+  /// True when the message may be decoded: `channel` is not authenticated, or the message
+  /// is authentic (`*size` then excludes the trailer). Otherwise counted, logged, false.
+  bool Authentic(const std::string& channel, const void* data, uint32_t* size);
+  void OnAuthFailure(const std::string& channel, uint32_t size, AuthVerdict verdict);
   void OnDecodeFailure(const std::string& channel, const char* type, uint32_t size,
                        const std::string& why);
   void OnPublishFailure(const std::string& channel);
@@ -133,8 +180,12 @@ class LcmBus {
   WireLimits limits_;
   lcm::LCM lcm_;
   std::vector<std::unique_ptr<Subscription>> subscriptions_;
-  std::exception_ptr handler_exception_;  ///< thrown by a handler, rethrown by Handle()
+  std::exception_ptr handler_exception_;        ///< thrown by a handler, rethrown by Handle()
+  std::unique_ptr<MessageAuthenticator> auth_;  ///< null: no authentication (the default)
   std::map<std::string, ChannelFailures> decode_failures_by_channel_;
+  std::map<std::string, ChannelFailures> auth_failures_by_channel_;
+  std::map<AuthVerdict, int64_t> auth_failures_by_verdict_;
+  int64_t auth_failures_ = 0;
   int64_t decode_failures_ = 0;
   int64_t publish_failures_ = 0;
 };

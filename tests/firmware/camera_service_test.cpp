@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@
 #include "messages/bus/lcm_bus.h"
 #include "messages/channels.h"
 #include "tests/firmware/program_command.h"
+#include "tests/messages/wire_bytes.h"
 
 namespace h4::cam {
 namespace {
@@ -51,8 +53,8 @@ constexpr int64_t kStartUtime = 1'700'000'000'000'000;
 // One service on a memq bus, as `h4cam run --source sim` wires it, plus a listener.
 class ServiceFixture : public ::testing::Test {
  protected:
-  explicit ServiceFixture(double free_run_hz = 0)
-      : bus_("memq://"),
+  explicit ServiceFixture(double free_run_hz = 0, std::optional<bus::BusAuth> auth = std::nullopt)
+      : bus_("memq://", bus::WireLimits{}, std::move(auth)),
         sim_(scenes::PaperBoard(), scenes::PaperCamera(), SimOptions()),
         service_(Options(free_run_hz), sim_, scenes::PaperBoard(), scenes::PaperCamera()),
         node_(bus_, service_, &sim_, std::chrono::seconds(1)) {
@@ -157,6 +159,48 @@ TEST_F(ServiceFixture, MalformedAndImpossibleMessagesAreCountedAndIgnored) {
   PollForPoses(1);
   ASSERT_EQ(poses_.size(), 1u);
   EXPECT_EQ(poses_[0].pose_id, 8);
+}
+
+bus::AuthKey TestKey(uint8_t fill) {
+  return bus::AuthKey{std::vector<uint8_t>(32, fill), "test key"};
+}
+
+// The service with authentication on (h4cam run --auth-key): the fixture's own publications
+// are the campaign's, signed with the key.
+class AuthenticatedServiceFixture : public ServiceFixture {
+ protected:
+  AuthenticatedServiceFixture() : ServiceFixture(0, bus::BusAuth{TestKey(1), {}}) {}
+
+  void PublishRaw(const std::vector<uint8_t>& bytes) {
+    bus_.lcm().publish(channels::kCaptureRequest, bytes.data(),
+                       static_cast<unsigned>(bytes.size()));
+  }
+  static std::vector<uint8_t> Sealed(bus::MessageAuthenticator& sender,
+                                     const h4msgs::capture_request_t& request) {
+    const std::vector<uint8_t> bytes = bus::wire_bytes::Encode(request);
+    return sender.Seal(channels::kCaptureRequest, bytes.data(), bytes.size(), NowUtime());
+  }
+};
+
+TEST_F(AuthenticatedServiceFixture, IgnoresCaptureRequestsWithoutTheKeyAndAnswersTheRest) {
+  PublishRaw(bus::wire_bytes::Encode(Request(61, 1)));  // an attacker without the key
+  bus::MessageAuthenticator attacker(TestKey(9), {});
+  PublishRaw(Sealed(attacker, Request(62, 1)));  // signed with another key
+  bus::MessageAuthenticator campaign(TestKey(1), {});
+  const std::vector<uint8_t> genuine = Sealed(campaign, Request(63, 1));
+  PublishRaw(genuine);
+  PublishRaw(genuine);  // replayed
+  bus_.Publish(channels::kCaptureRequest, Request(64, 1));
+  PollForPoses(3);
+  std::vector<int64_t> answered;
+  for (const auto& pose : poses_) answered.push_back(pose.pose_id);
+  EXPECT_EQ(answered, (std::vector<int64_t>{63, 64}));
+  EXPECT_EQ(bus_.auth_failures(channels::kCaptureRequest), 3);
+  EXPECT_EQ(bus_.auth_failures(bus::AuthVerdict::kUnauthenticated), 1);
+  EXPECT_EQ(bus_.auth_failures(bus::AuthVerdict::kForeignKey), 1);
+  EXPECT_EQ(bus_.auth_failures(bus::AuthVerdict::kReplayed), 1);
+  EXPECT_EQ(service_.rejected_requests(), 0) << "dropped by the bus, never seen by the service";
+  EXPECT_GE(statuses_.size(), 1u) << "its own signed heartbeat reads back";
 }
 
 TEST_F(ServiceFixture, RequestsArrivingWhileBusyAreAnsweredInOrder) {
@@ -281,6 +325,31 @@ TEST(CameraServiceTest, RunWithoutACameraExitsNonZeroWithAClearMessage) {
   EXPECT_NE(WEXITSTATUS(status), 124) << "timed out: " << output;
   EXPECT_NE(output.find("no camera"), std::string::npos) << output;
   EXPECT_NE(output.find("h4cam run:"), std::string::npos) << output;
+}
+
+TEST(CameraServiceTest, RunRefusesAKeyFileOthersCanReadNamingIt) {
+  const std::string binary = H4_BINARY_DIR "/firmware/h4cam";
+  if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
+  const std::string key =
+      (std::filesystem::temp_directory_path() / ("h4cam_key_" + std::to_string(getpid()))).string();
+  { std::ofstream(key) << std::string(32, 'k'); }
+  std::filesystem::permissions(
+      key, std::filesystem::perms::owner_read | std::filesystem::perms::owner_write |
+               std::filesystem::perms::group_read | std::filesystem::perms::others_read);
+  FILE* pipe = popen(("timeout 30 " + test::ProgramCommand(binary) +
+                      " run --lcm-url memq:// --source sim --auth-key " + key + " 2>&1")
+                         .c_str(),
+                     "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  std::array<char, 256> buffer{};
+  while (fgets(buffer.data(), buffer.size(), pipe) != nullptr) output += buffer.data();
+  const int status = pclose(pipe);
+  std::filesystem::remove(key);
+  ASSERT_TRUE(WIFEXITED(status)) << output;
+  EXPECT_EQ(WEXITSTATUS(status), 1) << output;
+  EXPECT_NE(output.find(key + ": auth key: mode 0644"), std::string::npos) << output;
+  EXPECT_NE(output.find("chmod 600"), std::string::npos) << output;
 }
 
 }  // namespace

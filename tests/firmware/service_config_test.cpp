@@ -30,18 +30,21 @@ TEST(ServiceConfigTest, PackagedConfigurationGivesItsStatedValues) {
   EXPECT_EQ(c.frames_averaged, 10);
   EXPECT_EQ(c.max_spread_px, 0.5);
   EXPECT_EQ(c.lcm_url, "");
+  EXPECT_EQ(c.auth_key_file, "") << "authentication is off by default";
 }
 
 TEST(ServiceConfigTest, OptionalKeysAreRead) {
   const ServiceConfig c = ParseServiceConfig(
       "source: sim\ncamera:\n  name: bench\nmeasurement:\n  free_run_hz: 2\n"
-      "service:\n  heartbeat_period_s: 0.5\nlcm:\n  url: memq://\n",
+      "service:\n  heartbeat_period_s: 0.5\nlcm:\n  url: memq://\n"
+      "  auth_key_file: /etc/h4cam/h4.key\n",
       "c.yaml");
   EXPECT_EQ(c.source, "sim");
   EXPECT_EQ(c.MessageCameraId(), "bench");
   EXPECT_EQ(c.free_run_hz, 2);
   EXPECT_EQ(c.heartbeat_period_s, 0.5);
   EXPECT_EQ(c.lcm_url, "memq://");
+  EXPECT_EQ(c.auth_key_file, "/etc/h4cam/h4.key");
 }
 
 void ExpectError(const std::string& text, int line, const std::string& field,
@@ -87,6 +90,7 @@ TEST(ServiceConfigTest, FlagsOverrideTheFile) {
   args.source = "dir:/tmp/images";
   args.frames = 4;
   args.camera_id = "cam7";
+  args.auth_key_path = "/tmp/h4.key";
   const ServiceConfig c = ResolveRunConfig(args);
   std::remove(path.c_str());
   EXPECT_EQ(c.source, "dir:/tmp/images");
@@ -94,6 +98,7 @@ TEST(ServiceConfigTest, FlagsOverrideTheFile) {
   EXPECT_EQ(c.frames_averaged, 4);
   EXPECT_EQ(c.camera_id, "cam7");
   EXPECT_EQ(c.MessageCameraId(), "cam7");
+  EXPECT_EQ(c.auth_key_file, "/tmp/h4.key");
 
   RunArgs bad;
   bad.source = "webcam";

@@ -3,6 +3,7 @@
 // each fault (moved, partial, silence, garbage, impossible numbers) can be injected.
 #include "host/campaign/campaign.h"
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
@@ -21,6 +22,7 @@
 #include <unistd.h>
 
 #include "messages/channels.h"
+#include "tests/messages/wire_bytes.h"
 
 namespace h4::host {
 namespace {
@@ -727,6 +729,77 @@ TEST(CampaignUdpm, LossyCampaignOverMulticastInAPrivateNamespace) {
   const int status = pclose(pipe);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output;
   EXPECT_NE(output.find("[       OK ] CampaignUdpm.ChildInNamespace"), std::string::npos) << output;
+}
+
+/// Another host on the network, without the campaign's key (or with another one): on every
+/// cycle it sends a plausible board pose for each planned pose (depth 0.5 m, not the cell's)
+/// and a capture request for pose 77, unsigned and signed with its own key.
+struct Attacker {
+  bus::LcmBus& bus;
+  int plan_size;
+  bus::MessageAuthenticator foreign{bus::AuthKey{std::vector<uint8_t>(32, 9), "attacker"}, {}};
+
+  void Inject() {
+    for (int64_t id = 1; id <= plan_size; ++id) {
+      Send(channels::kBoardPose, bus::wire_bytes::Encode(ForeignBoardPose(id)));
+    }
+    h4msgs::capture_request_t request{};
+    request.utime = NowUtime();
+    request.pose_id = 77;
+    Send(channels::kCaptureRequest, bus::wire_bytes::Encode(request));
+  }
+  void Send(const char* channel, const std::vector<uint8_t>& bytes) {
+    bus.lcm().publish(channel, bytes.data(), static_cast<unsigned>(bytes.size()));
+    const std::vector<uint8_t> sealed =
+        foreign.Seal(channel, bytes.data(), bytes.size(), NowUtime());
+    bus.lcm().publish(channel, sealed.data(), static_cast<unsigned>(sealed.size()));
+  }
+};
+
+bus::BusAuth CampaignKey() {
+  return bus::BusAuth{bus::AuthKey{std::vector<uint8_t>(32, 1), "campaign key"}, {}};
+}
+
+TEST_F(CampaignTest, WithAuthenticationAnAttackerWithoutTheKeyInjectsNothing) {
+  // The campaign and the scripted cell share the bus, so the cell's messages carry the key.
+  bus::LcmBus bus("memq://", bus::WireLimits{}, CampaignKey());
+  ScriptedCell cell(bus);
+  cell.answer_delay = std::chrono::milliseconds(20);  // the attacker answers first
+  DatasetJournal journal(path_);
+  Campaign campaign(bus, Plan(3), journal, FastOptions());
+  Attacker attacker{bus, 3};
+  Run(bus, campaign, &cell, 20.0, [&] { attacker.Inject(); });
+  ASSERT_TRUE(campaign.finished());
+  EXPECT_TRUE(campaign.skipped().empty());
+  const std::vector<DatasetRow> rows = ReadDatasetCsv(path_);
+  ASSERT_EQ(rows.size(), 3u);
+  for (const DatasetRow& r : rows) {
+    EXPECT_NEAR(r.X_CT.translation().z(), ScriptedCell::Depth(r.pose_id), 1e-12) << r.pose_id;
+  }
+  EXPECT_EQ(std::count(cell.requests.begin(), cell.requests.end(), 77), 0)
+      << "the attacker's capture requests never reach the camera";
+  EXPECT_EQ(campaign.counters().retries, 0);
+  EXPECT_EQ(campaign.counters().unexpected_pose_ids, 0) << "dropped before the campaign";
+  EXPECT_GT(bus.auth_failures(bus::AuthVerdict::kUnauthenticated), 0);
+  EXPECT_GT(bus.auth_failures(bus::AuthVerdict::kForeignKey), 0);
+  EXPECT_EQ(bus.auth_failures(bus::AuthVerdict::kForged), 0);
+}
+
+TEST_F(CampaignTest, WithoutAuthenticationTheSameAttackerGetsItsPosesRecorded) {
+  // The control of the test above: the attack is real when authentication is off.
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  cell.answer_delay = std::chrono::milliseconds(20);
+  DatasetJournal journal(path_);
+  Campaign campaign(bus, Plan(3), journal, FastOptions());
+  Attacker attacker{bus, 3};
+  Run(bus, campaign, &cell, 20.0, [&] { attacker.Inject(); });
+  const std::vector<DatasetRow> rows = ReadDatasetCsv(path_);
+  const auto forged = std::count_if(rows.begin(), rows.end(), [](const DatasetRow& r) {
+    return std::abs(r.X_CT.translation().z() - 0.5) < 1e-12;
+  });
+  EXPECT_GT(forged, 0) << "the attacker's depth of 0.5 m became a row";
+  EXPECT_GT(std::count(cell.requests.begin(), cell.requests.end(), 77), 0);
 }
 
 }  // namespace

@@ -158,4 +158,14 @@ expect_error "ik X 1e308" "huge.csv:2: field 'X'" \
   > /dev/null 2>&1 || fail "export 31"
 expect_error "fk --robot on a Model 31 export" "c31.yaml: has a model31 block" \
   "$h4cal" fk --robot "$dir/c31.yaml" --joints "$dir/joints.csv" --out "$dir/fk31.csv"
+
+# Authenticated messages: a key file group or others can read, or a short one, is refused
+# naming the file, before any dataset is made.
+head -c 32 /dev/urandom > "$dir/open.key"; chmod 644 "$dir/open.key"
+expect_error "collect --auth-key mode 644" "open.key: auth key: mode 0644" \
+  "$h4cal" collect --out "$dir/c.csv" --lcm-url memq:// --auth-key "$dir/open.key"
+(umask 077; head -c 16 /dev/urandom > "$dir/short.key")
+expect_error "collect --auth-key of 16 bytes" "short.key: auth key: 16 bytes; expected 32" \
+  "$h4cal" collect --out "$dir/c.csv" --lcm-url memq:// --auth-key "$dir/short.key"
+[ ! -e "$dir/c.csv" ] || fail "collect made a dataset with a refused key"
 echo "PASS"

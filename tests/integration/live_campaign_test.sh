@@ -8,7 +8,11 @@
 #   - the log, read through LCM's file:// provider (collect --from-log) and replayed live by
 #     the real lcm-logplayer into collect --passive, rebuilds the same rows byte for byte;
 #   - a campaign killed (SIGKILL) in the middle and started again ends with every pose
-#     exactly once.
+#     exactly once;
+#   - all of it with authenticated messages (h4cam run --auth-key, collect --auth-key, one
+#     pre-shared key): the signed log rebuilds the same rows through --from-log with the key
+#     and lcm-logplayer into a listener without it, while a listener holding another key
+#     records nothing and counts what it dropped.
 #   live_campaign_test.sh H4CAL H4CAM SOURCE_DIR WORK_DIR
 # Time limits (capture and settle timeouts, waits) are multiplied by $H4_TEST_TIME_SCALE
 # (default 1; the sanitizer build sets it, cmake/H4Sanitizers.cmake: its renderer is ~7x
@@ -46,6 +50,10 @@ trap cleanup EXIT
 export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0"
 cd "$dir"
 
+# The pre-shared key, made as messages/README.md says.
+(umask 077; head -c 32 /dev/urandom > h4.key)
+(umask 077; head -c 32 /dev/urandom > other.key)
+
 "$h4cal" simulate --truth 12 --seed 3 --robot-seed 3 --out-dir sim 2> simulate.log
 cat > plan.csv <<'PLAN'
 pose_id,X,Y,Z,theta
@@ -68,13 +76,14 @@ robot=$!; pids+=($robot)
 # The processed preset (the default): frames as a camera module's ISP delivers them
 # (sRGB-like response, defocus, illumination gradient, shot noise).
 "$h4cam" run --source sim --sim-preset processed --board "$src/boards/aprilgrid_6x6_30mm.yaml" \
-  --camera "$src/boards/sim_camera_1024x768.yaml" --camera-id sim > camera.log 2>&1 &
+  --camera "$src/boards/sim_camera_1024x768.yaml" --camera-id sim --auth-key h4.key \
+  > camera.log 2>&1 &
 camera=$!; pids+=($camera)
 lcm-logger --quiet -f campaign.lcmlog > logger.log 2>&1 &
 logger=$!; pids+=($logger)
 
 collect=("$h4cal" collect --plan plan.csv --settle-timeout $((20 * scale))
-         --capture-timeout $((10 * scale)))
+         --capture-timeout $((10 * scale)) --auth-key h4.key)
 "${collect[@]}" --out dataset.csv > collect.log 2>&1 || fail "collect exited $?"
 [ "$(rows dataset.csv)" -eq 12 ] || fail "dataset.csv has $(rows dataset.csv) rows, expected 12"
 kill -INT $logger; wait $logger || true
@@ -98,18 +107,26 @@ wait $camera || fail "h4cam exited $? on SIGTERM"
 pids=()
 
 # Replays rebuild the same rows.
-"$h4cal" collect --from-log campaign.lcmlog --plan plan.csv --out from_log.csv > from_log.log 2>&1 \
-  || fail "collect --from-log exited $?"
+"$h4cal" collect --from-log campaign.lcmlog --plan plan.csv --out from_log.csv --auth-key h4.key \
+  > from_log.log 2>&1 || fail "collect --from-log exited $?"
 cmp dataset.csv from_log.csv || fail "--from-log rebuilt other rows"
+grep -q " 0 not authentic" from_log.log || fail "--from-log with the key dropped messages"
 "$h4cal" collect --passive --plan plan.csv --out passive.csv > passive.log 2>&1 &
 listener=$!; pids+=($listener)
+"$h4cal" collect --passive --plan plan.csv --out foreign.csv --auth-key other.key \
+  > foreign.log 2>&1 &
+foreign=$!; pids+=($foreign)
 sleep 0.5
 lcm-logplayer -s 4 campaign.lcmlog > logplayer.log 2>&1 || fail "lcm-logplayer exited $?"
 for _ in $(seq $((100 * scale))); do kill -0 $listener 2> /dev/null || break; sleep 0.1; done
-kill -INT $listener 2> /dev/null || true
+kill -INT $listener $foreign 2> /dev/null || true
 wait $listener || true
+wait $foreign || true
 pids=()
 cmp dataset.csv passive.csv || fail "lcm-logplayer into collect --passive rebuilt other rows"
+[ "$(rows foreign.csv)" -eq 0 ] || fail "a listener with another key recorded $(rows foreign.csv) rows"
+dropped=$(sed -nE 's/.* ([0-9]+) not authentic.*/\1/p' foreign.log)
+[ "${dropped:-0}" -ge 12 ] || fail "the listener with another key dropped '${dropped}' messages, expected >= 12"
 
 # The live dataset identifies the true robot.
 "$h4cal" identify --robot sim/robot.yaml --data dataset.csv --model 12 --validation 0 \
@@ -120,4 +137,4 @@ read -r p r <<< "$(echo "$line" | sed -E 's/.*position RMS ([0-9.]+) mm, rotatio
 below "$p" 0.10 || fail "held-out position RMS $p mm > 0.10"
 below "$r" 0.02 || fail "held-out rotation RMS $r deg > 0.02"
 echo "PASS: 12 live poses -> held-out $p mm, $r deg; killed at $before rows, resumed to 12;" \
-  "--from-log and lcm-logplayer replays identical"
+  "--from-log and lcm-logplayer replays identical; all signed, another key dropped $dropped"

@@ -59,10 +59,11 @@ check "Architecture is $arch" [ "$(field Architecture)" = "$arch" ]
 check "Version is $version" [ "$(field Version)" = "$version" ]
 depends=$(field Depends)
 echo "      Depends: $depends"
-# (dpkg-shlibdeps leaves out a library none of whose symbols h4cam uses: liblcm appears once
+# (libssl3: libcrypto, the HMAC of authenticated bus messages.
+# dpkg-shlibdeps leaves out a library none of whose symbols h4cam uses: liblcm appears once
 # the service publishes; it is not required here.)
 for dependency in adduser libcamera-ipa libc6 libstdc++6 libcamera0 libopencv-core4 \
-  libopencv-calib3d4 libapriltag; do
+  libopencv-calib3d4 libapriltag libssl3; do
   check "Depends names $dependency" grep -q "\\b$dependency" <<< "$depends"
 done
 
