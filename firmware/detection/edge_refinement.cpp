@@ -174,8 +174,8 @@ void AddInnerEdge(const InnerEdge& inner, const Profile& profile, double t, doub
 // `line_covariance` receives the covariance of (phi, c) from the pixel noise the residuals
 // show (sigma^2 H^-1, marginal over the levels, blur and shading).
 bool FitEdge(const std::vector<Sample>& samples, int iterations, double pixel_scale,
-             const InnerEdge& inner, Line* line, double* a, double* b, double* s, double* rms,
-             Eigen::Matrix2d* line_covariance) {
+             bool fit_shading, const InnerEdge& inner, Line* line, double* a, double* b, double* s,
+             double* rms, Eigen::Matrix2d* line_covariance) {
   double t_min = samples.front().t, t_max = samples.front().t;
   for (const Sample& sample : samples) {
     t_min = std::min(t_min, sample.t);
@@ -205,6 +205,12 @@ bool FitEdge(const std::vector<Sample>& samples, int iterations, double pixel_sc
       J << dI_dd * n_perp.dot(sample.q), -dI_dd, gain, gain * F, gain * *b * dF_ds, tau * level;
       H.noalias() += J * J.transpose();
       g.noalias() += J * r;
+    }
+    if (!fit_shading) {  // k held at 0
+      H.row(5).setZero();
+      H.col(5).setZero();
+      H(5, 5) = 1.0;
+      g[5] = 0.0;
     }
     H.diagonal() *= 1.0 + 1e-9;
     const Eigen::Matrix<double, 6, 1> step = H.ldlt().solve(-g);
@@ -423,8 +429,8 @@ bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
       }
       double rms = 0;
       Eigen::Matrix2d line_covariance;
-      if (!FitEdge(samples, options.iterations, pixel_scale, inner, &line, &level_a, &level_b, &s,
-                   &rms, &line_covariance)) {
+      if (!FitEdge(samples, options.iterations, pixel_scale, options.fit_shading, inner, &line,
+                   &level_a, &level_b, &s, &rms, &line_covariance)) {
         return false;
       }
       Eigen::LLT<Eigen::Matrix2d> llt(line_covariance);

@@ -44,6 +44,10 @@ struct EdgeFitOptions {
   /// A side whose RMS fit residual exceeds this fraction of its contrast fails (the band
   /// holds something other than a clean blurred step: an occluder, a shadow edge).
   double max_residual = 0.04;
+  /// Fit the light changing linearly along each side (an illumination gradient or
+  /// vignetting scales the side's dark and bright levels together); with constant levels
+  /// the fitted side tilts toward its darker end.
+  bool fit_shading = true;
 };
 
 /// Refines `corners` (distorted pixels, OpenCV convention, in order around the quad) in

@@ -157,6 +157,37 @@ TEST(BoardDetectorTest, BlurredInnerBorderEdgeDoesNotBiasTheEdgeFit) {
   EXPECT_LT(rms, 0.5 * rms_kept_clear);
 }
 
+TEST(BoardDetectorTest, LightChangingAlongASideDoesNotTiltTheEdgeFit) {
+  // A 30 % illumination gradient and 20 % vignetting, linear response, noise-free: each
+  // side's levels change along it. Fitted with constant levels, the sides tilt toward
+  // their darker ends and the corners move apart from the truth.
+  const AprilGridSpec board = scenes::PaperBoard();
+  const CameraIntrinsics camera = scenes::PaperCamera();
+  RenderOptions render;
+  render.illumination_gradient = 0.3;
+  render.illumination_gradient_direction_deg = 30;
+  render.vignetting = 0.2;
+  const BoardRenderer renderer(board, camera, render);
+  const CameraModel model(camera);
+  DetectorOptions constant_levels;
+  constant_levels.edge_fit.fit_shading = false;
+  const BoardDetector detector(board, camera);
+  const BoardDetector constant_levels_detector(board, camera, constant_levels);
+  double sum = 0, sum_constant = 0;
+  const auto poses = scenes::RandomPoses(2, 37);
+  for (const RigidTransform& X_CT : poses) {
+    const cv::Mat clean = renderer.RenderClean(X_CT);
+    const BoardDetection d = detector.Detect(clean);
+    const BoardDetection d_constant = constant_levels_detector.Detect(clean);
+    ASSERT_EQ(d.corners.size(), 144u);
+    ASSERT_EQ(d_constant.corners.size(), 144u);
+    sum += std::pow(CornerRms(d, model, X_CT), 2);
+    sum_constant += std::pow(CornerRms(d_constant, model, X_CT), 2);
+  }
+  const double rms = std::sqrt(sum / 2), rms_constant = std::sqrt(sum_constant / 2);
+  EXPECT_LT(rms, 0.5 * rms_constant) << rms << " px against " << rms_constant << " px";
+}
+
 TEST(BoardDetectorTest, PartlyHiddenBoardStillMeasuresWithFewerCorners) {
   const AprilGridSpec board = scenes::PaperBoard();
   const CameraIntrinsics camera = scenes::PaperCamera();
