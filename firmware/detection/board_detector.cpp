@@ -2,6 +2,7 @@
 #include "firmware/detection/board_detector.h"
 
 #include <algorithm>
+#include <optional>
 
 #include <opencv2/imgproc.hpp>
 
@@ -96,7 +97,7 @@ BoardDetection BoardDetector::Detect(const cv::Mat& image) const {
 BoardDetection BoardDetector::DetectAprilGrid(const cv::Mat& image8, const cv::Mat& image32) const {
   BoardDetection detection;
   // Kalibr's board: candidates from both searches (apriltag_detector.h open_contacts_px),
-  // the first one of a tag whose X-corners check out is kept.
+  // per tag the one with the most X-corners that check out is kept.
   std::vector<TagDetection> tags =
       x_radius_of_side_ > 0 ? apriltag_->DetectCandidates(image8) : apriltag_->Detect(image8);
   // A tag id seen twice in one search is a misdecode or a second board: trust neither.
@@ -106,44 +107,40 @@ BoardDetection BoardDetector::DetectAprilGrid(const cv::Mat& image8, const cv::M
     const int first = board_.TagCornerId(tag.id, 0);
     if (first >= 0) ++seen[static_cast<size_t>(first / 4) * 2 + (tag.search > 0 ? 1 : 0)];
   }
-  std::vector<char> candidate(tag_count, 0), kept(tag_count, 0);
-  std::vector<cv::Point2f> subpix;
+  // Per tag, the candidate with the most refined corners (the first of equals).
+  std::vector<std::optional<RefinedTag>> best(tag_count);
+  std::vector<char> candidate(tag_count, 0);
   for (TagDetection& tag : tags) {
     const int first = board_.TagCornerId(tag.id, 0);
     if (first < 0) continue;
     const size_t index = static_cast<size_t>(first / 4);
-    if (kept[index] || seen[index * 2 + (tag.search > 0 ? 1 : 0)] != 1) continue;
+    if (seen[index * 2 + (tag.search > 0 ? 1 : 0)] != 1) continue;
+    if (best[index] && best[index]->count == 4) continue;
     candidate[index] = 1;
-    // Only edge-fitted corners know their sides, hence how they move under erosion;
-    // X-corners do not move under erosion (their directions stay zero).
-    std::array<Eigen::Vector2d, 4> erosion_px{};
-    for (Eigen::Vector2d& e : erosion_px) e.setZero();
-    std::array<CornerNoisePx, 4> noise_px{};
-    for (CornerNoisePx& n : noise_px) n.setZero();
-    const bool edge_fitted = options_.refinement == CornerRefinement::kEdgeFit;
-    if (edge_fitted && !RefineQuadCorners(image32, *ideal_map_, options_.edge_fit, &tag.corners_px,
-                                          &erosion_px, &noise_px)) {
+    std::optional<RefinedTag> refined = RefineTag(image32, &tag);
+    if (refined && (!best[index] || refined->count > best[index]->count)) best[index] = refined;
+  }
+  std::vector<cv::Point2f> subpix;
+  for (size_t index = 0; index < tag_count; ++index) {
+    if (!best[index]) {
+      if (candidate[index]) ++detection.tags_rejected;
       continue;
     }
-    if (options_.refinement == CornerRefinement::kXCorner && !RefineTagXCorners(image32, &tag)) {
-      continue;
-    }
-    kept[index] = 1;
     ++detection.tags;
-    for (int k = 0; k < 4; ++k) {
+    const RefinedTag& tag = *best[index];
+    const int first = static_cast<int>(index) * 4;
+    for (size_t k = 0; k < 4; ++k) {
+      if (!tag.refined[k]) continue;  // an X-corner that failed its checks
       CornerObservation corner;
-      corner.id = first + k;
+      corner.id = first + static_cast<int>(k);
       corner.p_TQ = board_.corners()[static_cast<size_t>(corner.id)];
-      corner.uv = tag.corners_px[static_cast<size_t>(k)];
-      corner.erosion_px = erosion_px[static_cast<size_t>(k)];
-      corner.noise_px = noise_px[static_cast<size_t>(k)];
-      if (edge_fitted) corner.edge_group = first / 4;
+      corner.uv = tag.corners_px[k];
+      corner.erosion_px = tag.erosion_px[k];
+      corner.noise_px = tag.noise_px[k];
+      if (tag.edge_fitted) corner.edge_group = first / 4;
       detection.corners.push_back(corner);
       subpix.emplace_back(static_cast<float>(corner.uv.x()), static_cast<float>(corner.uv.y()));
     }
-  }
-  for (size_t index = 0; index < tag_count; ++index) {
-    if (candidate[index] && !kept[index]) ++detection.tags_rejected;
   }
   if (options_.refinement == CornerRefinement::kCornerSubPix && !subpix.empty()) {
     const int w = options_.subpix_half_window;
@@ -156,9 +153,35 @@ BoardDetection BoardDetector::DetectAprilGrid(const cv::Mat& image8, const cv::M
   return detection;
 }
 
-bool BoardDetector::RefineTagXCorners(const cv::Mat& image32, TagDetection* tag) const {
+std::optional<BoardDetector::RefinedTag> BoardDetector::RefineTag(const cv::Mat& image32,
+                                                                  TagDetection* tag) const {
+  RefinedTag refined;
+  for (Eigen::Vector2d& e : refined.erosion_px) e.setZero();
+  for (CornerNoisePx& n : refined.noise_px) n.setZero();
+  refined.refined = {true, true, true, true};
+  // Only edge-fitted corners know their sides, hence how they move under erosion;
+  // X-corners do not move under erosion (their directions stay zero).
+  refined.edge_fitted = options_.refinement == CornerRefinement::kEdgeFit;
+  if (refined.edge_fitted &&
+      !RefineQuadCorners(image32, *ideal_map_, options_.edge_fit, &tag->corners_px,
+                         &refined.erosion_px, &refined.noise_px)) {
+    return std::nullopt;
+  }
+  if (options_.refinement == CornerRefinement::kXCorner &&
+      !RefineTagXCorners(image32, tag, &refined.refined)) {
+    return std::nullopt;
+  }
+  refined.corners_px = tag->corners_px;
+  refined.count =
+      static_cast<int>(std::count(refined.refined.begin(), refined.refined.end(), true));
+  return refined;
+}
+
+bool BoardDetector::RefineTagXCorners(const cv::Mat& image32, TagDetection* tag,
+                                      std::array<bool, 4>* refined) const {
   if (x_radius_of_side_ <= 0) return false;  // no corner squares: these are no X-corners
-  return RefineXCorners(image32, options_.x_corner, x_radius_of_side_, &tag->corners_px);
+  return RefineEachXCorner(image32, options_.x_corner, x_radius_of_side_, &tag->corners_px,
+                           refined) > 0;
 }
 
 BoardDetection BoardDetector::DetectChessboard(const cv::Mat& image8,

@@ -3,7 +3,9 @@
 // refinement, chessboards through OpenCV. The output feeds the pose estimator.
 #pragma once
 
+#include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,8 +72,21 @@ class BoardDetector {
  private:
   BoardDetection DetectAprilGrid(const cv::Mat& image8, const cv::Mat& image32) const;
   BoardDetection DetectChessboard(const cv::Mat& image8, const cv::Mat& image32) const;
-  /// X-corner refinement of one tag's corners (Kalibr layout); false drops the tag.
-  bool RefineTagXCorners(const cv::Mat& image32, TagDetection* tag) const;
+  /// One tag's corners after refinement, with what each corner knows of its errors.
+  struct RefinedTag {
+    std::array<Eigen::Vector2d, 4> corners_px;
+    std::array<Eigen::Vector2d, 4> erosion_px;
+    std::array<CornerNoisePx, 4> noise_px;
+    std::array<bool, 4> refined;  ///< false: an X-corner that failed (left out)
+    int count = 0;                ///< corners refined
+    bool edge_fitted = false;
+  };
+  /// Refines a candidate's corners with the detector's refinement; nullopt drops it.
+  std::optional<RefinedTag> RefineTag(const cv::Mat& image32, TagDetection* tag) const;
+  /// X-corner refinement of one tag's corners (Kalibr layout), each on its own
+  /// (`refined`); false (none could be) drops the tag.
+  bool RefineTagXCorners(const cv::Mat& image32, TagDetection* tag,
+                         std::array<bool, 4>* refined) const;
 
   BoardModel board_;
   DetectorOptions options_;

@@ -62,34 +62,46 @@ bool LooksLikeTheTagsXCorner(const cv::Mat& image32f, const Eigen::Vector2d& cor
 
 }  // namespace
 
-bool RefineXCorners(const cv::Mat& image32f, const XCornerOptions& options, double x_radius_of_side,
-                    std::array<Eigen::Vector2d, 4>* corners) {
-  std::array<Eigen::Vector2d, 4> refined = *corners;
+int RefineEachXCorner(const cv::Mat& image32f, const XCornerOptions& options,
+                      double x_radius_of_side, std::array<Eigen::Vector2d, 4>* corners,
+                      std::array<bool, 4>* refined) {
+  const std::array<Eigen::Vector2d, 4> quad = *corners;
+  int count = 0;
   for (size_t k = 0; k < 4; ++k) {
+    (*refined)[k] = false;
     // The two tag sides that meet at corner k set the scale of the X around it.
-    const auto& quad = *corners;
     const double side_px =
         0.5 * ((quad[(k + 1) % 4] - quad[k]).norm() + (quad[(k + 3) % 4] - quad[k]).norm());
     const int half = XCornerHalfWindow(options, x_radius_of_side, side_px);
-    const Eigen::Vector2d start = refined[k];
+    const Eigen::Vector2d start = quad[k];
     // cornerSubPix needs the whole window (plus one pixel for the gradient) in the image.
     if (start.x() < half + 1 || start.y() < half + 1 || start.x() > image32f.cols - half - 2 ||
         start.y() > image32f.rows - half - 2) {
-      return false;
+      continue;
     }
     std::vector<cv::Point2f> point{
         cv::Point2f(static_cast<float>(start.x()), static_cast<float>(start.y()))};
     cv::cornerSubPix(image32f, point, cv::Size(half, half), cv::Size(-1, -1),
                      cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT,
                                       options.max_iterations, options.epsilon_px));
-    refined[k] = Eigen::Vector2d(point[0].x, point[0].y);
-    if (!std::isfinite(refined[k].x()) || !std::isfinite(refined[k].y()) ||
-        (refined[k] - start).norm() > options.max_shift_px ||
-        !LooksLikeTheTagsXCorner(image32f, refined[k], quad[(k + 1) % 4], quad[(k + 3) % 4],
+    const Eigen::Vector2d moved(point[0].x, point[0].y);
+    if (!moved.allFinite() || (moved - start).norm() > options.max_shift_px ||
+        !LooksLikeTheTagsXCorner(image32f, moved, quad[(k + 1) % 4], quad[(k + 3) % 4],
                                  0.5 * x_radius_of_side * side_px)) {
-      return false;
+      continue;
     }
+    (*corners)[k] = moved;
+    (*refined)[k] = true;
+    ++count;
   }
+  return count;
+}
+
+bool RefineXCorners(const cv::Mat& image32f, const XCornerOptions& options, double x_radius_of_side,
+                    std::array<Eigen::Vector2d, 4>* corners) {
+  std::array<Eigen::Vector2d, 4> refined = *corners;
+  std::array<bool, 4> ok{};
+  if (RefineEachXCorner(image32f, options, x_radius_of_side, &refined, &ok) < 4) return false;
   *corners = refined;
   return true;
 }

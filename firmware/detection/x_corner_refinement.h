@@ -40,6 +40,14 @@ struct XCornerOptions {
 bool RefineXCorners(const cv::Mat& image32f, const XCornerOptions& options, double x_radius_of_side,
                     std::array<Eigen::Vector2d, 4>* corners);
 
+/// The same, corner by corner: refines those that pass the checks above, leaves the others
+/// untouched, sets `refined[k]` accordingly and returns how many were refined. Small tags
+/// in real photographs (25-35 px) often have one corner whose window reaches a neighbour
+/// or the board's edge: the tag's other corners stay usable.
+int RefineEachXCorner(const cv::Mat& image32f, const XCornerOptions& options,
+                      double x_radius_of_side, std::array<Eigen::Vector2d, 4>* corners,
+                      std::array<bool, 4>* refined);
+
 /// X radius as a fraction of the tag side for tags `tag_width_cells` wide with a black border
 /// of `border_cells` and corner squares of `tag_spacing` tag sides: the X ends where the
 /// border or the square ends.

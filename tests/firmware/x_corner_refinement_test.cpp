@@ -110,6 +110,24 @@ TEST(XCornerRefinementTest, HalfWindowFollowsTheTagSizeWithinItsLimits) {
   EXPECT_EQ(XCornerHalfWindow(options, 0.2, 400.0), 12);  // ceiling
 }
 
+TEST(XCornerRefinementTest, EachCornerIsRefinedOnItsOwn) {
+  // One corner that cannot be refined (its start 4 px off, farther than max_shift_px)
+  // leaves the other three refined and itself untouched; the all-or-nothing form refuses
+  // the tag.
+  const Scene scene = RenderTag(0.8, 1.0);
+  auto corners = Perturbed(scene.truth);
+  corners[2] += Eigen::Vector2d(4.0, 0.0);
+  const auto start = corners;
+  std::array<bool, 4> refined{};
+  EXPECT_EQ(RefineEachXCorner(scene.image, XCornerOptions{}, kXRadius, &corners, &refined), 3);
+  EXPECT_TRUE(refined[0] && refined[1] && refined[3]);
+  EXPECT_FALSE(refined[2]);
+  EXPECT_EQ(corners[2], start[2]);
+  for (size_t k : {0u, 1u, 3u}) EXPECT_LT((corners[k] - scene.truth[k]).norm(), 0.05) << k;
+  auto all_or_nothing = start;
+  EXPECT_FALSE(RefineXCorners(scene.image, XCornerOptions{}, kXRadius, &all_or_nothing));
+}
+
 TEST(XCornerRefinementTest, CornerAtTheImageBorderOrBadOptionsAreRefused) {
   const Scene scene = RenderTag(0.8, 1.0);
   std::array<Eigen::Vector2d, 4> corners = scene.truth;
