@@ -1,7 +1,6 @@
 // Camera intrinsics in OpenCV FileStorage YAML or a Kalibr camchain; see camera_yaml.h.
 #include "common/formats/camera_yaml.h"
 
-#include <limits>
 #include <optional>
 #include <vector>
 
@@ -67,12 +66,23 @@ std::string WriteMatrix(const std::string& name, int rows, int cols, const doubl
   return text + " ]\n";
 }
 
+std::string SizeLimits() {
+  return "1.." + std::to_string(kMaxImageSide_px) + " px a side, at most " +
+         std::to_string(kMaxImagePixels) + " px in all";
+}
+
 int ImageSize(const YamlMap& root, const std::string& key) {
   const int64_t size = root.Int(key);
-  if (size < 1 || size > std::numeric_limits<int>::max()) {
-    root.Fail(key, "expected a positive image size in px, got " + std::to_string(size));
+  if (size < 1 || size > kMaxImageSide_px) {
+    root.Fail(key, "expected a positive image size in px (" + SizeLimits() + "), got " +
+                       std::to_string(size));
   }
   return static_cast<int>(size);
+}
+
+// Both sides already within kMaxImageSide_px: the product cannot overflow.
+bool ImageAreaWithinLimit(int width, int height) {
+  return int64_t{width} * int64_t{height} <= kMaxImagePixels;
 }
 
 DistortionModel ReadDistortionModel(const YamlMap& map, const std::string& key) {
@@ -89,6 +99,11 @@ CameraIntrinsics ParseOpenCvCamera(const YamlMap& root) {
   CameraIntrinsics camera;
   camera.width = ImageSize(root, "image_width");
   camera.height = ImageSize(root, "image_height");
+  if (!ImageAreaWithinLimit(camera.width, camera.height)) {
+    root.Fail("image_height", "image " + std::to_string(camera.width) + "x" +
+                                  std::to_string(camera.height) + " is too large (" + SizeLimits() +
+                                  ")");
+  }
   const Matrix K = ReadMatrix(root, "camera_matrix");
   if (K.rows != 3 || K.cols != 3) {
     root.Map("camera_matrix")
@@ -144,12 +159,18 @@ CameraIntrinsics ParseKalibrCamera(const YamlMap& block) {
   CameraIntrinsics camera;
   const std::vector<int64_t> resolution = block.Ints("resolution", 2);
   for (size_t i = 0; i < 2; ++i) {
-    if (resolution[i] < 1 || resolution[i] > std::numeric_limits<int>::max()) {
-      block.FailElement("resolution", i, "expected a positive image size in px");
+    if (resolution[i] < 1 || resolution[i] > kMaxImageSide_px) {
+      block.FailElement("resolution", i,
+                        "expected a positive image size in px (" + SizeLimits() + ")");
     }
   }
   camera.width = static_cast<int>(resolution[0]);
   camera.height = static_cast<int>(resolution[1]);
+  if (!ImageAreaWithinLimit(camera.width, camera.height)) {
+    block.Fail("resolution", "image " + std::to_string(camera.width) + "x" +
+                                 std::to_string(camera.height) + " is too large (" + SizeLimits() +
+                                 ")");
+  }
   const std::vector<double> fu_fv_pu_pv = block.Doubles("intrinsics", 4);
   for (size_t i = 0; i < 2; ++i) {
     if (!(fu_fv_pu_pv[i] > 0.0)) {

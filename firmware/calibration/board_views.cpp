@@ -47,7 +47,9 @@ std::optional<CalibrationView> BoardViewFinder::FindChessboard(const cv::Mat& gr
   // The flags of OpenCV's calibration sample.
   const int flags =
       cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_FAST_CHECK | cv::CALIB_CB_NORMALIZE_IMAGE;
-  if (!cv::findChessboardCorners(grey, pattern, corners, flags)) {
+  // Bounded: asked for a count the image does not show, the classic detector's search
+  // on a full-size view took over 70 s (chessboard_corners.h).
+  if (!FindChessboardCornersBounded(grey, pattern, flags, &corners, &work_)) {
     *why = "no " + std::to_string(board.cols) + "x" + std::to_string(board.rows) +
            " chessboard (inner corners) found";
     return std::nullopt;

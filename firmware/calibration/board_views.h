@@ -1,8 +1,9 @@
 // Finding a calibration board in an image for intrinsics calibration: the board corners
 // seen (image points, OpenCV pixel convention) paired with their positions on the board
-// (p_TQ, board_model.h). Chessboards through OpenCV (findChessboardCorners + cornerSubPix
-// with an 11x11 window, as OpenCV's calibration sample), AprilTag grids through the
-// firmware's AprilTag detector (every tag of the board that is seen gives its 4 corners).
+// (p_TQ, board_model.h). Chessboards through OpenCV (findChessboardCorners on a copy of at
+// most VGA size, chessboard_corners.h, then cornerSubPix at full size with an 11x11 window,
+// as OpenCV's calibration sample), AprilTag grids through the firmware's AprilTag
+// detector (every tag of the board that is seen gives its 4 corners).
 #pragma once
 
 #include <memory>
@@ -13,6 +14,7 @@
 #include <opencv2/core.hpp>
 
 #include "common/board/board_model.h"
+#include "firmware/detection/chessboard_corners.h"
 
 namespace h4::cam {
 
@@ -48,6 +50,8 @@ class BoardViewFinder {
   /// The board in a CV_8UC1 image, or nullopt (with `why` saying what was missing).
   std::optional<CalibrationView> Find(const cv::Mat& grey, const std::string& name,
                                       std::string* why) const;
+  /// The chessboard detector's work over every Find() so far (tests bound it).
+  const ChessboardWork& chessboard_work() const { return work_; }
 
  private:
   std::optional<CalibrationView> FindChessboard(const cv::Mat& grey, std::string* why) const;
@@ -58,6 +62,7 @@ class BoardViewFinder {
   std::unique_ptr<AprilTagDetector> tag_detector_;
   double x_radius_of_side_ = 0;  // Kalibr's board: X-corner radius / tag side
   std::string error_;
+  mutable ChessboardWork work_;  // a counter only: Find() stays logically const
 };
 
 }  // namespace h4::cam

@@ -2,23 +2,45 @@
 #include "firmware/detection/chessboard_corners.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace h4::cam {
 
+bool FindChessboardCornersBounded(const cv::Mat& image8, cv::Size pattern, int flags,
+                                  std::vector<cv::Point2f>* corners, ChessboardWork* work) {
+  const double pixels = static_cast<double>(image8.cols) * image8.rows;
+  if (pixels <= static_cast<double>(kClassicDetectorMaxPixels)) {
+    if (work != nullptr) work->classic_pixels += static_cast<int64_t>(pixels);
+    return cv::findChessboardCorners(image8, pattern, *corners, flags);
+  }
+  const double scale = std::sqrt(static_cast<double>(kClassicDetectorMaxPixels) / pixels);
+  const cv::Size reduced_size(std::max(1, static_cast<int>(image8.cols * scale)),
+                              std::max(1, static_cast<int>(image8.rows * scale)));
+  cv::Mat reduced;
+  cv::resize(image8, reduced, reduced_size, 0, 0, cv::INTER_AREA);
+  if (work != nullptr) work->classic_pixels += int64_t{reduced.cols} * reduced.rows;
+  if (!cv::findChessboardCorners(reduced, pattern, *corners, flags)) return false;
+  // Pixel centres: (0, 0) is the centre of the top-left pixel at both sizes.
+  const float sx = static_cast<float>(image8.cols) / static_cast<float>(reduced.cols);
+  const float sy = static_cast<float>(image8.rows) / static_cast<float>(reduced.rows);
+  for (cv::Point2f& p : *corners) p = {(p.x + 0.5f) * sx - 0.5f, (p.y + 0.5f) * sy - 0.5f};
+  return true;
+}
+
 bool FindChessboardCorners(const cv::Mat& image8, const cv::Mat& image32,
                            const CheckerboardSpec& spec, int subpix_half_window,
-                           std::vector<Eigen::Vector2d>* uv) {
+                           std::vector<Eigen::Vector2d>* uv, ChessboardWork* work) {
   const cv::Size size(spec.cols, spec.rows);
   if (spec.cols < 2 || spec.rows < 2) return false;
   std::vector<cv::Point2f> points;
   bool found = cv::findChessboardCornersSB(image8, size, points,
                                            cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_EXHAUSTIVE);
   if (!found) {
-    found = cv::findChessboardCorners(image8, size, points,
-                                      cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE);
+    found = FindChessboardCornersBounded(
+        image8, size, cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_NORMALIZE_IMAGE, &points, work);
   }
   if (!found || points.size() != static_cast<size_t>(spec.cols * spec.rows)) return false;
   const int w = subpix_half_window;

@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "common/formats/camera_yaml.h"
 #include "common/formats/csv_table.h"
 #include "common/formats/format_error.h"
 #include "common/formats/yaml_map.h"
@@ -49,8 +50,18 @@ int OptionalInt(const YamlMap& map, const std::string& key, int fallback) {
 void CheckPositive(const YamlMap& map, const std::string& key, double value) {
   if (map.Has(key) && !(value > 0)) map.Fail(key, "expected a positive number");
 }
-void CheckNonNegative(const YamlMap& map, const std::string& key, double value) {
-  if (map.Has(key) && !(value >= 0)) map.Fail(key, "expected a number >= 0");
+void CheckRange(const YamlMap& map, const std::string& key, double value, double lo, double hi) {
+  if (map.Has(key) && !(value >= lo && value <= hi)) {
+    std::ostringstream range;
+    range << "expected " << lo << ".." << hi;
+    map.Fail(key, range.str());
+  }
+}
+
+std::string Text(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
 }
 
 // A number of the sim: block within [lo, hi], else an error naming its line.
@@ -119,10 +130,24 @@ bool ServiceConfig::IsValid(std::string* why) const {
   if (!(heartbeat_period_s > 0) || heartbeat_period_s > 3600) {
     return fail("heartbeat period: expected (0, 3600] s");
   }
-  if (!(exposure_time_us >= 0) || !(analogue_gain >= 1) || !(max_spread_px > 0) ||
-      !(frame_duration_us > 0) || width_px <= 0 || height_px <= 0) {
-    return fail("camera/measurement values out of range");
+  if (width_px < 1 || height_px < 1 || width_px > kMaxImageSide_px ||
+      height_px > kMaxImageSide_px || int64_t{width_px} * height_px > kMaxImagePixels) {
+    return fail("camera stream " + std::to_string(width_px) + "x" + std::to_string(height_px) +
+                ": expected 1.." + std::to_string(kMaxImageSide_px) + " px a side, at most " +
+                std::to_string(kMaxImagePixels) + " px");
   }
+  if (!(exposure_time_us >= 0 && exposure_time_us <= kMaxExposureTime_us)) {
+    return fail("exposure time " + Text(exposure_time_us) + " us: expected 0.." +
+                Text(kMaxExposureTime_us) + " us");
+  }
+  if (!(analogue_gain >= 1 && analogue_gain <= kMaxAnalogueGain)) {
+    return fail("analogue gain " + Text(analogue_gain) + ": expected 1.." + Text(kMaxAnalogueGain));
+  }
+  if (!(frame_duration_us >= kMinFrameDuration_us && frame_duration_us <= kMaxFrameDuration_us)) {
+    return fail("frame duration " + Text(frame_duration_us) + " us: expected " +
+                Text(kMinFrameDuration_us) + ".." + Text(kMaxFrameDuration_us) + " us");
+  }
+  if (!(max_spread_px > 0)) return fail("measurement max spread: expected a positive px value");
   std::string render_why;
   if (!sim_render.IsValid(&render_why)) return fail("sim: " + render_why);
   return true;
@@ -147,19 +172,27 @@ ServiceConfig ParseServiceConfig(const std::string& text, const std::string& sou
     config.camera_id = OptionalString(camera, "id", "");
     config.camera_name = OptionalString(camera, "name", "");
     config.width_px = OptionalInt(camera, "width", config.width_px);
-    CheckPositive(camera, "width", config.width_px);
+    CheckRange(camera, "width", config.width_px, 1, kMaxImageSide_px);
     config.height_px = OptionalInt(camera, "height", config.height_px);
-    CheckPositive(camera, "height", config.height_px);
+    CheckRange(camera, "height", config.height_px, 1, kMaxImageSide_px);
+    if (int64_t{config.width_px} * config.height_px > kMaxImagePixels) {
+      camera.Fail(camera.Has("height") ? "height" : "width",
+                  "stream " + std::to_string(config.width_px) + "x" +
+                      std::to_string(config.height_px) + " is too large (at most " +
+                      std::to_string(kMaxImagePixels) + " px)");
+    }
     config.rotate_180 = OptionalBool(camera, "rotate_180", config.rotate_180);
     config.exposure_time_us = OptionalDouble(camera, "exposure_time_us", config.exposure_time_us);
-    CheckNonNegative(camera, "exposure_time_us", config.exposure_time_us);
+    CheckRange(camera, "exposure_time_us", config.exposure_time_us, 0, kMaxExposureTime_us);
     config.analogue_gain = OptionalDouble(camera, "analogue_gain", config.analogue_gain);
     if (camera.Has("analogue_gain") && !(config.analogue_gain >= 1)) {
       camera.Fail("analogue_gain", "expected a gain >= 1");
     }
+    CheckRange(camera, "analogue_gain", config.analogue_gain, 1, kMaxAnalogueGain);
     config.frame_duration_us =
         OptionalDouble(camera, "frame_duration_us", config.frame_duration_us);
-    CheckPositive(camera, "frame_duration_us", config.frame_duration_us);
+    CheckRange(camera, "frame_duration_us", config.frame_duration_us, kMinFrameDuration_us,
+               kMaxFrameDuration_us);
   }
   if (top.Has("measurement")) {
     const YamlMap m = top.Map("measurement");
@@ -171,13 +204,14 @@ ServiceConfig ParseServiceConfig(const std::string& text, const std::string& sou
     config.max_spread_px = OptionalDouble(m, "max_spread_px", config.max_spread_px);
     CheckPositive(m, "max_spread_px", config.max_spread_px);
     config.free_run_hz = OptionalDouble(m, "free_run_hz", config.free_run_hz);
-    CheckNonNegative(m, "free_run_hz", config.free_run_hz);
+    CheckRange(m, "free_run_hz", config.free_run_hz, 0, 100);
   }
   if (top.Has("service")) {
     const YamlMap s = top.Map("service");
     s.RejectUnknownKeys({"heartbeat_period_s"});
     config.heartbeat_period_s = OptionalDouble(s, "heartbeat_period_s", config.heartbeat_period_s);
     CheckPositive(s, "heartbeat_period_s", config.heartbeat_period_s);
+    CheckRange(s, "heartbeat_period_s", config.heartbeat_period_s, 0, 3600);
   }
   if (top.Has("lcm")) {
     const YamlMap l = top.Map("lcm");

@@ -9,6 +9,14 @@
 
 namespace h4::cam {
 
+/// Camera control limits: beyond them a value cannot be meant (and 1e300 us would not
+/// convert to libcamera's integer controls). Exposure 0..10 s; gain 1..64 (the sensors
+/// libcamera drives stop at 16-64); frame duration 1 ms..10 s (1000..0.1 frames per s).
+constexpr double kMaxExposureTime_us = 1e7;
+constexpr double kMaxAnalogueGain = 64;
+constexpr double kMinFrameDuration_us = 1e3;
+constexpr double kMaxFrameDuration_us = 1e7;
+
 struct ServiceConfig {
   /// "libcamera" (default), "sim" (renders H4_SIM_BOARD_TRUTH) or "dir:PATH" (image files
   /// of a folder, in name order). YAML key `source`.
@@ -19,12 +27,12 @@ struct ServiceConfig {
   // camera: block
   std::string camera_id;    ///< libcamera id (`camera.id`); "" = the first camera
   std::string camera_name;  ///< id put in messages (`camera.name`); "" = camera_id or "h4cam"
-  int width_px = 2028;
+  int width_px = 2028;      ///< stream size, px: within the camera file's limits (camera_yaml.h)
   int height_px = 1520;
   bool rotate_180 = false;
-  double exposure_time_us = 10000;  ///< 0 = automatic exposure
-  double analogue_gain = 1.0;
-  double frame_duration_us = 100000;  ///< 10 frames per second
+  double exposure_time_us = 10000;    ///< 0 = automatic exposure; at most kMaxExposureTime_us
+  double analogue_gain = 1.0;         ///< 1..kMaxAnalogueGain
+  double frame_duration_us = 100000;  ///< 10 frames per second; kMin..kMaxFrameDuration_us
 
   // measurement: block
   int frames_averaged = 10;    ///< default frames per capture request (paper: 10)

@@ -58,13 +58,21 @@ bool ImageFileSource::Open() {
 }
 
 cv::Mat ImageFileSource::ReadGrey(const std::string& path, std::string* why) {
-  cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  const cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
   if (image.empty()) {
     *why = path + ": cannot read the image (missing, unreadable or not an image format)";
     return {};
   }
+  return ToGrey(image, path, why);
+}
+
+cv::Mat ImageFileSource::ToGrey(const cv::Mat& image, const std::string& name, std::string* why) {
+  if (image.empty()) {
+    *why = name + ": empty image (0 x 0 px)";
+    return {};
+  }
   if (image.depth() != CV_8U) {
-    *why = path + ": " + std::to_string(8 * image.elemSize1()) +
+    *why = name + ": " + std::to_string(8 * image.elemSize1()) +
            "-bit image; expected 8-bit (convert it, e.g. with a tool that scales to 8 bits)";
     return {};
   }
@@ -80,7 +88,7 @@ cv::Mat ImageFileSource::ReadGrey(const std::string& path, std::string* why) {
       cv::cvtColor(image, grey, cv::COLOR_BGRA2GRAY);
       break;
     default:
-      *why = path + ": " + std::to_string(image.channels()) + " channels; expected 1, 3 or 4";
+      *why = name + ": " + std::to_string(image.channels()) + " channels; expected 1, 3 or 4";
       return {};
   }
   return grey;

@@ -36,6 +36,10 @@ class ImageFileSource final : public FrameSource {
 
   /// Reads one image file as CV_8UC1; empty with `why` set when it cannot.
   static cv::Mat ReadGrey(const std::string& path, std::string* why);
+  /// A decoded image (cv::imread / cv::imdecode with IMREAD_UNCHANGED) as CV_8UC1: grey
+  /// kept, colour (3 or 4 channels) converted; empty with `why` (naming `name`) for an
+  /// empty image, a depth other than 8 bits or another channel count.
+  static cv::Mat ToGrey(const cv::Mat& image, const std::string& name, std::string* why);
 
  private:
   std::vector<std::string> paths_;

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <h4msgs/capture_request_t.hpp>
 #include <h4msgs/robot_target_t.hpp>
 #include <spdlog/spdlog.h>
@@ -214,6 +215,28 @@ void Campaign::Retry(Phase phase, const std::string& why, Clock::time_point now)
   failed_attempt_.reset();
 }
 
+void Campaign::RetryUnsettled(Clock::time_point now) {
+  const int64_t pose_id = current().pose_id;
+  const size_t skipped_before = skipped_.size();
+  const std::string hint =
+      joints_heard_ ? "" : " (no joint state heard at all: is the robot controller running?)";
+  Retry(options_.mode == CampaignMode::kActive ? Phase::kSendTarget : Phase::kSettling,
+        fmt::format("robot not settled after {:.1f} s{}", options_.settle_timeout_s, hint), now);
+  if (skipped_.size() == skipped_before) return;  // retrying, not skipped
+  unsettled_in_a_row_.push_back(pose_id);
+  const int limit = options_.max_unsettled_in_a_row;
+  if (options_.mode != CampaignMode::kActive || limit <= 0 ||
+      static_cast<int>(unsettled_in_a_row_.size()) < limit || finished()) {
+    return;
+  }
+  throw std::runtime_error(fmt::format(
+      "the robot never settled at {} poses in a row ({}; {} attempt(s) of {:.1f} s each): is "
+      "it stuck, or does its controller never report joint_state_t.settled? Stopped; the "
+      "dataset {} keeps its {} row(s): run the same command again to resume",
+      unsettled_in_a_row_.size(), fmt::join(unsettled_in_a_row_, ", "), options_.retries + 1,
+      options_.settle_timeout_s, journal_.path(), journal_.rows().size()));
+}
+
 bool Campaign::Step(Clock::time_point now) {
   if (finished()) return false;
   if (options_.mode == CampaignMode::kPassive) return true;  // handlers do all the work
@@ -258,6 +281,7 @@ bool Campaign::Step(Clock::time_point now) {
     }
     case Phase::kSettling: {
       if (settled_seen_) {
+        unsettled_in_a_row_.clear();
         phase_ = Phase::kSendRequest;
         break;
       }
@@ -270,14 +294,7 @@ bool Campaign::Step(Clock::time_point now) {
           PublishTarget(pose, now);
         }
       }
-      if (Seconds(now - phase_start_) > options_.settle_timeout_s) {
-        const std::string hint = joints_heard_ ? ""
-                                               : " (no joint state heard at all: is the "
-                                                 "robot controller running?)";
-        Retry(options_.mode == CampaignMode::kActive ? Phase::kSendTarget : Phase::kSettling,
-              fmt::format("robot not settled after {:.1f} s{}", options_.settle_timeout_s, hint),
-              now);
-      }
+      if (Seconds(now - phase_start_) > options_.settle_timeout_s) RetryUnsettled(now);
       break;
     }
     case Phase::kSendRequest: {

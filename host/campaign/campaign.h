@@ -38,7 +38,12 @@ struct CampaignOptions {
   double settle_timeout_s = 30.0;   ///< robot target to settled
   double capture_timeout_s = 10.0;  ///< capture request to board pose
   int retries = 2;                  ///< extra attempts per pose before it is skipped
-  double pair_tolerance_s = 0.2;    ///< max |utime(joints) - utime(measurement)|
+  /// Active mode: after this many poses in a row skipped because the robot never settled,
+  /// the campaign stops (Step() throws, naming them) instead of spending the settle timeout
+  /// on every pose left: a robot that never reports settled would otherwise keep the
+  /// campaign waiting for hours. 0: never stop, skip every such pose.
+  int max_unsettled_in_a_row = 3;
+  double pair_tolerance_s = 0.2;  ///< max |utime(joints) - utime(measurement)|
   /// Active mode: a target the robot has not acknowledged (its joint states still carry
   /// another pose id) after this long is sent again (a lost datagram, a robot started late).
   double target_resend_s = 1.0;
@@ -100,6 +105,9 @@ class Campaign {
               std::string* why);
   /// A failed attempt at the current pose: retry from `phase`, or skip when none is left.
   void Retry(Phase phase, const std::string& why, Clock::time_point now);
+  /// The robot did not settle at the current pose in time: Retry, and stop the campaign
+  /// (throw) once max_unsettled_in_a_row poses in a row were skipped so.
+  void RetryUnsettled(Clock::time_point now);
   /// Sends the target of `pose`; false (pose skipped) when the control law cannot reach it.
   bool PublishTarget(const PlannedPose& pose, Clock::time_point now);
   void NextPose();
@@ -123,6 +131,8 @@ class Campaign {
   bool recorded_current_ = false;              ///< set by a handler, acted on by Step()
   bool camera_heard_ = false;
   bool joints_heard_ = false;
+  std::vector<int64_t> unsettled_in_a_row_;  ///< poses skipped as not settled since the last
+                                             ///< pose that settled
 
   JointHistory history_;
   std::vector<SkippedPose> skipped_;

@@ -87,15 +87,18 @@ std::string ReadAll(int fd, const std::string& path) {
 /// Writes all of `text` at the end of `fd` and flushes it to the disk; on any failure the
 /// file is cut back to `committed_size` (no part of the row stays behind) and the error
 /// thrown names the file and the system's reason.
-void AppendDurably(int fd, const std::string& text, off_t committed_size, const std::string& path) {
+void AppendDurably(const JournalFileOps& ops, int fd, const std::string& text, off_t committed_size,
+                   const std::string& path) {
   const char* failed = nullptr;
   size_t done = 0;
   while (done < text.size() && failed == nullptr) {
-    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    const ssize_t n = ops.write(fd, text.data() + done, text.size() - done);
     if (n < 0 && errno != EINTR) failed = "write";
     if (n > 0) done += static_cast<size_t>(n);
   }
-  if (failed == nullptr && ::fsync(fd) != 0) failed = "flush to disk (fsync)";
+  // After a failed fsync the kernel may have dropped the row's pages (and cleared the
+  // error): the row is not known to be on the disk, so it is cut off like a failed write.
+  if (failed == nullptr && ops.fsync(fd) != 0) failed = "flush to disk (fsync)";
   if (failed == nullptr) return;
   const int error = errno;
   const bool restored =
@@ -121,7 +124,8 @@ void FlushDirectoryEntry(const std::string& path) {
 
 }  // namespace
 
-DatasetJournal::DatasetJournal(std::string path) : path_(std::move(path)) {
+DatasetJournal::DatasetJournal(std::string path, JournalFileOps ops)
+    : path_(std::move(path)), ops_(std::move(ops)) {
   fd_ = OpenLocked(path_);
   try {
     Load();
@@ -161,7 +165,7 @@ void DatasetJournal::Load() {
   }
   if (text.empty()) {
     const std::string line = header + "\n";
-    AppendDurably(fd_, line, 0, path_);
+    AppendDurably(ops_, fd_, line, 0, path_);
     committed_size_ = static_cast<off_t>(line.size());
     // A new file's name must survive a crash too: flush its directory entry.
     FlushDirectoryEntry(path_);
@@ -179,7 +183,7 @@ void DatasetJournal::Append(const DatasetRow& row) {
   }
   // One write per row: a kill between rows leaves whole rows only.
   const std::string line = DatasetCsvLine(row, kWithSet, kWithSigma) + "\n";
-  AppendDurably(fd_, line, committed_size_, path_);
+  AppendDurably(ops_, fd_, line, committed_size_, path_);
   committed_size_ += static_cast<off_t>(line.size());
   rows_.push_back(row);
   pose_ids_.insert(row.pose_id);

@@ -9,24 +9,35 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include <sys/types.h>
+#include <unistd.h>
 
 #include "common/formats/dataset_csv.h"
 
 namespace h4::host {
 
+/// The two system calls that make a row durable, replaceable so that tests can inject the
+/// faults a disk gives rarely (an fsync that fails with EIO after the write succeeded).
+/// Both default to the system's; each returns what the system call would, errno set.
+struct JournalFileOps {
+  std::function<ssize_t(int fd, const void* data, size_t size)> write = ::write;
+  std::function<int(int fd)> fsync = ::fsync;
+};
+
 class DatasetJournal {
  public:
   /// Opens (creating it with the header when absent or empty) `path`. An existing file must
-  /// have the campaign's columns (common/formats/README.md's dataset with sigma_t, sigma_r) and parse;
-  /// a last line cut by a crash (no newline) is removed with a warning. Throws FormatError
+  /// have the campaign's columns (common/formats/README.md's dataset with sigma_t, sigma_r) and
+  /// parse; a last line cut by a crash (no newline) is removed with a warning. Throws FormatError
   /// or std::runtime_error naming the file on anything else, including when another
   /// process holds the file (its pid named when /proc/locks tells it).
-  explicit DatasetJournal(std::string path);
+  /// `ops`: the write and fsync calls (the system's unless a test injects faults).
+  explicit DatasetJournal(std::string path, JournalFileOps ops = {});
   ~DatasetJournal();
   DatasetJournal(const DatasetJournal&) = delete;
   DatasetJournal& operator=(const DatasetJournal&) = delete;
@@ -48,6 +59,7 @@ class DatasetJournal {
   void Load();
 
   std::string path_;
+  JournalFileOps ops_;
   int fd_ = -1;
   off_t committed_size_ = 0;  ///< [bytes] the file up to its last complete, flushed row
   std::vector<DatasetRow> rows_;

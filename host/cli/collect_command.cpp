@@ -151,6 +151,11 @@ void Run(CollectOptions options, const std::string& command_line) {
                             : PosePlanFromRows(ReadPosesCsv(options.plan_path));
   if (plan.empty()) throw std::invalid_argument(options.plan_path + ": the pose plan is empty");
 
+  // Before the dataset is locked: a stop signal from then on must end the campaign as an
+  // interruption (130, resumable), not kill it with the default action (the
+  // second-campaign test interrupted the first right after it took the lock, and 1 run in
+  // 20 died of SIGINT).
+  const std::atomic<bool>& stop = InstallStopSignalHandlers();
   bus::LcmBus bus(from_log ? LogUrl(options.from_log) : options.lcm_url, bus::WireLimits{},
                   CollectAuth(options, from_log));
   if (!bus.good()) {
@@ -162,7 +167,6 @@ void Run(CollectOptions options, const std::string& command_line) {
       options.auth_key_path.empty() ? "" : ", authenticated with " + options.auth_key_path);
   DatasetJournal journal(options.out_path);
   Campaign campaign(bus, plan, journal, options.campaign);
-  const std::atomic<bool>& stop = InstallStopSignalHandlers();
 
   Progress progress("collect", campaign.planned_count());
   bool interrupted = false;

@@ -143,6 +143,28 @@ TEST(CameraYamlErrors, NameLineAndField) {
                 "c.yaml", 8, "", "invalid YAML"));
 }
 
+// A 20000 x 20000 camera made `measure` and `render` run for minutes and take gigabytes:
+// the reader refuses it before anything is sized from it.
+TEST(CameraYamlErrors, ImageSizeIsLimitedBeforeAnythingIsAllocated) {
+  EXPECT_TRUE(FailsWith(
+      [] { ParseCameraYaml(CameraFileWith("image_width: 1456", "image_width: 20000"), "c.yaml"); },
+      "c.yaml", 4, "image_width", "1..16384 px a side"));
+  EXPECT_TRUE(FailsWith(
+      [] {
+        ParseCameraYaml(CameraFileWith("image_height: 1088", "image_height: 16385"), "c.yaml");
+      },
+      "c.yaml", 5, "image_height", "got 16385"));
+  // Each side within the limit, the area not: 8192 x 8192 = 64 Mpx.
+  const std::string wide = CameraFileWith("image_width: 1456\nimage_height: 1088",
+                                          "image_width: 8192\nimage_height: 8192");
+  EXPECT_TRUE(FailsWith([&] { ParseCameraYaml(wide, "c.yaml"); }, "c.yaml", 5, "image_height",
+                        "8192x8192 is too large"));
+  // The largest accepted: a side at the limit, the area at the limit.
+  const std::string largest = CameraFileWith("image_width: 1456\nimage_height: 1088",
+                                             "image_width: 16384\nimage_height: 1024");
+  EXPECT_EQ(ParseCameraYaml(largest, "c.yaml").width, kMaxImageSide_px);
+}
+
 TEST(CameraYamlErrors, DistortionCountMustBe4Or5Or8) {
   // 2 x 2 holds 4 values but is not a vector.
   const std::string text = CameraFileWith("rows: 5\n   cols: 1", "rows: 2\n   cols: 2");
@@ -275,6 +297,16 @@ TEST(CameraYamlErrors, KalibrFieldsAreCheckedAndNamed) {
       "k.yaml", 7, "cam0.resolution", "2"));
   EXPECT_TRUE(FailsWith([&] { ParseCameraYaml(with("  resolution: [752, 480]\n", ""), "k.yaml"); },
                         "k.yaml", 1, "cam0.resolution", "missing key"));
+  EXPECT_TRUE(FailsWith(
+      [&] {
+        ParseCameraYaml(with("resolution: [752, 480]", "resolution: [20000, 20000]"), "k.yaml");
+      },
+      "k.yaml", 7, "cam0.resolution[0]", "16384 px a side"));
+  EXPECT_TRUE(FailsWith(
+      [&] {
+        ParseCameraYaml(with("resolution: [752, 480]", "resolution: [16000, 16000]"), "k.yaml");
+      },
+      "k.yaml", 7, "cam0.resolution", "16000x16000 is too large"));
 }
 
 #ifdef H4_TEST_WITH_OPENCV

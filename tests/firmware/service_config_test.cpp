@@ -68,6 +68,29 @@ TEST(ServiceConfigTest, ErrorsNameTheFileLineAndField) {
   ExpectError("camera:\n  analogue_gain: 0.5\n", 2, "camera.analogue_gain", ">= 1");
 }
 
+// A stream or camera control no camera has: a 100000 x 100000 stream would size every
+// frame buffer from it, 1e300 us does not convert to libcamera's integer controls.
+TEST(ServiceConfigTest, ImpossibleStreamSizesAndControlsAreRefusedWithTheirLine) {
+  ExpectError("camera:\n  width: 100000\n", 2, "camera.width", "1..16384");
+  ExpectError("camera:\n  width: 8192\n  height: 8192\n", 3, "camera.height", "too large");
+  ExpectError("camera:\n  exposure_time_us: 1e300\n", 2, "camera.exposure_time_us", "0..1e+07");
+  ExpectError("camera:\n  analogue_gain: 1e300\n", 2, "camera.analogue_gain", "1..64");
+  ExpectError("camera:\n  frame_duration_us: 1e-300\n", 2, "camera.frame_duration_us",
+              "1000..1e+07");
+  ExpectError("measurement:\n  free_run_hz: 1e300\n", 2, "measurement.free_run_hz", "0..100");
+  ExpectError("service:\n  heartbeat_period_s: 1e9\n", 2, "service.heartbeat_period_s", "0..3600");
+  // The same limits hold after command-line overrides.
+  ServiceConfig config;
+  std::string why;
+  config.exposure_time_us = 1e300;
+  EXPECT_FALSE(config.IsValid(&why));
+  EXPECT_NE(why.find("exposure time"), std::string::npos) << why;
+  config = ServiceConfig{};
+  config.width_px = 20000;
+  EXPECT_FALSE(config.IsValid(&why));
+  EXPECT_NE(why.find("20000x1520"), std::string::npos) << why;
+}
+
 TEST(ServiceConfigTest, MisspeltKeyIsRejected) {
   try {
     ParseServiceConfig("camera:\n  exposure_us: 100\n", "svc.yaml");

@@ -4,10 +4,13 @@
 #include "host/campaign/campaign.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <map>
 #include <random>
@@ -17,6 +20,8 @@
 #include <h4msgs/camera_status_t.hpp>
 #include <h4msgs/capture_request_t.hpp>
 #include <h4msgs/robot_target_t.hpp>
+#include <sched.h>
+#include <sys/mount.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -263,6 +268,69 @@ TEST_F(CampaignTest, SkipsAPoseWhereTheRobotNeverSettlesAndResendsItsTarget) {
       << campaign.skipped()[0].reason;
   EXPECT_EQ(std::count(cell.targets.begin(), cell.targets.end(), 2), 3);
   EXPECT_EQ(ReadDatasetCsv(path_).size(), 2u);
+}
+
+// A robot that never reports settled (stuck, or a controller that never sets the flag):
+// each pose is skipped with the reason, and after max_unsettled_in_a_row of them the
+// campaign stops with a message naming them instead of waiting out every pose left.
+TEST_F(CampaignTest, ARobotThatNeverSettlesStopsTheCampaignWithTheReason) {
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  cell.never_settles = {1, 2, 3, 4, 5, 6};
+  DatasetJournal journal(path_);
+  CampaignOptions options = FastOptions();
+  options.retries = 0;
+  options.max_unsettled_in_a_row = 3;
+  Campaign campaign(bus, Plan(6), journal, options);
+  std::string error;
+  try {
+    Run(bus, campaign, &cell);
+  } catch (const std::runtime_error& e) {
+    error = e.what();
+  }
+  ASSERT_FALSE(error.empty()) << "the campaign ran out its deadline instead of stopping";
+  EXPECT_NE(error.find("never settled at 3 poses in a row (1, 2, 3;"), std::string::npos) << error;
+  EXPECT_NE(error.find("run the same command again to resume"), std::string::npos) << error;
+  ASSERT_EQ(campaign.skipped().size(), 3u);
+  for (const SkippedPose& s : campaign.skipped()) {
+    EXPECT_NE(s.reason.find("robot not settled after 0.3 s"), std::string::npos) << s.reason;
+  }
+  EXPECT_TRUE(journal.rows().empty());
+  EXPECT_EQ(std::count(cell.targets.begin(), cell.targets.end(), 4), 0) << "stopped at pose 3";
+}
+
+// Without the limit every pose is skipped with the reason and the campaign ends (no hang);
+// a pose that settles between unsettled ones resets the count.
+TEST_F(CampaignTest, UnsettledPosesAreSkippedToTheEndWithoutTheLimitOrWhenOthersSettle) {
+  {
+    bus::LcmBus bus("memq://");
+    ScriptedCell cell(bus);
+    cell.never_settles = {1, 2, 3, 4};
+    DatasetJournal journal(path_);
+    CampaignOptions options = FastOptions();
+    options.retries = 0;
+    options.max_unsettled_in_a_row = 0;
+    Campaign campaign(bus, Plan(4), journal, options);
+    Run(bus, campaign, &cell);
+    EXPECT_TRUE(campaign.finished());
+    ASSERT_EQ(campaign.skipped().size(), 4u);
+    for (const SkippedPose& s : campaign.skipped()) {
+      EXPECT_NE(s.reason.find("not settled"), std::string::npos) << s.reason;
+    }
+  }
+  fs::remove(path_);
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  cell.never_settles = {1, 2, 4, 5};
+  DatasetJournal journal(path_);
+  CampaignOptions options = FastOptions();
+  options.retries = 0;
+  options.max_unsettled_in_a_row = 3;
+  Campaign campaign(bus, Plan(5), journal, options);
+  Run(bus, campaign, &cell);
+  EXPECT_TRUE(campaign.finished());
+  EXPECT_EQ(campaign.skipped().size(), 4u);
+  EXPECT_EQ(ReadDatasetCsv(path_).size(), 1u);
 }
 
 TEST_F(CampaignTest, RefusesToStartWhileTheCameraIsSilentAndSaysSo) {
@@ -596,6 +664,97 @@ TEST_F(CampaignTest, AFullDiskStopsTheCampaignWithTheReasonAndCompleteRowsOnly) 
   EXPECT_NE(error.find(path_ + ": cannot write"), std::string::npos) << error;
   EXPECT_EQ(fs::file_size(path_), header_size);
   EXPECT_TRUE(ReadDatasetCsv(path_).empty());
+}
+
+// A disk that really fills up: the dataset on a one-page tmpfs (4 KiB, about 20 rows),
+// mounted in a private mount namespace of a child process so that nothing outlives the
+// test. The campaign stops with ENOSPC named, and the file holds complete rows only (copied
+// out of the tmpfs before the child exits). Skipped where mounting is not permitted (the
+// RLIMIT_FSIZE test above covers the same path there).
+TEST_F(CampaignTest, AFullTmpfsStopsTheCampaignWithTheReasonAndCompleteRowsOnly) {
+  const fs::path disk = dir_ / "disk";
+  const fs::path copy = dir_ / "dataset_copy.csv";
+  const fs::path report = dir_ / "report.txt";
+  fs::create_directories(disk);
+  constexpr int kCannotMount = 2;
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    if (::unshare(CLONE_NEWNS) != 0 ||
+        ::mount(nullptr, "/", nullptr, MS_REC | MS_PRIVATE, nullptr) != 0 ||
+        ::mount("tmpfs", disk.c_str(), "tmpfs", 0, "size=4k") != 0) {
+      _exit(kCannotMount);
+    }
+    std::string error;
+    try {
+      bus::LcmBus bus("memq://");
+      ScriptedCell cell(bus);
+      DatasetJournal journal((disk / "dataset.csv").string());
+      Campaign campaign(bus, Plan(60), journal, FastOptions());
+      Run(bus, campaign, &cell, 30.0);
+      error = "the campaign finished: the disk never filled";
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    fs::copy_file(disk / "dataset.csv", copy);
+    std::ofstream(report) << error;
+    _exit(0);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status)) << "the child died of signal " << WTERMSIG(status);
+  if (WEXITSTATUS(status) == kCannotMount) GTEST_SKIP() << "cannot mount a tmpfs here";
+  ASSERT_EQ(WEXITSTATUS(status), 0);
+  std::ifstream in(report);
+  const std::string error((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(error.find("dataset.csv: cannot write: " + std::string(std::strerror(ENOSPC))),
+            std::string::npos)
+      << error;
+  EXPECT_NE(error.find("complete rows only"), std::string::npos) << error;
+  const std::vector<DatasetRow> rows = ReadDatasetCsv(copy.string());
+  ASSERT_GT(rows.size(), 5u) << "a page holds about 20 rows";
+  ASSERT_LT(rows.size(), 60u);
+  for (size_t i = 0; i < rows.size(); ++i) {
+    EXPECT_EQ(rows[i].pose_id, static_cast<int64_t>(i) + 1);
+    for (int j = 0; j < 4; ++j) EXPECT_EQ(rows[i].q[j], ScriptedCell::Joints(rows[i].pose_id)[j]);
+  }
+}
+
+// An fsync that fails while the journal writes a row (EIO injected through its file
+// operations; a disk that is failing): the campaign stops with the reason, and the file
+// keeps the rows flushed before, whole, with none torn or lost.
+TEST_F(CampaignTest, AFailedFsyncStopsTheCampaignWithTheReasonAndCompleteRowsOnly) {
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  int rows_flushed = 0;
+  JournalFileOps ops;
+  ops.fsync = [&](int fd) {
+    // The header, then two rows; the third row's fsync fails.
+    if (rows_flushed == 3) {
+      errno = EIO;
+      return -1;
+    }
+    ++rows_flushed;
+    return ::fsync(fd);
+  };
+  DatasetJournal journal(path_, ops);
+  Campaign campaign(bus, Plan(5), journal, FastOptions());
+  std::string error;
+  try {
+    Run(bus, campaign, &cell);
+  } catch (const std::runtime_error& e) {
+    error = e.what();
+  }
+  EXPECT_NE(error.find(path_ + ": cannot flush to disk (fsync)"), std::string::npos) << error;
+  EXPECT_NE(error.find("complete rows only"), std::string::npos) << error;
+  EXPECT_FALSE(campaign.finished());
+  const std::vector<DatasetRow> rows = ReadDatasetCsv(path_);
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0].pose_id, 1);
+  EXPECT_EQ(rows[1].pose_id, 2);
+  for (const DatasetRow& r : rows) {
+    for (int j = 0; j < 4; ++j) EXPECT_EQ(r.q[j], ScriptedCell::Joints(r.pose_id)[j]);
+  }
 }
 
 // Fault injection on the live path, in process: the checks every faulty run must pass. Each

@@ -1,7 +1,9 @@
 // Durable, resumable appends of the campaign's dataset (host/campaign/dataset_journal.h).
 #include "host/campaign/dataset_journal.h"
 
+#include <cerrno>
 #include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -190,6 +192,50 @@ TEST_F(DatasetJournalTest, AWriteThatFailsMidRowLeavesOnlyCompleteRowsAndSaysWhy
   // Space again: the same journal goes on.
   journal.Append(Row(3));
   EXPECT_EQ(ReadDatasetCsv(path_).size(), 3u);
+}
+
+// An fsync that fails after the row was written (EIO from the disk, injected through the
+// journal's file operations): the row is not known to be on the disk, so it is cut off, the
+// error names the file and fsync, and the rows flushed before stay whole.
+TEST_F(DatasetJournalTest, AFailedFsyncCutsTheRowOffAndSaysWhy) {
+  bool fail_fsync = false;
+  int fsync_calls = 0;
+  JournalFileOps ops;
+  ops.fsync = [&](int fd) {
+    ++fsync_calls;
+    if (!fail_fsync) return ::fsync(fd);
+    errno = EIO;
+    return -1;
+  };
+  DatasetJournal journal(path_, ops);
+  journal.Append(Row(1));
+  journal.Append(Row(2));
+  const std::string before = Slurp(path_);
+  const int calls_before = fsync_calls;
+
+  fail_fsync = true;
+  std::string error;
+  try {
+    journal.Append(Row(3));
+  } catch (const std::runtime_error& e) {
+    error = e.what();
+  }
+  fail_fsync = false;
+  EXPECT_EQ(fsync_calls, calls_before + 1) << "the injected fsync is the journal's";
+  ASSERT_FALSE(error.empty()) << "a failed fsync must not be taken for a durable row";
+  EXPECT_NE(error.find(path_ + ": cannot flush to disk (fsync): " + std::strerror(EIO)),
+            std::string::npos)
+      << error;
+  EXPECT_NE(error.find("complete rows only"), std::string::npos) << error;
+  EXPECT_EQ(Slurp(path_), before) << "no part of row 3 may stay in the file";
+  EXPECT_FALSE(journal.Contains(3));
+  EXPECT_EQ(journal.rows().size(), 2u);
+
+  // The disk back: the same journal goes on, and a resumed one reads every row once.
+  journal.Append(Row(3));
+  const std::vector<DatasetRow> rows = ReadDatasetCsv(path_);
+  ASSERT_EQ(rows.size(), 3u);
+  for (size_t i = 0; i < rows.size(); ++i) EXPECT_EQ(rows[i].pose_id, static_cast<int64_t>(i) + 1);
 }
 
 TEST_F(DatasetJournalTest, RefusesWhatIsNotARegularFile) {
