@@ -70,8 +70,9 @@ Scenario LoadScenario(const SimRobotArgs& args) {
     robot_path = beside.string();
   }
   scenario.apriori = ReadRobotYaml(robot_path);
-  scenario.description = "truth " + args.truth_path + " (Model " + scenario.truth.truth_model() +
-                         "), a priori " + robot_path;
+  scenario.description = "truth " + args.truth_path + " (Model " +
+                         std::string(ToString(scenario.truth.truth_model())) + "), a priori " +
+                         robot_path;
   return scenario;
 }
 

@@ -104,7 +104,7 @@ void Run(const SimulateOptions& options) {
   }
 
   spdlog::info("simulated Model {} truth{}: {} poses ({} held out), {} out of reach",
-               robot.truth_model(),
+               ToString(robot.truth_model()),
                geometry == TrueGeometry::kPaperTable2 ? " (paper Table 2)" : "",
                dataset.rows.size(), heldout_joints.size(), dataset.unreachable.size());
   spdlog::info(

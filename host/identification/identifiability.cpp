@@ -25,8 +25,8 @@ std::string Format(const char* fmt, double value) {
 
 }  // namespace
 
-std::vector<std::string> DefaultFixPreferences(const std::string& model_name) {
-  if (model_name == "31") {
+std::vector<std::string> DefaultFixPreferences(ModelKind model) {
+  if (model == ModelKind::k31) {
     return {"d", "X_TE.tz", "X_TE.rx", "X_TE.ry", "X_TE.rz", "X_BC.rz"};
   }
   return {"X_TE.tz", "X_TE.rx", "X_TE.ry", "d"};
@@ -72,13 +72,12 @@ Eigen::MatrixXd FreeColumns(const Eigen::MatrixXd& J_full, const ParameterVector
   return J;
 }
 
-IdentifiabilityReport AnalyzeIdentifiability(const Eigen::MatrixXd& J_full,
-                                             const std::string& model_name,
+IdentifiabilityReport AnalyzeIdentifiability(const Eigen::MatrixXd& J_full, ModelKind model,
                                              const IdentifiabilityOptions& options,
                                              ParameterVector* p) {
   IdentifiabilityReport report;
   const std::vector<std::string> preferences =
-      options.preferences.empty() ? DefaultFixPreferences(model_name) : options.preferences;
+      options.preferences.empty() ? DefaultFixPreferences(model) : options.preferences;
   // Second-order parameters against the camera rotation columns.
   double camera_rotation_norm = 0.0;
   for (int k = p->bc_offset() + 3; k < p->bc_offset() + 6; ++k) {

@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "host/identification/identification_report.h"
+#include "host/identification/identified_robot.h"
 #include "host/kinematics/measurement_chain.h"
 #include "host/kinematics/model12.h"
 #include "host/kinematics/model31.h"
@@ -56,8 +57,8 @@ void RequireIdentifiableInput(const KinematicModel& model, const ParameterVector
     if (start.IndexOf(name) >= 0) continue;
     std::string known;
     for (const std::string& n : start.names()) known += (known.empty() ? "" : ", ") + n;
-    throw std::invalid_argument("cannot fix '" + name + "': not a parameter of Model " +
-                                model.name() + "; the parameters are: " + known);
+    throw std::invalid_argument("cannot fix '" + name + "': not a parameter of " +
+                                ModelLabel(model.kind()) + "; the parameters are: " + known);
   }
 }
 
@@ -150,7 +151,7 @@ StageSummary RunStage(CostKind kind, bool placement_only, const KinematicModel& 
     cost.Evaluate(*p, &r_analysis, &J_analysis);  // evaluable: checked above
   }
   IdentifiabilityReport report =
-      AnalyzeIdentifiability(J_analysis, model.name(), options.identifiability, p);
+      AnalyzeIdentifiability(J_analysis, model.kind(), options.identifiability, p);
   Eigen::VectorXd values = p->values();
   for (const FixedByAnalysis& f : report.fixed) {
     stage.fixed.push_back(f.name + ": " + f.reason);
@@ -429,28 +430,26 @@ DatasetSplit SplitDataset(const std::vector<DatasetRow>& rows, int valid_count, 
   return split;
 }
 
-ParameterVector AprioriParameters(const RobotDescription& robot, const std::string& model_name,
-                                  std::unique_ptr<KinematicModel>* model) {
-  if (model_name == "12") {
-    *model = std::make_unique<Model12>(robot.model12, robot.assembly);
-    return ParameterVector(**model, robot.X_BC, robot.X_TE);
+AprioriModel AprioriModelOf(const RobotDescription& robot, ModelKind kind) {
+  if (kind == ModelKind::k12) {
+    auto model = std::make_unique<Model12>(robot.model12, robot.assembly);
+    ParameterVector parameters(*model, robot.X_BC, robot.X_TE);
+    return {std::move(model), std::move(parameters)};
   }
-  if (model_name == "31") {
-    *model = std::make_unique<Model31>(Model31Of(robot), robot.assembly);
-    return ParameterVector(**model, NominalX_B31B(robot.model12) * robot.X_BC, robot.X_TE);
-  }
-  throw std::invalid_argument("unknown model \"" + model_name + "\": expected 12 or 31");
+  auto model = std::make_unique<Model31>(Model31Of(robot), robot.assembly);
+  ParameterVector parameters(*model, NominalX_B31B(robot.model12) * robot.X_BC, robot.X_TE);
+  return {std::move(model), std::move(parameters)};
 }
 
-IdentificationOutcome IdentifyRobot(const RobotDescription& robot, const std::string& model_name,
+IdentificationOutcome IdentifyRobot(const RobotDescription& robot, ModelKind kind,
                                     const std::vector<DatasetRow>& rows,
                                     const IdentificationOptions& options, int valid_count,
                                     uint64_t seed) {
-  std::unique_ptr<KinematicModel> model;
-  const ParameterVector apriori = AprioriParameters(robot, model_name, &model);
+  const AprioriModel apriori = AprioriModelOf(robot, kind);
   const DatasetSplit split = SplitDataset(rows, valid_count, seed);
   IdentificationOutcome out =
-      Identify(*model, apriori.X_BC(), apriori.X_TE(), split.calib, split.valid, options);
+      Identify(*apriori.model, apriori.parameters.X_BC(), apriori.parameters.X_TE(), split.calib,
+               split.valid, options);
   out.result.log.insert(out.result.log.begin(), split.how);
   return out;
 }
@@ -459,12 +458,9 @@ IdentificationOutcome IdentifyModel31FromModel12(const RobotDescription& robot,
                                                  const IdentificationResult& model12_result,
                                                  const std::vector<DatasetRow>& rows,
                                                  const IdentificationOptions& options) {
-  if (model12_result.model != "12") {
-    throw std::invalid_argument("--from expects a Model 12 result, got model " +
-                                model12_result.model);
-  }
-  std::unique_ptr<KinematicModel> model31;
-  const ParameterVector apriori = AprioriParameters(robot, "31", &model31);
+  RequireModel12Result(model12_result, "", "--from");
+  AprioriModel model31 = AprioriModelOf(robot, ModelKind::k31);
+  const ParameterVector& apriori = model31.parameters;
   // The Model 12 result as a parameter vector, then its nominal Model 31.
   Model12 model12(robot.model12, robot.assembly);
   ParameterVector p12(model12, model12_result.X_BC, model12_result.X_TE);
@@ -476,7 +472,7 @@ IdentificationOutcome IdentifyModel31FromModel12(const RobotDescription& robot,
       p12.set_values(v);
     }
   }
-  const ParameterVector start = ConvertModel12To31(p12, model31.get());
+  const ParameterVector start = ConvertModel12To31(p12, model31.model.get());
   // Reuse the Model 12 split unless the rows say otherwise.
   DatasetSplit split;
   const bool has_set =
@@ -492,7 +488,7 @@ IdentificationOutcome IdentifyModel31FromModel12(const RobotDescription& robot,
     split.how = "split as the Model 12 result";
   }
   IdentificationOutcome out =
-      IdentifyFromStart(*model31, apriori, start, split.calib, split.valid, options);
+      IdentifyFromStart(*model31.model, apriori, start, split.calib, split.valid, options);
   out.result.log.insert(out.result.log.begin(), "started from the Model 12 result; " + split.how);
   return out;
 }

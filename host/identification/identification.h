@@ -149,20 +149,26 @@ struct DatasetSplit {
 DatasetSplit SplitDataset(const std::vector<DatasetRow>& rows, int valid_count = 10,
                           uint64_t seed = 1);
 
-/// The robot's a priori model: "12" (Model12) or "31" (its model31 block or the nominal
-/// Model 31, X_BC mapped to B31). Throws std::invalid_argument for another name.
-ParameterVector AprioriParameters(const RobotDescription& robot, const std::string& model_name,
-                                  std::unique_ptr<KinematicModel>* model);
+/// A robot's a priori model of one kind, as an identification starts from it.
+struct AprioriModel {
+  std::unique_ptr<KinematicModel> model;
+  ParameterVector parameters;  ///< the model's values with X_BC (in B31 for Model 31), X_TE
+};
+
+/// Model 12: the robot's model12 block. Model 31: its model31 block or the nominal Model 31
+/// of its Model 12, X_BC mapped to B31.
+AprioriModel AprioriModelOf(const RobotDescription& robot, ModelKind kind);
 
 /// `h4cal identify --model 12|31`: split, a priori from the robot, Identify.
-IdentificationOutcome IdentifyRobot(const RobotDescription& robot, const std::string& model_name,
+IdentificationOutcome IdentifyRobot(const RobotDescription& robot, ModelKind kind,
                                     const std::vector<DatasetRow>& rows,
                                     const IdentificationOptions& options, int valid_count = 10,
                                     uint64_t seed = 1);
 
 /// `h4cal identify --model 31 --from result12.json` (paper III.C): Model 31 starts from the
 /// nominal Model 31 of the Model 12 result, and parameters it must fix keep that result's
-/// values. The Model 12 result's pose split is reused when the rows carry no `set`.
+/// values. The Model 12 result's pose split is reused when the rows carry no `set`. Throws
+/// std::invalid_argument (RequireModel12Result) when model12_result is not Model 12's.
 IdentificationOutcome IdentifyModel31FromModel12(const RobotDescription& robot,
                                                  const IdentificationResult& model12_result,
                                                  const std::vector<DatasetRow>& rows,

@@ -23,7 +23,7 @@ void FillResult(const KinematicModel& model, const ParameterVector& apriori,
                 const IdentificationOptions& options, IdentificationOutcome* out,
                 const SolutionJacobian* at_solution) {
   IdentificationResult& result = out->result;
-  result.model = model.name();
+  result.model = model.kind();
   result.estimator = ToString(options.estimator);
   result.X_BC = p.X_BC();
   result.X_TE = p.X_TE();
@@ -47,7 +47,7 @@ void FillResult(const KinematicModel& model, const ParameterVector& apriori,
     Eigen::MatrixXd J_check;
     if (!consistent.Evaluate(p, &r_check, &J_check)) J_check = J;
     const IdentifiabilityReport recheck =
-        AnalyzeIdentifiability(J_check, model.name(), options.identifiability, &check);
+        AnalyzeIdentifiability(J_check, model.kind(), options.identifiability, &check);
     for (const FixedByAnalysis& f : recheck.fixed) {
       result.log.push_back("at the solution, " + f.name + " is also " + f.reason);
     }

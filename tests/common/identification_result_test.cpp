@@ -39,7 +39,7 @@ std::string ResultWith(const std::string& from, const std::string& to) {
 
 TEST(IdentificationResult, ReadsFormatsMdKeys) {
   const IdentificationResult r = ParseIdentificationResult(kResult, "r.json");
-  EXPECT_EQ(r.model, "12");
+  EXPECT_EQ(r.model, ModelKind::k12);
   ASSERT_EQ(r.parameters.size(), 3u);
   EXPECT_EQ(r.parameters[0].name, "h");
   EXPECT_EQ(r.parameters[0].value, 0.0610);
@@ -69,7 +69,7 @@ TEST(IdentificationResult, ReadsFormatsMdKeys) {
 
 IdentificationResult FullResult() {
   IdentificationResult r = ParseIdentificationResult(kResult, "r.json");
-  r.model = "31";
+  r.model = ModelKind::k31;
   r.parameters[0].value = 0.1 / 3;
   r.parameters[0].std = 2.0 / 7 * 1e-4;
   r.X_BC = RigidTransform::FromTranslationRpy({0.001, -0.002, -1.05}, {0.01, -0.02, 3.0});

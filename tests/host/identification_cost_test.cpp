@@ -66,15 +66,15 @@ TEST(PoseChainTest, BoardPoseErrorJacobiansMatchFiniteDifferences) {
 }
 
 struct CostCase {
-  const char* model;
+  ModelKind model;
   CostKind kind;
 };
 
 class CostTest : public ::testing::TestWithParam<CostCase> {
  protected:
   TrueSetup Setup() const {
-    return std::string(GetParam().model) == "12" ? testing::TrueModel12Setup()
-                                                 : testing::TrueModel31Setup();
+    return GetParam().model == ModelKind::k12 ? testing::TrueModel12Setup()
+                                              : testing::TrueModel31Setup();
   }
 };
 
@@ -140,14 +140,17 @@ TEST_P(CostTest, JacobianMatchesFiniteDifferencesOffTheTruth) {
   EXPECT_TRUE(JacobianMatchesFiniteDifferences(f, v0, J, 1e-5, 1e-6));
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    AllCosts, CostTest,
-    ::testing::Values(CostCase{"12", CostKind::kJointSpace}, CostCase{"12", CostKind::kImplicit},
-                      CostCase{"12", CostKind::kMeasurement}, CostCase{"31", CostKind::kJointSpace},
-                      CostCase{"31", CostKind::kImplicit}, CostCase{"31", CostKind::kMeasurement}),
-    [](const ::testing::TestParamInfo<CostCase>& param_info) {
-      return std::string("Model") + param_info.param.model + "_" + ToString(param_info.param.kind);
-    });
+INSTANTIATE_TEST_SUITE_P(AllCosts, CostTest,
+                         ::testing::Values(CostCase{ModelKind::k12, CostKind::kJointSpace},
+                                           CostCase{ModelKind::k12, CostKind::kImplicit},
+                                           CostCase{ModelKind::k12, CostKind::kMeasurement},
+                                           CostCase{ModelKind::k31, CostKind::kJointSpace},
+                                           CostCase{ModelKind::k31, CostKind::kImplicit},
+                                           CostCase{ModelKind::k31, CostKind::kMeasurement}),
+                         [](const ::testing::TestParamInfo<CostCase>& param_info) {
+                           return std::string("Model") + ToString(param_info.param.model) + "_" +
+                                  ToString(param_info.param.kind);
+                         });
 
 TEST(CostKindTest, NamesRoundTripAndUnknownIsRejected) {
   CostKind kind = CostKind::kImplicit;
