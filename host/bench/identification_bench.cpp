@@ -56,8 +56,7 @@ Problem MakeProblem(ModelKind model_kind) {
       Identify(*model, apriori.X_BC(), apriori.X_TE(), rows, {}, warmup).parameters;
   // Its mask: the measurement stage's identifiability analysis.
   start.FreeAll();
-  const IdentificationCost cost(CostKind::kMeasurement, *model,
-                                ConsistentRows(*model, start, rows));
+  IdentificationCost cost(CostKind::kMeasurement, *model, ConsistentRows(*model, start, rows));
   Eigen::VectorXd r;
   Eigen::MatrixXd J;
   cost.Evaluate(start, &r, &J);
@@ -115,7 +114,7 @@ void BM_IdentifyModel31LmOnly(benchmark::State& state) {
 // values, with the same reused buffers as the pipeline's stages.
 class StageFunction {
  public:
-  StageFunction(const Problem& p, const IdentificationCost& cost)
+  StageFunction(const Problem& p, IdentificationCost& cost)
       : cost_(cost), work_(p.stage_start), free_(p.stage_start.FreeIndices()) {}
   bool operator()(const Eigen::VectorXd& v, Eigen::VectorXd* r, Eigen::MatrixXd* J_free) {
     Eigen::VectorXd values = work_.values();
@@ -131,7 +130,7 @@ class StageFunction {
   }
 
  private:
-  const IdentificationCost& cost_;
+  IdentificationCost& cost_;
   ParameterVector work_;
   std::vector<int> free_;
   Eigen::MatrixXd J_all_;
@@ -142,7 +141,7 @@ void StageWithLm(benchmark::State& state, ModelKind model_kind) {
   MinimizerReport report;
   for (auto _ : state) {
     // A fresh cost per run: no forward kinematics warm start carried between runs.
-    const IdentificationCost cost(CostKind::kMeasurement, *p.model, p.rows);
+    IdentificationCost cost(CostKind::kMeasurement, *p.model, p.rows);
     const ResidualFunction f = StageFunction(p, cost);
     Eigen::VectorXd v = p.stage_start.FreeValues();
     report = MinimizeWithLevenbergMarquardt(f, LmOptions{}, &v);
@@ -164,7 +163,7 @@ void StageWithNlopt(benchmark::State& state, ModelKind model_kind, bool to_the_e
     options.relative_step_tolerance = 1e-12;
   }
   for (auto _ : state) {
-    const IdentificationCost cost(CostKind::kMeasurement, *p.model, p.rows);
+    IdentificationCost cost(CostKind::kMeasurement, *p.model, p.rows);
     const ResidualFunction f = StageFunction(p, cost);
     Eigen::VectorXd v = p.stage_start.FreeValues();
     report = MinimizeWithNlopt(f, options, &v);
@@ -237,7 +236,7 @@ void StageWithCeres(benchmark::State& state, ModelKind model_kind) {
   const Problem& p = GetProblem(model_kind);
   ceres::Solver::Summary summary;
   for (auto _ : state) {
-    const IdentificationCost cost(CostKind::kMeasurement, *p.model, p.rows);
+    IdentificationCost cost(CostKind::kMeasurement, *p.model, p.rows);
     const ResidualFunction f = StageFunction(p, cost);
     Eigen::VectorXd v = p.stage_start.FreeValues();
     ceres::Problem problem;

@@ -19,6 +19,7 @@
 #include "common/robot/robot_description.h"
 #include "host/identification/identifiability.h"
 #include "host/identification/identification_cost.h"
+#include "host/identification/identification_stage.h"
 #include "host/identification/least_squares.h"
 #include "host/identification/parameter_vector.h"
 #include "host/identification/prior_analysis.h"
@@ -108,12 +109,6 @@ struct IdentificationOutcome {
   PriorAnalysis prior;
   IdentifiabilityReport identifiability;  ///< of the final stage, at its start point
 };
-
-/// The calibration rows made exactly consistent with the parameters p (joints by IK of the
-/// measured poses, X_CT re-predicted without the measured tilt): the rows on which the
-/// identifiability analysis is done, so that noise does not hide exact null directions.
-std::vector<DatasetRow> ConsistentRows(const KinematicModel& model, const ParameterVector& p,
-                                       const std::vector<DatasetRow>& rows);
 
 /// Identification from an a priori: `apriori_model` (12 or 31) with X_BC / X_TE in its base
 /// frame; `calib` for identification, `valid` held out (may be empty). Throws as

@@ -30,7 +30,7 @@ IdentifiabilityReport Analyze(const testing::TrueSetup& setup, CostKind kind) {
   ParameterVector p(*setup.model, setup.X_BC, PaperX_TE());
   const std::vector<DatasetRow> rows =
       ConsistentRows(*setup.model, p, testing::NoiseFreeRows(setup));
-  const IdentificationCost cost(kind, *setup.model, rows);
+  IdentificationCost cost(kind, *setup.model, rows);
   Eigen::VectorXd r;
   Eigen::MatrixXd J;
   EXPECT_TRUE(cost.Evaluate(p, &r, &J));

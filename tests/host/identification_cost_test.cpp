@@ -80,7 +80,7 @@ class CostTest : public ::testing::TestWithParam<CostCase> {
 
 TEST_P(CostTest, ResidualsVanishAtTheTruthOnNoiseFreeData) {
   const TrueSetup setup = Setup();
-  const IdentificationCost cost(GetParam().kind, *setup.model, NoiseFreeRows(setup));
+  IdentificationCost cost(GetParam().kind, *setup.model, NoiseFreeRows(setup));
   const ParameterVector p(*setup.model, setup.X_BC, setup.X_TE);
   Eigen::VectorXd r;
   std::string why;
@@ -94,7 +94,7 @@ TEST_P(CostTest, WarmStartedEvaluationsMatchAFreshCost) {
   // evaluating elsewhere, coming back must give what a fresh cost gives.
   const TrueSetup setup = Setup();
   const std::vector<DatasetRow> rows = NoiseFreeRows(setup);
-  const IdentificationCost cost(GetParam().kind, *setup.model, rows);
+  IdentificationCost cost(GetParam().kind, *setup.model, rows);
   const ParameterVector p(*setup.model, setup.X_BC, setup.X_TE);
   ParameterVector moved = p;
   Eigen::VectorXd values = p.values();
@@ -119,7 +119,7 @@ TEST_P(CostTest, JacobianMatchesFiniteDifferencesOffTheTruth) {
   unit_sigma.default_sigma_r = 1.0;
   std::vector<DatasetRow> rows = NoiseFreeRows(setup);
   rows.resize(12);
-  const IdentificationCost cost(GetParam().kind, *setup.model, rows, unit_sigma);
+  IdentificationCost cost(GetParam().kind, *setup.model, rows, unit_sigma);
   ParameterVector p(*setup.model, setup.X_BC, setup.X_TE);
   const Eigen::VectorXd v0 = Perturbed(p.values(), 2e-3);
   p.set_values(v0);
