@@ -12,6 +12,7 @@
 #include "common/formats/file_output.h"
 #include "common/formats/identification_result.h"
 #include "common/formats/robot_yaml.h"
+#include "common/units.h"
 #include "host/cli/commands.h"
 #include "host/cli/progress.h"
 #include "host/cli/validation_inputs.h"
@@ -56,8 +57,7 @@ void PrintHeadline(const IdentificationOutcome& outcome) {
   }
   if (r.valid_position_rms_m && r.valid_rotation_rms_rad) {
     std::printf("  held-out board pose vs measured: %.4f mm, %.4f deg RMS\n",
-                1e3 * *r.valid_position_rms_m,
-                *r.valid_rotation_rms_rad * 180.0 / std::numbers::pi);
+                1e3 * *r.valid_position_rms_m, DegreesFromRadians(*r.valid_rotation_rms_rad));
   }
   if (r.predicted_position_accuracy_m) {
     std::printf("  predicted position accuracy (1 sigma, calibration poses): %.4f mm\n",

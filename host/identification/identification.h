@@ -39,14 +39,10 @@ struct IdentificationOptions {
   /// In the first stage, fit X_BC and X_TE alone (kinematics at the a priori) before
   /// freeing everything: a camera off by centimetres and degrees is mostly placement.
   bool placement_first = true;
-  /// Every stage is solved by NLopt (the engine; algorithm by name, "none" skips it) with
-  /// the loose NloptOptions defaults, then polished by Levenberg-Marquardt, which beats
-  /// every NLopt algorithm near the minimum (host/bench, 81-pose grid: LM reaches the
-  /// minimum in ~10 iterations, NLopt LBFGS alone in ~180 evaluations, 10x the time).
-  /// NLopt first adds ~25% to Model 31's whole identification and saves no LM iterations
-  /// from our starts; it stays the default as the engine the issue asks for and for
-  /// robustness from rough starts; `--algorithm none` runs LM alone. Without the polish,
-  /// NLopt runs to tight tolerances (1e-12, at least 2000 evaluations).
+  /// Every stage starts with NLopt (algorithm by name; "none": Levenberg-Marquardt alone),
+  /// loose when the LM polish follows, else to tight tolerances (1e-12, at least 2000
+  /// evaluations): NLopt is the engine and copes with rough starts, LM is far faster near
+  /// the minimum (timings: README, "How well it works").
   NloptOptions nlopt;
   /// The Levenberg-Marquardt polish on the column-scaled normal equations, the final stage
   /// (false: NLopt alone, `h4cal identify --no-polish`). When it does not converge, NLopt

@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 
 #include "common/formats/dataset_csv.h"
+#include "common/units.h"
 #include "host/identification/parameter_vector.h"
 #include "host/identification/pose_chain.h"
 #include "host/kinematics/kinematic_model.h"
@@ -33,7 +34,7 @@ struct CostOptions {
   /// Translation std of a measured X_CT when the dataset has no sigma_t, m (paper: 0.2 mm).
   double default_sigma_t = 0.2e-3;
   /// Rotation std when the dataset has no sigma_r, rad (paper: 0.03 deg).
-  double default_sigma_r = 0.03 * 3.14159265358979323846 / 180.0;
+  double default_sigma_r = RadiansFromDegrees(0.03);
   /// Use the dataset's per-pose sigma_t / sigma_r when present.
   bool use_dataset_sigmas = true;
 };

@@ -20,6 +20,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "common/timing/clock.h"
 #include "messages/channels.h"
 
 namespace h4::host {

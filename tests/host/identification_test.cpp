@@ -400,7 +400,7 @@ TEST(DatasetSplitTest, UsesTheSetColumnElseASeededDraw) {
   EXPECT_NE(a.how.find("seed 3"), std::string::npos);
 }
 
-// Issue 13: identify crashed (SIGSEGV) on a dataset with no calibration row.
+// Regression: identify crashed (SIGSEGV) on a dataset with no calibration row.
 TEST(IdentificationInputTest, TooFewCalibrationPosesAreRefusedWithTheCount) {
   const Scenario s = MakeScenario(TrueGeometry::kPaperTable2, 1, false);
   const RobotDescription robot = PaperAprioriRobot();
@@ -419,7 +419,7 @@ TEST(IdentificationInputTest, TooFewCalibrationPosesAreRefusedWithTheCount) {
   }
 }
 
-// Issue 13: a --fix typo was ignored and the parameter identified.
+// Regression: a --fix typo was ignored and the parameter identified.
 TEST(IdentificationInputTest, UnknownFixedParameterIsRefusedListingTheNames) {
   const Scenario s = MakeScenario(TrueGeometry::kPaperTable2, 1, false);
   const RobotDescription robot = PaperAprioriRobot();
@@ -438,7 +438,7 @@ TEST(IdentificationInputTest, UnknownFixedParameterIsRefusedListingTheNames) {
   }
 }
 
-// Issue 13: --fix of all twelve X_BC / X_TE parameters crashed: the placement stage had
+// Regression: --fix of all twelve X_BC / X_TE parameters crashed: the placement stage had
 // nothing to fit. It now keeps the fixed placement and fits the kinematics.
 TEST(IdentificationInputTest, FixingTheWholePlacementLeavesTheKinematicsToFit) {
   const Scenario s = MakeScenario(TrueGeometry::kPerturbedModel12, 7, false);
