@@ -182,10 +182,10 @@ IdentificationResult ParseIdentificationResult(const std::string& text,
   const JsonValue root(document, source_name, "");
   root.RequireObject();
   IdentificationResult result;
-  result.model = root["model"].String();
-  if (result.model != "12" && result.model != "31") {
-    root["model"].Fail("expected \"12\" or \"31\", got \"" + result.model + "\"");
-  }
+  const std::string model = root["model"].String();
+  const std::optional<ModelKind> kind = ParseModelKind(model);
+  if (!kind) root["model"].Fail("expected \"12\" or \"31\", got \"" + model + "\"");
+  result.model = *kind;
   ReadParameters(root["parameters"], &result);
   result.X_BC = ReadTransform(root["X_BC"]);
   result.X_TE = ReadTransform(root["X_TE"]);
@@ -206,7 +206,7 @@ IdentificationResult ReadIdentificationResult(const std::string& path) {
 
 std::string FormatIdentificationResult(const IdentificationResult& result) {
   Ordered root = Ordered::object();
-  root["model"] = result.model;
+  root["model"] = ToString(result.model);
   Ordered parameters = Ordered::array();
   for (const ResultParameter& p : result.parameters) {
     Ordered entry = Ordered::object();

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/geometry/rigid_transform.h"
+#include "common/robot/model_kind.h"
 
 namespace h4 {
 
@@ -31,7 +32,7 @@ struct CorrelatedPair {
 };
 
 struct IdentificationResult {
-  std::string model;  ///< "12" or "31"
+  ModelKind model = ModelKind::k12;  ///< "12" or "31" in the file
   std::vector<ResultParameter> parameters;
   RigidTransform X_BC;  ///< identified camera pose in base (B for Model 12, B31 for 31)
   RigidTransform X_TE;  ///< identified end-effector pose in board frame
@@ -55,14 +56,13 @@ struct IdentificationResult {
 
 /// Reads/writes the JSON; reading throws FormatError (file, field path such as
 /// "parameters[3].value", expectation; line 0 except for a syntax error, which gives the
-/// line). Required: common/formats/README.md's keys; model "12" or "31"; parameter names unique; std
-/// null for a fixed parameter (a number or null otherwise, >= 0); parameter values usable
-/// by the kinematics (lengths h, arm, forearm, R, arm1..4, forearm1..4 positive; angles
-/// alpha*, q0*, psi*, beta* within 2 pi; every other value and the X_BC / X_TE
-/// translations within kMaxRobotSize_m); every `fixed` entry
-/// names a parameter with status "fixed"; RMS values >= 0; pose ids integers. The extra
-/// keys may be absent or null. The writer writes every key (absent optionals as null,
-/// std as null for fixed parameters), shortest round-trip numbers, and throws
+/// line). Required: common/formats/README.md's keys; model "12" or "31"; parameter names unique;
+/// std null for a fixed parameter (a number or null otherwise, >= 0); parameter values usable by
+/// the kinematics (lengths h, arm, forearm, R, arm1..4, forearm1..4 positive; angles alpha*, q0*,
+/// psi*, beta* within 2 pi; every other value and the X_BC / X_TE translations within
+/// kMaxRobotSize_m); every `fixed` entry names a parameter with status "fixed"; RMS values >= 0;
+/// pose ids integers. The extra keys may be absent or null. The writer writes every key (absent
+/// optionals as null, std as null for fixed parameters), shortest round-trip numbers, and throws
 /// std::invalid_argument on a non-finite number (JSON has no NaN).
 IdentificationResult ReadIdentificationResult(const std::string& path);
 /// No H4 parameter or placement is larger than this (m): a bound on values read back.

@@ -36,16 +36,17 @@ struct Problem {
   ParameterVector stage_start;  // the measurement stage's start point and mask
 };
 
-Problem MakeProblem(const std::string& model_name) {
+Problem MakeProblem(ModelKind model_kind) {
   const RobotDescription apriori_robot = PaperAprioriRobot();
   const SimulatedRobot truth =
-      MakeTrueRobot(apriori_robot, model_name == "31" ? TrueGeometry::kPerturbedModel31
-                                                      : TrueGeometry::kPerturbedModel12);
+      MakeTrueRobot(apriori_robot, model_kind == ModelKind::k31 ? TrueGeometry::kPerturbedModel31
+                                                                : TrueGeometry::kPerturbedModel12);
   DatasetOptions data_options;
   data_options.valid_count = 0;
   std::vector<DatasetRow> rows = SimulateDataset(truth, GridPosePlan(), data_options).rows;
-  std::unique_ptr<KinematicModel> model;
-  ParameterVector apriori = AprioriParameters(apriori_robot, model_name, &model);
+  AprioriModel apriori_model = AprioriModelOf(apriori_robot, model_kind);
+  std::unique_ptr<KinematicModel> model = std::move(apriori_model.model);
+  ParameterVector apriori = apriori_model.parameters;
   // The start of the final stage: the pipeline without its final (measurement) stage.
   IdentificationOptions warmup;
   warmup.estimator = CostKind::kImplicit;
@@ -55,24 +56,22 @@ Problem MakeProblem(const std::string& model_name) {
       Identify(*model, apriori.X_BC(), apriori.X_TE(), rows, {}, warmup).parameters;
   // Its mask: the measurement stage's identifiability analysis.
   start.FreeAll();
-  const IdentificationCost cost(CostKind::kMeasurement, *model,
-                                ConsistentRows(*model, start, rows));
+  IdentificationCost cost(CostKind::kMeasurement, *model, ConsistentRows(*model, start, rows));
   Eigen::VectorXd r;
   Eigen::MatrixXd J;
   cost.Evaluate(start, &r, &J);
-  AnalyzeIdentifiability(J, model_name, {}, &start);
+  AnalyzeIdentifiability(J, model_kind, {}, &start);
   return {std::move(model), apriori, rows, start};
 }
 
-const Problem& GetProblem(const std::string& model_name) {
-  static const Problem p12 = MakeProblem("12");
-  static const Problem p31 = MakeProblem("31");
-  return model_name == "31" ? p31 : p12;
+const Problem& GetProblem(ModelKind model_kind) {
+  static const Problem p12 = MakeProblem(ModelKind::k12);
+  static const Problem p31 = MakeProblem(ModelKind::k31);
+  return model_kind == ModelKind::k31 ? p31 : p12;
 }
 
-void RunPipeline(benchmark::State& state, const std::string& model_name,
-                 const std::string& algorithm) {
-  const Problem& p = GetProblem(model_name);
+void RunPipeline(benchmark::State& state, ModelKind model_kind, const std::string& algorithm) {
+  const Problem& p = GetProblem(model_kind);
   IdentificationOptions options;
   options.nlopt.algorithm = algorithm;
   double cost = 0.0;
@@ -102,16 +101,20 @@ void RunPipeline(benchmark::State& state, const std::string& model_name,
   state.counters["report_ms"] = 1e3 * (last.report_seconds + last.outlier_seconds);
 }
 
-void BM_IdentifyModel12(benchmark::State& state) { RunPipeline(state, "12", "LD_LBFGS"); }
-void BM_IdentifyModel31(benchmark::State& state) { RunPipeline(state, "31", "LD_LBFGS"); }
-void BM_IdentifyModel12LmOnly(benchmark::State& state) { RunPipeline(state, "12", "none"); }
-void BM_IdentifyModel31LmOnly(benchmark::State& state) { RunPipeline(state, "31", "none"); }
+void BM_IdentifyModel12(benchmark::State& state) { RunPipeline(state, ModelKind::k12, "LD_LBFGS"); }
+void BM_IdentifyModel31(benchmark::State& state) { RunPipeline(state, ModelKind::k31, "LD_LBFGS"); }
+void BM_IdentifyModel12LmOnly(benchmark::State& state) {
+  RunPipeline(state, ModelKind::k12, "none");
+}
+void BM_IdentifyModel31LmOnly(benchmark::State& state) {
+  RunPipeline(state, ModelKind::k31, "none");
+}
 
 // The measurement-space stage alone, from the same start: residual function on the free
 // values, with the same reused buffers as the pipeline's stages.
 class StageFunction {
  public:
-  StageFunction(const Problem& p, const IdentificationCost& cost)
+  StageFunction(const Problem& p, IdentificationCost& cost)
       : cost_(cost), work_(p.stage_start), free_(p.stage_start.FreeIndices()) {}
   bool operator()(const Eigen::VectorXd& v, Eigen::VectorXd* r, Eigen::MatrixXd* J_free) {
     Eigen::VectorXd values = work_.values();
@@ -127,18 +130,18 @@ class StageFunction {
   }
 
  private:
-  const IdentificationCost& cost_;
+  IdentificationCost& cost_;
   ParameterVector work_;
   std::vector<int> free_;
   Eigen::MatrixXd J_all_;
 };
 
-void StageWithLm(benchmark::State& state, const std::string& model_name) {
-  const Problem& p = GetProblem(model_name);
+void StageWithLm(benchmark::State& state, ModelKind model_kind) {
+  const Problem& p = GetProblem(model_kind);
   MinimizerReport report;
   for (auto _ : state) {
     // A fresh cost per run: no forward kinematics warm start carried between runs.
-    const IdentificationCost cost(CostKind::kMeasurement, *p.model, p.rows);
+    IdentificationCost cost(CostKind::kMeasurement, *p.model, p.rows);
     const ResidualFunction f = StageFunction(p, cost);
     Eigen::VectorXd v = p.stage_start.FreeValues();
     report = MinimizeWithLevenbergMarquardt(f, LmOptions{}, &v);
@@ -150,8 +153,8 @@ void StageWithLm(benchmark::State& state, const std::string& model_name) {
 
 // `to_the_end`: NLopt alone to the minimum (tight tolerances); else the pipeline's loose
 // NLopt stage that precedes the LM polish.
-void StageWithNlopt(benchmark::State& state, const std::string& model_name, bool to_the_end) {
-  const Problem& p = GetProblem(model_name);
+void StageWithNlopt(benchmark::State& state, ModelKind model_kind, bool to_the_end) {
+  const Problem& p = GetProblem(model_kind);
   MinimizerReport report;
   NloptOptions options;
   if (to_the_end) {
@@ -160,7 +163,7 @@ void StageWithNlopt(benchmark::State& state, const std::string& model_name, bool
     options.relative_step_tolerance = 1e-12;
   }
   for (auto _ : state) {
-    const IdentificationCost cost(CostKind::kMeasurement, *p.model, p.rows);
+    IdentificationCost cost(CostKind::kMeasurement, *p.model, p.rows);
     const ResidualFunction f = StageFunction(p, cost);
     Eigen::VectorXd v = p.stage_start.FreeValues();
     report = MinimizeWithNlopt(f, options, &v);
@@ -169,13 +172,13 @@ void StageWithNlopt(benchmark::State& state, const std::string& model_name, bool
   state.counters["evaluations"] = report.evaluations;
 }
 
-void BM_MeasurementStageLmModel12(benchmark::State& state) { StageWithLm(state, "12"); }
-void BM_MeasurementStageLmModel31(benchmark::State& state) { StageWithLm(state, "31"); }
+void BM_MeasurementStageLmModel12(benchmark::State& state) { StageWithLm(state, ModelKind::k12); }
+void BM_MeasurementStageLmModel31(benchmark::State& state) { StageWithLm(state, ModelKind::k31); }
 void BM_MeasurementStageNloptLooseModel31(benchmark::State& state) {
-  StageWithNlopt(state, "31", false);
+  StageWithNlopt(state, ModelKind::k31, false);
 }
 void BM_MeasurementStageNloptAloneModel31(benchmark::State& state) {
-  StageWithNlopt(state, "31", true);
+  StageWithNlopt(state, ModelKind::k31, true);
 }
 
 // 81 forward kinematics (Newton on the IKM, forward_kinematics.h) from the default guess,
@@ -229,11 +232,11 @@ class MeasurementCostFunction final : public ceres::CostFunction {
   ResidualFunction f_;
 };
 
-void StageWithCeres(benchmark::State& state, const std::string& model_name) {
-  const Problem& p = GetProblem(model_name);
+void StageWithCeres(benchmark::State& state, ModelKind model_kind) {
+  const Problem& p = GetProblem(model_kind);
   ceres::Solver::Summary summary;
   for (auto _ : state) {
-    const IdentificationCost cost(CostKind::kMeasurement, *p.model, p.rows);
+    IdentificationCost cost(CostKind::kMeasurement, *p.model, p.rows);
     const ResidualFunction f = StageFunction(p, cost);
     Eigen::VectorXd v = p.stage_start.FreeValues();
     ceres::Problem problem;
@@ -252,8 +255,12 @@ void StageWithCeres(benchmark::State& state, const std::string& model_name) {
   state.counters["iterations"] = static_cast<double>(summary.iterations.size());
 }
 
-void BM_MeasurementStageCeresModel12(benchmark::State& state) { StageWithCeres(state, "12"); }
-void BM_MeasurementStageCeresModel31(benchmark::State& state) { StageWithCeres(state, "31"); }
+void BM_MeasurementStageCeresModel12(benchmark::State& state) {
+  StageWithCeres(state, ModelKind::k12);
+}
+void BM_MeasurementStageCeresModel31(benchmark::State& state) {
+  StageWithCeres(state, ModelKind::k31);
+}
 BENCHMARK(BM_MeasurementStageCeresModel12)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MeasurementStageCeresModel31)->Unit(benchmark::kMillisecond);
 #endif

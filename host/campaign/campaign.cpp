@@ -9,12 +9,12 @@
 #include <h4msgs/robot_target_t.hpp>
 #include <spdlog/spdlog.h>
 
+#include "common/timing/clock.h"
+#include "common/units.h"
 #include "messages/channels.h"
 
 namespace h4::host {
 namespace {
-
-double Seconds(Campaign::Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
 const char* ModeName(CampaignMode mode) {
   switch (mode) {
@@ -29,12 +29,6 @@ const char* ModeName(CampaignMode mode) {
 }
 
 }  // namespace
-
-int64_t NowUtime() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
 
 Campaign::Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal,
                    CampaignOptions options)
@@ -272,7 +266,7 @@ bool Campaign::Step(Clock::time_point now) {
         spdlog::info(
             "pose {}: move the robot to X={:.4f} Y={:.4f} Z={:.4f} m theta={:.2f} deg "
             "and let it settle",
-            pose.pose_id, pose.x[0], pose.x[1], pose.x[2], pose.x[3] * 57.29577951308232);
+            pose.pose_id, pose.x[0], pose.x[1], pose.x[2], DegreesFromRadians(pose.x[3]));
       }
       settled_seen_ = false;
       phase_ = Phase::kSettling;

@@ -139,7 +139,4 @@ class Campaign {
   CampaignCounters counters_;
 };
 
-/// Current time in microseconds since the Unix epoch (the messages' utime).
-int64_t NowUtime();
-
 }  // namespace h4::host

@@ -8,6 +8,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/timing/clock.h"
 #include "common/timing/periodic_schedule.h"
 #include "messages/channels.h"
 
@@ -15,12 +16,6 @@ namespace h4::host {
 namespace {
 
 constexpr int kMaxConsecutiveBusFailures = 10;
-
-int64_t SystemUtime() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
 
 }  // namespace
 
@@ -97,7 +92,7 @@ h4msgs::sim_board_truth_t SimRobotNode::MakeTruth(int64_t utime) const {
 
 void SimRobotNode::Tick(Clock::time_point now) {
   AdvanceTo(now);
-  const int64_t utime = SystemUtime();
+  const int64_t utime = NowUtime();
   // The truth first: a camera that renders it is then never behind the joint state that
   // announces the same settled pose.
   if (bus_.Publish(channels::kSimBoardTruth, MakeTruth(utime))) ++truths_published_;

@@ -44,12 +44,16 @@ CampaignOptions::ControlLaw LoadControlLaw(const std::string& path) {
   RobotSourceOptions source;
   const bool is_result = std::filesystem::path(path).extension() == ".json";
   (is_result ? source.result_path : source.robot_path) = path;
-  if (is_result && ReadIdentificationResult(path).model != "12") {
-    throw std::invalid_argument(path + ": the control law uses Model 12 (paper IV.D); this is a " +
-                                "Model " + ReadIdentificationResult(path).model + " result");
-  }
   std::string description;
-  auto robot = std::make_shared<IdentifiedRobot>(LoadRobot(source, &description));
+  std::shared_ptr<IdentifiedRobot> robot;
+  if (is_result) {  // read once: checked, then rebuilt
+    const IdentificationResult result = ReadIdentificationResult(path);
+    RequireModel12Result(result, path, "the control law (paper IV.D)");
+    robot = std::make_shared<IdentifiedRobot>(RebuildFromResult(result));
+    description = "Model 12 result " + path;
+  } else {
+    robot = std::make_shared<IdentifiedRobot>(LoadRobot(source, &description));
+  }
   spdlog::info("targets sent as joints from the inverse kinematics of {}", description);
   return [robot](const EePose& x_B, std::string* why) -> std::optional<JointVector> {
     const IkResult ik = robot->model->InverseKinematics(x_B);
@@ -106,7 +110,7 @@ void IdentifyAndReport(const CollectOptions& options, const std::string& command
   const IdentificationOptions id_options;
   const std::string result12 = (fs::path(options.identify_dir) / "result12.json").string();
   const std::string result31 = (fs::path(options.identify_dir) / "result31.json").string();
-  const IdentificationOutcome m12 = IdentifyRobot(robot, "12", rows, id_options);
+  const IdentificationOutcome m12 = IdentifyRobot(robot, ModelKind::k12, rows, id_options);
   WriteIdentificationResult(result12, m12.result);
   spdlog::info("Model 12: {} -> {}", m12.summary.message, result12);
   if (!m12.summary.usable) throw std::runtime_error("Model 12 identification not usable");

@@ -1,7 +1,7 @@
 // `h4cal export`: the identified parameters for the robot's controller, in the robot.yaml
-// keys of common/formats/README.md (the control law reads model12: h, arm, forearm, R, d, alpha, q0 and
-// the assembly signs). A Model 31 result exports its own model31: block (the model12 block
-// the format requires then comes from the a priori --robot).
+// keys of common/formats/README.md (the control law reads model12: h, arm, forearm, R, d, alpha, q0
+// and the assembly signs). A Model 31 result exports its own model31: block (the model12 block the
+// format requires then comes from the a priori --robot).
 #include <memory>
 #include <stdexcept>
 
@@ -38,7 +38,7 @@ void Run(const ExportOptions& options) {
   out.X_BC = robot.X_BC;
   out.X_TE = robot.X_TE;
   std::string header;
-  if (result.model == "12") {
+  if (result.model == ModelKind::k12) {
     out.model12 = dynamic_cast<const Model12&>(*robot.model).model12_parameters();
     out.model31.reset();
     header = "# h4cal export: identified Model 12 parameters of " + options.result_path +
@@ -55,7 +55,8 @@ void Run(const ExportOptions& options) {
              "; X_BC is the camera in B31, the base frame of Model 31)\n";
   }
   WriteFileAtomically(options.out_path, header + FormatRobotYaml(out));
-  spdlog::info("wrote the Model {} controller parameters to {}", result.model, options.out_path);
+  spdlog::info("wrote the Model {} controller parameters to {}", ToString(result.model),
+               options.out_path);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
-// `h4cal fk`: forward kinematics of joint readings (common/formats/README.md "Joints CSV and poses CSV"):
-// the end-effector pose in B and the board pose X_CT = inv(X_BC) X_BE inv(X_TE) it implies.
+// `h4cal fk`: forward kinematics of joint readings (common/formats/README.md "Joints CSV and poses
+// CSV"): the end-effector pose in B and the board pose X_CT = inv(X_BC) X_BE inv(X_TE) it implies.
 // With --compare, the board poses are scored against reference ones (e.g. a simulation's
 // truth): the figure of issue "Host solver".
 #include <cmath>
@@ -12,6 +12,7 @@
 #include "common/formats/joints_csv.h"
 #include "common/formats/poses_csv.h"
 #include "common/geometry/rotation.h"
+#include "common/units.h"
 #include "host/cli/commands.h"
 #include "host/cli/robot_source.h"
 #include "host/kinematics/forward_kinematics.h"
@@ -46,7 +47,7 @@ void Compare(const std::vector<FkRow>& predicted, const std::string& reference_p
   // RMS of the 3-D error norms: position in mm, rotation angle in deg.
   std::printf("board pose error vs %s over %d poses: position RMS %.4f mm, rotation RMS %.4f deg\n",
               reference_path.c_str(), n, 1e3 * std::sqrt(sum_p2 / n),
-              180.0 / std::numbers::pi * std::sqrt(sum_r2 / n));
+              DegreesFromRadians(std::sqrt(sum_r2 / n)));
 }
 
 void Run(const FkCommandOptions& options) {

@@ -1,6 +1,7 @@
 // `h4cal identify`: Model 12 or Model 31 identification from a robot.yaml and a paired
 // dataset (paper II-III; the solver is host/identification), writing the result JSON of
-// common/formats/README.md. `--from result12.json` starts Model 31 from a Model 12 result (paper IV.C).
+// common/formats/README.md. `--from result12.json` starts Model 31 from a Model 12 result (paper
+// IV.C).
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -11,10 +12,12 @@
 #include "common/formats/file_output.h"
 #include "common/formats/identification_result.h"
 #include "common/formats/robot_yaml.h"
+#include "common/units.h"
 #include "host/cli/commands.h"
 #include "host/cli/progress.h"
 #include "host/cli/validation_inputs.h"
 #include "host/identification/identification.h"
+#include "host/identification/identified_robot.h"
 #include "host/report/html_report.h"
 
 namespace h4::host::cli {
@@ -23,7 +26,7 @@ namespace {
 struct IdentifyCommandOptions {
   std::string robot_path;
   std::string data_path;
-  std::string model = "12";
+  std::string model = "12";  ///< the --model text, parsed in Run
   int validation = 10;
   bool validation_given = false;  ///< --validation on the command line (not the default)
   uint64_t seed = 1;
@@ -39,7 +42,7 @@ struct IdentifyCommandOptions {
 
 void PrintHeadline(const IdentificationOutcome& outcome) {
   const IdentificationResult& r = outcome.result;
-  std::printf("Model %s, %s estimator: %s\n", r.model.c_str(), r.estimator.c_str(),
+  std::printf("Model %s, %s estimator: %s\n", ToString(r.model), r.estimator.c_str(),
               outcome.summary.usable ? "usable" : "NOT usable");
   std::printf("  poses: %zu calibration, %zu validation, %zu rejected\n", r.calib_poses.size(),
               r.valid_poses.size(), r.rejected_poses.size());
@@ -54,8 +57,7 @@ void PrintHeadline(const IdentificationOutcome& outcome) {
   }
   if (r.valid_position_rms_m && r.valid_rotation_rms_rad) {
     std::printf("  held-out board pose vs measured: %.4f mm, %.4f deg RMS\n",
-                1e3 * *r.valid_position_rms_m,
-                *r.valid_rotation_rms_rad * 180.0 / std::numbers::pi);
+                1e3 * *r.valid_position_rms_m, DegreesFromRadians(*r.valid_rotation_rms_rad));
   }
   if (r.predicted_position_accuracy_m) {
     std::printf("  predicted position accuracy (1 sigma, calibration poses): %.4f mm\n",
@@ -125,20 +127,18 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
   std::string why;
   if (!id_options.IsValid(&why)) throw std::invalid_argument(why);
 
+  const ModelKind model = *ParseModelKind(options.model);  // CLI11 checked the text
   const IdentificationOutcome outcome = [&] {
     if (!options.from_path.empty()) {
-      if (options.model != "31") {
+      if (model != ModelKind::k31) {
         throw std::invalid_argument(
             "--from starts a Model 31 identification: use it with --model 31");
       }
       const IdentificationResult from = ReadIdentificationResult(options.from_path);
-      if (from.model != "12") {
-        throw std::invalid_argument(
-            options.from_path + ": --from needs a Model 12 result, this is Model " + from.model);
-      }
+      RequireModel12Result(from, options.from_path, "--from");
       return IdentifyModel31FromModel12(robot, from, rows, id_options);
     }
-    return IdentifyRobot(robot, options.model, rows, id_options, options.validation, options.seed);
+    return IdentifyRobot(robot, model, rows, id_options, options.validation, options.seed);
   }();
   progress.Finish(outcome.summary.message);
   WriteIdentificationResult(options.out_path, outcome.result);
@@ -157,7 +157,7 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
     ValidationFileOptions files;
     files.robot_path = options.robot_path;
     files.data_path = options.data_path;
-    (options.model == "12" ? files.result12_path : files.result31_path) = options.out_path;
+    (model == ModelKind::k12 ? files.result12_path : files.result31_path) = options.out_path;
     if (!options.from_path.empty()) files.result12_path = options.from_path;
     const ValidationInputs inputs = LoadValidationInputs(files);
     const ValidationReport report = Validate(inputs);

@@ -35,7 +35,7 @@ IdentifiedRobot LoadRobot(const RobotSourceOptions& options, std::string* descri
     const Assembly assembly = options.assembly_robot_path.empty()
                                   ? Assembly{}
                                   : ReadRobotYaml(options.assembly_robot_path).assembly;
-    if (description) *description = "Model " + result.model + " result " + options.result_path;
+    if (description) *description = ModelLabel(result.model) + " result " + options.result_path;
     return RebuildFromResult(result, assembly);
   }
   const RobotDescription robot = ReadRobotYaml(options.robot_path);

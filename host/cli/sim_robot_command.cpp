@@ -1,4 +1,4 @@
-// `h4cal sim-robot` (issue #6, item 2): a simulated H4 controller on LCM for campaigns
+// `h4cal sim-robot`: a simulated H4 controller on LCM for campaigns
 // without hardware. It takes H4_ROBOT_TARGET targets, moves the TRUE robot (a truth file
 // of `h4cal simulate`, or the paper's Table 2) at finite joint speed, and publishes
 // H4_JOINT_STATE at the rate and the true board pose on H4_SIM_BOARD_TRUTH for
@@ -70,8 +70,9 @@ Scenario LoadScenario(const SimRobotArgs& args) {
     robot_path = beside.string();
   }
   scenario.apriori = ReadRobotYaml(robot_path);
-  scenario.description = "truth " + args.truth_path + " (Model " + scenario.truth.truth_model() +
-                         "), a priori " + robot_path;
+  scenario.description = "truth " + args.truth_path + " (Model " +
+                         std::string(ToString(scenario.truth.truth_model())) + "), a priori " +
+                         robot_path;
   return scenario;
 }
 

@@ -11,6 +11,7 @@
 #include "common/formats/joints_csv.h"
 #include "common/formats/poses_csv.h"
 #include "common/formats/robot_yaml.h"
+#include "common/units.h"
 #include "host/cli/commands.h"
 #include "host/kinematics/measurement_chain.h"
 #include "host/simulation/dataset_simulator.h"
@@ -58,7 +59,7 @@ void Run(const SimulateOptions& options) {
   dataset_options.seed = options.seed;
   dataset_options.valid_count = options.valid;
   dataset_options.noise.sigma_t = options.sigma_t_mm * 1e-3;
-  dataset_options.noise.sigma_r = options.sigma_r_deg * std::numbers::pi / 180.0;
+  dataset_options.noise.sigma_r = RadiansFromDegrees(options.sigma_r_deg);
   dataset_options.noise.sigma_q = options.sigma_q;
   const SimulatedDataset dataset = SimulateDataset(robot, plan, dataset_options);
   if (dataset.rows.empty()) {
@@ -104,7 +105,7 @@ void Run(const SimulateOptions& options) {
   }
 
   spdlog::info("simulated Model {} truth{}: {} poses ({} held out), {} out of reach",
-               robot.truth_model(),
+               ToString(robot.truth_model()),
                geometry == TrueGeometry::kPaperTable2 ? " (paper Table 2)" : "",
                dataset.rows.size(), heldout_joints.size(), dataset.unreachable.size());
   spdlog::info(

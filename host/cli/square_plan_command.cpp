@@ -1,7 +1,7 @@
 // `h4cal square-plan`: the commanded points of the square-path validation (paper IV.D) as a
-// poses CSV (common/formats/README.md: pose_id,X,Y,Z,theta in B), for `h4cal collect --plan --controller`
-// to drive a real robot through with the Model 12 IK control law. The points are those of
-// the simulated square (host/validation/square_path.h, SquarePoints), so `h4cal validate
+// poses CSV (common/formats/README.md: pose_id,X,Y,Z,theta in B), for `h4cal collect --plan
+// --controller` to drive a real robot through with the Model 12 IK control law. The points are
+// those of the simulated square (host/validation/square_path.h, SquarePoints), so `h4cal validate
 // --square-plan --square-measured` compares the measured path with the same square.
 #include <cmath>
 #include <cstdlib>
@@ -12,6 +12,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/formats/poses_csv.h"
+#include "common/units.h"
 #include "host/cli/commands.h"
 #include "host/validation/measured_square.h"
 
@@ -49,7 +50,7 @@ void Run(const SquarePlanCommandOptions& o) {
   square.side = o.side_mm * 1e-3;
   square.points_per_side = o.points_per_side;
   square.centre = ParseCentre(o.centre);
-  square.theta = o.theta_deg * std::numbers::pi / 180.0;
+  square.theta = RadiansFromDegrees(o.theta_deg);
   if (const std::string problem = square.Problem(); !problem.empty()) {
     throw std::invalid_argument("square-plan: " + problem +
                                 " (--side-mm > 0, --points-per-side >= 2)");

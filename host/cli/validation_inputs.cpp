@@ -32,15 +32,15 @@ void CheckExists(const std::string& path) {
   if (!path.empty() && !fs::exists(path)) throw std::invalid_argument(path + ": no such file");
 }
 
-std::optional<IdentificationResult> ReadResult(const std::string& path,
-                                               const std::string& expected_model,
+std::optional<IdentificationResult> ReadResult(const std::string& path, ModelKind expected_model,
                                                const std::string& option) {
   if (path.empty()) return std::nullopt;
   CheckExists(path);
   IdentificationResult result = ReadIdentificationResult(path);
   if (result.model != expected_model) {
     throw std::invalid_argument(fmt::format("{}: a Model {} result given to {} (expected Model {})",
-                                            path, result.model, option, expected_model));
+                                            path, ToString(result.model), option,
+                                            ToString(expected_model)));
   }
   return result;
 }
@@ -133,8 +133,8 @@ ValidationInputs LoadValidationInputs(const ValidationFileOptions& o) {
   in.apriori = ReadRobotYaml(robot);
   in.rows = ReadDatasetCsv(data);
   in.dataset_name = data;
-  in.result12 = ReadResult(r12, "12", "--result12");
-  in.result31 = ReadResult(r31, "31", "--result31");
+  in.result12 = ReadResult(r12, ModelKind::k12, "--result12");
+  in.result31 = ReadResult(r31, ModelKind::k31, "--result31");
   if (!in.result12 && !in.result31) {
     throw std::invalid_argument("give an identification result: --result12 and/or --result31");
   }

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "common/robot/model_kind.h"
 #include "host/identification/parameter_vector.h"
 
 namespace h4::host {
@@ -35,7 +36,7 @@ struct IdentifiabilityOptions {
 
 /// The paper's choices: Model 12: X_TE.tz, X_TE.rx, X_TE.ry, d. Model 31: d, X_TE.tz,
 /// X_TE.rx, X_TE.ry, X_TE.rz (the paper's angle about z_B), X_BC.rz.
-std::vector<std::string> DefaultFixPreferences(const std::string& model_name);
+std::vector<std::string> DefaultFixPreferences(ModelKind model);
 
 struct FixedByAnalysis {
   std::string name;
@@ -51,8 +52,7 @@ struct IdentifiabilityReport {
 
 /// Analyses J_full (residuals x p->size(), the Jacobian by all parameters) over p's free
 /// parameters and fixes the unidentifiable ones in *p (at their current values).
-IdentifiabilityReport AnalyzeIdentifiability(const Eigen::MatrixXd& J_full,
-                                             const std::string& model_name,
+IdentifiabilityReport AnalyzeIdentifiability(const Eigen::MatrixXd& J_full, ModelKind model,
                                              const IdentifiabilityOptions& options,
                                              ParameterVector* p);
 

@@ -19,6 +19,7 @@
 #include "common/robot/robot_description.h"
 #include "host/identification/identifiability.h"
 #include "host/identification/identification_cost.h"
+#include "host/identification/identification_stage.h"
 #include "host/identification/least_squares.h"
 #include "host/identification/parameter_vector.h"
 #include "host/identification/prior_analysis.h"
@@ -38,14 +39,10 @@ struct IdentificationOptions {
   /// In the first stage, fit X_BC and X_TE alone (kinematics at the a priori) before
   /// freeing everything: a camera off by centimetres and degrees is mostly placement.
   bool placement_first = true;
-  /// Every stage is solved by NLopt (the engine; algorithm by name, "none" skips it) with
-  /// the loose NloptOptions defaults, then polished by Levenberg-Marquardt, which beats
-  /// every NLopt algorithm near the minimum (host/bench, 81-pose grid: LM reaches the
-  /// minimum in ~10 iterations, NLopt LBFGS alone in ~180 evaluations, 10x the time).
-  /// NLopt first adds ~25% to Model 31's whole identification and saves no LM iterations
-  /// from our starts; it stays the default as the engine the issue asks for and for
-  /// robustness from rough starts; `--algorithm none` runs LM alone. Without the polish,
-  /// NLopt runs to tight tolerances (1e-12, at least 2000 evaluations).
+  /// Every stage starts with NLopt (algorithm by name; "none": Levenberg-Marquardt alone),
+  /// loose when the LM polish follows, else to tight tolerances (1e-12, at least 2000
+  /// evaluations): NLopt is the engine and copes with rough starts, LM is far faster near
+  /// the minimum (timings: README, "How well it works").
   NloptOptions nlopt;
   /// The Levenberg-Marquardt polish on the column-scaled normal equations, the final stage
   /// (false: NLopt alone, `h4cal identify --no-polish`). When it does not converge, NLopt
@@ -109,12 +106,6 @@ struct IdentificationOutcome {
   IdentifiabilityReport identifiability;  ///< of the final stage, at its start point
 };
 
-/// The calibration rows made exactly consistent with the parameters p (joints by IK of the
-/// measured poses, X_CT re-predicted without the measured tilt): the rows on which the
-/// identifiability analysis is done, so that noise does not hide exact null directions.
-std::vector<DatasetRow> ConsistentRows(const KinematicModel& model, const ParameterVector& p,
-                                       const std::vector<DatasetRow>& rows);
-
 /// Identification from an a priori: `apriori_model` (12 or 31) with X_BC / X_TE in its base
 /// frame; `calib` for identification, `valid` held out (may be empty). Throws as
 /// IdentifyFromStart on bad input.
@@ -149,20 +140,26 @@ struct DatasetSplit {
 DatasetSplit SplitDataset(const std::vector<DatasetRow>& rows, int valid_count = 10,
                           uint64_t seed = 1);
 
-/// The robot's a priori model: "12" (Model12) or "31" (its model31 block or the nominal
-/// Model 31, X_BC mapped to B31). Throws std::invalid_argument for another name.
-ParameterVector AprioriParameters(const RobotDescription& robot, const std::string& model_name,
-                                  std::unique_ptr<KinematicModel>* model);
+/// A robot's a priori model of one kind, as an identification starts from it.
+struct AprioriModel {
+  std::unique_ptr<KinematicModel> model;
+  ParameterVector parameters;  ///< the model's values with X_BC (in B31 for Model 31), X_TE
+};
+
+/// Model 12: the robot's model12 block. Model 31: its model31 block or the nominal Model 31
+/// of its Model 12, X_BC mapped to B31.
+AprioriModel AprioriModelOf(const RobotDescription& robot, ModelKind kind);
 
 /// `h4cal identify --model 12|31`: split, a priori from the robot, Identify.
-IdentificationOutcome IdentifyRobot(const RobotDescription& robot, const std::string& model_name,
+IdentificationOutcome IdentifyRobot(const RobotDescription& robot, ModelKind kind,
                                     const std::vector<DatasetRow>& rows,
                                     const IdentificationOptions& options, int valid_count = 10,
                                     uint64_t seed = 1);
 
 /// `h4cal identify --model 31 --from result12.json` (paper III.C): Model 31 starts from the
 /// nominal Model 31 of the Model 12 result, and parameters it must fix keep that result's
-/// values. The Model 12 result's pose split is reused when the rows carry no `set`.
+/// values. The Model 12 result's pose split is reused when the rows carry no `set`. Throws
+/// std::invalid_argument (RequireModel12Result) when model12_result is not Model 12's.
 IdentificationOutcome IdentifyModel31FromModel12(const RobotDescription& robot,
                                                  const IdentificationResult& model12_result,
                                                  const std::vector<DatasetRow>& rows,

@@ -87,7 +87,7 @@ double IdentificationCost::TranslationWeight(const DatasetRow& row) const {
 }
 
 bool IdentificationCost::Evaluate(const ParameterVector& p, Eigen::VectorXd* r, Eigen::MatrixXd* J,
-                                  std::string* why) const {
+                                  std::string* why) {
   p.ApplyTo(model_.get());
   const int m = residuals_per_pose();
   const ChainTransforms chain = MakeChainTransforms(p.X_BC(), p.X_TE());
@@ -121,8 +121,7 @@ bool IdentificationCost::Evaluate(const ParameterVector& p, Eigen::VectorXd* r, 
 bool IdentificationCost::EvaluateJoint(const ParameterVector& p,
                                        const ChainTransforms& chain_transforms,
                                        const DatasetRow& row, Eigen::Ref<Eigen::VectorXd> r,
-                                       Eigen::MatrixXd* J, Eigen::Index row0,
-                                       std::string* why) const {
+                                       Eigen::MatrixXd* J, Eigen::Index row0, std::string* why) {
   const MeasuredEePoseJacobians chain =
       EePoseFromMeasurementWithJacobians(chain_transforms, row.X_CT);
   const IkResult ik = model_->InverseKinematics(chain.x);
@@ -154,8 +153,7 @@ bool IdentificationCost::EvaluateJoint(const ParameterVector& p,
 bool IdentificationCost::EvaluateImplicit(const ParameterVector& p,
                                           const ChainTransforms& chain_transforms,
                                           const DatasetRow& row, Eigen::Ref<Eigen::VectorXd> r,
-                                          Eigen::MatrixXd* J, Eigen::Index row0,
-                                          std::string* why) const {
+                                          Eigen::MatrixXd* J, Eigen::Index row0, std::string* why) {
   (void)why;  // always evaluable: no IK, no FK
   const JointVector q(row.q[0], row.q[1], row.q[2], row.q[3]);
   const MeasuredEePoseJacobians chain =
@@ -189,7 +187,7 @@ bool IdentificationCost::EvaluateImplicit(const ParameterVector& p,
 bool IdentificationCost::EvaluateMeasurement(const ParameterVector& p,
                                              const ChainTransforms& chain_transforms, size_t j,
                                              Eigen::Ref<Eigen::VectorXd> r, Eigen::MatrixXd* J,
-                                             Eigen::Index row0, std::string* why) const {
+                                             Eigen::Index row0, std::string* why) {
   const DatasetRow& row = rows_[j];
   const JointVector q(row.q[0], row.q[1], row.q[2], row.q[3]);
   const RigidTransform& X_BC = chain_transforms.X_BC;

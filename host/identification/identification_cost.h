@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 
 #include "common/formats/dataset_csv.h"
+#include "common/units.h"
 #include "host/identification/parameter_vector.h"
 #include "host/identification/pose_chain.h"
 #include "host/kinematics/kinematic_model.h"
@@ -33,7 +34,7 @@ struct CostOptions {
   /// Translation std of a measured X_CT when the dataset has no sigma_t, m (paper: 0.2 mm).
   double default_sigma_t = 0.2e-3;
   /// Rotation std when the dataset has no sigma_r, rad (paper: 0.03 deg).
-  double default_sigma_r = 0.03 * 3.14159265358979323846 / 180.0;
+  double default_sigma_r = RadiansFromDegrees(0.03);
   /// Use the dataset's per-pose sigma_t / sigma_r when present.
   bool use_dataset_sigmas = true;
 };
@@ -57,12 +58,13 @@ class IdentificationCost {
   /// every parameter (residual_count x p.size()). Rows of pose j start at
   /// j * residuals_per_pose(). Returns false when a pose cannot be evaluated (IK out of
   /// reach, FK failure, singular leg); `why` then names the pose. Never returns NaN.
-  /// Not thread-safe (it reuses one model copy and per-pose buffers). The measurement cost
-  /// starts each pose's forward kinematics from that pose's last solution (an LM step moves
-  /// it little: one Newton step or none instead of several), falling back to the measured
-  /// pose through the chain, the start it uses on the first call.
+  /// Not const, and not thread-safe: it sets the parameters of its model copy and reuses
+  /// per-pose buffers. The measurement cost starts each pose's forward kinematics from that
+  /// pose's last solution (an LM step moves it little: one Newton step or none instead of
+  /// several), falling back to the measured pose through the chain, the start it uses on
+  /// the first call; so a result may differ from a fresh cost's in the last bits.
   bool Evaluate(const ParameterVector& p, Eigen::VectorXd* r, Eigen::MatrixXd* J,
-                std::string* why = nullptr) const;
+                std::string* why = nullptr);
 
   /// The per-pose 1/sigma weights of the measurement cost (rotation, translation).
   double RotationWeight(const DatasetRow& row) const;
@@ -71,13 +73,13 @@ class IdentificationCost {
  private:
   bool EvaluateJoint(const ParameterVector& p, const ChainTransforms& chain, const DatasetRow& row,
                      Eigen::Ref<Eigen::VectorXd> r, Eigen::MatrixXd* J, Eigen::Index row0,
-                     std::string* why) const;
+                     std::string* why);
   bool EvaluateImplicit(const ParameterVector& p, const ChainTransforms& chain,
                         const DatasetRow& row, Eigen::Ref<Eigen::VectorXd> r, Eigen::MatrixXd* J,
-                        Eigen::Index row0, std::string* why) const;
+                        Eigen::Index row0, std::string* why);
   bool EvaluateMeasurement(const ParameterVector& p, const ChainTransforms& chain, size_t j,
                            Eigen::Ref<Eigen::VectorXd> r, Eigen::MatrixXd* J, Eigen::Index row0,
-                           std::string* why) const;
+                           std::string* why);
 
   CostKind kind_;
   std::unique_ptr<KinematicModel> model_;  // parameters set at each Evaluate
@@ -86,9 +88,9 @@ class IdentificationCost {
   std::vector<int> forearm_index_;  // per leg, index of its forearm length in xi
   // Measurement cost: the last forward kinematic solution per pose (warm start), and
   // Jacobian buffers reused across poses and calls.
-  mutable std::vector<EePose> fk_cache_;
-  mutable std::vector<bool> fk_cached_;
-  mutable Eigen::MatrixXd J_f_xi_;
+  std::vector<EePose> fk_cache_;
+  std::vector<bool> fk_cached_;
+  Eigen::MatrixXd J_f_xi_;
 };
 
 }  // namespace h4::host

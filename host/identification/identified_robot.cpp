@@ -14,21 +14,18 @@ namespace h4::host {
 
 IdentifiedRobot RebuildFromResult(const IdentificationResult& result, const Assembly& assembly) {
   IdentifiedRobot robot;
-  if (result.model == "12") {
+  if (result.model == ModelKind::k12) {
     robot.model = std::make_unique<Model12>(Model12Parameters{}, assembly);
-  } else if (result.model == "31") {
-    robot.model = std::make_unique<Model31>(Model31Parameters{}, assembly);
   } else {
-    throw std::invalid_argument("identification result: unknown model \"" + result.model +
-                                "\" (expected 12 or 31)");
+    robot.model = std::make_unique<Model31>(Model31Parameters{}, assembly);
   }
   const std::vector<std::string>& names = robot.model->parameter_names();
   Eigen::VectorXd xi(static_cast<Eigen::Index>(names.size()));
   for (size_t k = 0; k < names.size(); ++k) {
     const ResultParameter* p = result.Find(names[k]);
     if (p == nullptr) {
-      throw std::invalid_argument("identification result: Model " + result.model + " parameter \"" +
-                                  names[k] + "\" is missing");
+      throw std::invalid_argument("identification result: " + ModelLabel(result.model) +
+                                  " parameter \"" + names[k] + "\" is missing");
     }
     xi[static_cast<Eigen::Index>(k)] = p->value;
   }
@@ -36,6 +33,13 @@ IdentifiedRobot RebuildFromResult(const IdentificationResult& result, const Asse
   robot.X_BC = result.X_BC;
   robot.X_TE = result.X_TE;
   return robot;
+}
+
+void RequireModel12Result(const IdentificationResult& result, const std::string& source,
+                          const std::string& use) {
+  if (result.model == ModelKind::k12) return;
+  throw std::invalid_argument((source.empty() ? "" : source + ": ") + use +
+                              " needs a Model 12 result, this is " + ModelLabel(result.model));
 }
 
 std::optional<RigidTransform> PredictBoardPose(const KinematicModel& model,

@@ -7,6 +7,7 @@
 #include <array>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "common/formats/dataset_csv.h"
@@ -22,11 +23,17 @@ struct IdentifiedRobot {
   RigidTransform X_TE;
 };
 
-/// Rebuilds the model named by result.model ("12" or "31") from the result's parameters
+/// Rebuilds the model of result.model (Model 12 or 31) from the result's parameters
 /// (every kinematic parameter must be present) with `assembly`. Throws
 /// std::invalid_argument naming the missing parameter or unknown model.
 IdentifiedRobot RebuildFromResult(const IdentificationResult& result,
                                   const Assembly& assembly = Assembly{});
+
+/// The one check that a result is Model 12's (the --from start of Model 31, the control
+/// law): throws std::invalid_argument "SOURCE: USE needs a Model 12 result, this is Model
+/// 31" (without "SOURCE: " when source is empty).
+void RequireModel12Result(const IdentificationResult& result, const std::string& source,
+                          const std::string& use);
 
 /// The board pose X_CT predicted from joint readings: FK (started from the model's
 /// workspace centre or `guess`) through X_CT = inv(X_BC) X_BE inv(X_TE); empty when FK fails.

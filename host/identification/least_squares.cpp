@@ -10,12 +10,10 @@
 #include <Eigen/Cholesky>
 #include <nlopt.hpp>
 
+#include "common/timing/clock.h"
+
 namespace h4::host {
 namespace {
-
-double Seconds(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 struct NloptContext {
   const ResidualFunction* f = nullptr;
@@ -138,9 +136,97 @@ MinimizerReport MinimizeWithNlopt(const ResidualFunction& f, const NloptOptions&
   *v = c.best_v;
   report.final_cost = c.best_cost;
   report.evaluations = report.iterations = c.evaluations;
-  report.seconds = Seconds(start);
+  report.seconds = SecondsSince(start);
   return report;
 }
+
+namespace {
+
+// The Levenberg-Marquardt iterate and its buffers, reused across iterations.
+struct LmIterate {
+  Eigen::VectorXd r, r_trial, g, dz, v_trial, scale;
+  Eigen::MatrixXd J, A, A_damped;
+  double cost = 0.0;
+  double lambda = 0.0;
+  double nu = 2.0;
+};
+
+// A = D^-1 J^T J D^-1 and g = D^-1 J^T r at the iterate, D the column scale, which never
+// shrinks (Moré); A by one symmetric rank update (half a product).
+void FormScaledNormalEquations(LmIterate* it) {
+  it->scale = it->scale.cwiseMax(ColumnScale(it->J));
+  const Eigen::Index n = it->J.cols();
+  it->A.setZero(n, n);
+  it->A.selfadjointView<Eigen::Lower>().rankUpdate(it->J.transpose());
+  it->A.triangularView<Eigen::StrictlyUpper>() = it->A.transpose();
+  const Eigen::VectorXd inverse_scale = it->scale.cwiseInverse();
+  it->A = inverse_scale.asDiagonal() * it->A * inverse_scale.asDiagonal();
+  it->g.noalias() = it->J.transpose() * it->r;
+  it->g = it->g.cwiseProduct(inverse_scale);
+}
+
+// Moves the iterate to the trial point with Nielsen's damping update; true when the
+// relative decrease is below the cost tolerance.
+bool AcceptTrial(double cost_trial, double predicted, const LmOptions& options, Eigen::VectorXd* v,
+                 LmIterate* it) {
+  const double rho = predicted > 0 ? (it->cost - cost_trial) / predicted : 1.0;
+  const double decrease = (it->cost - cost_trial) / std::max(it->cost, 1e-300);
+  v->swap(it->v_trial);
+  it->r.swap(it->r_trial);
+  it->cost = cost_trial;
+  it->lambda *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));
+  it->nu = 2.0;
+  return decrease < options.cost_tolerance;
+}
+
+struct LmStep {
+  bool accepted = false;    ///< the iterate moved
+  bool small_step = false;  ///< the step or the decrease fell below its tolerance
+};
+
+// Damped steps from the iterate, the damping growing, until one decreases the cost, the
+// step vanishes, or the damping reaches its limit.
+LmStep TryDampedSteps(const ResidualFunction& f, const LmOptions& options, Eigen::VectorXd* v,
+                      LmIterate* it, int* evaluations) {
+  LmStep step;
+  const double z_norm = it->scale.cwiseProduct(*v).norm();
+  while (!step.accepted) {
+    it->A_damped = it->A;
+    it->A_damped.diagonal().array() += it->lambda;
+    it->dz = -it->A_damped.ldlt().solve(it->g);
+    if (it->dz.norm() <= options.step_tolerance * (z_norm + options.step_tolerance)) {
+      step.small_step = true;
+      break;
+    }
+    it->v_trial = *v + it->dz.cwiseQuotient(it->scale);
+    // Residuals only: a rejected trial (most of them near the minimum, where the damping
+    // grows until the step vanishes) needs no Jacobian.
+    ++*evaluations;
+    const bool ok = it->dz.allFinite() && f(it->v_trial, &it->r_trial, nullptr);
+    const double cost_trial = ok ? 0.5 * it->r_trial.squaredNorm() : 0.0;
+    // Gain ratio: actual over predicted decrease of the quadratic model.
+    const double predicted = -(it->g.dot(it->dz) + 0.5 * it->dz.dot(it->A * it->dz));
+    if (ok && cost_trial < it->cost && f(it->v_trial, &it->r_trial, &it->J)) {
+      step.accepted = true;
+      step.small_step = AcceptTrial(cost_trial, predicted, options, v, it);
+    } else {
+      it->lambda *= it->nu;
+      it->nu *= 2.0;
+      if (it->lambda > 1e16) break;
+    }
+  }
+  return step;
+}
+
+// Why the iterations stop converged after `step`, or null to go on.
+const char* ConvergedReason(const LmStep& step) {
+  if (step.small_step) return step.accepted ? "cost tolerance" : "step tolerance";
+  // No decrease possible with the damping at its limit: at a minimum to within rounding.
+  if (!step.accepted) return "no decrease possible (damping at its limit)";
+  return nullptr;
+}
+
+}  // namespace
 
 MinimizerReport MinimizeWithLevenbergMarquardt(const ResidualFunction& f, const LmOptions& options,
                                                Eigen::VectorXd* v,
@@ -148,89 +234,39 @@ MinimizerReport MinimizeWithLevenbergMarquardt(const ResidualFunction& f, const 
   const auto start = std::chrono::steady_clock::now();
   MinimizerReport report;
   report.name = "levenberg-marquardt";
-  Eigen::VectorXd r, r_trial, g, dz, v_trial;
-  Eigen::MatrixXd J, A, A_damped;
+  LmIterate it;
   report.evaluations = 1;
-  if (!f(*v, &r, &J)) {
+  if (!f(*v, &it.r, &it.J)) {
     report.stop_reason = "residuals cannot be evaluated at the start point";
     return report;
   }
-  double cost = 0.5 * r.squaredNorm();
-  report.initial_cost = report.final_cost = cost;
-  Eigen::VectorXd scale = ColumnScale(J);
-  double lambda = options.initial_lambda;
-  double nu = 2.0;
-  const Eigen::Index n = v->size();
+  it.cost = 0.5 * it.r.squaredNorm();
+  report.initial_cost = report.final_cost = it.cost;
+  it.scale = ColumnScale(it.J);
+  it.lambda = options.initial_lambda;
   report.stop_reason = "iteration limit";
   for (int iteration = 1; iteration <= options.max_iterations; ++iteration) {
     report.iterations = iteration;
-    scale = scale.cwiseMax(ColumnScale(J));  // Moré: scaling never shrinks
-    // A = D^-1 J^T J D^-1 and g = D^-1 J^T r: one symmetric rank update (half a product).
-    A.setZero(n, n);
-    A.selfadjointView<Eigen::Lower>().rankUpdate(J.transpose());
-    A.triangularView<Eigen::StrictlyUpper>() = A.transpose();
-    const Eigen::VectorXd inverse_scale = scale.cwiseInverse();
-    A = inverse_scale.asDiagonal() * A * inverse_scale.asDiagonal();
-    g.noalias() = J.transpose() * r;
-    g = g.cwiseProduct(inverse_scale);
-    if (g.cwiseAbs().maxCoeff() <= options.gradient_tolerance * (1.0 + cost)) {
+    FormScaledNormalEquations(&it);
+    if (it.g.cwiseAbs().maxCoeff() <= options.gradient_tolerance * (1.0 + it.cost)) {
       report.stop_reason = "gradient tolerance";
       report.converged = true;
       break;
     }
-    bool accepted = false;
-    bool small_step = false;
-    const double z_norm = scale.cwiseProduct(*v).norm();
-    while (!accepted) {
-      A_damped = A;
-      A_damped.diagonal().array() += lambda;
-      dz = -A_damped.ldlt().solve(g);
-      if (dz.norm() <= options.step_tolerance * (z_norm + options.step_tolerance)) {
-        small_step = true;
-        break;
-      }
-      v_trial = *v + dz.cwiseQuotient(scale);
-      // Residuals only: a rejected trial (most of them near the minimum, where the damping
-      // grows until the step vanishes) needs no Jacobian.
-      ++report.evaluations;
-      const bool ok = dz.allFinite() && f(v_trial, &r_trial, nullptr);
-      const double cost_trial = ok ? 0.5 * r_trial.squaredNorm() : 0.0;
-      // Gain ratio: actual over predicted decrease of the quadratic model.
-      const double predicted = -(g.dot(dz) + 0.5 * dz.dot(A * dz));
-      if (ok && cost_trial < cost && f(v_trial, &r_trial, &J)) {
-        const double rho = predicted > 0 ? (cost - cost_trial) / predicted : 1.0;
-        const double decrease = (cost - cost_trial) / std::max(cost, 1e-300);
-        v->swap(v_trial);
-        r.swap(r_trial);
-        cost = cost_trial;
-        lambda *= std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * rho - 1.0, 3));
-        nu = 2.0;
-        accepted = true;
-        if (decrease < options.cost_tolerance) small_step = true;
-      } else {
-        lambda *= nu;
-        nu *= 2.0;
-        if (lambda > 1e16) break;
-      }
-    }
-    report.final_cost = cost;
-    if (progress && !progress("levenberg-marquardt", iteration, cost)) {
+    const LmStep step = TryDampedSteps(f, options, v, &it, &report.evaluations);
+    report.final_cost = it.cost;
+    if (progress && !progress("levenberg-marquardt", iteration, it.cost)) {
       report.stop_reason = "stopped by the progress callback";
       break;
     }
-    if (small_step) {
-      report.stop_reason = accepted ? "cost tolerance" : "step tolerance";
+    if (const char* reason = ConvergedReason(step)) {
+      report.stop_reason = reason;
       report.converged = true;
       break;
     }
-    if (!accepted) {
-      report.stop_reason = "no decrease possible (damping at its limit)";
-      report.converged = true;  // at a minimum to within rounding
-      break;
-    }
   }
-  report.final_cost = cost;
-  report.seconds = Seconds(start);
+  report.final_cost = it.cost;
+  report.seconds = SecondsSince(start);
   return report;
 }
 

@@ -24,12 +24,9 @@ struct NloptOptions {
   /// NLopt algorithm name without the "NLOPT_" prefix, one of NloptAlgorithmNames() (e.g.
   /// LD_LBFGS, LD_SLSQP, LN_BOBYQA); "none" skips NLopt.
   std::string algorithm = "LD_LBFGS";
-  /// Defaults for NLopt as the engine before a Levenberg-Marquardt polish: loose, since it
-  /// only has to bring the estimate into LM's basin. LBFGS stops once an iteration gains
-  /// less than 10% (5-15 evaluations per stage on the 81-pose grid); tighter costs
-  /// evaluations without saving LM iterations (measured: LM takes 8 iterations on the
-  /// measurement stage after ftol 1e-1, 1e-2 or 1e-4 alike). NLopt alone needs 1e-12 and
-  /// hundreds of evaluations (host/bench).
+  /// Defaults for NLopt before a Levenberg-Marquardt polish: loose, since it only has to
+  /// bring the estimate into LM's basin, and tighter tolerances cost evaluations without
+  /// saving LM iterations (README, "How well it works").
   int max_evaluations = 100;              ///< per call
   double relative_cost_tolerance = 1e-1;  ///< NLopt ftol_rel
   double relative_step_tolerance = 1e-6;  ///< NLopt xtol_rel (scaled variables)

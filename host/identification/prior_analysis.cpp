@@ -3,17 +3,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <numbers>
 
 #include <Eigen/Geometry>
+#include <fmt/format.h>
 
 #include "common/geometry/rotation.h"
+#include "common/units.h"
 
 namespace h4::host {
 namespace {
-
-constexpr double kDeg = 180.0 / std::numbers::pi;
 
 // Poses at each end of the provisional angle order that are tried as partners.
 constexpr size_t kPartnersPerEnd = 4;
@@ -85,7 +83,7 @@ AxisEstimate EstimateAxis(size_t n, const Relative& relative, const Eigen::Vecto
         std::atan2(w.normalized().cross(out.axis).norm(), w.normalized().dot(out.axis));
     sum_sq += angle * angle;
   }
-  out.spread_deg = std::sqrt(sum_sq / static_cast<double>(w_per_pose.size())) * kDeg;
+  out.spread_deg = DegreesFromRadians(std::sqrt(sum_sq / static_cast<double>(w_per_pose.size())));
   out.used = static_cast<int>(w_per_pose.size());
   out.ok = true;
   return out;
@@ -93,6 +91,30 @@ AxisEstimate EstimateAxis(size_t n, const Relative& relative, const Eigen::Vecto
 
 double AngleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
+}
+
+// Turns the a priori camera so that its view of z_B is the measured axis, and moves it so
+// that the mean board position in B stays where the a priori placed it; turns the a priori
+// board so that its z_E is the measured axis in T.
+void TurnPlacementOntoAxis(const std::vector<DatasetRow>& rows, const RigidTransform& X_BC_apriori,
+                           const RigidTransform& X_TE_apriori, PriorAnalysis* out) {
+  const Eigen::Matrix3d& R_BC0 = X_BC_apriori.rotation();
+  const Eigen::Matrix3d& R_TE0 = X_TE_apriori.rotation();
+  const Eigen::Vector3d b = R_BC0 * out->axis_C;
+  const Eigen::Matrix3d R_fix =
+      Eigen::Quaterniond::FromTwoVectors(b, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  const Eigen::Matrix3d R_BC = R_fix * R_BC0;
+  Eigen::Vector3d p_CE_mean = Eigen::Vector3d::Zero();
+  for (const DatasetRow& row : rows) p_CE_mean += row.X_CT * X_TE_apriori.translation();
+  p_CE_mean /= static_cast<double>(rows.size());
+  out->X_BC = RigidTransform(R_BC, X_BC_apriori.translation() + (R_BC0 - R_BC) * p_CE_mean);
+  out->camera_axis_correction_deg = DegreesFromRadians(AngleBetween(b, Eigen::Vector3d::UnitZ()));
+
+  const Eigen::Vector3d c = R_TE0 * Eigen::Vector3d::UnitZ();
+  const Eigen::Matrix3d R_fix_T =
+      Eigen::Quaterniond::FromTwoVectors(c, out->axis_T).toRotationMatrix();
+  out->X_TE = RigidTransform(R_fix_T * R_TE0, X_TE_apriori.translation());
+  out->board_axis_correction_deg = DegreesFromRadians(AngleBetween(c, out->axis_T));
 }
 
 }  // namespace
@@ -124,7 +146,7 @@ PriorAnalysis AnalyzeRotationAxis(const std::vector<DatasetRow>& rows,
     out.message =
         "prior analysis: the poses do not turn enough about the axis (need pairs "
         "turned by more than " +
-        std::to_string(options.min_rotation * kDeg) + " deg)";
+        std::to_string(DegreesFromRadians(options.min_rotation)) + " deg)";
     return out;
   }
   out.axis_C = in_C.axis;
@@ -136,31 +158,12 @@ PriorAnalysis AnalyzeRotationAxis(const std::vector<DatasetRow>& rows,
     out.relative_theta.push_back(So3Log(R(j) * R(0).transpose()).dot(out.axis_C));
   }
 
-  // Turn the a priori camera so that its view of z_B is the measured axis, and move it so
-  // that the mean board position in B stays where the a priori placed it.
-  const Eigen::Vector3d b = R_BC0 * out.axis_C;
-  const Eigen::Matrix3d R_fix =
-      Eigen::Quaterniond::FromTwoVectors(b, Eigen::Vector3d::UnitZ()).toRotationMatrix();
-  const Eigen::Matrix3d R_BC = R_fix * R_BC0;
-  Eigen::Vector3d p_CE_mean = Eigen::Vector3d::Zero();
-  for (const DatasetRow& row : rows) p_CE_mean += row.X_CT * X_TE_apriori.translation();
-  p_CE_mean /= static_cast<double>(rows.size());
-  out.X_BC = RigidTransform(R_BC, X_BC_apriori.translation() + (R_BC0 - R_BC) * p_CE_mean);
-  out.camera_axis_correction_deg = AngleBetween(b, Eigen::Vector3d::UnitZ()) * kDeg;
-
-  const Eigen::Vector3d c = R_TE0 * Eigen::Vector3d::UnitZ();
-  const Eigen::Matrix3d R_fix_T =
-      Eigen::Quaterniond::FromTwoVectors(c, out.axis_T).toRotationMatrix();
-  out.X_TE = RigidTransform(R_fix_T * R_TE0, X_TE_apriori.translation());
-  out.board_axis_correction_deg = AngleBetween(c, out.axis_T) * kDeg;
-
-  char line[256];
-  std::snprintf(line, sizeof line,
-                "rotation axis from %d poses: spread %.3f deg in C, %.3f deg in T; a priori "
-                "camera axis off by %.2f deg, board axis by %.2f deg",
-                out.poses_used, out.axis_spread_deg, out.axis_spread_T_deg,
-                out.camera_axis_correction_deg, out.board_axis_correction_deg);
-  out.message = line;
+  TurnPlacementOntoAxis(rows, X_BC_apriori, X_TE_apriori, &out);
+  out.message = fmt::format(
+      "rotation axis from {} poses: spread {:.3f} deg in C, {:.3f} deg in T; a priori camera "
+      "axis off by {:.2f} deg, board axis by {:.2f} deg",
+      out.poses_used, out.axis_spread_deg, out.axis_spread_T_deg, out.camera_axis_correction_deg,
+      out.board_axis_correction_deg);
   out.ok = true;
   return out;
 }

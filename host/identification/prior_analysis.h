@@ -14,12 +14,13 @@
 
 #include "common/formats/dataset_csv.h"
 #include "common/geometry/rigid_transform.h"
+#include "common/units.h"
 
 namespace h4::host {
 
 struct PriorAnalysisOptions {
   /// Pairs of poses turned by less than this are too noisy for an axis (rad).
-  double min_rotation = 5.0 * 3.14159265358979323846 / 180.0;
+  double min_rotation = RadiansFromDegrees(5.0);
 };
 
 struct PriorAnalysis {

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "common/robot/model_kind.h"
 #include "common/robot/robot_description.h"
 
 namespace h4::host {
@@ -32,8 +33,8 @@ class KinematicModel {
  public:
   virtual ~KinematicModel() = default;
 
-  /// "12" or "31".
-  virtual std::string name() const = 0;
+  /// Model 12 or Model 31.
+  virtual ModelKind kind() const = 0;
   /// common/README.md names, in the order of parameters(): Model 12: h, arm, forearm, R, d,
   /// alpha1..alpha4, q01..q04 (13, d inert); Model 31: x2 y2 z2 x3 y3 z3 x4 y4 z4,
   /// psi1..psi4, beta1..beta4, q01..q04, arm1..arm4, forearm1..forearm4, h, d (31).

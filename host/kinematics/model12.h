@@ -28,7 +28,7 @@ class Model12 final : public KinematicModel {
 
   const Model12Parameters& model12_parameters() const { return p_; }
 
-  std::string name() const override { return "12"; }
+  ModelKind kind() const override { return ModelKind::k12; }
   const std::vector<std::string>& parameter_names() const override { return ParameterNames(); }
   Eigen::VectorXd parameters() const override { return ToVector(p_); }
   void set_parameters(const Eigen::VectorXd& xi) override { p_ = FromVector(xi); }

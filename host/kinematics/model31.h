@@ -31,7 +31,7 @@ class Model31 final : public KinematicModel {
 
   const Model31Parameters& model31_parameters() const { return p_; }
 
-  std::string name() const override { return "31"; }
+  ModelKind kind() const override { return ModelKind::k31; }
   const std::vector<std::string>& parameter_names() const override { return ParameterNames(); }
   Eigen::VectorXd parameters() const override { return ToVector(p_); }
   void set_parameters(const Eigen::VectorXd& xi) override;

@@ -87,7 +87,7 @@ std::string ParameterTables(const ValidationInputs& in) {
   for (const auto* result : {&in.result12, &in.result31}) {
     if (!*result) continue;
     const IdentificationResult& r = **result;
-    t << "<h3>Model " << MarkupEscape(r.model) << "</h3>\n<table>\n"
+    t << "<h3>" << ModelLabel(r.model) << "</h3>\n<table>\n"
       << Header({"parameter", "a priori", "identified", "one sigma", "status", "reason fixed"});
     for (const ResultParameter& p : r.parameters) {
       std::string reason;
@@ -119,7 +119,7 @@ std::string IdentifiabilityTable(const ValidationInputs& in) {
       correlations +=
           fmt::format("{} / {}: {:.3f}<br>", MarkupEscape(c.a), MarkupEscape(c.b), c.correlation);
     }
-    t << Row("Model " + MarkupEscape(r.model),
+    t << Row(ModelLabel(r.model),
              {MarkupEscape(r.estimator.empty() ? "-" : r.estimator),
               r.condition_number ? fmt::format("{:.3g}", *r.condition_number) : "-",
               fixed.empty() ? "none" : fixed, correlations.empty() ? "none" : correlations});

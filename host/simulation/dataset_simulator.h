@@ -1,13 +1,14 @@
-// Simulated paired datasets (common/formats/README.md dataset CSV rows): for each planned pose, the true
-// joints from the true robot's inverse kinematics and the board pose X_CT from the true
-// chain of eq. (6), X_CT = inv(X_BC) * X_BE * inv(X_TE), with seeded Gaussian noise on the
-// encoders and on X_CT, and a seeded calib/valid split.
+// Simulated paired datasets (common/formats/README.md dataset CSV rows): for each planned pose, the
+// true joints from the true robot's inverse kinematics and the board pose X_CT from the true chain
+// of eq. (6), X_CT = inv(X_BC) * X_BE * inv(X_TE), with seeded Gaussian noise on the encoders and
+// on X_CT, and a seeded calib/valid split.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "common/formats/dataset_csv.h"
+#include "common/units.h"
 #include "host/kinematics/kinematic_model.h"
 #include "host/simulation/pose_plan.h"
 #include "host/simulation/true_robot.h"
@@ -16,9 +17,8 @@ namespace h4::host {
 
 /// One-sigma measurement noise, per axis.
 struct NoiseOptions {
-  double sigma_t = 0.0002;  ///< X_CT translation, m (0.2 mm), in C
-  double sigma_r =
-      0.03 * 3.14159265358979323846 / 180.0;  ///< X_CT rotation, rad (0.03 deg),
+  double sigma_t = 0.0002;                    ///< X_CT translation, m (0.2 mm), in C
+  double sigma_r = RadiansFromDegrees(0.03);  ///< X_CT rotation, rad (0.03 deg),
                                               ///< as R_CT Exp(n): in T, as PoseError measures it
   double sigma_q = 2e-5;                      ///< encoder readings, rad
 };

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "common/geometry/rigid_transform.h"
+#include "common/robot/model_kind.h"
 #include "common/robot/robot_description.h"
 #include "host/kinematics/kinematic_model.h"
 
@@ -25,8 +26,8 @@ struct SimulatedRobot {
   RigidTransform X_BC;  ///< true camera pose in B
   RigidTransform X_TE;  ///< true end-effector pose in the board frame
 
-  /// "12" or "31".
-  const char* truth_model() const { return model31 ? "31" : "12"; }
+  /// Model 31 when the truth has a model31 block, else Model 12.
+  ModelKind truth_model() const { return model31 ? ModelKind::k31 : ModelKind::k12; }
   /// The kinematic model that generates the joints: Model31(*model31) or Model12(model12).
   std::unique_ptr<KinematicModel> MakeModel() const;
   /// X from B to the model's base frame: identity for Model 12, NominalX_B31B(model12) for 31.

@@ -24,7 +24,7 @@ std::string FormatTruthYaml(const SimulationTruth& truth) {
   const RigidTransform X_B31C = truth.robot.X_B31C();
   std::string text = FormatRobotYaml(truth.robot.Description());
   text += "simulation:  # the truth behind a simulated dataset (h4cal simulate)\n";
-  text += std::string("  truth_model: \"") + truth.robot.truth_model() + "\"\n";
+  text += std::string("  truth_model: \"") + ToString(truth.robot.truth_model()) + "\"\n";
   text += "  robot_seed: " + std::to_string(truth.robot_seed) + "\n";
   text += "  dataset_seed: " + std::to_string(truth.dataset_seed) + "\n";
   text += "  X_B31C:  # true camera pose in B31, the frame of Model 31\n";
@@ -52,13 +52,12 @@ SimulationTruth ParseTruthYaml(const std::string& text, const std::string& sourc
   const YamlMap root(LoadYaml(text, source_name), source_name, "", 0);
   const YamlMap simulation = root.Map("simulation");
   const std::string model = simulation.String("truth_model");
-  if (model != "12" && model != "31") {
-    simulation.Fail("truth_model", "expected \"12\" or \"31\", got \"" + model + "\"");
-  }
-  if (model == "31" && !truth.robot.model31) {
+  const std::optional<ModelKind> kind = ParseModelKind(model);
+  if (!kind) simulation.Fail("truth_model", "expected \"12\" or \"31\", got \"" + model + "\"");
+  if (kind == ModelKind::k31 && !truth.robot.model31) {
     simulation.Fail("truth_model", "\"31\" needs a model31 block holding the true geometry");
   }
-  if (model == "12") truth.robot.model31.reset();
+  if (kind == ModelKind::k12) truth.robot.model31.reset();
   truth.robot_seed = static_cast<uint64_t>(simulation.Int("robot_seed"));
   truth.dataset_seed = static_cast<uint64_t>(simulation.Int("dataset_seed"));
   const YamlMap noise = simulation.Map("noise");

@@ -14,11 +14,11 @@
 namespace h4::host {
 namespace {
 
-void CheckModel(const std::optional<IdentificationResult>& result, const std::string& expected) {
+void CheckModel(const std::optional<IdentificationResult>& result, ModelKind expected) {
   if (result && result->model != expected) {
     throw std::invalid_argument(fmt::format(
         "the result given for Model {} is a Model {} result (pass it as the Model {} one)",
-        expected, result->model, result->model));
+        ToString(expected), ToString(result->model), ToString(result->model)));
   }
 }
 
@@ -41,7 +41,7 @@ std::vector<DatasetRow> HeldOutRows(const ValidationInputs& in, std::vector<int6
         throw std::invalid_argument(fmt::format(
             "{}: pose {} is missing, but the Model {} result holds it out for validation "
             "(is this the dataset it was identified from?)",
-            in.dataset_name, id, result->model));
+            in.dataset_name, id, ToString(result->model)));
       }
     }
   } else {
@@ -108,8 +108,8 @@ double ValidationReport::StraightnessImprovementPercent(size_t m, size_t r) cons
 }
 
 ValidationReport Validate(const ValidationInputs& in) {
-  CheckModel(in.result12, "12");
-  CheckModel(in.result31, "31");
+  CheckModel(in.result12, ModelKind::k12);
+  CheckModel(in.result31, ModelKind::k31);
   if (!in.result12 && !in.result31) {
     throw std::invalid_argument("validation needs an identification result (Model 12 or 31)");
   }
@@ -156,7 +156,7 @@ ValidationReport Validate(const ValidationInputs& in) {
     if (!*result) continue;
     IdentifiedRobot robot = RebuildFromResult(**result, in.apriori.assembly);
     candidates.push_back(
-        {"Model " + (*result)->model, std::move(robot.model), robot.X_BC, robot.X_TE});
+        {ModelLabel((*result)->model), std::move(robot.model), robot.X_BC, robot.X_TE});
   }
 
   std::unique_ptr<KinematicModel> true_model;
@@ -193,7 +193,7 @@ ValidationReport Validate(const ValidationInputs& in) {
       }
       v.straightness.push_back(std::move(run));
     }
-    if (true_model && c.model->name() == "12") {
+    if (true_model && c.model->kind() == ModelKind::k12) {
       v.square = RunSquare(*c.model, {true_model.get(), in.truth->robot.X_ModelB()}, in.square);
     }
     report.models.push_back(std::move(v));

@@ -198,7 +198,7 @@ TEST(BoardYamlErrors, NonPositiveCountsAndSizes) {
                         "missing key"));
 }
 
-// Issue 13: tagRows: 2147483647 ended in bad_alloc after 36 s. Counts and sizes are
+// Regression: tagRows: 2147483647 ended in bad_alloc after 36 s. Counts and sizes are
 // bounded when read, before anything is allocated from them.
 TEST(BoardYamlErrors, CountsAndSizesAboveTheLimitsNameTheField) {
   const auto with = [](const std::string& base, const std::string& from, const std::string& to) {

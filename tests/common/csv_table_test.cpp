@@ -71,7 +71,7 @@ TEST(CsvTable, RejectsMalformedStructure) {
                         "after a quoted field"));
 }
 
-// Issue 13: a file with CR-only line ends read as one header line and no row, and
+// Regression: a file with CR-only line ends read as one header line and no row, and
 // identify crashed on it. LF and CRLF are line ends; a CR alone is named.
 TEST(CsvTable, CarriageReturnAloneIsAnErrorNamingTheLine) {
   EXPECT_TRUE(FailsWith([] { CsvTable::Parse("a,b\r1,2\r3,4\r", "cr.csv"); }, "cr.csv", 1, "",

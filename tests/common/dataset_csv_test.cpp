@@ -203,7 +203,7 @@ TEST(DatasetCsvErrors, NonPositiveSigma) {
       "d.csv", 2, "sigma_r", "expected a standard deviation in"));
 }
 
-// Issue 13: identify looped forever on a sigma below ~1e-154 (1/sigma^2 overflows); such
+// Regression: identify looped forever on a sigma below ~1e-154 (1/sigma^2 overflows); such
 // sigmas, and absurdly large ones, are refused at load.
 TEST(DatasetCsvErrors, SigmaOutsidePhysicalBounds) {
   const std::string header = kDatasetHeader + ",sigma_t,sigma_r";

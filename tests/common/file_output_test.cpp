@@ -1,4 +1,4 @@
-// Atomic file replacement and the same-file check (issue 13, data loss): a failed write
+// Atomic file replacement and the same-file check (data loss): a failed write
 // keeps the previous file whole and leaves no temporary behind; an output that is one of
 // the inputs is refused, by path, through "./" and through a hard or symbolic link.
 #include "common/formats/file_output.h"

@@ -39,7 +39,7 @@ std::string ResultWith(const std::string& from, const std::string& to) {
 
 TEST(IdentificationResult, ReadsFormatsMdKeys) {
   const IdentificationResult r = ParseIdentificationResult(kResult, "r.json");
-  EXPECT_EQ(r.model, "12");
+  EXPECT_EQ(r.model, ModelKind::k12);
   ASSERT_EQ(r.parameters.size(), 3u);
   EXPECT_EQ(r.parameters[0].name, "h");
   EXPECT_EQ(r.parameters[0].value, 0.0610);
@@ -69,7 +69,7 @@ TEST(IdentificationResult, ReadsFormatsMdKeys) {
 
 IdentificationResult FullResult() {
   IdentificationResult r = ParseIdentificationResult(kResult, "r.json");
-  r.model = "31";
+  r.model = ModelKind::k31;
   r.parameters[0].value = 0.1 / 3;
   r.parameters[0].std = 2.0 / 7 * 1e-4;
   r.X_BC = RigidTransform::FromTranslationRpy({0.001, -0.002, -1.05}, {0.01, -0.02, 3.0});
@@ -178,7 +178,7 @@ TEST(IdentificationResultErrors, NameTheJsonPath) {
   EXPECT_TRUE(fails("[1, 2]", "", "expected an object"));
 }
 
-// Issue 13: ik and export accepted a result with a negative arm length. Values are
+// Regression: ik and export accepted a result with a negative arm length. Values are
 // checked on load like robot.yaml's, naming the JSON path.
 TEST(IdentificationResultErrors, ValuesTheKinematicsCannotUseNameTheField) {
   const auto fails = [](const std::string& text, const std::string& field,
@@ -200,7 +200,7 @@ TEST(IdentificationResultErrors, ValuesTheKinematicsCannotUseNameTheField) {
       fails(ResultWith("[0, 0, -1.05]", "[0, 0, -1e300]"), "X_BC.translation[2]", "within 10 m"));
 }
 
-// Issue 13: a JSON nested 100,000 deep crashed fk, ik, export, validate and identify --from
+// Regression: a JSON nested 100,000 deep crashed fk, ik, export, validate and identify --from
 // (the error message printed the value recursively). The depth is checked before parsing.
 TEST(IdentificationResultErrors, DeepNestingIsRefusedBeforeParsing) {
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');

@@ -82,7 +82,7 @@ TEST(PosesCsvErrors, NameLineAndField) {
                 "p.csv", 3, "pose_id", "duplicate"));
 }
 
-// Issue 13: ik accepted theta = 20 (degrees by mistake) and positions of 1e308 m.
+// Regression: ik accepted theta = 20 (degrees by mistake) and positions of 1e308 m.
 TEST(PosesCsvErrors, ThetaAndPositionsOutOfRange) {
   const auto parse = [](const std::string& row) {
     return [row] { ParsePosesCsv("pose_id,X,Y,Z,theta\n" + row + "\n", "p.csv"); };

@@ -26,6 +26,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "common/timing/clock.h"
 #include "messages/channels.h"
 #include "tests/messages/wire_bytes.h"
 

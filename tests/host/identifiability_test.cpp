@@ -30,11 +30,11 @@ IdentifiabilityReport Analyze(const testing::TrueSetup& setup, CostKind kind) {
   ParameterVector p(*setup.model, setup.X_BC, PaperX_TE());
   const std::vector<DatasetRow> rows =
       ConsistentRows(*setup.model, p, testing::NoiseFreeRows(setup));
-  const IdentificationCost cost(kind, *setup.model, rows);
+  IdentificationCost cost(kind, *setup.model, rows);
   Eigen::VectorXd r;
   Eigen::MatrixXd J;
   EXPECT_TRUE(cost.Evaluate(p, &r, &J));
-  const IdentifiabilityReport report = AnalyzeIdentifiability(J, setup.model->name(), {}, &p);
+  const IdentifiabilityReport report = AnalyzeIdentifiability(J, setup.model->kind(), {}, &p);
   for (const std::string& line : report.log) std::cout << "  " << line << "\n";
   return report;
 }
@@ -69,7 +69,7 @@ TEST(IdentifiabilityTest, AFullRankJacobianFixesNothing) {
   Eigen::MatrixXd J = Eigen::MatrixXd::Random(40, 25);
   const Model12 model(Model12Parameters{});
   ParameterVector p(model, PaperX_BC(), PaperX_TE());
-  const IdentifiabilityReport report = AnalyzeIdentifiability(J, "12", {}, &p);
+  const IdentifiabilityReport report = AnalyzeIdentifiability(J, ModelKind::k12, {}, &p);
   EXPECT_TRUE(report.fixed.empty());
   EXPECT_EQ(p.free_count(), 25);
 }

@@ -66,21 +66,21 @@ TEST(PoseChainTest, BoardPoseErrorJacobiansMatchFiniteDifferences) {
 }
 
 struct CostCase {
-  const char* model;
+  ModelKind model;
   CostKind kind;
 };
 
 class CostTest : public ::testing::TestWithParam<CostCase> {
  protected:
   TrueSetup Setup() const {
-    return std::string(GetParam().model) == "12" ? testing::TrueModel12Setup()
-                                                 : testing::TrueModel31Setup();
+    return GetParam().model == ModelKind::k12 ? testing::TrueModel12Setup()
+                                              : testing::TrueModel31Setup();
   }
 };
 
 TEST_P(CostTest, ResidualsVanishAtTheTruthOnNoiseFreeData) {
   const TrueSetup setup = Setup();
-  const IdentificationCost cost(GetParam().kind, *setup.model, NoiseFreeRows(setup));
+  IdentificationCost cost(GetParam().kind, *setup.model, NoiseFreeRows(setup));
   const ParameterVector p(*setup.model, setup.X_BC, setup.X_TE);
   Eigen::VectorXd r;
   std::string why;
@@ -94,7 +94,7 @@ TEST_P(CostTest, WarmStartedEvaluationsMatchAFreshCost) {
   // evaluating elsewhere, coming back must give what a fresh cost gives.
   const TrueSetup setup = Setup();
   const std::vector<DatasetRow> rows = NoiseFreeRows(setup);
-  const IdentificationCost cost(GetParam().kind, *setup.model, rows);
+  IdentificationCost cost(GetParam().kind, *setup.model, rows);
   const ParameterVector p(*setup.model, setup.X_BC, setup.X_TE);
   ParameterVector moved = p;
   Eigen::VectorXd values = p.values();
@@ -119,7 +119,7 @@ TEST_P(CostTest, JacobianMatchesFiniteDifferencesOffTheTruth) {
   unit_sigma.default_sigma_r = 1.0;
   std::vector<DatasetRow> rows = NoiseFreeRows(setup);
   rows.resize(12);
-  const IdentificationCost cost(GetParam().kind, *setup.model, rows, unit_sigma);
+  IdentificationCost cost(GetParam().kind, *setup.model, rows, unit_sigma);
   ParameterVector p(*setup.model, setup.X_BC, setup.X_TE);
   const Eigen::VectorXd v0 = Perturbed(p.values(), 2e-3);
   p.set_values(v0);
@@ -140,14 +140,17 @@ TEST_P(CostTest, JacobianMatchesFiniteDifferencesOffTheTruth) {
   EXPECT_TRUE(JacobianMatchesFiniteDifferences(f, v0, J, 1e-5, 1e-6));
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    AllCosts, CostTest,
-    ::testing::Values(CostCase{"12", CostKind::kJointSpace}, CostCase{"12", CostKind::kImplicit},
-                      CostCase{"12", CostKind::kMeasurement}, CostCase{"31", CostKind::kJointSpace},
-                      CostCase{"31", CostKind::kImplicit}, CostCase{"31", CostKind::kMeasurement}),
-    [](const ::testing::TestParamInfo<CostCase>& param_info) {
-      return std::string("Model") + param_info.param.model + "_" + ToString(param_info.param.kind);
-    });
+INSTANTIATE_TEST_SUITE_P(AllCosts, CostTest,
+                         ::testing::Values(CostCase{ModelKind::k12, CostKind::kJointSpace},
+                                           CostCase{ModelKind::k12, CostKind::kImplicit},
+                                           CostCase{ModelKind::k12, CostKind::kMeasurement},
+                                           CostCase{ModelKind::k31, CostKind::kJointSpace},
+                                           CostCase{ModelKind::k31, CostKind::kImplicit},
+                                           CostCase{ModelKind::k31, CostKind::kMeasurement}),
+                         [](const ::testing::TestParamInfo<CostCase>& param_info) {
+                           return std::string("Model") + ToString(param_info.param.model) + "_" +
+                                  ToString(param_info.param.kind);
+                         });
 
 TEST(CostKindTest, NamesRoundTripAndUnknownIsRejected) {
   CostKind kind = CostKind::kImplicit;

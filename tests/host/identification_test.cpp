@@ -70,11 +70,11 @@ std::pair<double, double> HeldOutTruthError(const IdentificationOutcome& out, co
   return {std::sqrt(sum_p / n), std::sqrt(sum_r / n)};
 }
 
-IdentificationOutcome IdentifyScenario(const Scenario& s, const std::string& model_name,
+IdentificationOutcome IdentifyScenario(const Scenario& s, ModelKind model,
                                        const IdentificationOptions& options) {
-  std::unique_ptr<KinematicModel> model;
-  const ParameterVector apriori = AprioriParameters(PaperAprioriRobot(), model_name, &model);
-  return Identify(*model, apriori.X_BC(), apriori.X_TE(), s.calib, s.valid, options);
+  const AprioriModel apriori = AprioriModelOf(PaperAprioriRobot(), model);
+  return Identify(*apriori.model, apriori.parameters.X_BC(), apriori.parameters.X_TE(), s.calib,
+                  s.valid, options);
 }
 
 // Held-out error averaged over seeds (never a loosened threshold: the mean is what the
@@ -82,17 +82,17 @@ IdentificationOutcome IdentifyScenario(const Scenario& s, const std::string& mod
 struct Accuracy {
   double position_m = 0.0, rotation_rad = 0.0;
 };
-Accuracy MeanHeldOutError(TrueGeometry geometry, const std::string& model_name, CostKind estimator,
+Accuracy MeanHeldOutError(TrueGeometry geometry, ModelKind model, CostKind estimator,
                           const std::vector<uint64_t>& seeds) {
   Accuracy mean;
   for (uint64_t seed : seeds) {
     const Scenario s = MakeScenario(geometry, seed, true);
     IdentificationOptions options;
     options.estimator = estimator;
-    const IdentificationOutcome out = IdentifyScenario(s, model_name, options);
+    const IdentificationOutcome out = IdentifyScenario(s, model, options);
     EXPECT_TRUE(out.summary.usable) << out.summary.FullReport();
     const auto [p, r] = HeldOutTruthError(out, s);
-    std::cout << "  seed " << seed << ": Model " << model_name << " (" << ToString(estimator)
+    std::cout << "  seed " << seed << ": Model " << ToString(model) << " (" << ToString(estimator)
               << ") held-out error " << p * 1e3 << " mm, " << r * kDeg << " deg, "
               << out.summary.seconds * 1e3 << " ms\n";
     mean.position_m += p / static_cast<double>(seeds.size());
@@ -134,7 +134,7 @@ TEST(IdentificationTest, NoiseFreeModel31DataGivesBackTheIdentifiableParameters)
   const Scenario s = MakeScenario(TrueGeometry::kPerturbedModel31, 7, false);
   IdentificationOptions options;
   options.reject_outliers = false;
-  const IdentificationOutcome out = IdentifyScenario(s, "31", options);
+  const IdentificationOutcome out = IdentifyScenario(s, ModelKind::k31, options);
   ASSERT_TRUE(out.summary.usable) << out.summary.FullReport();
   // A common rotation about z_B (fixed through X_BC.rz) and the X_BC.tz / X_TE.tz and
   // X_BC.ty / d sums are not identifiable: compare what is invariant under them.
@@ -166,7 +166,7 @@ TEST(IdentificationTest, ConvergesFromTheRoughAprioriForEveryEstimator) {
   for (CostKind estimator : {CostKind::kMeasurement, CostKind::kJointSpace, CostKind::kImplicit}) {
     IdentificationOptions options;
     options.estimator = estimator;
-    const IdentificationOutcome out = IdentifyScenario(s, "12", options);
+    const IdentificationOutcome out = IdentifyScenario(s, ModelKind::k12, options);
     EXPECT_TRUE(out.summary.usable) << ToString(estimator) << "\n" << out.summary.FullReport();
     EXPECT_LT(HeldOutTruthError(out, s).first, 0.5e-3) << ToString(estimator);
     // common/README.md: fixed parameters keep their a priori value, whatever the warm-up
@@ -181,8 +181,8 @@ TEST(IdentificationTest, ConvergesFromTheRoughAprioriForEveryEstimator) {
 }
 
 TEST(IdentificationTest, PaperProtocolModel12HeldOutAccuracy) {
-  const Accuracy a =
-      MeanHeldOutError(TrueGeometry::kPerturbedModel12, "12", CostKind::kMeasurement, kSeeds);
+  const Accuracy a = MeanHeldOutError(TrueGeometry::kPerturbedModel12, ModelKind::k12,
+                                      CostKind::kMeasurement, kSeeds);
   std::cout << "Model 12 data, Model 12 measurement-space: " << a.position_m * 1e3 << " mm, "
             << a.rotation_rad * kDeg << " deg\n";
   EXPECT_LE(a.position_m, 0.10e-3);
@@ -190,10 +190,10 @@ TEST(IdentificationTest, PaperProtocolModel12HeldOutAccuracy) {
 }
 
 TEST(IdentificationTest, PaperProtocolModel12JointSpaceIsLessAccurate) {
-  const Accuracy joint =
-      MeanHeldOutError(TrueGeometry::kPerturbedModel12, "12", CostKind::kJointSpace, kSeeds);
-  const Accuracy measurement =
-      MeanHeldOutError(TrueGeometry::kPerturbedModel12, "12", CostKind::kMeasurement, kSeeds);
+  const Accuracy joint = MeanHeldOutError(TrueGeometry::kPerturbedModel12, ModelKind::k12,
+                                          CostKind::kJointSpace, kSeeds);
+  const Accuracy measurement = MeanHeldOutError(TrueGeometry::kPerturbedModel12, ModelKind::k12,
+                                                CostKind::kMeasurement, kSeeds);
   std::cout << "Model 12 data, eq. (3): " << joint.position_m * 1e3 << " mm, "
             << joint.rotation_rad * kDeg << " deg\n";
   EXPECT_LE(joint.position_m, 0.30e-3);
@@ -201,10 +201,10 @@ TEST(IdentificationTest, PaperProtocolModel12JointSpaceIsLessAccurate) {
 }
 
 TEST(IdentificationTest, PaperProtocolModel31HeldOutAccuracyAndModel12IsWorse) {
-  const Accuracy a31 =
-      MeanHeldOutError(TrueGeometry::kPerturbedModel31, "31", CostKind::kMeasurement, kSeeds);
-  const Accuracy a12 =
-      MeanHeldOutError(TrueGeometry::kPerturbedModel31, "12", CostKind::kMeasurement, kSeeds);
+  const Accuracy a31 = MeanHeldOutError(TrueGeometry::kPerturbedModel31, ModelKind::k31,
+                                        CostKind::kMeasurement, kSeeds);
+  const Accuracy a12 = MeanHeldOutError(TrueGeometry::kPerturbedModel31, ModelKind::k12,
+                                        CostKind::kMeasurement, kSeeds);
   std::cout << "Model 31 data: Model 31 " << a31.position_m * 1e3 << " mm, "
             << a31.rotation_rad * kDeg << " deg; Model 12 " << a12.position_m * 1e3 << " mm, "
             << a12.rotation_rad * kDeg << " deg\n";
@@ -215,9 +215,9 @@ TEST(IdentificationTest, PaperProtocolModel31HeldOutAccuracyAndModel12IsWorse) {
 
 TEST(IdentificationTest, ResultIsFilledAndRebuildsTheSameRobot) {
   const Scenario s = MakeScenario(TrueGeometry::kPerturbedModel12, 5, true);
-  const IdentificationOutcome out = IdentifyScenario(s, "12", IdentificationOptions{});
+  const IdentificationOutcome out = IdentifyScenario(s, ModelKind::k12, IdentificationOptions{});
   const IdentificationResult& r = out.result;
-  EXPECT_EQ(r.model, "12");
+  EXPECT_EQ(r.model, ModelKind::k12);
   EXPECT_EQ(r.estimator, "measurement");
   EXPECT_EQ(r.parameters.size(), 13u + 12u);
   for (const ResultParameter& p : r.parameters) {
@@ -257,7 +257,7 @@ TEST(IdentificationTest, OutliersAreRejectedAndReported) {
                                 row.X_CT.translation() + Eigen::Vector3d(0.003, 0, 0));
     }
   }
-  const IdentificationOutcome out = IdentifyScenario(s, "12", IdentificationOptions{});
+  const IdentificationOutcome out = IdentifyScenario(s, ModelKind::k12, IdentificationOptions{});
   std::vector<int64_t> rejected = out.result.rejected_poses;
   std::sort(rejected.begin(), rejected.end());
   EXPECT_EQ(rejected, bad);
@@ -268,12 +268,12 @@ TEST(IdentificationTest, Model31FromModel12ResultKeepsItsFixedValues) {
   const Scenario s = MakeScenario(TrueGeometry::kPerturbedModel31, 2, true);
   std::vector<DatasetRow> rows = s.calib;
   rows.insert(rows.end(), s.valid.begin(), s.valid.end());
-  const IdentificationOutcome out12 = IdentifyRobot(PaperAprioriRobot(), "12", rows, {});
+  const IdentificationOutcome out12 = IdentifyRobot(PaperAprioriRobot(), ModelKind::k12, rows, {});
   ASSERT_TRUE(out12.summary.usable);
   const IdentificationOutcome out31 =
       IdentifyModel31FromModel12(PaperAprioriRobot(), out12.result, rows, {});
   EXPECT_TRUE(out31.summary.usable) << out31.summary.FullReport();
-  EXPECT_EQ(out31.result.model, "31");
+  EXPECT_EQ(out31.result.model, ModelKind::k31);
   // X_TE.tz is fixed in both; Model 31 keeps the Model 12 result's value.
   ASSERT_TRUE(out31.result.Find("X_TE.tz")->fixed);
   EXPECT_DOUBLE_EQ(out31.result.Find("X_TE.tz")->value, out12.result.Find("X_TE.tz")->value);
@@ -315,7 +315,7 @@ TEST(IdentificationOptionsTest, UnknownNloptAlgorithmIsRejectedListingTheAllowed
 
 TEST(IdentificationTest, EveryStageRunsNloptThenTheLmPolishAndTheLogSaysSo) {
   const Scenario s = MakeScenario(TrueGeometry::kPerturbedModel31, 2, true);
-  const IdentificationOutcome out = IdentifyScenario(s, "31", IdentificationOptions{});
+  const IdentificationOutcome out = IdentifyScenario(s, ModelKind::k31, IdentificationOptions{});
   ASSERT_TRUE(out.summary.usable) << out.summary.FullReport();
   for (const StageSummary& stage : out.summary.stages) {
     ASSERT_GE(stage.minimizers.size(), 2u) << stage.name;
@@ -339,12 +339,13 @@ TEST(IdentificationTest, EveryStageRunsNloptThenTheLmPolishAndTheLogSaysSo) {
 
 TEST(IdentificationTest, AnyNloptAlgorithmOrNoneReachesTheSameMinimumAfterThePolish) {
   const Scenario s = MakeScenario(TrueGeometry::kPerturbedModel31, 2, true);
-  const IdentificationOutcome reference = IdentifyScenario(s, "31", IdentificationOptions{});
+  const IdentificationOutcome reference =
+      IdentifyScenario(s, ModelKind::k31, IdentificationOptions{});
   ASSERT_TRUE(reference.summary.usable);
   for (const char* algorithm : {"LD_SLSQP", "LN_BOBYQA", "none"}) {
     IdentificationOptions options;
     options.nlopt.algorithm = algorithm;
-    const IdentificationOutcome out = IdentifyScenario(s, "31", options);
+    const IdentificationOutcome out = IdentifyScenario(s, ModelKind::k31, options);
     EXPECT_TRUE(out.summary.usable) << algorithm << "\n" << out.summary.FullReport();
     EXPECT_NEAR(out.summary.final_cost, reference.summary.final_cost,
                 1e-9 * reference.summary.final_cost)
@@ -357,9 +358,9 @@ TEST(IdentificationTest, WithoutThePolishNloptAloneReachesTheMinimum) {
   const Scenario s = MakeScenario(TrueGeometry::kPerturbedModel12, 3, true);
   IdentificationOptions options;
   options.reject_outliers = false;
-  const IdentificationOutcome polished = IdentifyScenario(s, "12", options);
+  const IdentificationOutcome polished = IdentifyScenario(s, ModelKind::k12, options);
   options.lm_polish = false;
-  const IdentificationOutcome alone = IdentifyScenario(s, "12", options);
+  const IdentificationOutcome alone = IdentifyScenario(s, ModelKind::k12, options);
   ASSERT_TRUE(polished.summary.usable);
   for (const StageSummary& stage : alone.summary.stages) {
     ASSERT_EQ(stage.minimizers.size(), 1u) << stage.name;
@@ -399,7 +400,7 @@ TEST(DatasetSplitTest, UsesTheSetColumnElseASeededDraw) {
   EXPECT_NE(a.how.find("seed 3"), std::string::npos);
 }
 
-// Issue 13: identify crashed (SIGSEGV) on a dataset with no calibration row.
+// Regression: identify crashed (SIGSEGV) on a dataset with no calibration row.
 TEST(IdentificationInputTest, TooFewCalibrationPosesAreRefusedWithTheCount) {
   const Scenario s = MakeScenario(TrueGeometry::kPaperTable2, 1, false);
   const RobotDescription robot = PaperAprioriRobot();
@@ -418,7 +419,7 @@ TEST(IdentificationInputTest, TooFewCalibrationPosesAreRefusedWithTheCount) {
   }
 }
 
-// Issue 13: a --fix typo was ignored and the parameter identified.
+// Regression: a --fix typo was ignored and the parameter identified.
 TEST(IdentificationInputTest, UnknownFixedParameterIsRefusedListingTheNames) {
   const Scenario s = MakeScenario(TrueGeometry::kPaperTable2, 1, false);
   const RobotDescription robot = PaperAprioriRobot();
@@ -437,7 +438,7 @@ TEST(IdentificationInputTest, UnknownFixedParameterIsRefusedListingTheNames) {
   }
 }
 
-// Issue 13: --fix of all twelve X_BC / X_TE parameters crashed: the placement stage had
+// Regression: --fix of all twelve X_BC / X_TE parameters crashed: the placement stage had
 // nothing to fit. It now keeps the fixed placement and fits the kinematics.
 TEST(IdentificationInputTest, FixingTheWholePlacementLeavesTheKinematicsToFit) {
   const Scenario s = MakeScenario(TrueGeometry::kPerturbedModel12, 7, false);

@@ -50,7 +50,7 @@ TrueSetup TrueModel31Setup() {
 }
 
 std::vector<DatasetRow> NoiseFreeRows(const TrueSetup& setup) {
-  const bool is31 = setup.model->name() == "31";
+  const bool is31 = setup.model->kind() == ModelKind::k31;
   const RigidTransform X_B31B = NominalX_B31B(kPaperIdentifiedModel12);
   std::vector<DatasetRow> rows;
   for (const PlannedPose& planned : GridPosePlan()) {

@@ -227,7 +227,7 @@ TEST(Validate, MeasuredSquaresNeedTheModel12PlacementAndThePlan) {
   no_plan.square_plan.reset();
   EXPECT_THROW(Validate(no_plan), std::invalid_argument);
   in.result31 = in.result12;
-  in.result31->model = "31";
+  in.result31->model = ModelKind::k31;
   in.result12.reset();
   try {
     Validate(in);

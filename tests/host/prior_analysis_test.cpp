@@ -71,7 +71,7 @@ TEST(PriorAnalysisTest, TooFewOrUnturnedPosesAreReportedNotGuessed) {
   EXPECT_TRUE(flat.X_BC.IsNearlyEqualTo(PaperX_BC(), 0.0, 0.0));  // a priori returned
 }
 
-// Issue 13: comparing every pair of poses took 11 s for 8,000 rows and about two days for a
+// Regression: comparing every pair of poses took 11 s for 8,000 rows and about two days for a
 // million. The work is counted, not timed: a few relative rotations per pose.
 TEST(PriorAnalysisTest, WorkIsLinearInThePoseCountAndTheAxisIsStillFound) {
   const Eigen::Vector3d axis_C = Eigen::Vector3d(0.1, -0.2, 1.0).normalized();

@@ -38,7 +38,7 @@ TEST(TrueRobot, SameSeedGivesSameRobotAndOtherSeedAnother) {
   EXPECT_EQ(Model31::ToVector(*a.model31), Model31::ToVector(*b.model31));
   EXPECT_TRUE(a.X_BC.IsNearlyEqualTo(b.X_BC, 0.0, 0.0));
   EXPECT_GT((Model31::ToVector(*a.model31) - Model31::ToVector(*c.model31)).norm(), 1e-3);
-  EXPECT_STREQ(a.truth_model(), "31");
+  EXPECT_EQ(a.truth_model(), ModelKind::k31);
 }
 
 TEST(TrueRobot, PerturbationsHaveTheConfiguredSize) {

@@ -144,7 +144,7 @@ TEST(Validate, PerfectResultRemovesTheErrorsOnThePaperScenario) {
 
 TEST(Validate, RejectsAResultOfTheOtherModel) {
   ValidationInputs in = PaperValidationInputs();
-  in.result12->model = "31";
+  in.result12->model = ModelKind::k31;
   try {
     Validate(in);
     FAIL() << "a Model 31 result was accepted as the Model 12 one";

@@ -18,7 +18,7 @@ SimulatedRobot PaperTruth() {
 IdentificationResult PerfectModel12Result(const SimulatedRobot& truth,
                                           const std::vector<int64_t>& valid) {
   IdentificationResult result;
-  result.model = "12";
+  result.model = ModelKind::k12;
   const Eigen::VectorXd values = Model12::ToVector(truth.model12);
   const Eigen::VectorXd apriori = Model12::ToVector(PaperAprioriRobot().model12);
   for (size_t k = 0; k < Model12::ParameterNames().size(); ++k) {

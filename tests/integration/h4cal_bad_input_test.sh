@@ -36,7 +36,7 @@ rc=$?
 [ $rc -eq 3 ] || fail "fk of impossible joints exited $rc, expected 3"
 ! grep -qi nan "$dir/fk.csv" || fail "fk wrote NaN"
 
-# --- Issue 13: crashes, hangs, data loss and silent errors on files and options. -------------
+# --- Regressions: crashes, hangs, data loss and silent errors on files and options. -------------
 # `expect_error NAME PATTERN CMD...`: CMD exits 1 (an error, not a crash: 134/139 are
 # signals, 124 a hang stopped by timeout) and its message matches PATTERN.
 expect_error() {
