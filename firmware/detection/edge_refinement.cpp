@@ -167,12 +167,21 @@ void AddInnerEdge(const InnerEdge& inner, const Profile& profile, double t, doub
   *dF_ds -= w * dG_ds;
 }
 
+// H += J J^T on and below the diagonal only (21 of 36 products: the fit's inner loop).
+void AddLowerOuterProduct(const Eigen::Matrix<double, 6, 1>& J, Eigen::Matrix<double, 6, 6>* H) {
+  for (int col = 0; col < 6; ++col) {
+    for (int row = col; row < 6; ++row) (*H)(row, col) += J[row] * J[col];
+  }
+}
+
 // Gauss-Newton on (phi, c, a, b, s, k) for I = (1 + k tau) (a + b (F(n . q - c; s) + inner
 // edge term)), tau in [-1, 1] along the side: the light falling on a side changes along it
 // (an illumination gradient, vignetting), scaling its dark and bright levels together; a
 // model with constant levels would tilt the fitted line toward the darker end.
 // `line_covariance` receives the covariance of (phi, c) from the pixel noise the residuals
-// show (sigma^2 H^-1, marginal over the levels, blur and shading).
+// show (sigma^2 H^-1, marginal over the levels, blur and shading). The residuals and H are
+// those at the start of the last iteration: its step is below a thousandth of the line's
+// noise when converged, and evaluating every pixel once more would cost a tenth of the fit.
 bool FitEdge(const std::vector<Sample>& samples, int iterations, double pixel_scale,
              bool fit_shading, const InnerEdge& inner, Line* line, double* a, double* b, double* s,
              double* rms, Eigen::Matrix2d* line_covariance) {
@@ -185,8 +194,10 @@ bool FitEdge(const std::vector<Sample>& samples, int iterations, double pixel_sc
   const double t_half = std::max(0.5 * (t_max - t_min), 1e-9);
   double k = 0;
   Eigen::Matrix<double, 6, 6> H = Eigen::Matrix<double, 6, 6>::Zero();
+  double sum = 0;  // of squared residuals at the last iteration's start
   for (int it = 0; it < iterations; ++it) {
     H.setZero();
+    sum = 0;
     Eigen::Matrix<double, 6, 1> g = Eigen::Matrix<double, 6, 1>::Zero();
     const Eigen::Vector2d n = line->n();
     const Eigen::Vector2d n_perp(-n.y(), n.x());
@@ -203,9 +214,11 @@ bool FitEdge(const std::vector<Sample>& samples, int iterations, double pixel_sc
       const double dI_dd = gain * *b * dF_dd;
       Eigen::Matrix<double, 6, 1> J;
       J << dI_dd * n_perp.dot(sample.q), -dI_dd, gain, gain * F, gain * *b * dF_ds, tau * level;
-      H.noalias() += J * J.transpose();
+      AddLowerOuterProduct(J, &H);
       g.noalias() += J * r;
+      sum += r * r;
     }
+    H.triangularView<Eigen::StrictlyUpper>() = H.transpose();
     if (!fit_shading) {  // k held at 0
       H.row(5).setZero();
       H.col(5).setZero();
@@ -223,18 +236,6 @@ bool FitEdge(const std::vector<Sample>& samples, int iterations, double pixel_sc
     k = std::clamp(k + step[5], -0.5, 0.5);
     // Converged well below the noise of a line (~1e-3 px).
     if (std::abs(step[1]) < 1e-5 && std::abs(step[0]) < 1e-7) break;
-  }
-  double sum = 0;
-  const Eigen::Vector2d n = line->n();
-  const Profile profile = ProfileFor(n, pixel_scale);
-  for (const Sample& sample : samples) {
-    double F, dF_dd, dF_ds;
-    const double d = n.dot(sample.q) - line->c;
-    profile.Eval(d, *s, &F, &dF_dd, &dF_ds);
-    AddInnerEdge(inner, profile, sample.t, d, *s, &F, &dF_dd, &dF_ds);
-    const double gain = 1.0 + k * (sample.t - t_mid) / t_half;
-    const double r = gain * (*a + *b * F) - sample.value;
-    sum += r * r;
   }
   *rms = std::sqrt(sum / static_cast<double>(samples.size()));
   const double dof = static_cast<double>(samples.size()) - 6.0;
