@@ -182,9 +182,9 @@ void AddLowerOuterProduct(const Eigen::Matrix<double, 6, 1>& J, Eigen::Matrix<do
 // show (sigma^2 H^-1, marginal over the levels, blur and shading). The residuals and H are
 // those at the start of the last iteration: its step is below a thousandth of the line's
 // noise when converged, and evaluating every pixel once more would cost a tenth of the fit.
-bool FitEdge(const std::vector<Sample>& samples, int iterations, double pixel_scale,
-             bool fit_shading, const InnerEdge& inner, Line* line, double* a, double* b, double* s,
-             double* rms, Eigen::Matrix2d* line_covariance) {
+bool FitEdge(const std::vector<Sample>& samples, int iterations, double tolerance_px,
+             double pixel_scale, bool fit_shading, const InnerEdge& inner, Line* line, double* a,
+             double* b, double* s, double* rms, Eigen::Matrix2d* line_covariance) {
   double t_min = samples.front().t, t_max = samples.front().t;
   for (const Sample& sample : samples) {
     t_min = std::min(t_min, sample.t);
@@ -234,8 +234,8 @@ bool FitEdge(const std::vector<Sample>& samples, int iterations, double pixel_sc
     *b += step[3];
     *s = std::clamp(*s + step[4], 0.2, 5.0);
     k = std::clamp(k + step[5], -0.5, 0.5);
-    // Converged well below the noise of a line (~1e-3 px).
-    if (std::abs(step[1]) < 1e-5 && std::abs(step[0]) < 1e-7) break;
+    // The angle's step over a 100 px side moves its ends as much as tolerance_px.
+    if (std::abs(step[1]) < tolerance_px && std::abs(step[0]) < 0.01 * tolerance_px) break;
   }
   *rms = std::sqrt(sum / static_cast<double>(samples.size()));
   const double dof = static_cast<double>(samples.size()) - 6.0;
@@ -430,15 +430,19 @@ bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
       }
       double rms = 0;
       Eigen::Matrix2d line_covariance;
-      if (!FitEdge(samples, options.iterations, pixel_scale, options.fit_shading, inner, &line,
-                   &level_a, &level_b, &s, &rms, &line_covariance)) {
+      // Earlier passes only place the next pass's band: a hundredth of a pixel is enough
+      // there; the last converges well below the noise of a line (~1e-3 px).
+      const bool last_pass = pass == options.passes - 1;
+      const double tolerance_px = last_pass ? 1e-5 : 1e-2;
+      if (!FitEdge(samples, options.iterations, tolerance_px, pixel_scale, options.fit_shading,
+                   inner, &line, &level_a, &level_b, &s, &rms, &line_covariance)) {
         return false;
       }
       Eigen::LLT<Eigen::Matrix2d> llt(line_covariance);
       if (llt.info() != Eigen::Success) return false;
       line_sqrt_covariance[k] = llt.matrixL();
       // Something else in the band (an occluder, a shadow, a neighbour): not a clean step.
-      if (pass == options.passes - 1 && rms > options.max_residual * level_b) return false;
+      if (last_pass && rms > options.max_residual * level_b) return false;
     }
   }
   std::array<Eigen::Vector2d, 4> refined, erosion;
