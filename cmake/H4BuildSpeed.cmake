@@ -31,10 +31,14 @@ function(h4_unity_exclude dir)
 endfunction()
 
 if(H4_UNITY_BUILD)
-  foreach(target h4_common h4_host h4_firmware h4_common_tests h4_messages_tests
+  get_property(folder_libraries GLOBAL PROPERTY H4_FOLDER_LIBRARIES)
+  foreach(target h4_common ${folder_libraries} h4_common_tests h4_messages_tests
                  h4_host_tests h4_firmware_tests)
     if(TARGET ${target})
-      set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
+      get_target_property(type ${target} TYPE)
+      if(NOT type STREQUAL "INTERFACE_LIBRARY")
+        set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
+      endif()
     endif()
   endforeach()
   # model31.cpp: the same anonymous-namespace names as model12.cpp, other meanings.
