@@ -102,14 +102,6 @@ double UnexplainedMisfit(const VerdictInputs& in) {
   return reduced > 1.0 ? in.position_misfit_m * std::sqrt(1.0 - 1.0 / reduced) : 0.0;
 }
 
-// Below this unexplained misfit a fit the chi-square test rejects is still accurate: it is
-// a quarter of the tightest accuracy the method targets (README, "How well it works":
-// 0.10 mm for Model 12, 0.20 mm for Model 31), and the test then only says that the
-// camera's pose covariance is optimistic (the sigmas are scaled by the reduced
-// chi-square). A rendered camera in the live demo fits Model 31 to 0.015 mm with
-// chi-square / dof 3.1. m.
-constexpr double kNegligibleMisfit_m = 0.025e-3;
-
 bool WithinNoise(const VerdictInputs& in, const VerdictOptions& options) {
   return ChiSquareUpperTail(in.chi2, Dof(in)) >= options.significance ||
          ReducedChi2(in) <= options.tolerated_reduced_chi2;
@@ -118,7 +110,7 @@ bool WithinNoise(const VerdictInputs& in, const VerdictOptions& options) {
 std::optional<VerdictCase> ModelCannotDescribe(const VerdictInputs& in,
                                                const VerdictOptions& options) {
   const double reduced = ReducedChi2(in);
-  if (WithinNoise(in, options) || UnexplainedMisfit(in) < kNegligibleMisfit_m) {
+  if (WithinNoise(in, options) || UnexplainedMisfit(in) < options.negligible_misfit_m) {
     return std::nullopt;
   }
   const std::string misfit = fmt::format(
@@ -240,6 +232,7 @@ bool VerdictOptions::IsValid(std::string* why) const {
     return fail("the largest parameter changes must be positive");
   }
   if (!(max_condition_number > 1)) return fail("max_condition_number must exceed 1");
+  if (!(negligible_misfit_m >= 0)) return fail("negligible_misfit_m must be >= 0");
   return true;
 }
 
