@@ -116,6 +116,48 @@ void ReadFixed(const JsonValue& list, IdentificationResult* result) {
   }
 }
 
+ResultVerdict ReadVerdict(const JsonValue& object) {
+  ResultVerdict verdict{object["code"].String(), object["text"].String(), {}};
+  if (object.HasNonNull("figures")) {
+    const JsonValue figures = object["figures"];
+    figures.RequireObject();
+    for (const auto& item : figures.json().items()) {
+      verdict.figures.emplace_back(item.key(), figures[item.key()].Number());
+    }
+  }
+  return verdict;
+}
+
+// The verdict, the rejected poses with their scores and the provenance: extra keys that
+// results written before them lack.
+void ReadJudgement(const JsonValue& root, IdentificationResult* result) {
+  if (root.HasNonNull("verdict")) result->verdict = ReadVerdict(root["verdict"]);
+  if (root.HasNonNull("rejected_details")) {
+    const JsonValue list = root["rejected_details"];
+    const size_t n = list.ArraySize();
+    for (size_t i = 0; i < n; ++i) {
+      const JsonValue entry = list.At(i);
+      result->rejected_details.push_back(
+          {entry["pose_id"].Integer(), entry["score"].Number(), entry["reason"].String()});
+    }
+  }
+  if (root.HasNonNull("cross_validation")) {
+    const JsonValue object = root["cross_validation"];
+    result->cross_validation = CrossValidationFigures{
+        static_cast<int>(object["folds"].Integer()), static_cast<int>(object["poses"].Integer()),
+        object["position_rms_m"].NonNegativeNumber(),
+        object["rotation_rms_rad"].NonNegativeNumber(), object["reduced_chi2"].NonNegativeNumber()};
+  }
+  if (root.HasNonNull("provenance")) {
+    const JsonValue object = root["provenance"];
+    ResultProvenance provenance{object["h4cal_version"].String(), object["date_utc"].String(), {}};
+    const JsonValue inputs = object["inputs"];
+    const size_t n = inputs.ArraySize();
+    for (size_t i = 0; i < n; ++i) provenance.inputs.push_back(inputs.At(i).String());
+    result->provenance = provenance;
+  }
+}
+
 void ReadExtras(const JsonValue& root, IdentificationResult* result) {
   if (root.HasNonNull("estimator")) result->estimator = root["estimator"].String();
   result->condition_number = OptionalNumber(root, "condition_number");
@@ -139,6 +181,7 @@ void ReadExtras(const JsonValue& root, IdentificationResult* result) {
     const size_t n = list.ArraySize();
     for (size_t i = 0; i < n; ++i) result->log.push_back(list.At(i).String());
   }
+  ReadJudgement(root, result);
 }
 
 Ordered Numbers(const double* values, size_t n, const std::string& field) {
@@ -165,6 +208,44 @@ Ordered Number(double value, const std::string& field) {
 
 Ordered NumberOrNull(const std::optional<double>& value, const std::string& field) {
   return value ? Number(*value, field) : Ordered(nullptr);
+}
+
+void WriteJudgement(const IdentificationResult& result, Ordered* root) {
+  if (result.verdict) {
+    Ordered figures = Ordered::object();
+    for (const auto& [name, value] : result.verdict->figures) {
+      figures[name] = Number(value, "verdict.figures." + name);
+    }
+    (*root)["verdict"] = {
+        {"code", result.verdict->code}, {"text", result.verdict->text}, {"figures", figures}};
+  } else {
+    (*root)["verdict"] = nullptr;
+  }
+  Ordered rejected = Ordered::array();
+  for (const RejectedPose& pose : result.rejected_details) {
+    rejected.push_back({{"pose_id", pose.pose_id},
+                        {"score", Number(pose.score, "rejected_details.score")},
+                        {"reason", pose.reason}});
+  }
+  (*root)["rejected_details"] = rejected;
+  if (result.cross_validation) {
+    const CrossValidationFigures& cv = *result.cross_validation;
+    (*root)["cross_validation"] = {
+        {"folds", cv.folds},
+        {"poses", cv.poses},
+        {"position_rms_m", Number(cv.position_rms_m, "cross_validation.position_rms_m")},
+        {"rotation_rms_rad", Number(cv.rotation_rms_rad, "cross_validation.rotation_rms_rad")},
+        {"reduced_chi2", Number(cv.reduced_chi2, "cross_validation.reduced_chi2")}};
+  } else {
+    (*root)["cross_validation"] = nullptr;
+  }
+  if (result.provenance) {
+    (*root)["provenance"] = {{"h4cal_version", result.provenance->h4cal_version},
+                             {"date_utc", result.provenance->date_utc},
+                             {"inputs", result.provenance->inputs}};
+  } else {
+    (*root)["provenance"] = nullptr;
+  }
 }
 
 }  // namespace
@@ -244,6 +325,7 @@ std::string FormatIdentificationResult(const IdentificationResult& result) {
   root["predicted_position_accuracy_m"] =
       NumberOrNull(result.predicted_position_accuracy_m, "predicted_position_accuracy_m");
   root["log"] = result.log;
+  WriteJudgement(result, &root);
   return root.dump(2) + "\n";
 }
 

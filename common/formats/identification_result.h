@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/geometry/rigid_transform.h"
@@ -31,6 +32,40 @@ struct CorrelatedPair {
   double correlation = 0.0;
 };
 
+/// The judgement of a result (`verdict` key): a code a program can act on, the text a
+/// technician acts on, and the figures that decided it (name -> number, SI or plain ratio).
+struct ResultVerdict {
+  std::string code;  ///< good | model_cannot_describe | inconsistent_with_apriori |
+                     ///< not_identifiable | too_few_poses
+  std::string text;
+  std::vector<std::pair<std::string, double>> figures;
+};
+
+/// A pose left out of the final fit, with its score (how far it is from what the fit
+/// predicts, in units of its noise) and why it was rejected.
+struct RejectedPose {
+  int64_t pose_id = 0;
+  double score = 0.0;
+  std::string reason;
+};
+
+/// Who made a result, when and from what (`provenance` key).
+struct ResultProvenance {
+  std::string h4cal_version;
+  std::string date_utc;             ///< ISO 8601, e.g. 2026-11-23T20:01:02Z
+  std::vector<std::string> inputs;  ///< the input files as given on the command line
+};
+
+/// The held-out figures of k-fold cross-validation (`cross_validation` key): every pose
+/// predicted by the model fitted without its fold.
+struct CrossValidationFigures {
+  int folds = 0;
+  int poses = 0;                ///< poses predicted
+  double position_rms_m = 0.0;  ///< board position, predicted vs measured
+  double rotation_rms_rad = 0.0;
+  double reduced_chi2 = 0.0;  ///< of the held-out residuals normalised by the covariance
+};
+
 struct IdentificationResult {
   ModelKind model = ModelKind::k12;  ///< "12" or "31" in the file
   std::vector<ResultParameter> parameters;
@@ -49,6 +84,10 @@ struct IdentificationResult {
   std::optional<double> valid_rotation_rms_rad;
   std::optional<double> predicted_position_accuracy_m;  ///< from the covariance, calib poses
   std::vector<std::string> log;                         ///< solver stages, one line each
+  std::optional<ResultVerdict> verdict;                 ///< absent in older results
+  std::vector<RejectedPose> rejected_details;           ///< one per rejected pose
+  std::optional<ResultProvenance> provenance;
+  std::optional<CrossValidationFigures> cross_validation;
 
   /// The parameter by name, or nullptr.
   const ResultParameter* Find(const std::string& name) const;

@@ -1,6 +1,7 @@
 // Identification timing on the paper's 81-pose grid (simulated, paper noise, all poses for
 // calibration), all in one run so that ratios hold on a loaded machine:
-//  - the whole pipeline for Models 12 and 31 from the rough a priori (default: NLopt
+//  - the whole pipeline for Models 12 and 31 from the rough a priori, with and without
+//    the k-fold cross-validation (default: NLopt
 //    LD_LBFGS loosely, then the Levenberg-Marquardt polish, per stage; and LM alone,
 //    `--algorithm none`), with per-phase counters (analysis, minimisers, report, ms);
 //  - the final measurement-space stage alone, from the same start: the default NLopt stage
@@ -70,11 +71,13 @@ const Problem& GetProblem(ModelKind model_kind) {
   return model_kind == ModelKind::k31 ? p31 : p12;
 }
 
-void RunPipeline(benchmark::State& state, ModelKind model_kind, const std::string& algorithm) {
+void RunPipeline(benchmark::State& state, ModelKind model_kind, const std::string& algorithm,
+                 int folds = CrossValidationOptions{}.folds) {
   const Problem& p = GetProblem(model_kind);
   IdentificationOptions options;
   options.nlopt.algorithm = algorithm;
-  double cost = 0.0;
+  options.cross_validation.folds = folds;
+  double cost = 0.0, cv_seconds = 0.0;
   bool usable = true;
   IdentificationSummary last;
   for (auto _ : state) {
@@ -82,8 +85,12 @@ void RunPipeline(benchmark::State& state, ModelKind model_kind, const std::strin
         Identify(*p.model, p.apriori.X_BC(), p.apriori.X_TE(), p.rows, {}, options);
     cost = out.summary.final_cost;
     usable = usable && out.summary.usable;
+    cv_seconds = out.cross_validation.seconds;
     last = std::move(out.summary);
   }
+  // The k-fold cross-validation (folds refitted from the full fit; the outlier check reuses
+  // it): its share of the pipeline, wall ms.
+  state.counters["cv_ms"] = 1e3 * cv_seconds;
   // Where the time goes in the last run (wall ms): identifiability analyses, NLopt and LM
   // over all stages, the outlier check and the report (covariance, re-check, residuals).
   double analysis = 0.0, nlopt = 0.0, lm = 0.0;
@@ -105,6 +112,14 @@ void BM_IdentifyModel12(benchmark::State& state) { RunPipeline(state, ModelKind:
 void BM_IdentifyModel31(benchmark::State& state) { RunPipeline(state, ModelKind::k31, "LD_LBFGS"); }
 void BM_IdentifyModel12LmOnly(benchmark::State& state) {
   RunPipeline(state, ModelKind::k12, "none");
+}
+// The pipeline without cross-validation (`--folds 0`, the in-sample outlier check): what
+// one fit costs, against which the default's cross-validation is measured.
+void BM_IdentifyModel12NoCrossValidation(benchmark::State& state) {
+  RunPipeline(state, ModelKind::k12, "LD_LBFGS", 0);
+}
+void BM_IdentifyModel31NoCrossValidation(benchmark::State& state) {
+  RunPipeline(state, ModelKind::k31, "LD_LBFGS", 0);
 }
 void BM_IdentifyModel31LmOnly(benchmark::State& state) {
   RunPipeline(state, ModelKind::k31, "none");
@@ -267,6 +282,8 @@ BENCHMARK(BM_MeasurementStageCeresModel31)->Unit(benchmark::kMillisecond);
 
 BENCHMARK(BM_IdentifyModel12)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IdentifyModel31)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_IdentifyModel12NoCrossValidation)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_IdentifyModel31NoCrossValidation)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IdentifyModel12LmOnly)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IdentifyModel31LmOnly)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MeasurementStageLmModel12)->Unit(benchmark::kMillisecond);

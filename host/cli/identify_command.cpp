@@ -3,7 +3,9 @@
 // common/formats/README.md. `--from result12.json` starts Model 31 from a Model 12 result (paper
 // IV.C).
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <ctime>
 #include <numbers>
 
 #include <spdlog/spdlog.h>
@@ -27,7 +29,8 @@ struct IdentifyCommandOptions {
   std::string robot_path;
   std::string data_path;
   std::string model = "12";  ///< the --model text, parsed in Run
-  int validation = 10;
+  int validation = 0;
+  int folds = 10;
   bool validation_given = false;  ///< --validation on the command line (not the default)
   uint64_t seed = 1;
   std::string from_path;
@@ -40,12 +43,27 @@ struct IdentifyCommandOptions {
   std::string report_dir;
 };
 
+// The verdict heads the output: what the technician acts on comes first.
+void PrintVerdict(const IdentificationResult& r) {
+  if (!r.verdict) return;
+  std::printf("VERDICT: %s\n  %s\n", r.verdict->code.c_str(), r.verdict->text.c_str());
+}
+
+void PrintRejectedPoses(const IdentificationResult& r) {
+  for (const RejectedPose& pose : r.rejected_details) {
+    std::printf("  rejected pose %lld: score %.3g, %s\n", static_cast<long long>(pose.pose_id),
+                pose.score, pose.reason.c_str());
+  }
+}
+
 void PrintHeadline(const IdentificationOutcome& outcome) {
   const IdentificationResult& r = outcome.result;
+  PrintVerdict(r);
   std::printf("Model %s, %s estimator: %s\n", ToString(r.model), r.estimator.c_str(),
-              outcome.summary.usable ? "usable" : "NOT usable");
+              outcome.summary.usable ? "converged" : "NOT converged");
   std::printf("  poses: %zu calibration, %zu validation, %zu rejected\n", r.calib_poses.size(),
               r.valid_poses.size(), r.rejected_poses.size());
+  PrintRejectedPoses(r);
   if (r.condition_number) std::printf("  condition number (scaled): %.3g\n", *r.condition_number);
   for (const FixedParameter& f : r.fixed)
     std::printf("  fixed %s: %s\n", f.name.c_str(), f.reason.c_str());
@@ -58,6 +76,14 @@ void PrintHeadline(const IdentificationOutcome& outcome) {
   if (r.valid_position_rms_m && r.valid_rotation_rms_rad) {
     std::printf("  held-out board pose vs measured: %.4f mm, %.4f deg RMS\n",
                 1e3 * *r.valid_position_rms_m, DegreesFromRadians(*r.valid_rotation_rms_rad));
+  }
+  if (r.cross_validation) {
+    std::printf(
+        "  held-out (%d-fold cross-validation, %d poses): %.4f mm, %.4f deg RMS, "
+        "normalised chi-square / dof %.3g\n",
+        r.cross_validation->folds, r.cross_validation->poses,
+        1e3 * r.cross_validation->position_rms_m,
+        DegreesFromRadians(r.cross_validation->rotation_rms_rad), r.cross_validation->reduced_chi2);
   }
   if (r.predicted_position_accuracy_m) {
     std::printf("  predicted position accuracy (1 sigma, calibration poses): %.4f mm\n",
@@ -96,6 +122,23 @@ void RequireUsableSplit(const IdentifyCommandOptions& options,
   }
 }
 
+// Now as ISO 8601 UTC, e.g. 2026-11-23T20:01:02Z.
+std::string UtcTimestamp() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+// Who made the result, when, from which files.
+ResultProvenance ProvenanceOf(const IdentifyCommandOptions& options) {
+  ResultProvenance provenance{H4_VERSION, UtcTimestamp(), {options.robot_path, options.data_path}};
+  if (!options.from_path.empty()) provenance.inputs.push_back(options.from_path);
+  return provenance;
+}
+
 void Run(const IdentifyCommandOptions& options, const std::string& command_line) {
   std::string algorithm_why;
   if (!IsValidNloptAlgorithm(options.algorithm, &algorithm_why)) {
@@ -116,6 +159,8 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
   id_options.fixed_parameters = options.fix;
   id_options.reject_outliers = !options.no_outliers;
   id_options.lm_polish = !options.no_polish;
+  id_options.cross_validation.folds = options.folds;
+  id_options.cross_validation.seed = options.seed;
   Progress progress("identify Model " + options.model, 0);
   int iterations = 0;
   id_options.progress = [&](const std::string& stage, int iteration, double cost) {
@@ -141,10 +186,13 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
     return IdentifyRobot(robot, model, rows, id_options, options.validation, options.seed);
   }();
   progress.Finish(outcome.summary.message);
-  WriteIdentificationResult(options.out_path, outcome.result);
+  IdentificationResult result = outcome.result;
+  result.provenance = ProvenanceOf(options);
+  WriteIdentificationResult(options.out_path, result);
   spdlog::debug("{}", outcome.summary.FullReport());
   PrintHeadline(outcome);
   spdlog::info("result written to {}", options.out_path);
+  if (outcome.verdict != Verdict::kGood) SetExitCode(3);
   if (!outcome.summary.usable) {
     spdlog::error("the identification is not usable: {}", outcome.summary.message);
     SetExitCode(3);
@@ -182,10 +230,18 @@ void AddIdentifyCommand(CLI::App& app) {
       ->capture_default_str();
   command
       ->add_option("--validation", options->validation,
-                   "Poses held out for validation when the dataset has no 'set' column")
+                   "Poses held out of the fit (the paper's fixed split) when the dataset has no "
+                   "'set' column; 0: every pose in the fit, held-out figures by cross-validation")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  command->add_option("--seed", options->seed, "Seed of that split")->capture_default_str();
+  command->add_option("--seed", options->seed, "Seed of that split and of the folds")
+      ->capture_default_str();
+  command
+      ->add_option("--folds", options->folds,
+                   "k of the k-fold cross-validation giving the held-out figures and judging "
+                   "outliers (each pose predicted by a fit without it); 0: off")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   command
       ->add_option("--from", options->from_path,
                    "Model 12 result to start Model 31 from; parameters Model 31 must fix "
@@ -213,7 +269,9 @@ void AddIdentifyCommand(CLI::App& app) {
   command->add_option("--out", options->out_path, "Result JSON")->required();
   command->add_option("--report", options->report_dir,
                       "Also validate on the held-out poses and write DIR/report.html");
-  command->footer("Exit code 3: the result was written but is not usable (see the log).");
+  command->footer(
+      "Exit code 3: the result was written but its verdict is not 'good' (printed first, and "
+      "in the result's 'verdict' key).");
   command->callback([options, command] {
     options->validation_given = command->count("--validation") > 0;
     Run(*options, "h4cal identify " + ReportCommandLine(*command));

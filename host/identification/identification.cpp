@@ -15,8 +15,10 @@
 #include <fmt/ranges.h>
 
 #include "common/timing/clock.h"
+#include "common/units.h"
 #include "host/identification/identified_robot.h"
 #include "host/identification/solution_summary.h"
+#include "host/identification/verdict_inputs.h"
 #include "host/kinematics/model12.h"
 #include "host/kinematics/model31.h"
 
@@ -46,12 +48,25 @@ void RequireIdentifiableInput(const KinematicModel& model, const ParameterVector
 
 // What one identification carries from step to step.
 struct IdentificationState {
-  ParameterVector p;              ///< the current values, with the last stage's mask
-  std::vector<DatasetRow> rows;   ///< the calibration poses still in
-  std::vector<int64_t> rejected;  ///< pose ids rejected as outliers
-  FinalStageOutputs final_stage;  ///< the estimator's analysis and solution, on `rows`
-  bool final_ok = false;          ///< the last estimator stage converged
+  ParameterVector p;                           ///< the current values, with the last stage's mask
+  std::vector<DatasetRow> rows;                ///< the calibration poses still in
+  std::vector<int64_t> rejected;               ///< pose ids rejected as outliers
+  std::vector<RejectedPose> rejected_details;  ///< the same with score and reason
+  FinalStageOutputs final_stage;               ///< the estimator's analysis and solution, on `rows`
+  bool final_ok = false;                       ///< the last estimator stage converged
+  CrossValidation cv;                          ///< of `p` on `rows` when cv_current
+  bool cv_current = false;
 };
+
+// Cross-validates the current solution unless already done.
+void UpdateCrossValidation(const StageContext& context, IdentificationState* state) {
+  if (state->cv_current) return;
+  const IdentificationOptions& options = context.options;
+  state->cv = CrossValidate(
+      {context.model, state->p, state->rows, options.estimator, options.cost, options.lm},
+      options.cross_validation);
+  state->cv_current = true;
+}
 
 void RecordStage(const StageSummary& stage, IdentificationOutcome* out) {
   out->result.log.push_back(StageLogLine(stage));
@@ -77,36 +92,108 @@ bool RunPlannedStages(const StageContext& context, IdentificationState* state,
   return true;
 }
 
-// The poses whose residual norm (on the estimator's solution) exceeds outlier_factor times
-// the median, and the poses kept.
+// The poses judged outliers (with their scores and reasons) and the poses kept.
 struct OutlierCheck {
   std::vector<int64_t> outliers;
+  std::vector<RejectedPose> details;
   std::vector<DatasetRow> kept;
   double limit = 0.0;
 };
 
-std::optional<OutlierCheck> CheckOutliers(const IdentificationOptions& options,
-                                          const IdentificationState& state,
-                                          IdentificationSummary* summary) {
-  const auto check_start = std::chrono::steady_clock::now();
+// Without cross-validation: the poses whose residual norm on the estimator's solution
+// exceeds outlier_factor times the median's.
+std::optional<OutlierCheck> CheckOutliersInSample(const IdentificationOptions& options,
+                                                  const IdentificationState& state) {
   const Eigen::VectorXd& r = state.final_stage.solution.r;
   const Eigen::Index m = IdentificationCost::ResidualsPerPose(options.estimator);
   std::vector<double> norms;
   for (Eigen::Index j = 0; j + m <= r.size(); j += m) norms.push_back(r.segment(j, m).norm());
-  summary->outlier_seconds += SecondsSince(check_start);
-  if (norms.empty()) return std::nullopt;
+  if (norms.empty() || norms.size() != state.rows.size()) return std::nullopt;
   std::vector<double> sorted = norms;
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(sorted.size() / 2),
                    sorted.end());
   OutlierCheck check;
-  check.limit = options.outlier_factor * sorted[sorted.size() / 2];
+  const double median = sorted[sorted.size() / 2];
+  check.limit = options.outlier_factor * median;
   for (size_t j = 0; j < state.rows.size(); ++j) {
+    const double score = median > 0 ? norms[j] / median : 0.0;
     if (norms[j] > check.limit) {
       check.outliers.push_back(state.rows[j].pose_id);
+      check.details.push_back(
+          {state.rows[j].pose_id, score,
+           fmt::format("in-sample residual norm {:.3g} times the median pose's (limit {:.3g})",
+                       score, options.outlier_factor)});
     } else {
       check.kept.push_back(state.rows[j]);
     }
   }
+  return check;
+}
+
+// The median of a 6-dof chi-square: a pose's held-out chi-square over it, at the median
+// pose, is how much the misfit of every pose exceeds the noise model.
+constexpr double kChi2Median6Dof = 5.348;
+
+// See CheckOutliersHeldOut: gross outliers first, borderline poses in a later round.
+constexpr double kSwampingFactor = 4.0;
+
+// With cross-validation: each pose's held-out chi-square, divided by the median pose's
+// excess (at least 1), against outlier_chi2_limit. A pose the fold's model cannot predict
+// is an outlier too.
+std::optional<OutlierCheck> CheckOutliersHeldOut(const IdentificationOptions& options,
+                                                 const IdentificationState& state) {
+  const std::vector<HeldOutPrediction>& poses = state.cv.poses;
+  if (poses.size() != state.rows.size()) return std::nullopt;
+  std::vector<double> chi2;
+  for (const HeldOutPrediction& pose : poses) {
+    if (pose.ok) chi2.push_back(pose.chi2);
+  }
+  if (chi2.empty()) return std::nullopt;
+  std::nth_element(chi2.begin(), chi2.begin() + static_cast<long>(chi2.size() / 2), chi2.end());
+  const double excess = std::max(1.0, chi2[chi2.size() / 2] / kChi2Median6Dof);
+  // A gross outlier is among the training poses of every other fold and inflates the
+  // held-out residuals of the poses near it: a round rejects the poses within a factor
+  // kSwampingFactor of the worst score, the others are judged again without them.
+  double worst = 0.0;
+  for (const HeldOutPrediction& pose : poses) {
+    if (pose.ok) worst = std::max(worst, pose.chi2 / excess);
+  }
+  OutlierCheck check;
+  check.limit = std::max(options.outlier_chi2_limit, worst / kSwampingFactor);
+  for (size_t j = 0; j < poses.size(); ++j) {
+    const double score = poses[j].chi2 / excess;
+    if (!poses[j].ok || score > check.limit) {
+      check.outliers.push_back(state.rows[j].pose_id);
+      check.details.push_back(
+          {state.rows[j].pose_id, poses[j].ok ? score : 0.0,
+           poses[j].ok ? fmt::format("held-out chi-square {:.3g} (6 dof; limit {:.3g}{}): {:.3f} "
+                                     "mm from the pose the model fitted without it predicts",
+                                     score, options.outlier_chi2_limit,
+                                     excess > 1.0 ? fmt::format(", after dividing by the "
+                                                                "median pose's {:.3g}",
+                                                                excess)
+                                                  : "",
+                                     poses[j].position_error_m * 1e3)
+                       : "the model fitted without it cannot predict it (forward kinematics "
+                         "fails)"});
+    } else {
+      check.kept.push_back(state.rows[j]);
+    }
+  }
+  return check;
+}
+
+std::optional<OutlierCheck> CheckOutliers(const StageContext& context, IdentificationState* state,
+                                          IdentificationSummary* summary) {
+  const auto check_start = std::chrono::steady_clock::now();
+  std::optional<OutlierCheck> check;
+  if (context.options.cross_validation.folds >= 2) {
+    UpdateCrossValidation(context, state);
+    check = CheckOutliersHeldOut(context.options, *state);
+  } else {
+    check = CheckOutliersInSample(context.options, *state);
+  }
+  summary->outlier_seconds += SecondsSince(check_start);
   return check;
 }
 
@@ -117,7 +204,7 @@ void RejectOutliers(const StageContext& context, size_t calib_count, Identificat
   const IdentificationOptions& options = context.options;
   std::vector<std::string>& log = out->result.log;
   for (int round = 0; options.reject_outliers && round < options.max_outlier_rounds; ++round) {
-    std::optional<OutlierCheck> check = CheckOutliers(options, *state, &out->summary);
+    std::optional<OutlierCheck> check = CheckOutliers(context, state, &out->summary);
     if (!check || check->outliers.empty()) break;
     const double max_rejected = options.max_rejected_fraction * static_cast<double>(calib_count);
     if (static_cast<double>(state->rejected.size() + check->outliers.size()) > max_rejected) {
@@ -127,15 +214,18 @@ void RejectOutliers(const StageContext& context, size_t calib_count, Identificat
                       100.0 * options.max_rejected_fraction));
       break;
     }
-    log.push_back(fmt::format("rejected poses {} (residual norm above {:.3g})",
+    log.push_back(fmt::format("rejected poses {} (score above {:.3g})",
                               fmt::join(check->outliers, " "), check->limit));
     state->rejected.insert(state->rejected.end(), check->outliers.begin(), check->outliers.end());
+    state->rejected_details.insert(state->rejected_details.end(), check->details.begin(),
+                                   check->details.end());
     state->rows = std::move(check->kept);
     StageSummary stage =
         RunStage(context, {options.estimator, false}, state->rows, &state->p, &state->final_stage);
     stage.name += " (after rejection)";
     RecordStage(stage, out);
     state->final_ok = stage.ok;
+    state->cv_current = false;
   }
 }
 
@@ -157,6 +247,41 @@ void Conclude(bool final_ok, IdentificationSummary* summary, const Uncertainty& 
   summary->message = summary->usable ? "converged"
                      : !final_ok     ? "the final stage did not converge"
                                      : "no covariance at the solution (rank-deficient Jacobian)";
+}
+
+// The held-out figures of the final pose set, into the outcome, the result and the log.
+void RecordCrossValidation(const StageContext& context, IdentificationState* state,
+                           IdentificationOutcome* out) {
+  UpdateCrossValidation(context, state);
+  const CrossValidation& cv = state->cv;
+  out->cross_validation = cv;
+  int predicted = 0;
+  for (const HeldOutPrediction& pose : cv.poses) predicted += pose.ok ? 1 : 0;
+  out->result.cross_validation = CrossValidationFigures{cv.folds, predicted, cv.position_rms_m,
+                                                        cv.rotation_rms_rad, cv.reduced_chi2};
+  out->result.log.push_back(fmt::format(
+      "{}-fold cross-validation: held-out board pose error RMS {:.4f} mm, {:.4f} deg over {} "
+      "poses, normalised chi-square / dof {:.3g}; {} folds did not converge, {:.1f} ms",
+      cv.folds, cv.position_rms_m * 1e3, DegreesFromRadians(cv.rotation_rms_rad), predicted,
+      cv.reduced_chi2, cv.failed_folds, cv.seconds * 1e3));
+}
+
+// The verdict on the solution in `state` (verdict.h), into out->result.verdict.
+void JudgeSolution(const KinematicModel& model, const ParameterVector& apriori,
+                   const IdentificationState& state, size_t poses_given,
+                   const IdentificationOptions& options, IdentificationOutcome* out) {
+  const SolutionToJudge solution{model,
+                                 apriori,
+                                 state.p,
+                                 state.rows,
+                                 static_cast<int>(poses_given),
+                                 static_cast<int>(state.rejected.size()),
+                                 state.final_ok,
+                                 out->uncertainty,
+                                 options.cost};
+  out->result.verdict =
+      DecideVerdict(GatherVerdictInputs(solution), options.verdict, &out->verdict);
+  out->result.rejected_details = state.rejected_details;
 }
 
 }  // namespace
@@ -182,13 +307,17 @@ bool IdentificationOptions::IsValid(std::string* why) const {
     return fail("identifiability threshold must be in (0, 1)");
   }
   if (reject_outliers && !(outlier_factor > 1.0)) return fail("outlier_factor must exceed 1");
+  if (reject_outliers && !(outlier_chi2_limit > 0.0)) {
+    return fail("outlier_chi2_limit must be positive");
+  }
+  if (std::string cv_why; !cross_validation.IsValid(&cv_why)) return fail(cv_why);
   if (!(max_rejected_fraction >= 0 && max_rejected_fraction < 1)) {
     return fail("max_rejected_fraction must be in [0, 1)");
   }
   if (!(correlation_threshold > 0 && correlation_threshold < 1)) {
     return fail("correlation_threshold must be in (0, 1)");
   }
-  return true;
+  return verdict.IsValid(why);
 }
 
 IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const ParameterVector& apriori,
@@ -198,7 +327,7 @@ IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const Param
                                         const IdentificationOptions& options) {
   RequireIdentifiableInput(model, start, calib, options);
   const auto clock_start = std::chrono::steady_clock::now();
-  IdentificationOutcome out{{}, {}, start, {}, {}, {}};
+  IdentificationOutcome out{{}, {}, start, {}, {}, {}, Verdict::kNotIdentifiable, {}};
   const std::vector<int64_t> none_rejected;
   if (std::string why; !options.IsValid(&why)) {
     out.summary.message = why;
@@ -206,12 +335,15 @@ IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const Param
     return out;
   }
   const StageContext context{model, options, start};
-  IdentificationState state{start, calib, {}, {}, false};
+  IdentificationState state{start, calib, {}, {}, {}, false, {}, false};
+  const size_t poses_given = calib.size() + valid.size();
   if (!RunPlannedStages(context, &state, &out)) {
     SummariseSolution({model, apriori, state.p, calib, valid, none_rejected, options}, &out);
+    JudgeSolution(model, apriori, state, poses_given, options, &out);
     return out;
   }
   RejectOutliers(context, calib.size(), &state, &out);
+  if (options.cross_validation.folds >= 2) RecordCrossValidation(context, &state, &out);
   CountIterations(&out.summary);
   out.parameters = state.p;
   out.identifiability = state.final_stage.identifiability;
@@ -221,6 +353,7 @@ IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const Param
                     &out);
   out.summary.report_seconds = SecondsSince(report_start);
   Conclude(state.final_ok, &out.summary, out.uncertainty);
+  JudgeSolution(model, apriori, state, poses_given, options, &out);
   out.summary.seconds = SecondsSince(clock_start);
   return out;
 }
@@ -270,8 +403,9 @@ DatasetSplit SplitDataset(const std::vector<DatasetRow>& rows, int valid_count, 
   for (size_t i = 0; i < rows.size(); ++i) {
     (valid_index.count(i) ? split.valid : split.calib).push_back(rows[i]);
   }
-  split.how = std::to_string(n_valid) + " validation poses drawn at random (seed " +
-              std::to_string(seed) + ")";
+  split.how = n_valid == 0 ? "every pose in the fit"
+                           : std::to_string(n_valid) + " validation poses drawn at random (seed " +
+                                 std::to_string(seed) + ")";
   return split;
 }
 
@@ -315,8 +449,8 @@ ParameterVector Model12ParametersOf(const RobotDescription& robot,
   return p12;
 }
 
-// The Model 12 result's pose split, unless the rows carry a `set` column (or the result
-// lists no held-out pose).
+// The Model 12 result's held-out poses, unless the rows carry a `set` column or the result
+// lists none; every other pose is in the fit, those Model 12 rejected included.
 DatasetSplit SplitAsModel12Result(const IdentificationResult& model12_result,
                                   const std::vector<DatasetRow>& rows) {
   const bool has_set =

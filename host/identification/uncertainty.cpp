@@ -42,7 +42,10 @@ Uncertainty ComputeUncertainty(const ParameterVector& p, const Eigen::VectorXd& 
   }
   u.condition_number = s[0] / s[n - 1];
   u.chi2_per_dof = r.squaredNorm() / static_cast<double>(m - n);
-  u.sigma2 = weighted ? 1.0 : u.chi2_per_dof;
+  // Weighted residuals: the covariance is (J^T J)^-1 when the pose sigmas are right; a
+  // reduced chi-square above 1 is misfit the sigmas do not explain, and the parameters'
+  // uncertainty grows with it (never shrinks below what the sigmas say).
+  u.sigma2 = weighted ? std::max(1.0, u.chi2_per_dof) : u.chi2_per_dof;
   u.covariance =
       u.sigma2 * scale.cwiseInverse().asDiagonal() * C_scaled * scale.cwiseInverse().asDiagonal();
   u.std = u.covariance.diagonal().cwiseSqrt();

@@ -1,8 +1,9 @@
 // Uncertainty of identified parameters: the covariance at the solution from the Jacobian of
 // the free parameters, sigma^2 (J^T J)^-1 with the residual variance sigma^2 for the
 // unweighted costs (eq. (3), eq. (5)), (J^T J)^-1 for the measurement-space cost whose
-// residuals are already divided by their standard deviations (then chi2/dof says whether
-// those sigmas were right); one-sigma per parameter and strongly correlated pairs.
+// residuals are already divided by their standard deviations, scaled by chi2/dof when that
+// exceeds 1 (misfit beyond the sigmas: the uncertainty includes it); one-sigma per parameter
+// and strongly correlated pairs.
 #pragma once
 
 #include <string>
@@ -17,11 +18,11 @@ namespace h4::host {
 
 struct Uncertainty {
   bool ok = false;
-  std::vector<int> free_indices;             ///< parameter indices of the rows/columns below
-  Eigen::MatrixXd covariance;                ///< of the free parameters, SI units squared
-  Eigen::VectorXd std;                       ///< one sigma per free parameter
-  double chi2_per_dof = 0.0;                 ///< |r|^2 / (residuals - free parameters)
-  double sigma2 = 1.0;                       ///< the residual variance scaling the covariance
+  std::vector<int> free_indices;  ///< parameter indices of the rows/columns below
+  Eigen::MatrixXd covariance;     ///< of the free parameters, SI units squared
+  Eigen::VectorXd std;            ///< one sigma per free parameter
+  double chi2_per_dof = 0.0;      ///< |r|^2 / (residuals - free parameters)
+  double sigma2 = 1.0;  ///< scales the covariance: chi2/dof, or max(1, chi2/dof) if weighted
   double condition_number = 0.0;             ///< of the column-scaled Jacobian
   std::vector<CorrelatedPair> correlations;  ///< |rho| above the threshold, largest first
 };

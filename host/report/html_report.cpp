@@ -13,6 +13,7 @@
 #include "common/text/markup_escape.h"
 #include "host/report/report_figures.h"
 #include "host/report/report_tables.h"
+#include "host/report/report_verdict.h"
 
 namespace h4::host {
 namespace {
@@ -26,6 +27,7 @@ th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: right; }
 th:first-child { text-align: left; } tr.paper { background: #fff6dd; }
 tr.fixed { color: #777; } tr.measured { background: #eef6ff; } figure { margin: 1em 0; } figure svg { max-width: 100%; height: auto; }
 code { background: #f3f3f3; padding: 0 0.2em; } .note { color: #a33; }
+.verdict-good { background: #e6f6e6; padding: 0.5em; } .verdict-bad { background: #fde8e8; padding: 0.5em; }
 )";
 
 std::string Section(const std::string& id, const std::string& title, const std::string& body) {
@@ -62,6 +64,7 @@ std::string FormatHtmlReport(const ValidationInputs& in, const ValidationReport&
   html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
        << "<title>h4cal calibration report</title>\n<style>" << kStyle << "</style>\n"
        << "</head>\n<body>\n<h1>H4 calibration report</h1>\n"
+       << Section("verdict", "Verdict", VerdictSection(in))
        << "<p>Validation after Renaud et al., ICRA 2003, section IV.D. Made by <code>"
        << MarkupEscape(command) << "</code>."
        << (report.paper_scenario

@@ -13,9 +13,9 @@ namespace h4::host {
 
 /// The ids of the page's sections, in order (tests check that each is present).
 inline constexpr const char* kReportSections[] = {
-    "summary",     "parameters",  "identifiability", "table2", "table3",
-    "positioning", "residuals",   "histograms",      "table4", "straightness",
-    "square",      "square-plot", "four-dof",        "notes"};
+    "verdict",      "summary",     "parameters",  "identifiability", "table2",
+    "table3",       "positioning", "residuals",   "histograms",      "table4",
+    "straightness", "square",      "square-plot", "four-dof",        "notes"};
 
 /// The section of the square paths measured by the camera: present only when the report
 /// has measured square runs (`--square-measured`).

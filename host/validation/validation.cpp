@@ -22,8 +22,10 @@ void CheckModel(const std::optional<IdentificationResult>& result, ModelKind exp
   }
 }
 
-// The held-out rows: those the result lists as "valid", else the dataset's set column.
-std::vector<DatasetRow> HeldOutRows(const ValidationInputs& in, std::vector<int64_t>* ids) {
+// The held-out rows: those the result lists as "valid", else the dataset's set column, else
+// (a result cross-validated on every pose) every row, with a note saying so.
+std::vector<DatasetRow> HeldOutRows(const ValidationInputs& in, std::vector<int64_t>* ids,
+                                    std::vector<std::string>* notes) {
   const IdentificationResult* result = in.result12 ? &*in.result12 : nullptr;
   if (!result && in.result31) result = &*in.result31;
   std::vector<DatasetRow> held;
@@ -49,9 +51,18 @@ std::vector<DatasetRow> HeldOutRows(const ValidationInputs& in, std::vector<int6
       if (row.set == PoseSet::kValid) held.push_back(row);
     }
   }
-  if (held.empty()) {
+  if (held.empty() && result && !result->cross_validation) {
     throw std::invalid_argument(fmt::format(
         "{}: no held-out pose (the result lists none and no row has set=valid)", in.dataset_name));
+  }
+  if (held.empty()) {
+    // Every pose was in the fit and k-fold cross-validation gave the held-out figures
+    // (the result's cross_validation, in the verdict section): the tables below are then
+    // over every pose, in-sample.
+    held = in.rows;
+    notes->push_back(
+        "every pose was in the fit (held-out figures by k-fold cross-validation, in the verdict "
+        "section): Table 3 and the positioning error are over every pose, in-sample");
   }
   for (const DatasetRow& row : held) ids->push_back(row.pose_id);
   return held;
@@ -131,7 +142,7 @@ ValidationReport Validate(const ValidationInputs& in) {
           m.unplanned_rows, m.dataset_name));
     }
   }
-  const std::vector<DatasetRow> held = HeldOutRows(in, &report.heldout_ids);
+  const std::vector<DatasetRow> held = HeldOutRows(in, &report.heldout_ids, &report.notes);
 
   struct Candidate {
     std::string label;

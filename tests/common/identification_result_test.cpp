@@ -3,6 +3,7 @@
 #include "common/formats/identification_result.h"
 
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
@@ -116,6 +117,45 @@ TEST(IdentificationResult, RoundTripIsExact) {
   EXPECT_EQ(b.valid_rotation_rms_rad, r.valid_rotation_rms_rad);
   EXPECT_EQ(b.predicted_position_accuracy_m, r.predicted_position_accuracy_m);
   EXPECT_EQ(b.log, r.log);
+}
+
+TEST(IdentificationResult, VerdictRejectedPosesAndProvenanceRoundTrip) {
+  IdentificationResult r = FullResult();
+  r.verdict = ResultVerdict{
+      "model_cannot_describe", "Use Model 31.", {{"reduced_chi2", 212.5}, {"poses_in_fit", 81}}};
+  r.rejected_details = {{17, 9.5, "normalised residual 9.5"}};
+  r.provenance = ResultProvenance{"0.1.0", "2026-11-23T20:01:02Z", {"robot.yaml", "data.csv"}};
+  r.cross_validation = CrossValidationFigures{10, 81, 2.5e-4, 1e-4, 1.1};
+  const IdentificationResult b =
+      ParseIdentificationResult(FormatIdentificationResult(r), "result.json");
+  ASSERT_TRUE(b.verdict.has_value());
+  EXPECT_EQ(b.verdict->code, "model_cannot_describe");
+  EXPECT_EQ(b.verdict->text, "Use Model 31.");
+  std::map<std::string, double> figures(b.verdict->figures.begin(), b.verdict->figures.end());
+  EXPECT_EQ(figures.size(), 2u);
+  EXPECT_EQ(figures["reduced_chi2"], 212.5);
+  EXPECT_EQ(figures["poses_in_fit"], 81);
+  ASSERT_EQ(b.rejected_details.size(), 1u);
+  EXPECT_EQ(b.rejected_details[0].pose_id, 17);
+  EXPECT_EQ(b.rejected_details[0].score, 9.5);
+  EXPECT_EQ(b.rejected_details[0].reason, "normalised residual 9.5");
+  ASSERT_TRUE(b.provenance.has_value());
+  EXPECT_EQ(b.provenance->h4cal_version, "0.1.0");
+  EXPECT_EQ(b.provenance->date_utc, "2026-11-23T20:01:02Z");
+  EXPECT_EQ(b.provenance->inputs, (std::vector<std::string>{"robot.yaml", "data.csv"}));
+  ASSERT_TRUE(b.cross_validation.has_value());
+  EXPECT_EQ(b.cross_validation->folds, 10);
+  EXPECT_EQ(b.cross_validation->poses, 81);
+  EXPECT_EQ(b.cross_validation->position_rms_m, 2.5e-4);
+  EXPECT_EQ(b.cross_validation->rotation_rms_rad, 1e-4);
+  EXPECT_EQ(b.cross_validation->reduced_chi2, 1.1);
+}
+
+TEST(IdentificationResult, OlderResultsWithoutAVerdictStillRead) {
+  const IdentificationResult r = ParseIdentificationResult(kResult, "old.json");
+  EXPECT_FALSE(r.verdict.has_value());
+  EXPECT_FALSE(r.provenance.has_value());
+  EXPECT_TRUE(r.rejected_details.empty());
 }
 
 TEST(IdentificationResult, WritesKeysInFormatsMdOrderAndNullStdForFixed) {

@@ -23,7 +23,7 @@ done
   fail "report: $(cat "$dir/report.log")"
 html=$dir/report/report.html
 [ -s "$html" ] || fail "no report.html"
-sections="summary parameters identifiability table2 table3 positioning residuals histograms
+sections="verdict summary parameters identifiability table2 table3 positioning residuals histograms
           table4 straightness square square-plot four-dof notes"
 for id in $sections; do
   grep -q "<section id=\"$id\">" "$html" || fail "report.html has no section $id"

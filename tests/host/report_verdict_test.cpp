@@ -1,0 +1,59 @@
+// The report's verdict section (host/report/report_verdict.h): the first section of the
+// page, with each result's verdict and the figures that decided it, the rejected poses
+// with score and reason, and the provenance; escaped; said plainly when a result has none.
+#include "host/report/report_verdict.h"
+
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "host/report/gnuplot_svg.h"
+#include "host/report/html_report.h"
+#include "tests/host/validation_test_helpers.h"
+
+namespace h4::host {
+namespace {
+
+ValidationInputs WithVerdicts() {
+  ValidationInputs in = PaperValidationInputs();
+  in.result12->verdict =
+      ResultVerdict{"model_cannot_describe", "Use Model 31 <now>.", {{"reduced_chi2", 212.5}}};
+  in.result12->rejected_details = {{17, 912.4, "held-out chi-square 912"}};
+  in.result12->provenance = ResultProvenance{"0.1.0", "2026-11-23T20:01:02Z", {"data.csv"}};
+  in.result12->cross_validation = CrossValidationFigures{10, 71, 3.1e-3, 1e-3, 250.0};
+  return in;
+}
+
+TEST(ReportVerdict, ListsVerdictFiguresRejectedPosesAndProvenanceEscaped) {
+  const std::string html = VerdictSection(WithVerdicts());
+  EXPECT_NE(html.find("model_cannot_describe"), std::string::npos);
+  EXPECT_NE(html.find("Use Model 31 &lt;now&gt;."), std::string::npos);
+  EXPECT_NE(html.find("reduced_chi2"), std::string::npos);
+  EXPECT_NE(html.find("<tr><th>17</th><td>912</td><td>held-out chi-square 912</td></tr>"),
+            std::string::npos)
+      << html;
+  EXPECT_NE(html.find("h4cal 0.1.0 on 2026-11-23T20:01:02Z"), std::string::npos);
+  EXPECT_NE(html.find("10-fold cross-validation"), std::string::npos);
+}
+
+TEST(ReportVerdict, AResultWithoutAVerdictSaysSo) {
+  ValidationInputs in = WithVerdicts();
+  in.result12->verdict.reset();
+  in.result12->provenance.reset();
+  const std::string html = VerdictSection(in);
+  EXPECT_NE(html.find("No verdict recorded"), std::string::npos) << html;
+  EXPECT_NE(html.find("does not record which h4cal made it"), std::string::npos) << html;
+}
+
+TEST(ReportVerdict, IsTheFirstSectionOfThePage) {
+  if (!GnuplotAvailable()) GTEST_SKIP() << "gnuplot missing: run scripts/setup";
+  const ValidationInputs in = WithVerdicts();
+  const std::string html = FormatHtmlReport(in, Validate(in), "test");
+  const size_t verdict = html.find("<section id=\"verdict\">");
+  ASSERT_NE(verdict, std::string::npos);
+  EXPECT_EQ(html.find("<section"), verdict);
+  EXPECT_LT(verdict, html.find("<section id=\"summary\">"));
+}
+
+}  // namespace
+}  // namespace h4::host

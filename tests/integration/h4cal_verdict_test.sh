@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# The verdict of `h4cal identify` on simulated campaigns (paper protocol, 81 poses): a
+# normal campaign is "good" with exit 0; a robot.yaml in millimetres, swapped joint
+# columns, Model 12 on a Model 31 robot and a 10-pose dataset each get their own verdict,
+# printed first, in the result JSON, and exit code 3.
+set -uo pipefail
+h4cal=$1
+dir=$2
+rm -rf "$dir"; mkdir -p "$dir"
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+# expect_verdict NAME CODE RC ROBOT DATA [identify options...]
+expect_verdict() {
+  local name=$1 code=$2 rc_expected=$3 robot=$4 data=$5
+  shift 5
+  "$h4cal" identify --robot "$robot" --data "$data" --out "$dir/$name.json" "$@" \
+    > "$dir/$name.txt" 2> "$dir/$name.log"
+  local rc=$?
+  [ "$rc" -eq "$rc_expected" ] || fail "$name: exit $rc, expected $rc_expected: $(head -3 "$dir/$name.txt")"
+  head -1 "$dir/$name.txt" | grep -q "^VERDICT: $code\$" \
+    || fail "$name: first line '$(head -1 "$dir/$name.txt")', expected VERDICT: $code"
+  grep -q "\"code\": \"$code\"" "$dir/$name.json" || fail "$name: the JSON verdict is not $code"
+  echo "$name: $(sed -n 2p "$dir/$name.txt")"
+}
+
+"$h4cal" simulate --truth 12 --seed 3 --robot-seed 3 --out-dir "$dir/m12" 2>/dev/null \
+  || fail "simulate Model 12"
+"$h4cal" simulate --truth 31 --seed 4 --robot-seed 4 --out-dir "$dir/m31" 2>/dev/null \
+  || fail "simulate Model 31"
+
+expect_verdict good good 0 "$dir/m12/robot.yaml" "$dir/m12/dataset.csv" --model 12
+grep -q '"h4cal_version"' "$dir/good.json" || fail "no provenance in the result"
+grep -q "\"$dir/m12/dataset.csv\"" "$dir/good.json" || fail "the input files are not recorded"
+
+expect_verdict model12_on_31 model_cannot_describe 3 "$dir/m31/robot.yaml" "$dir/m31/dataset.csv" \
+  --model 12
+grep -q "Use Model 31" "$dir/model12_on_31.txt" || fail "model12_on_31: the text does not say use Model 31"
+
+# robot.yaml written in millimetres for the arm.
+sed -E 's/^(  arm: )([0-9.]+)/echo "\1$(awk "BEGIN{print \2*1000}")"/e' "$dir/m12/robot.yaml" \
+  > "$dir/robot_mm.yaml"
+grep -q '^  arm: 260' "$dir/robot_mm.yaml" || fail "robot_mm.yaml: $(grep arm "$dir/robot_mm.yaml")"
+expect_verdict millimetres inconsistent_with_apriori 3 "$dir/robot_mm.yaml" "$dir/m12/dataset.csv"
+
+# Joint columns q1 and q2 swapped (a controller reporting its joints in another order).
+awk -F, 'BEGIN{OFS=","} NR > 1 {t=$3; $3=$4; $4=t} {print}' "$dir/m12/dataset.csv" > "$dir/swapped.csv"
+expect_verdict swapped_joints inconsistent_with_apriori 3 "$dir/m12/robot.yaml" "$dir/swapped.csv"
+
+# Ten poses: the header and the first ten rows, no held-out split.
+head -11 "$dir/m12/dataset.csv" | sed -E 's/,valid(,|$)/,calib\1/' > "$dir/ten.csv"
+expect_verdict ten_poses too_few_poses 3 "$dir/m12/robot.yaml" "$dir/ten.csv"
+echo "PASS"
