@@ -2,10 +2,12 @@
 // file only lists them, and reports any error once.
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "firmware/cli/calibrate_intrinsics_command.h"
+#include "firmware/cli/exit_code.h"
 #include "firmware/cli/list_cameras_command.h"
 #include "firmware/cli/make_board_command.h"
 #include "firmware/cli/measure_command.h"
@@ -15,6 +17,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"h4cam: camera module of the H4 calibration (measure the board pose X_CT)"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("h4cam ") + H4_VERSION);
   h4::cam::AddListCamerasCommand(app);
   h4::cam::AddCalibrateIntrinsicsCommand(app);
   h4::cam::AddMakeBoardCommand(app);
@@ -29,5 +32,5 @@ int main(int argc, char** argv) {
     std::cerr << "h4cam: error: " << e.what() << "\n";
     return 1;
   }
-  return 0;
+  return h4::cam::ExitCode();
 }
