@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "firmware/cli/calibrate_intrinsics_command.h"
+#include "firmware/cli/capture_command.h"
 #include "firmware/cli/exit_code.h"
 #include "firmware/cli/list_cameras_command.h"
 #include "firmware/cli/make_board_command.h"
@@ -24,6 +25,8 @@ int main(int argc, char** argv) {
   h4::cam::AddRenderCommand(app);
   h4::cam::AddMeasureCommand(app);
   h4::cam::AddRunCommand(app);
+  h4::cam::AddCaptureCommand(app);
+  h4::cam::AddPreviewCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
