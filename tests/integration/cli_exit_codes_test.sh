@@ -2,7 +2,8 @@
 # Exit codes and versions as README.md documents them (issue 16): `--version` on both
 # programs (exit 0, the CMake project version); `h4cam render` exits 3 and writes nothing
 # when the board is behind the camera or off the image; `h4cam measure` exits 3 when no
-# image shows the board (its rows are still written), 0 when one does.
+# image shows the board (its rows are still written), 0 when one does; a dataset given as
+# --robot (or a robot.yaml as --data) is named as such in one line (exit 1).
 #   cli_exit_codes_test.sh H4CAL H4CAM SOURCE_DIR VERSION WORK_DIR
 set -euo pipefail
 h4cal=$1 h4cam=$2 src=$3 version=$4 dir=$5
@@ -39,4 +40,17 @@ c=$(render -0.1,-0.1,0.5,1,0,0,0 near)
 [ "$c" -eq 0 ] || fail "render of a near board exited $c: $(cat out.txt)"
 c=$(code "$h4cam" measure --board "$board" --camera "$camera" --group 1 --out near.csv near)
 [ "$c" -eq 0 ] || fail "measure of a visible board exited $c: $(cat out.txt)"
-echo "PASS: --version on both; render 3 behind / off the image; measure 3 with no board, 0 with one"
+# robot.yaml and the dataset swapped: one line that says so, not the file quoted.
+"$h4cal" simulate --truth 12 --out-dir sim 2> /dev/null || fail "simulate"
+c=$(code "$h4cal" analyze --robot sim/dataset.csv --data sim/robot.yaml)
+[ "$c" -eq 1 ] || fail "analyze with --robot and --data swapped exited $c: $(cat out.txt)"
+grep -q "sim/dataset.csv:1: this looks like a dataset CSV, not a robot.yaml" out.txt \
+  || fail "swapped --robot said: $(cut -c1-300 out.txt)"
+[ "$(wc -l < out.txt)" -eq 1 ] || fail "swapped --robot printed $(wc -l < out.txt) lines"
+! grep -q "^1,\|,1,[0-9]" out.txt || fail "swapped --robot quoted the dataset"
+c=$(code "$h4cal" analyze --robot sim/robot.yaml --data sim/robot.yaml)
+[ "$c" -eq 1 ] || fail "analyze with a robot.yaml as --data exited $c"
+grep -q "sim/robot.yaml:1: this looks like a YAML file (a robot.yaml?), not a dataset CSV" out.txt \
+  || fail "a robot.yaml as --data said: $(cut -c1-300 out.txt)"
+echo "PASS: --version on both; render 3 behind / off the image; measure 3 with no board, 0 with" \
+  "one; swapped --robot / --data named as such"
