@@ -28,10 +28,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::atomic<bool> g_stop_requested{false};
+std::atomic<bool> g_capture_stop_requested{false};
 
 // Only sets the flag: the capture loop polls it between frames.
-extern "C" void OnCaptureStopSignal(int) { g_stop_requested.store(true); }
+extern "C" void OnCaptureStopSignal(int) { g_capture_stop_requested.store(true); }
 
 /// The board centred on the optical axis, facing the camera, `depth` m away.
 RigidTransform CentredBoardPose(const BoardSpec& board, double depth) {
@@ -243,8 +243,8 @@ void InstallCaptureStopSignal() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
-void Finish(const CaptureSummary& summary) {
-  if (summary.frames == 0 && g_stop_requested.load()) {
+void SetCaptureExitCode(const CaptureSummary& summary) {
+  if (summary.frames == 0 && g_capture_stop_requested.load()) {
     SetExitCode(130);
   } else if (summary.with_board == 0) {
     std::cerr << "h4cam: no frame showed the board\n";
@@ -270,7 +270,8 @@ void AddCaptureCommand(CLI::App& app) {
       "Exit codes: 0 some frame showed the board, 3 none did, 130 interrupted, 1 error.");
   command->callback([args] {
     InstallCaptureStopSignal();
-    Finish(RunCapture(*args, /*save_frames=*/true, std::cout, g_stop_requested));
+    SetCaptureExitCode(
+        RunCapture(*args, /*save_frames=*/true, std::cout, g_capture_stop_requested));
   });
 }
 
@@ -291,7 +292,8 @@ void AddPreviewCommand(CLI::App& app) {
       "frame, 1 error.");
   command->callback([args] {
     InstallCaptureStopSignal();
-    Finish(RunCapture(*args, /*save_frames=*/false, std::cout, g_stop_requested));
+    SetCaptureExitCode(
+        RunCapture(*args, /*save_frames=*/false, std::cout, g_capture_stop_requested));
   });
 }
 
