@@ -2,10 +2,13 @@
 // file only lists them, and reports any error once.
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "firmware/cli/calibrate_intrinsics_command.h"
+#include "firmware/cli/capture_command.h"
+#include "firmware/cli/exit_code.h"
 #include "firmware/cli/list_cameras_command.h"
 #include "firmware/cli/make_board_command.h"
 #include "firmware/cli/measure_command.h"
@@ -15,12 +18,15 @@
 int main(int argc, char** argv) {
   CLI::App app{"h4cam: camera module of the H4 calibration (measure the board pose X_CT)"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("h4cam ") + H4_VERSION);
   h4::cam::AddListCamerasCommand(app);
   h4::cam::AddCalibrateIntrinsicsCommand(app);
   h4::cam::AddMakeBoardCommand(app);
   h4::cam::AddRenderCommand(app);
   h4::cam::AddMeasureCommand(app);
   h4::cam::AddRunCommand(app);
+  h4::cam::AddCaptureCommand(app);
+  h4::cam::AddPreviewCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -29,5 +35,5 @@ int main(int argc, char** argv) {
     std::cerr << "h4cam: error: " << e.what() << "\n";
     return 1;
   }
-  return 0;
+  return h4::cam::ExitCode();
 }

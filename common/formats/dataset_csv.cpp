@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "common/formats/csv_table.h"
+#include "common/formats/file_kind.h"
 #include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
 #include "common/formats/pose_columns.h"
@@ -33,6 +34,11 @@ std::optional<double> BoundedSigma(const CsvTable& table, size_t row, const char
 }  // namespace
 
 std::vector<DatasetRow> ParseDatasetCsv(const std::string& text, const std::string& source_name) {
+  if (GuessFileKind(text) == FileKind::kYaml) {
+    throw FormatError(source_name, 1, "",
+                      "this looks like a YAML file (a robot.yaml?), not a dataset CSV (were "
+                      "--robot and --data swapped?)");
+  }
   const CsvTable table = CsvTable::Parse(text, source_name);
   table.RequireColumns(kRequired);
   std::vector<DatasetRow> rows;

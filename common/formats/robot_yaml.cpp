@@ -2,6 +2,8 @@
 #include "common/formats/robot_yaml.h"
 
 #include "common/formats/csv_table.h"
+#include "common/formats/file_kind.h"
+#include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
 #include "common/formats/yaml_map.h"
 
@@ -84,6 +86,12 @@ std::string Transform(const std::string& name, const std::string& comment,
 }  // namespace
 
 RobotDescription ParseRobotYaml(const std::string& text, const std::string& source_name) {
+  if (const FileKind kind = GuessFileKind(text);
+      kind == FileKind::kDatasetCsv || kind == FileKind::kOtherCsv) {
+    throw FormatError(source_name, 1, "",
+                      std::string("this looks like ") + DescribeFileKind(kind) +
+                          ", not a robot.yaml (were --robot and --data swapped?)");
+  }
   const YamlMap root(LoadYaml(text, source_name), source_name, "", 0);
   root.RejectCaseVariants({"model12", "model31", "assembly", "X_BC", "X_TE"});
   RobotDescription robot;

@@ -10,6 +10,7 @@
 #include "common/formats/board_poses_csv.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
+#include "firmware/cli/exit_code.h"
 #include "firmware/pose/measure_pipeline.h"
 #include "firmware/sources/image_file_source.h"
 
@@ -105,7 +106,16 @@ void AddMeasureCommand(CLI::App& app) {
   command->add_option("--out", args->out_path, "Output CSV (image,x,y,z,qw,qx,qy,qz,...)")
       ->required();
   command->add_option("images", args->images, "Image files or directories, in order")->required();
-  command->callback([args] { RunMeasure(*args, std::cerr); });
+  command->footer(
+      "Exit codes: 0 at least one row has a pose, 3 no image showed the board (the rows are "
+      "written, without poses), 1 error.");
+  command->callback([args] {
+    if (RunMeasure(*args, std::cerr) == 0) {
+      std::cerr << "h4cam measure: no image shows the board " << args->board_path
+                << ": nothing usable measured\n";
+      SetExitCode(kExitNothingUsable);
+    }
+  });
 }
 
 }  // namespace h4::cam

@@ -10,9 +10,12 @@
 #include <CLI/CLI.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "common/board/board_model.h"
+#include "common/camera/camera_model.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/geometry/rotation.h"
+#include "firmware/cli/exit_code.h"
 #include "firmware/render/board_renderer.h"
 
 namespace h4::cam {
@@ -40,7 +43,31 @@ RenderOptions RenderOptionsFromArgs(const RenderArgs& args) {
   return options;
 }
 
-void RunRender(const RenderArgs& args, std::ostream& out) {
+std::string BoardOutOfView(const BoardSpec& board, const CameraIntrinsics& camera,
+                           const RigidTransform& X_CT) {
+  const BoardModel model(board);
+  const CameraModel projection(camera);
+  int in_front = 0;
+  for (const Eigen::Vector3d& p_TQ : model.corners()) {
+    const Eigen::Vector3d p_CQ = X_CT * p_TQ;
+    Eigen::Vector2d uv;
+    if (!projection.Project(p_CQ, &uv)) continue;
+    ++in_front;
+    // Pixel centres run from 0 to width - 1 (common/formats/README.md): the image covers
+    // [-0.5, width - 0.5).
+    if (uv.x() >= -0.5 && uv.x() < camera.width - 0.5 && uv.y() >= -0.5 &&
+        uv.y() < camera.height - 0.5) {
+      return "";
+    }
+  }
+  return in_front == 0
+             ? "the board is behind the camera (no corner has z > 0 in the camera "
+               "frame)"
+             : "the board is off the image (no corner projects into the " +
+                   std::to_string(camera.width) + "x" + std::to_string(camera.height) + " image)";
+}
+
+bool RunRender(const RenderArgs& args, std::ostream& out) {
   if (args.frames < 1 || args.frames > kMaxRenderFrames) {
     throw std::runtime_error("--frames " + std::to_string(args.frames) + ": expected 1.." +
                              std::to_string(kMaxRenderFrames));
@@ -57,6 +84,10 @@ void RunRender(const RenderArgs& args, std::ostream& out) {
     throw std::runtime_error("--pose: quaternion (qw, qx, qy, qz) must have unit norm");
   }
   const RigidTransform X_CT(R_CT, Eigen::Vector3d(args.pose[0], args.pose[1], args.pose[2]));
+  if (const std::string why = BoardOutOfView(board, camera, X_CT); !why.empty()) {
+    out << "h4cam render: nothing rendered: " << why << " at --pose\n";
+    return false;
+  }
   const BoardRenderer renderer(board, camera, options);
   if (!renderer.ok()) throw std::runtime_error(args.board_path + ": " + renderer.error());
   std::filesystem::create_directories(args.out_dir);
@@ -72,6 +103,7 @@ void RunRender(const RenderArgs& args, std::ostream& out) {
   }
   out << "wrote " << args.frames << " frame(s) " << camera.width << "x" << camera.height << " to "
       << args.out_dir << "\n";
+  return true;
 }
 
 void AddRenderCommand(CLI::App& app) {
@@ -131,7 +163,12 @@ void AddRenderCommand(CLI::App& app) {
                       "Response curve: linear, srgb, gamma:EXPONENT or table:V0,V1,...");
   command->add_option("--seed", args->seed, "Noise seed")->default_val(args->seed);
   command->add_option("--out", args->out_dir, "Output directory")->required();
-  command->callback([args] { RunRender(*args, std::cout); });
+  command->footer(
+      "Exit codes: 0 frames written, 3 the board is not in view at --pose (behind the "
+      "camera or off the image; nothing written), 1 error.");
+  command->callback([args] {
+    if (!RunRender(*args, std::cout)) SetExitCode(kExitNothingUsable);
+  });
 }
 
 }  // namespace h4::cam

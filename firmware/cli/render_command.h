@@ -12,6 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "common/board/board_spec.h"
+#include "common/camera/camera_intrinsics.h"
+#include "common/geometry/rigid_transform.h"
 #include "firmware/render/render_options.h"
 
 namespace CLI {
@@ -44,8 +47,15 @@ void AddRenderCommand(CLI::App& app);
 /// fault (unknown preset, malformed response, or values out of range).
 RenderOptions RenderOptionsFromArgs(const RenderArgs& args);
 
-/// Writes the frames; throws (std::runtime_error or h4::FormatError) naming the file or
-/// option at fault.
-void RunRender(const RenderArgs& args, std::ostream& out);
+/// Why the board at X_CT would not be seen by the camera: "" when at least one of its
+/// corners projects into the image; else it is behind the camera (no corner in front of
+/// it) or off the image (in front, but every corner outside the image).
+std::string BoardOutOfView(const BoardSpec& board, const CameraIntrinsics& camera,
+                           const RigidTransform& X_CT);
+
+/// Writes the frames and returns true; returns false, writing nothing, when the board is
+/// not in view (BoardOutOfView, said on `out`). Throws (std::runtime_error or
+/// h4::FormatError) naming the file or option at fault.
+bool RunRender(const RenderArgs& args, std::ostream& out);
 
 }  // namespace h4::cam

@@ -48,8 +48,11 @@ Campaign::Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal,
       channels::kJointState, [this](const h4msgs::joint_state_t& m) { OnJointState(m); });
   bus_.Subscribe<h4msgs::board_pose_t>(channels::kBoardPose,
                                        [this](const h4msgs::board_pose_t& m) { OnBoardPose(m); });
-  bus_.Subscribe<h4msgs::camera_status_t>(
-      channels::kCameraStatus, [this](const h4msgs::camera_status_t&) { camera_heard_ = true; });
+  bus_.Subscribe<h4msgs::camera_status_t>(channels::kCameraStatus,
+                                          [this](const h4msgs::camera_status_t&) {
+                                            camera_heard_ = true;
+                                            ++camera_statuses_;
+                                          });
   spdlog::info("campaign ({} mode): {} poses planned, {} already in {}, {} to measure",
                ModeName(options_.mode), plan_.size(), plan_.size() - pending_.size(),
                journal_.path(), pending_.size());
@@ -231,9 +234,42 @@ void Campaign::RetryUnsettled(Clock::time_point now) {
       options_.settle_timeout_s, journal_.path(), journal_.rows().size()));
 }
 
+void Campaign::NoteWhoWasHeard(Clock::time_point now) {
+  if (first_step_ == Clock::time_point{}) first_step_ = now;
+  last_step_ = now;
+  if (counters_.joint_states != joint_states_at_last_step_) robot_heard_at_ = now;
+  if (camera_statuses_ != camera_statuses_at_last_step_) camera_heard_at_ = now;
+  joint_states_at_last_step_ = counters_.joint_states;
+  camera_statuses_at_last_step_ = camera_statuses_;
+}
+
+std::string Campaign::silent_sides() const {
+  auto silence = [this](const std::optional<Clock::time_point>& heard_at, const char* who,
+                        const char* channel) -> std::string {
+    const double silent_s = Seconds(last_step_ - heard_at.value_or(first_step_));
+    if (silent_s <= kSilentAfter_s) return "";
+    return fmt::format("the {} is silent (no {} {} {:.0f} s)", who, channel,
+                       heard_at ? "for" : "heard in", silent_s);
+  };
+  const std::string robot = silence(robot_heard_at_, "robot", channels::kJointState);
+  const std::string camera = silence(camera_heard_at_, "camera", channels::kCameraStatus);
+  if (robot.empty() || camera.empty()) return robot + camera;
+  return robot + "; " + camera;
+}
+
+void Campaign::LogSilentSides(Clock::time_point now) {
+  if (Seconds(now - silence_logged_at_) < kSilentAfter_s) return;
+  const std::string silent = silent_sides();
+  if (silent.empty()) return;
+  spdlog::warn("waiting: {}", silent);
+  silence_logged_at_ = now;
+}
+
 bool Campaign::Step(Clock::time_point now) {
   if (finished()) return false;
   if (options_.mode == CampaignMode::kPassive) return true;  // handlers do all the work
+  NoteWhoWasHeard(now);
+  LogSilentSides(now);
   const PlannedPose& pose = current();
   if (recorded_current_) {
     NextPose();
@@ -322,12 +358,22 @@ bool Campaign::Step(Clock::time_point now) {
 std::string Campaign::waiting_for() const {
   if (finished()) return "done";
   if (options_.mode == CampaignMode::kPassive) return "listening";
+  const std::string now_waiting = phase_waiting_for();
+  const std::string silent = silent_sides();
+  if (silent.empty() || phase_ == Phase::kWaitForDevices) return now_waiting;
+  return now_waiting + "; " + silent;
+}
+
+std::string Campaign::phase_waiting_for() const {
   const int64_t id = current().pose_id;
   const std::string attempt =
       attempt_ > 0 ? fmt::format(" (attempt {}/{})", attempt_ + 1, options_.retries + 1) : "";
   switch (phase_) {
-    case Phase::kWaitForDevices:
-      return "waiting to hear the robot and the camera";
+    case Phase::kWaitForDevices: {
+      const std::string robot = joints_heard_ ? "" : "the robot (H4_JOINT_STATE)";
+      const std::string camera = camera_heard_ ? "" : "the camera (H4_CAMERA_STATUS)";
+      return "waiting to hear " + robot + (robot.empty() || camera.empty() ? "" : " and ") + camera;
+    }
     case Phase::kSendTarget:
       return fmt::format("pose {}: sending target{}", id, attempt);
     case Phase::kSettling:

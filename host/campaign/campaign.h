@@ -90,8 +90,15 @@ class Campaign {
   /// Planned poses, and those recorded or skipped so far (including resumed ones).
   int planned_count() const { return static_cast<int>(plan_.size()); }
   int done_count() const;
-  /// What the campaign waits for now, for the progress bar.
+  /// What the campaign waits for now, for the progress bar; names the side (robot or
+  /// camera) that has been silent for longer than kSilentAfter_s, or never heard.
   std::string waiting_for() const;
+  /// "" when both sides were heard within kSilentAfter_s of the last Step(); else which is
+  /// silent and on which channel, e.g. "the robot is silent (no H4_JOINT_STATE for 4 s)".
+  std::string silent_sides() const;
+  /// A side unheard for this long is called silent: the camera's heartbeat comes every
+  /// second (firmware/packaging/h4cam.yaml), a robot's joint states at 100 Hz.
+  static constexpr double kSilentAfter_s = 3.0;
   const std::vector<SkippedPose>& skipped() const { return skipped_; }
   const CampaignCounters& counters() const { return counters_; }
 
@@ -111,6 +118,12 @@ class Campaign {
   /// Sends the target of `pose`; false (pose skipped) when the control law cannot reach it.
   bool PublishTarget(const PlannedPose& pose, Clock::time_point now);
   void NextPose();
+  /// waiting_for() of the phase alone.
+  std::string phase_waiting_for() const;
+  /// Notes, at each Step(), whether the robot and the camera were heard since the last one.
+  void NoteWhoWasHeard(Clock::time_point now);
+  /// Logs which side is silent, at most every kSilentAfter_s while it stays so.
+  void LogSilentSides(Clock::time_point now);
   bool IsPlanned(int64_t pose_id) const;
   const PlannedPose& current() const { return plan_[pending_[next_]]; }
 
@@ -131,6 +144,11 @@ class Campaign {
   bool recorded_current_ = false;              ///< set by a handler, acted on by Step()
   bool camera_heard_ = false;
   bool joints_heard_ = false;
+  int64_t camera_statuses_ = 0;               ///< camera heartbeats heard
+  int64_t joint_states_at_last_step_ = 0;     ///< counters_.joint_states at the last Step()
+  int64_t camera_statuses_at_last_step_ = 0;  ///< camera_statuses_ at the last Step()
+  std::optional<Clock::time_point> robot_heard_at_, camera_heard_at_;  ///< by Step()'s clock
+  Clock::time_point first_step_{}, last_step_{}, silence_logged_at_{};
   std::vector<int64_t> unsettled_in_a_row_;  ///< poses skipped as not settled since the last
                                              ///< pose that settled
 

@@ -6,6 +6,7 @@
 #include <memory>
 #include <thread>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "common/formats/identification_result.h"
@@ -128,6 +129,31 @@ void IdentifyAndReport(const CollectOptions& options, const std::string& command
   spdlog::info("wrote {}", WriteHtmlReport(options.identify_dir, inputs, report, command_line));
 }
 
+/// Steps the campaign and drains the bus until the campaign ends, the log ends (from_log)
+/// or `stop` is set; true when stopped by `stop`. Throws when LCM keeps failing.
+bool RunCampaign(Campaign& campaign, bus::LcmBus& bus, bool from_log, const std::atomic<bool>& stop,
+                 Progress& progress) {
+  // A signal interrupts LCM's wait (EINTR), which it reports as an error: a stop request
+  // (checked first, so that Ctrl-C is an interruption: 130, resumable), or for any other
+  // signal a one-off. Only an error that persists is a failed bus.
+  constexpr int kMaxConsecutiveBusFailures = 10;
+  int consecutive_failures = 0;
+  while (campaign.Step(Campaign::Clock::now())) {
+    const int handled = bus.Handle(std::chrono::milliseconds(20));
+    if (stop.load()) return true;
+    if (handled >= 0) {
+      consecutive_failures = 0;
+    } else if (from_log) {
+      return false;  // the end of the log
+    } else if (++consecutive_failures >= kMaxConsecutiveBusFailures) {
+      throw std::runtime_error(fmt::format("LCM stopped receiving on {} ({} failures in a row)",
+                                           bus.url(), consecutive_failures));
+    }
+    progress.Update(campaign.done_count(), campaign.waiting_for());
+  }
+  return false;  // every pose recorded or skipped
+}
+
 void Run(CollectOptions options, const std::string& command_line) {
   if (options.manual && options.passive) {
     throw std::invalid_argument("--manual and --passive exclude each other");
@@ -173,21 +199,7 @@ void Run(CollectOptions options, const std::string& command_line) {
   Campaign campaign(bus, plan, journal, options.campaign);
 
   Progress progress("collect", campaign.planned_count());
-  bool interrupted = false;
-  while (campaign.Step(Campaign::Clock::now())) {
-    const int handled = bus.Handle(std::chrono::milliseconds(20));
-    // A stop signal interrupts LCM's wait (EINTR), which it reports as an error: check the
-    // signal first, so that Ctrl-C is an interruption (130, resumable), not a failure.
-    if (stop.load()) {
-      interrupted = true;
-      break;
-    }
-    if (handled < 0) {
-      if (from_log) break;  // the end of the log
-      throw std::runtime_error("LCM stopped receiving on " + bus.url());
-    }
-    progress.Update(campaign.done_count(), campaign.waiting_for());
-  }
+  const bool interrupted = RunCampaign(campaign, bus, from_log, stop, progress);
   progress.Finish(campaign.finished() ? "every pose recorded or skipped"
                   : interrupted       ? "interrupted"
                                       : "end of the log");

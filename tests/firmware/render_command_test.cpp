@@ -8,6 +8,8 @@
 #include <CLI/CLI.hpp>
 #include <gtest/gtest.h>
 
+#include "firmware/render/paper_scenes.h"
+
 namespace h4::cam {
 namespace {
 
@@ -18,6 +20,19 @@ std::string ErrorOf(const RenderArgs& args) {
     return e.what();
   }
   return "";
+}
+
+TEST(RenderCommandTest, SaysWhenTheBoardIsBehindTheCameraOrOffTheImage) {
+  const AprilGridSpec board = scenes::PaperBoard();
+  const CameraIntrinsics camera = scenes::PaperCamera();
+  const RigidTransform X_CT = scenes::BoardPose(board, 0.5, 0.0, 0.0, 0.0);
+  EXPECT_EQ(BoardOutOfView(board, camera, X_CT), "");
+
+  const RigidTransform behind(X_CT.rotation(), -X_CT.translation());
+  EXPECT_NE(BoardOutOfView(board, camera, behind).find("behind the camera"), std::string::npos);
+
+  const RigidTransform aside(X_CT.rotation(), X_CT.translation() + Eigen::Vector3d(3.0, 0, 0));
+  EXPECT_NE(BoardOutOfView(board, camera, aside).find("off the image"), std::string::npos);
 }
 
 TEST(RenderCommandTest, FlagsOverrideThePreset) {

@@ -351,6 +351,58 @@ TEST_F(CampaignTest, RefusesToStartWhileTheCameraIsSilentAndSaysSo) {
   EXPECT_TRUE(cell.targets.empty()) << "nothing is sent before both are heard";
 }
 
+/// One heartbeat of the camera and (when `with_robot`) one joint reading, handled.
+void HearFromTheCell(bus::LcmBus& bus, bool with_robot) {
+  h4msgs::camera_status_t status{};
+  status.utime = NowUtime();
+  status.state = h4msgs::camera_status_t::STATE_IDLE;
+  bus.Publish(channels::kCameraStatus, status);
+  if (with_robot) {
+    h4msgs::joint_state_t js{};
+    js.utime = NowUtime();
+    js.pose_id = -1;
+    js.joint_count = 4;
+    js.position = {0.0, 0.0, 0.0, 0.0};
+    bus.Publish(channels::kJointState, js);
+  }
+  bus.Handle(std::chrono::milliseconds(10));
+}
+
+TEST_F(CampaignTest, SaysWhichSideIsSilentWhileItWaits) {
+  bus::LcmBus bus("memq://");
+  DatasetJournal journal(path_);
+  CampaignOptions options = FastOptions();
+  options.settle_timeout_s = 60.0;  // the clock below is the test's: no real waiting
+  Campaign campaign(bus, Plan(1), journal, options);
+  const Clock::time_point t0 = Clock::now();
+  using std::chrono::seconds;
+
+  campaign.Step(t0);
+  EXPECT_EQ(campaign.waiting_for(),
+            "waiting to hear the robot (H4_JOINT_STATE) and the camera (H4_CAMERA_STATUS)");
+  EXPECT_EQ(campaign.silent_sides(), "");
+
+  HearFromTheCell(bus, /*with_robot=*/false);
+  campaign.Step(t0 + seconds(4));
+  EXPECT_EQ(campaign.waiting_for(), "waiting to hear the robot (H4_JOINT_STATE)");
+  EXPECT_EQ(campaign.silent_sides(), "the robot is silent (no H4_JOINT_STATE heard in 4 s)");
+
+  HearFromTheCell(bus, /*with_robot=*/true);
+  campaign.Step(t0 + seconds(5));
+  EXPECT_EQ(campaign.silent_sides(), "");
+
+  // The robot stops talking mid-campaign while the camera goes on.
+  for (int s = 6; s <= 10; ++s) {
+    HearFromTheCell(bus, /*with_robot=*/false);
+    campaign.Step(t0 + seconds(s));
+  }
+  EXPECT_EQ(campaign.silent_sides(), "the robot is silent (no H4_JOINT_STATE for 5 s)");
+  EXPECT_NE(campaign.waiting_for().find("pose 1: waiting for the robot to settle; the robot is "
+                                        "silent"),
+            std::string::npos)
+      << campaign.waiting_for();
+}
+
 TEST_F(CampaignTest, SkipsAPoseWhoseMeasurementNeverComes) {
   bus::LcmBus bus("memq://");
   ScriptedCell cell(bus);

@@ -7,7 +7,8 @@
 #     (held-out board poses <= 0.10 mm / 0.02 deg RMS, Model 12);
 #   - the log, read through LCM's file:// provider (collect --from-log) and replayed live by
 #     the real lcm-logplayer into collect --passive, rebuilds the same rows byte for byte;
-#   - a campaign killed (SIGKILL) in the middle and started again ends with every pose
+#   - a campaign interrupted (SIGINT, Ctrl-C) in the middle exits 130 with its rows flushed
+#     and resumes; killed (SIGKILL) further on and started again, it ends with every pose
 #     exactly once;
 #   - all of it with authenticated messages (h4cam run --auth-key, collect --auth-key, one
 #     pre-shared key): the signed log rebuilds the same rows through --from-log with the key
@@ -88,13 +89,29 @@ collect=("$h4cal" collect --plan plan.csv --settle-timeout $((20 * scale))
 [ "$(rows dataset.csv)" -eq 12 ] || fail "dataset.csv has $(rows dataset.csv) rows, expected 12"
 kill -INT $logger; wait $logger || true
 
-# Killed in the middle, then started again: every pose exactly once.
+# Interrupted (Ctrl-C: SIGINT) in the middle: exit 130, the rows so far flushed, and the
+# same command resumes. Then killed (SIGKILL) further on, then started again: every pose
+# exactly once.
+"${collect[@]}" --out resumed.csv > interrupted.log 2>&1 &
+victim=$!; pids+=($victim)
+for _ in $(seq $((600 * scale))); do [ "$(rows resumed.csv)" -ge 2 ] && break; sleep 0.1; done
+kill -INT $victim
+status=0; wait $victim || status=$?
+[ $status -eq 130 ] || fail "collect exited $status on SIGINT, expected 130"
+interrupted=$(rows resumed.csv)
+[ "$interrupted" -ge 2 ] && [ "$interrupted" -lt 12 ] || fail "SIGINT came at $interrupted rows"
+grep -q "campaign: $interrupted of 12 planned poses in resumed.csv (0 from an earlier run), interrupted" \
+  interrupted.log || fail "the summary on SIGINT does not match the $interrupted rows on disk"
+grep -q "run the same command again to resume" interrupted.log || fail "no resume hint on SIGINT"
 "${collect[@]}" --out resumed.csv > resumed_1.log 2>&1 &
 victim=$!; pids+=($victim)
-for _ in $(seq $((600 * scale))); do [ "$(rows resumed.csv)" -ge 5 ] && break; sleep 0.1; done
+kill_at=$(( interrupted + 2 > 5 ? interrupted + 2 : 5 ))
+for _ in $(seq $((600 * scale))); do [ "$(rows resumed.csv)" -ge $kill_at ] && break; sleep 0.1; done
 kill -KILL $victim; wait $victim 2> /dev/null || true
+grep -q "$interrupted already in" resumed_1.log \
+  || fail "the run after SIGINT did not resume from $interrupted rows"
 before=$(rows resumed.csv)
-[ "$before" -ge 5 ] && [ "$before" -lt 12 ] || fail "kill came at $before rows"
+[ "$before" -ge $kill_at ] && [ "$before" -lt 12 ] || fail "kill came at $before rows"
 "${collect[@]}" --out resumed.csv > resumed_2.log 2>&1 || fail "resumed collect exited $?"
 grep -q "$before already in" resumed_2.log || fail "the restart did not resume from $before rows"
 [ "$(rows resumed.csv)" -eq 12 ] || fail "resumed.csv has $(rows resumed.csv) rows"
@@ -136,5 +153,6 @@ line=$("$h4cal" fk --result result12.json --joints sim/heldout_joints.csv --out 
 read -r p r <<< "$(echo "$line" | sed -E 's/.*position RMS ([0-9.]+) mm, rotation RMS ([0-9.]+) deg.*/\1 \2/')"
 below "$p" 0.10 || fail "held-out position RMS $p mm > 0.10"
 below "$r" 0.02 || fail "held-out rotation RMS $r deg > 0.02"
-echo "PASS: 12 live poses -> held-out $p mm, $r deg; killed at $before rows, resumed to 12;" \
+echo "PASS: 12 live poses -> held-out $p mm, $r deg; SIGINT at $interrupted rows (130), killed" \
+  "at $before rows, resumed to 12;" \
   "--from-log and lcm-logplayer replays identical; all signed, another key dropped $dropped"

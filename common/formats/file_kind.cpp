@@ -1,0 +1,51 @@
+// Guessing a file's kind from its first line; see file_kind.h.
+#include "common/formats/file_kind.h"
+
+#include <algorithm>
+
+namespace h4 {
+namespace {
+
+/// The first line that is neither empty nor a '#' comment, without its line break.
+std::string FirstContentLine(const std::string& text) {
+  size_t start = 0;
+  while (start < text.size()) {
+    size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(start, end - start);
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (!line.empty() && line[0] != '#') return line;
+    start = end + 1;
+  }
+  return "";
+}
+
+}  // namespace
+
+FileKind GuessFileKind(const std::string& text) {
+  const std::string line = FirstContentLine(text);
+  const auto commas = std::count(line.begin(), line.end(), ',');
+  if (line.rfind("pose_id,utime,q1", 0) == 0) return FileKind::kDatasetCsv;
+  if (commas >= 2 && line.find(':') == std::string::npos) return FileKind::kOtherCsv;
+  if (line.rfind("%YAML", 0) == 0 || line == "---" ||
+      (commas == 0 && line.find(':') != std::string::npos)) {
+    return FileKind::kYaml;
+  }
+  return FileKind::kUnknown;
+}
+
+const char* DescribeFileKind(FileKind kind) {
+  switch (kind) {
+    case FileKind::kDatasetCsv:
+      return "a dataset CSV";
+    case FileKind::kOtherCsv:
+      return "a CSV file";
+    case FileKind::kYaml:
+      return "a YAML file";
+    case FileKind::kUnknown:
+      break;
+  }
+  return "an unknown file";
+}
+
+}  // namespace h4

@@ -1,0 +1,68 @@
+// The robot bridge; see robot_bridge.h.
+#include "examples/robot_bridge/robot_bridge.h"
+
+#include <cstdio>
+
+#include "messages/channels.h"
+
+namespace h4::example {
+namespace {
+
+int64_t NowUtime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+
+RobotBridge::RobotBridge(lcm::LCM& lcm, Controller& controller, RobotBridgeOptions options)
+    : lcm_(lcm), controller_(controller), options_(options) {
+  lcm_.subscribe(channels::kRobotTarget, &RobotBridge::OnTarget, this);
+}
+
+void RobotBridge::OnTarget(const lcm::ReceiveBuffer*, const std::string&,
+                           const h4msgs::robot_target_t* target) {
+  ++targets_received_;
+  // collect repeats a target until the joint states carry its id: the same target again
+  // changes nothing (the robot keeps moving, or stays settled).
+  if (target->pose_id == pose_id_ && !refused_) return;
+  std::string why;
+  bool accepted = false;
+  if (target->target_type == h4msgs::robot_target_t::TARGET_POSE) {
+    accepted = controller_.MoveToPose(
+        {target->pose[0], target->pose[1], target->pose[2], target->pose[3]}, &why);
+  } else if (target->target_type == h4msgs::robot_target_t::TARGET_JOINTS) {
+    accepted = controller_.MoveToJoints(
+        {target->joints[0], target->joints[1], target->joints[2], target->joints[3]}, &why);
+  } else {
+    why = "unknown target_type " + std::to_string(target->target_type);
+  }
+  // The id is taken either way: a refused pose is reported (not settled) under its own id,
+  // so that the campaign retries, then skips it, instead of waiting for an old pose.
+  pose_id_ = target->pose_id;
+  refused_ = !accepted;
+  if (refused_) {
+    ++targets_refused_;
+    std::fprintf(stderr, "robot_bridge: pose %lld refused: %s\n", static_cast<long long>(pose_id_),
+                 why.c_str());
+  }
+}
+
+h4msgs::joint_state_t RobotBridge::MakeJointState(int64_t utime) {
+  const JointReading reading = controller_.Read();
+  h4msgs::joint_state_t state{};
+  state.utime = utime;
+  state.pose_id = pose_id_;
+  state.joint_count = 4;
+  state.position.assign(reading.q.begin(), reading.q.end());
+  state.settled = reading.at_rest && !refused_;
+  return state;
+}
+
+void RobotBridge::PublishJointState() {
+  const h4msgs::joint_state_t state = MakeJointState(NowUtime());
+  lcm_.publish(channels::kJointState, &state);
+}
+
+}  // namespace h4::example

@@ -1,0 +1,300 @@
+// `h4cam capture` and `h4cam preview`; see capture_command.h.
+#include "firmware/cli/capture_command.h"
+
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "common/board/board_model.h"
+#include "common/formats/board_yaml.h"
+#include "common/formats/camera_yaml.h"
+#include "common/geometry/rotation.h"
+#include "firmware/cli/exit_code.h"
+#include "firmware/cli/frame_check.h"
+#include "firmware/sources/image_file_source.h"
+#include "firmware/sources/libcamera_source.h"
+#include "firmware/sources/sim_source.h"
+
+namespace h4::cam {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::atomic<bool> g_capture_stop_requested{false};
+
+// Only sets the flag: the capture loop polls it between frames.
+extern "C" void OnCaptureStopSignal(int) { g_capture_stop_requested.store(true); }
+
+/// The board centred on the optical axis, facing the camera, `depth` m away.
+RigidTransform CentredBoardPose(const BoardSpec& board, double depth) {
+  const BoardModel model(board);
+  const Eigen::Vector2d centre = 0.5 * (model.pattern_min() + model.pattern_max());
+  return RigidTransform(Eigen::Matrix3d::Identity(),
+                        Eigen::Vector3d(-centre.x(), -centre.y(), depth));
+}
+
+RigidTransform SimPose(const CaptureArgs& args, const BoardSpec& board) {
+  if (args.sim_pose.empty()) return CentredBoardPose(board, 0.5);
+  if (args.sim_pose.size() != 7) {
+    throw std::runtime_error("--sim-pose: expected 7 numbers x,y,z,qw,qx,qy,qz, got " +
+                             std::to_string(args.sim_pose.size()));
+  }
+  const std::vector<double>& v = args.sim_pose;
+  Eigen::Matrix3d R_CT;
+  if (!RotationFromQuaternion(v[3], v[4], v[5], v[6], &R_CT)) {
+    throw std::runtime_error("--sim-pose: quaternion (qw, qx, qy, qz) must have unit norm");
+  }
+  return RigidTransform(R_CT, Eigen::Vector3d(v[0], v[1], v[2]));
+}
+
+std::unique_ptr<FrameSource> MakeSimSource(const CaptureArgs& args, const BoardSpec& board,
+                                           const CameraIntrinsics& camera) {
+  SimSourceOptions options;
+  if (!RenderPresetByName(args.sim_preset, &options.render)) {
+    throw std::runtime_error("--sim-preset '" + args.sim_preset + "': expected clean or processed");
+  }
+  // More light on the same print and background: the levels scale, the white clips at 255.
+  options.render.black_level *= args.sim_exposure;
+  options.render.white_level *= args.sim_exposure;
+  options.render.background_level *= args.sim_exposure;
+  std::string why;
+  if (!options.render.IsValid(&why)) throw std::runtime_error("--sim-exposure: " + why);
+  auto source = std::make_unique<SimSource>(board, camera, options);
+  source->SetPose(SimPose(args, board));
+  return source;
+}
+
+std::unique_ptr<FrameSource> MakeSource(const CaptureArgs& args, const BoardSpec& board,
+                                        const CameraIntrinsics& camera) {
+  if (args.source == "sim") return MakeSimSource(args, board, camera);
+  if (args.source.rfind("dir:", 0) == 0) {
+    return std::make_unique<ImageFileSource>(std::vector<std::string>{args.source.substr(4)});
+  }
+  if (args.source != "libcamera") {
+    throw std::runtime_error("--source '" + args.source + "': expected libcamera, sim or dir:PATH");
+  }
+  LibcameraSourceOptions options;
+  options.camera_id = args.camera_id;
+  options.width = camera.width;
+  options.height = camera.height;
+  options.auto_exposure = args.exposure_us <= 0;
+  options.exposure_time = std::chrono::microseconds(static_cast<int64_t>(args.exposure_us));
+  options.analogue_gain = static_cast<float>(args.analogue_gain);
+  return std::make_unique<LibcameraSource>(options);
+}
+
+void StartSource(FrameSource& source) {
+  if (!source.Open() || !source.Configure() || !source.Start()) {
+    throw std::runtime_error(source.Describe() + ": " + source.error());
+  }
+}
+
+void WritePng(const fs::path& path, const cv::Mat& image) {
+  if (!cv::imwrite(path.string(), image)) {
+    throw std::runtime_error(path.string() + ": cannot write the image");
+  }
+}
+
+/// Writes `image` to `path` through a file beside it, renamed over it: a viewer that
+/// reloads the file never sees half of it.
+void ReplacePng(const fs::path& path, const cv::Mat& image) {
+  const fs::path temporary = path.parent_path() / ("." + path.stem().string() + "-new.png");
+  WritePng(temporary, image);
+  fs::rename(temporary, path);
+}
+
+std::string Numbered(const char* stem, int index) {
+  char name[48];
+  std::snprintf(name, sizeof(name), "%s_%04d.png", stem, index);
+  return name;
+}
+
+void CheckFrameSize(const Frame& frame, const CameraIntrinsics& camera,
+                    const std::string& camera_path) {
+  if (frame.image.cols == camera.width && frame.image.rows == camera.height) return;
+  throw std::runtime_error((frame.origin.empty() ? "frame" : frame.origin) + ": image is " +
+                           std::to_string(frame.image.cols) + "x" +
+                           std::to_string(frame.image.rows) + ", the camera file " + camera_path +
+                           " says " + std::to_string(camera.width) + "x" +
+                           std::to_string(camera.height));
+}
+
+/// What is done with one frame: checked, printed, saved and drawn as asked.
+void TakeFrame(const CaptureArgs& args, bool save_frames, const Frame& frame, int index,
+               const BoardDetector& detector, const CameraModel& camera, std::ostream& out,
+               CaptureSummary* summary) {
+  BoardDetection detection;
+  const FrameFigures figures = CheckFrame(frame.image, detector, camera, &detection);
+  ++summary->frames;
+  if (figures.status != BoardDetection::Status::kNoBoard) ++summary->with_board;
+  out << "frame " << index;
+  if (!frame.origin.empty()) out << " (" << frame.origin << ")";
+  out << ": " << FormatFrameFigures(figures) << "\n" << std::flush;
+  const fs::path dir(args.out_dir);
+  if (save_frames) WritePng(dir / Numbered("frame", index), frame.image);
+  if (!args.draw) return;
+  const cv::Mat overlay = DrawFrameFigures(frame.image, detection, figures);
+  if (save_frames) {
+    WritePng(dir / Numbered("overlay", index), overlay);
+  } else {
+    ReplacePng(dir / "preview.png", overlay);
+  }
+}
+
+}  // namespace
+
+CaptureSummary RunCapture(const CaptureArgs& args, bool save_frames, std::ostream& out,
+                          const std::atomic<bool>& stop) {
+  const BoardSpec board = ReadBoardYaml(args.board_path);
+  const CameraIntrinsics intrinsics = ReadCameraYaml(args.camera_path);
+  const BoardDetector detector(board, intrinsics);
+  if (!detector.ok()) throw std::runtime_error(args.board_path + ": " + detector.error());
+  const CameraModel camera(intrinsics);
+  if ((save_frames || args.draw) && args.out_dir.empty()) {
+    throw std::runtime_error(save_frames ? "--out: the folder to save the frames in is required"
+                                         : "--draw needs --out (the folder of preview.png)");
+  }
+  if (!args.out_dir.empty()) fs::create_directories(args.out_dir);
+
+  std::unique_ptr<FrameSource> source = MakeSource(args, board, intrinsics);
+  StartSource(*source);
+  CaptureSummary summary;
+  std::optional<std::chrono::steady_clock::time_point> last_taken;
+  while ((args.count == 0 || summary.frames < args.count) && !stop.load()) {
+    std::optional<Frame> frame = source->Next(std::chrono::milliseconds(1000));
+    if (!frame) {
+      if (source->finished()) break;
+      if (!source->error().empty()) throw std::runtime_error(source->error());
+      continue;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (last_taken && std::chrono::duration<double>(now - *last_taken).count() < args.interval_s) {
+      continue;
+    }
+    last_taken = now;
+    CheckFrameSize(*frame, intrinsics, args.camera_path);
+    TakeFrame(args, save_frames, *frame, summary.frames, detector, camera, out, &summary);
+  }
+  source->Stop();
+  source->Close();
+  out << (save_frames ? "captured " : "checked ") << summary.frames << " frame(s), "
+      << summary.with_board << " showing the board"
+      << (save_frames ? ", in " + args.out_dir : std::string()) << "\n";
+  return summary;
+}
+
+namespace {
+
+void AddCaptureOptions(CLI::App* command, CaptureArgs* args) {
+  command->add_option("--source", args->source, "Frames: libcamera, sim or dir:PATH")
+      ->capture_default_str();
+  command->add_option("--board", args->board_path, "Board YAML")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command
+      ->add_option("--camera", args->camera_path,
+                   "Camera intrinsics YAML (OpenCV); nominal values will do before the camera "
+                   "is calibrated")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_flag("--draw", args->draw, "Also write the frame with its detection drawn");
+  command
+      ->add_option("--interval", args->interval_s,
+                   "Live sources: at least this long between frames taken, s (time to move "
+                   "the board)")
+      ->check(CLI::Range(0.0, 3600.0))
+      ->capture_default_str();
+  command->add_option("--camera-id", args->camera_id, "libcamera camera id (default the first)");
+  command
+      ->add_option("--exposure-us", args->exposure_us,
+                   "libcamera: fixed exposure time, us (default 0: automatic)")
+      ->check(CLI::Range(0.0, 1e6));
+  command->add_option("--gain", args->analogue_gain, "libcamera: analogue gain (fixed exposure)")
+      ->check(CLI::Range(1.0, 64.0))
+      ->capture_default_str();
+  command
+      ->add_option("--sim-pose", args->sim_pose,
+                   "sim: X_CT as x,y,z,qw,qx,qy,qz (m; default the board centred 0.5 m ahead)")
+      ->delimiter(',')
+      ->expected(7);
+  command->add_option("--sim-preset", args->sim_preset, "sim: clean or processed")
+      ->check(CLI::IsMember({"clean", "processed"}))
+      ->capture_default_str();
+  command
+      ->add_option("--sim-exposure", args->sim_exposure,
+                   "sim: scale of the light (1: the preset's; above ~1.2 the white clips)")
+      ->check(CLI::Range(0.05, 20.0))
+      ->capture_default_str();
+}
+
+void InstallCaptureStopSignal() {
+  struct sigaction action {};
+  action.sa_handler = OnCaptureStopSignal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+void SetCaptureExitCode(const CaptureSummary& summary) {
+  if (summary.frames == 0 && g_capture_stop_requested.load()) {
+    SetExitCode(130);
+  } else if (summary.with_board == 0) {
+    std::cerr << "h4cam: no frame showed the board\n";
+    SetExitCode(kExitNothingUsable);
+  }
+}
+
+}  // namespace
+
+void AddCaptureCommand(CLI::App& app) {
+  auto args = std::make_shared<CaptureArgs>();
+  CLI::App* command = app.add_subcommand(
+      "capture",
+      "Save camera frames (PNG) for calibrate-intrinsics, printing for each the board's "
+      "detection, reprojection RMS, sharpness, exposure and coverage");
+  AddCaptureOptions(command, args.get());
+  command->add_option("--count", args->count, "Frames to save")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  command->add_option("--out", args->out_dir, "Folder of frame_NNNN.png (and overlay_NNNN.png)")
+      ->required();
+  command->footer(
+      "Exit codes: 0 some frame showed the board, 3 none did, 130 interrupted, 1 error.");
+  command->callback([args] {
+    InstallCaptureStopSignal();
+    SetCaptureExitCode(
+        RunCapture(*args, /*save_frames=*/true, std::cout, g_capture_stop_requested));
+  });
+}
+
+void AddPreviewCommand(CLI::App& app) {
+  auto args = std::make_shared<CaptureArgs>();
+  args->count = 0;
+  CLI::App* command = app.add_subcommand(
+      "preview",
+      "Aim and focus: print for each frame the board's detection, reprojection RMS, "
+      "sharpness, exposure and coverage (with --draw, keep OUT/preview.png up to date)");
+  AddCaptureOptions(command, args.get());
+  command->add_option("--count", args->count, "Frames to check (0: until Ctrl-C)")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
+  command->add_option("--out", args->out_dir, "Folder of preview.png (with --draw)");
+  command->footer(
+      "Exit codes: 0 some frame showed the board, 3 none did, 130 interrupted before any "
+      "frame, 1 error.");
+  command->callback([args] {
+    InstallCaptureStopSignal();
+    SetCaptureExitCode(
+        RunCapture(*args, /*save_frames=*/false, std::cout, g_capture_stop_requested));
+  });
+}
+
+}  // namespace h4::cam

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# Exit codes and versions as README.md documents them (issue 16): `--version` on both
+# programs (exit 0, the CMake project version); `h4cam render` exits 3 and writes nothing
+# when the board is behind the camera or off the image; `h4cam measure` exits 3 when no
+# image shows the board (its rows are still written), 0 when one does; a dataset given as
+# --robot (or a robot.yaml as --data) is named as such in one line (exit 1).
+#   cli_exit_codes_test.sh H4CAL H4CAM SOURCE_DIR VERSION WORK_DIR
+set -euo pipefail
+h4cal=$1 h4cam=$2 src=$3 version=$4 dir=$5
+rm -rf "$dir"; mkdir -p "$dir"; cd "$dir"
+fail() { echo "FAIL: $*" >&2; exit 1; }
+code() { local c=0; "$@" > out.txt 2>&1 || c=$?; echo $c; }
+
+for program in "$h4cal" "$h4cam"; do
+  name=$(basename "$program")
+  [ "$(code "$program" --version)" -eq 0 ] || fail "$name --version: $(cat out.txt)"
+  grep -qx "$name $version" out.txt || fail "$name --version printed '$(cat out.txt)'"
+done
+
+board=$src/boards/aprilgrid_6x6_30mm.yaml camera=$src/boards/sim_camera_1024x768.yaml
+render() { code "$h4cam" render --board "$board" --camera "$camera" --pose "$1" --out "$2"; }
+
+c=$(render 0,0,-0.5,1,0,0,0 behind)
+[ "$c" -eq 3 ] || fail "render behind the camera exited $c: $(cat out.txt)"
+grep -q "behind the camera" out.txt || fail "render behind the camera said: $(cat out.txt)"
+[ ! -e behind/frame_0000.png ] || fail "render behind the camera wrote a frame"
+c=$(render 3,0,0.5,1,0,0,0 aside)
+[ "$c" -eq 3 ] || fail "render off the image exited $c: $(cat out.txt)"
+grep -q "off the image" out.txt || fail "render off the image said: $(cat out.txt)"
+
+# In view but 30 m away (a few pixels wide): rendered, yet no image shows a usable board.
+c=$(render -0.1,-0.1,30,1,0,0,0 far)
+[ "$c" -eq 0 ] || fail "render of a far board exited $c: $(cat out.txt)"
+c=$(code "$h4cam" measure --board "$board" --camera "$camera" --group 1 --out far.csv far)
+[ "$c" -eq 3 ] || fail "measure with no board in sight exited $c: $(cat out.txt)"
+grep -q "no image shows the board" out.txt || fail "measure said: $(cat out.txt)"
+[ "$(wc -l < far.csv)" -eq 2 ] || fail "far.csv should hold the header and one row without a pose"
+
+c=$(render -0.1,-0.1,0.5,1,0,0,0 near)
+[ "$c" -eq 0 ] || fail "render of a near board exited $c: $(cat out.txt)"
+c=$(code "$h4cam" measure --board "$board" --camera "$camera" --group 1 --out near.csv near)
+[ "$c" -eq 0 ] || fail "measure of a visible board exited $c: $(cat out.txt)"
+# robot.yaml and the dataset swapped: one line that says so, not the file quoted.
+"$h4cal" simulate --truth 12 --out-dir sim 2> /dev/null || fail "simulate"
+c=$(code "$h4cal" analyze --robot sim/dataset.csv --data sim/robot.yaml)
+[ "$c" -eq 1 ] || fail "analyze with --robot and --data swapped exited $c: $(cat out.txt)"
+grep -q "sim/dataset.csv:1: this looks like a dataset CSV, not a robot.yaml" out.txt \
+  || fail "swapped --robot said: $(cut -c1-300 out.txt)"
+[ "$(wc -l < out.txt)" -eq 1 ] || fail "swapped --robot printed $(wc -l < out.txt) lines"
+! grep -q "^1,\|,1,[0-9]" out.txt || fail "swapped --robot quoted the dataset"
+c=$(code "$h4cal" analyze --robot sim/robot.yaml --data sim/robot.yaml)
+[ "$c" -eq 1 ] || fail "analyze with a robot.yaml as --data exited $c"
+grep -q "sim/robot.yaml:1: this looks like a YAML file (a robot.yaml?), not a dataset CSV" out.txt \
+  || fail "a robot.yaml as --data said: $(cut -c1-300 out.txt)"
+echo "PASS: --version on both; render 3 behind / off the image; measure 3 with no board, 0 with" \
+  "one; swapped --robot / --data named as such"

@@ -1,0 +1,68 @@
+#!/usr/bin/env bash
+# Installed like a tool (issue 16): `cmake --install` into a scratch DESTDIR puts h4cal and
+# h4cam in bin, their man pages in share/man/man1 (one section per subcommand), the boards
+# in share/h4cal/boards and the documentation in share/doc/h4cal; both installed programs
+# answer --version and --help, and so does every subcommand (exit 0, non-empty output).
+# Then the workstation package, h4cal_<version>_<arch>.deb (cpack --config
+# CPackConfig-h4cal.cmake), holds the same files under /usr. Exit 77 (skipped) when dpkg-deb
+# is missing, for the package part only.
+#   install_test.sh BUILD_DIR VERSION
+set -euo pipefail
+build=$(realpath "$1") version=$2
+scratch=$(mktemp -d "${TMPDIR:-/tmp}/h4-install-test.XXXXXX")
+trap 'rm -rf "$scratch"' EXIT
+fail() { echo "FAIL: $*" >&2; exit 1; }
+
+DESTDIR=$scratch/root cmake --install "$build" --prefix /opt/h4 > "$scratch/install.log" 2>&1 \
+  || { cat "$scratch/install.log"; fail "cmake --install"; }
+prefix=$scratch/root/opt/h4
+
+subcommands() {  # CLI11's listing of the program's subcommands
+  "$1" --help | sed -nE '/^(Subcommands|SUBCOMMANDS):/,/^$/ s/^  ([a-z][a-z0-9-]*)( .*)?$/\1/p'
+}
+checked=0
+for name in h4cal h4cam; do
+  program=$prefix/bin/$name
+  [ -x "$program" ] || fail "$program is not installed"
+  out=$("$program" --version) || fail "$name --version exited $?"
+  [ "$out" = "$name $version" ] || fail "$name --version printed '$out'"
+  "$program" --help > "$scratch/help" || fail "$name --help exited $?"
+  [ -s "$scratch/help" ] || fail "$name --help printed nothing"
+  page=$prefix/share/man/man1/$name.1
+  [ -s "$page" ] || fail "no man page $page"
+  grep -q "$version" "$page" || fail "$page does not carry the version $version"
+  commands=$(subcommands "$program")
+  [ -n "$commands" ] || fail "$name --help lists no subcommand"
+  for command in $commands; do
+    "$program" "$command" --help > "$scratch/help" || fail "$name $command --help exited $?"
+    [ -s "$scratch/help" ] || fail "$name $command --help printed nothing"
+    grep -qF ".SS \"$name $command\"" "$page" || fail "$page has no section for $name $command"
+    checked=$((checked + 1))
+  done
+done
+for file in share/h4cal/boards/aprilgrid_6x6_30mm.yaml share/h4cal/boards/sim_camera_1024x768.yaml \
+  share/doc/h4cal/README.md share/doc/h4cal/common/formats/README.md share/doc/h4cal/messages/README.md; do
+  [ -s "$prefix/$file" ] || fail "$file is not installed"
+done
+echo "ok:   installed: --version on both, --help on $checked subcommands, man pages, boards, docs"
+
+if ! command -v dpkg-deb > /dev/null; then
+  echo "SKIPPED: the package part (dpkg-deb not found)"; exit 77
+fi
+arch=$(dpkg --print-architecture)
+cpack --config "$build/CPackConfig-h4cal.cmake" -B "$scratch/out" > "$scratch/cpack.log" 2>&1 \
+  || { cat "$scratch/cpack.log"; fail "cpack --config CPackConfig-h4cal.cmake"; }
+deb=$scratch/out/h4cal_${version}_${arch}.deb
+[ -f "$deb" ] || { ls -l "$scratch/out"; fail "expected $(basename "$deb")"; }
+[ "$(dpkg-deb -f "$deb" Package)" = h4cal ] || fail "Package is not h4cal"
+[ "$(dpkg-deb -f "$deb" Version)" = "$version" ] || fail "Version is not $version"
+dpkg-deb -f "$deb" Depends | grep -q libc6 || fail "Depends lacks the shared libraries (shlibdeps)"
+dpkg-deb -f "$deb" Conflicts | grep -qx h4cam || fail "Conflicts does not name h4cam"
+dpkg-deb -c "$deb" > "$scratch/contents"
+for file in usr/bin/h4cal usr/bin/h4cam usr/share/man/man1/h4cal.1 usr/share/man/man1/h4cam.1 \
+  usr/share/h4cal/boards/aprilgrid_6x6_30mm.yaml usr/share/doc/h4cal/README.md; do
+  grep -q " \./$file\$" "$scratch/contents" || fail "the package lacks /$file"
+done
+dpkg-deb -x "$deb" "$scratch/deb"
+[ "$("$scratch/deb/usr/bin/h4cal" --version)" = "h4cal $version" ] || fail "packaged h4cal --version"
+echo "PASS: $(basename "$deb"): h4cal, h4cam, man pages, boards, docs; Conflicts: h4cam"
