@@ -18,6 +18,7 @@ void AddAllCommands(CLI::App& app) {
   AddCollectCommand(app);
   AddSimRobotCommand(app);
   AddSquarePlanCommand(app);
+  AddPlanCommand(app);
 }
 
 int ExitCode() { return g_exit_code; }
