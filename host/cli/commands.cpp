@@ -19,6 +19,7 @@ void AddAllCommands(CLI::App& app) {
   AddSimRobotCommand(app);
   AddSquarePlanCommand(app);
   AddPlanCommand(app);
+  AddCheckCommand(app);
 }
 
 int ExitCode() { return g_exit_code; }
