@@ -27,6 +27,7 @@ namespace {
 struct PlanCommandOptions {
   std::string robot_path, camera_path, board_path, out_path;
   std::string model = "31";
+  std::string criterion = "d";  ///< "d" (D-optimal) or "accuracy" (I-optimal over the grid)
   int pose_count = 25;
   uint64_t seed = 1;
   int64_t first_id = 1;
@@ -69,8 +70,12 @@ PlanningProblemOptions ProblemOptions(const PlanCommandOptions& o) {
   return options;
 }
 
+PlanCriterion Criterion(const PlanCommandOptions& o) {
+  return o.criterion == "accuracy" ? PlanCriterion::kAccuracy : PlanCriterion::kDOptimal;
+}
+
 void PrintPlan(const PlannedCampaign& campaign, const PlanningProblem& problem, uint64_t seed) {
-  std::printf("planned %zu poses (Model %s, D-optimal, %d exchanges%s):\n", campaign.plan.size(),
+  std::printf("planned %zu poses (Model %s, %d exchanges%s):\n", campaign.plan.size(),
               ToString(problem.info.model), campaign.design.exchanges,
               campaign.design.converged ? "" : ", stopped before convergence");
   std::printf("  pose_id    X mm    Y mm    Z mm  theta deg\n");
@@ -94,7 +99,7 @@ void WriteCurve(const PlanCommandOptions& o, const PlanningProblem& problem) {
     DesignOptions design;
     design.pose_count = n;
     design.seed = o.seed;
-    const double planned = PlanCampaign(problem, design).predicted_position_rms;
+    const double planned = PlanCampaign(problem, design, 1, Criterion(o)).predicted_position_rms;
     const bool grid_has_n = n <= static_cast<int>(problem.grid.size());
     const double grid = grid_has_n ? GridPredictedPositionRms(problem, n, o.seed) : NAN;
     std::printf("  %5d %9.4f %9.4f\n", n, planned * 1e3, grid * 1e3);
@@ -115,7 +120,7 @@ void Run(const PlanCommandOptions& o) {
   DesignOptions design;
   design.pose_count = o.pose_count;
   design.seed = o.seed;
-  const PlannedCampaign campaign = PlanCampaign(problem, design, o.first_id);
+  const PlannedCampaign campaign = PlanCampaign(problem, design, o.first_id, Criterion(o));
   WritePosesCsv(o.out_path, RowsFromPosePlan(campaign.plan));
   PrintPlan(campaign, problem, o.seed);
   spdlog::info("wrote {} poses to {}", campaign.plan.size(), o.out_path);
@@ -145,6 +150,12 @@ void AddPlanCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--model", options->model, "Model the poses are planned for")
       ->check(CLI::IsMember({"12", "31"}))
+      ->capture_default_str();
+  command
+      ->add_option("--criterion", options->criterion,
+                   "d: D-optimal (information); accuracy: the predicted accuracy over the grid's "
+                   "poses (I-optimal, from the D-optimal design)")
+      ->check(CLI::IsMember({"d", "accuracy"}))
       ->capture_default_str();
   command->add_option("--seed", options->seed, "Seed of the exchange's start")
       ->capture_default_str();

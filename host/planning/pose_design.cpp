@@ -62,8 +62,68 @@ std::vector<double> LogDetChanges(const InformationModel& info, const Eigen::Mat
   return change;
 }
 
+// For each pose j, the fall of trace(A M^-1) when it is added (sign +1),
+// trace((I + G)^-1 H), or minus its rise when it is dropped (sign -1),
+// -trace((I - G)^-1 H), with G = B M^-1 B^T and H = B M^-1 A M^-1 B^T for its block B
+// (Woodbury): higher is better either way.
+std::vector<double> AccuracyChanges(const InformationModel& info, const Eigen::MatrixXd& M,
+                                    const Eigen::MatrixXd& A, const std::vector<int>& poses,
+                                    double sign) {
+  const Eigen::LLT<Eigen::MatrixXd> llt(M);
+  std::vector<double> change(poses.size(), -std::numeric_limits<double>::infinity());
+  for (size_t n = 0; n < poses.size(); ++n) {
+    const Eigen::MatrixXd B = info.Block(poses[n]);
+    const Eigen::MatrixXd X = llt.solve(B.transpose());  // M^-1 B^T
+    const Eigen::Matrix<double, 6, 6> G = B * X;
+    const Eigen::Matrix<double, 6, 6> H = X.transpose() * A * X;
+    const Eigen::Matrix<double, 6, 6> S = Eigen::Matrix<double, 6, 6>::Identity() + sign * G;
+    const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(S);
+    if (sign < 0.0 && ldlt.vectorD().minCoeff() <= 1e-12) continue;  // dropping it: singular
+    change[n] = sign * ldlt.solve(H).trace();
+  }
+  return change;
+}
+
 size_t ArgMax(const std::vector<double>& values) {
   return static_cast<size_t>(std::max_element(values.begin(), values.end()) - values.begin());
+}
+
+// The exchange: add the pose `scores` ranks best (sign +1) among those outside, drop the
+// one it ranks best to drop (sign -1) among the design and the added, until the dropped is
+// the added.
+template <typename Scores>
+Design Exchange(const InformationModel& info, int candidate_count, std::vector<int> design,
+                double ridge, int max_exchanges, Scores scores) {
+  std::vector<char> in_design(static_cast<size_t>(candidate_count), 0);
+  for (int j : design) in_design[static_cast<size_t>(j)] = 1;
+  Eigen::MatrixXd M = InformationMatrix(info, design, ridge);
+  Design result;
+  while (result.exchanges < max_exchanges) {
+    std::vector<int> outside;
+    for (int j = 0; j < candidate_count; ++j) {
+      if (!in_design[static_cast<size_t>(j)]) outside.push_back(j);
+    }
+    if (outside.empty()) {
+      result.converged = true;
+      break;
+    }
+    const int added = outside[ArgMax(scores(M, outside, +1.0))];
+    M.noalias() += info.Block(added).transpose() * info.Block(added);
+    design.push_back(added);
+    const size_t drop_at = ArgMax(scores(M, design, -1.0));
+    const int dropped = design[drop_at];
+    design.erase(design.begin() + static_cast<std::ptrdiff_t>(drop_at));
+    M = InformationMatrix(info, design, ridge);  // fresh: no drift from adding and removing
+    if (dropped == added) {
+      result.converged = true;
+      break;
+    }
+    in_design[static_cast<size_t>(added)] = 1;
+    in_design[static_cast<size_t>(dropped)] = 0;
+    ++result.exchanges;
+  }
+  result.chosen = design;
+  return result;
 }
 
 }  // namespace
@@ -78,43 +138,40 @@ Design PlanDOptimal(const InformationModel& info, int candidate_count,
                                 " candidates");
   }
   std::vector<int> design = SeededSubset(candidate_count, options.pose_count, options.seed);
-  std::vector<char> in_design(static_cast<size_t>(candidate_count), 0);
-  for (int j : design) in_design[static_cast<size_t>(j)] = 1;
   // The ridge relative to the mean diagonal of all the candidates' information.
   const double ridge =
       options.ridge *
       info.J_scaled.topRows(6 * static_cast<Eigen::Index>(candidate_count)).squaredNorm() /
       std::max(1, info.parameter_count());
-  Eigen::MatrixXd M = InformationMatrix(info, design, ridge);
-
-  Design result;
-  while (result.exchanges < options.max_exchanges) {
-    std::vector<int> outside;
-    for (int j = 0; j < candidate_count; ++j) {
-      if (!in_design[static_cast<size_t>(j)]) outside.push_back(j);
-    }
-    if (outside.empty()) {
-      result.converged = true;
-      break;
-    }
-    const int added = outside[ArgMax(LogDetChanges(info, M, outside, +1.0))];
-    M.noalias() += info.Block(added).transpose() * info.Block(added);
-    design.push_back(added);
-    const size_t drop_at = ArgMax(LogDetChanges(info, M, design, -1.0));
-    const int dropped = design[drop_at];
-    design.erase(design.begin() + static_cast<std::ptrdiff_t>(drop_at));
-    M = InformationMatrix(info, design, ridge);  // fresh: no drift from adding and removing
-    if (dropped == added) {
-      result.converged = true;
-      break;
-    }
-    in_design[static_cast<size_t>(added)] = 1;
-    in_design[static_cast<size_t>(dropped)] = 0;
-    ++result.exchanges;
-  }
+  Design result = Exchange(info, candidate_count, design, ridge, options.max_exchanges,
+                           [&](const Eigen::MatrixXd& M_now, const std::vector<int>& poses,
+                               double sign) { return LogDetChanges(info, M_now, poses, sign); });
+  design = result.chosen;
   std::sort(design.begin(), design.end());
   result.chosen = design;
   result.log_det = LogDet(InformationMatrix(info, design));
+  return result;
+}
+
+Design PlanForAccuracy(const InformationModel& info, int candidate_count,
+                       const std::vector<int>& evaluated, const DesignOptions& options) {
+  const Design start = PlanDOptimal(info, candidate_count, options);
+  const int k = info.parameter_count();
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(k, k);
+  for (int j : evaluated) {
+    const Eigen::MatrixXd T = info.Block(j).bottomRows(3);
+    A.noalias() += T.transpose() * T;
+  }
+  const double ridge =
+      options.ridge *
+      info.J_scaled.topRows(6 * static_cast<Eigen::Index>(candidate_count)).squaredNorm() /
+      std::max(1, k);
+  Design result = Exchange(info, candidate_count, start.chosen, ridge, options.max_exchanges,
+                           [&](const Eigen::MatrixXd& M, const std::vector<int>& poses,
+                               double sign) { return AccuracyChanges(info, M, A, poses, sign); });
+  result.exchanges += start.exchanges;
+  std::sort(result.chosen.begin(), result.chosen.end());
+  result.log_det = LogDet(InformationMatrix(info, result.chosen));
   return result;
 }
 

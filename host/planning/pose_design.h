@@ -39,6 +39,13 @@ struct Design {
 Design PlanDOptimal(const InformationModel& info, int candidate_count,
                     const DesignOptions& options);
 
+/// The same exchange for the predicted accuracy instead (I-optimality): from the D-optimal
+/// design, minimise trace(A M^-1) with A the sum of T_j^T T_j over the translation rows of
+/// the poses `evaluated`, i.e. the mean predicted board position variance over them
+/// (information_model.h, PredictedPositionRms).
+Design PlanForAccuracy(const InformationModel& info, int candidate_count,
+                       const std::vector<int>& evaluated, const DesignOptions& options);
+
 /// n distinct indices of [0, count) drawn with the seed, in draw order (n <= count).
 std::vector<int> SeededSubset(int count, int n, uint64_t seed);
 

@@ -27,9 +27,12 @@ PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraM
 }
 
 PlannedCampaign PlanCampaign(const PlanningProblem& problem, const DesignOptions& options,
-                             int64_t first_pose_id) {
+                             int64_t first_pose_id, PlanCriterion criterion) {
   PlannedCampaign campaign;
-  campaign.design = PlanDOptimal(problem.info, problem.candidate_count(), options);
+  campaign.design =
+      criterion == PlanCriterion::kDOptimal
+          ? PlanDOptimal(problem.info, problem.candidate_count(), options)
+          : PlanForAccuracy(problem.info, problem.candidate_count(), problem.grid_indices, options);
   int64_t pose_id = first_pose_id;
   for (int j : campaign.design.chosen) {
     campaign.plan.push_back({pose_id++, problem.candidates.poses[static_cast<size_t>(j)].x_B});

@@ -38,6 +38,10 @@ struct PlanningProblem {
 PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraModel& camera,
                                     const BoardModel& board, const PlanningProblemOptions& options);
 
+/// What the exchange maximises: the information (D-optimality, log det M) or the predicted
+/// accuracy over the grid's poses (I-optimality, from the D-optimal design).
+enum class PlanCriterion { kDOptimal, kAccuracy };
+
 struct PlannedCampaign {
   PosePlan plan;  ///< the chosen poses in B, pose ids from first_pose_id
   Design design;
@@ -46,7 +50,8 @@ struct PlannedCampaign {
 };
 
 PlannedCampaign PlanCampaign(const PlanningProblem& problem, const DesignOptions& options,
-                             int64_t first_pose_id = 1);
+                             int64_t first_pose_id = 1,
+                             PlanCriterion criterion = PlanCriterion::kDOptimal);
 
 /// The same prediction for n grid poses drawn with `seed` (n = 71: the paper's calibration
 /// poses, 10 held out).
