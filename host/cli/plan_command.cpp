@@ -27,7 +27,7 @@ namespace {
 struct PlanCommandOptions {
   std::string robot_path, camera_path, board_path, out_path;
   std::string model = "31";
-  std::string criterion = "d";  ///< "d" (D-optimal) or "accuracy" (I-optimal over the grid)
+  std::string criterion = "accuracy";  ///< "accuracy" (I-optimal over the grid) or "d" (D-optimal)
   int pose_count = 25;
   uint64_t seed = 1;
   int64_t first_id = 1;

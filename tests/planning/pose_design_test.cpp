@@ -89,6 +89,16 @@ TEST(PoseDesign, EndsWhereAddingTheBestCandidateAndDroppingAnyPoseDoesNotHelp) {
   EXPECT_GT(design.log_det, LogDet(InformationMatrix(problem.info, start)));
 }
 
+TEST(PoseDesign, TheAccuracyCriterionPredictsNoWorseThanDOptimality) {
+  const PlanningProblem& problem = CoarseProblem();
+  DesignOptions options;
+  options.pose_count = 20;
+  const PlannedCampaign d = PlanCampaign(problem, options, 1, PlanCriterion::kDOptimal);
+  const PlannedCampaign accuracy = PlanCampaign(problem, options, 1, PlanCriterion::kAccuracy);
+  EXPECT_LE(accuracy.predicted_position_rms, d.predicted_position_rms);
+  EXPECT_LT(accuracy.predicted_position_rms, GridPredictedPositionRms(problem, 20, 1));
+}
+
 TEST(PoseDesign, PlannedPosesAreCandidates) {
   const PlanningProblem& problem = CoarseProblem();
   DesignOptions options;
