@@ -22,6 +22,9 @@ namespace {
 struct CheckCommandOptions {
   std::string result_path, data_path, robot_path;
   DriftCheckOptions check;
+  /// Judge against the measurement noise alone: the result's parameter sigmas come without
+  /// their correlations, so adding them widens what is allowed far beyond the truth.
+  bool no_parameter_sigmas = false;
 };
 
 // One sigma per parameter of p from the result (0 for a fixed or absent one).
@@ -50,8 +53,10 @@ void Run(const CheckCommandOptions& o) {
   const IdentifiedRobot robot = RebuildFromResult(result, assembly);
   const ParameterVector p(*robot.model, robot.X_BC, robot.X_TE);
   const std::vector<DatasetRow> rows = ReadDatasetCsv(o.data_path);
-  const DriftCheckResult check =
-      CheckForDrift(*robot.model, p, ParameterStd(result, p), rows, o.check);
+  const DriftCheckResult check = CheckForDrift(
+      *robot.model, p,
+      o.no_parameter_sigmas ? Eigen::VectorXd::Zero(p.size()) : ParameterStd(result, p), rows,
+      o.check);
   std::printf("check of %s against %s (Model %s), %zu poses:\n", o.data_path.c_str(),
               o.result_path.c_str(), ToString(result.model), rows.size());
   if (check.evaluable) PrintPoses(check);
@@ -83,6 +88,9 @@ void AddCheckCommand(CLI::App& app) {
       ->add_option("--total-false-alarm", options->check.total_false_alarm,
                    "Probability that an unchanged robot fails the chi-square sum")
       ->capture_default_str();
+  command->add_flag("--no-parameter-sigmas", options->no_parameter_sigmas,
+                    "Ignore the result's parameter sigmas (they carry no correlations, so they "
+                    "widen what is allowed): judge against the measurement noise alone");
   command->footer(
       "Per pose: d^2 = e^T S^-1 e of the board pose error e in measurement sigmas (the dataset's "
       "sigma_t / sigma_r, else 0.2 mm / 0.03 deg) with S = I + J D J^T from the result's "
