@@ -1,5 +1,6 @@
-// `h4cal plan`: choose N calibration poses that maximise the information of the
-// measurement-space identification (D-optimal, host/planning/pose_design.h) among the poses
+// `h4cal plan`: choose N calibration poses for the measurement-space identification
+// (host/planning/pose_design.h: the predicted accuracy over the paper's grid poses by
+// default, or D-optimality, the information, with --criterion d) among the poses
 // the a priori robot reaches with the whole board in the camera's image
 // (host/planning/candidate_poses.h); writes them as a poses CSV (common/formats/README.md:
 // pose_id,X,Y,Z,theta in B) for `h4cal collect --plan`, prints them with the predicted
@@ -133,7 +134,8 @@ void AddPlanCommand(CLI::App& app) {
   auto options = std::make_shared<PlanCommandOptions>();
   CLI::App* command = app.add_subcommand(
       "plan",
-      "Plan N calibration poses (D-optimal for the identification) among the poses the robot "
+      "Plan N calibration poses (the most accurate design for the identification) among the poses "
+      "the robot "
       "reaches with the whole board in the image; writes a poses CSV for h4cal collect --plan");
   command->add_option("--robot", options->robot_path, "A priori robot.yaml (with X_BC, X_TE)")
       ->required()
