@@ -18,6 +18,8 @@ void AddAllCommands(CLI::App& app) {
   AddCollectCommand(app);
   AddSimRobotCommand(app);
   AddSquarePlanCommand(app);
+  AddPlanCommand(app);
+  AddCheckCommand(app);
 }
 
 int ExitCode() { return g_exit_code; }

@@ -20,6 +20,8 @@ void AddExportCommand(CLI::App& app);
 void AddCollectCommand(CLI::App& app);
 void AddSimRobotCommand(CLI::App& app);
 void AddSquarePlanCommand(CLI::App& app);
+void AddPlanCommand(CLI::App& app);
+void AddCheckCommand(CLI::App& app);
 
 /// The options a subcommand was given, as "--name value ..." (shown in the report).
 std::string ReportCommandLine(const CLI::App& command);

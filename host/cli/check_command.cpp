@@ -1,0 +1,105 @@
+// `h4cal check`: does the robot still match an identification result? Reads a short
+// verification campaign (a dataset CSV, e.g. 5 poses from `h4cal plan --poses 5` measured
+// with `h4cal collect --plan`), compares each measured board pose with the result's
+// prediction from the joints and flags the poses whose error exceeds what the measurement
+// noise and the result's uncertainty allow (host/planning/drift_check.h). Exit 3 on drift.
+#include <cstdio>
+#include <stdexcept>
+
+#include <spdlog/spdlog.h>
+
+#include "common/formats/dataset_csv.h"
+#include "common/formats/identification_result.h"
+#include "common/formats/robot_yaml.h"
+#include "common/units.h"
+#include "host/cli/commands.h"
+#include "host/identification/identified_robot.h"
+#include "host/planning/drift_check.h"
+
+namespace h4::host::cli {
+namespace {
+
+struct CheckCommandOptions {
+  std::string result_path, data_path, robot_path;
+  DriftCheckOptions check;
+  /// Judge against the measurement noise alone: the result's parameter sigmas come without
+  /// their correlations, so adding them widens what is allowed far beyond the truth.
+  bool no_parameter_sigmas = false;
+};
+
+// One sigma per parameter of p from the result (0 for a fixed or absent one).
+Eigen::VectorXd ParameterStd(const IdentificationResult& result, const ParameterVector& p) {
+  Eigen::VectorXd std_dev = Eigen::VectorXd::Zero(p.size());
+  for (int i = 0; i < p.size(); ++i) {
+    const ResultParameter* parameter = result.Find(p.names()[static_cast<size_t>(i)]);
+    if (parameter && parameter->std) std_dev[i] = *parameter->std;
+  }
+  return std_dev;
+}
+
+void PrintPoses(const DriftCheckResult& check) {
+  std::printf("  pose_id   position mm   rotation deg      d^2  verdict\n");
+  for (const PoseCheck& pose : check.poses) {
+    std::printf("  %7lld %13.4f %14.4f %8.2f  %s\n", static_cast<long long>(pose.pose_id),
+                pose.position_error * 1e3, DegreesFromRadians(pose.rotation_error),
+                pose.mahalanobis2, pose.flagged ? "FLAGGED" : "ok");
+  }
+}
+
+void Run(const CheckCommandOptions& o) {
+  const IdentificationResult result = ReadIdentificationResult(o.result_path);
+  const Assembly assembly =
+      o.robot_path.empty() ? Assembly{} : ReadRobotYaml(o.robot_path).assembly;
+  const IdentifiedRobot robot = RebuildFromResult(result, assembly);
+  const ParameterVector p(*robot.model, robot.X_BC, robot.X_TE);
+  const std::vector<DatasetRow> rows = ReadDatasetCsv(o.data_path);
+  const DriftCheckResult check = CheckForDrift(
+      *robot.model, p,
+      o.no_parameter_sigmas ? Eigen::VectorXd::Zero(p.size()) : ParameterStd(result, p), rows,
+      o.check);
+  std::printf("check of %s against %s (Model %s), %zu poses:\n", o.data_path.c_str(),
+              o.result_path.c_str(), ToString(result.model), rows.size());
+  if (check.evaluable) PrintPoses(check);
+  std::printf("%s\n", check.Summary().c_str());
+  if (check.drift) SetExitCode(3);
+}
+
+}  // namespace
+
+void AddCheckCommand(CLI::App& app) {
+  auto options = std::make_shared<CheckCommandOptions>();
+  CLI::App* command = app.add_subcommand(
+      "check",
+      "Check that the robot still matches an identification result, from a short verification "
+      "campaign; exit 3 when it has drifted");
+  command->add_option("--result", options->result_path, "Identification result JSON")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--data", options->data_path, "Verification dataset CSV")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--robot", options->robot_path, "robot.yaml to take the assembly signs from")
+      ->check(CLI::ExistingFile);
+  command
+      ->add_option("--pose-false-alarm", options->check.pose_false_alarm,
+                   "Probability that an unchanged robot has a pose flagged")
+      ->capture_default_str();
+  command
+      ->add_option("--total-false-alarm", options->check.total_false_alarm,
+                   "Probability that an unchanged robot fails the chi-square sum")
+      ->capture_default_str();
+  command->add_flag("--no-parameter-sigmas", options->no_parameter_sigmas,
+                    "Ignore the result's parameter sigmas (they carry no correlations, so they "
+                    "widen what is allowed): judge against the measurement noise alone");
+  command->footer(
+      "Per pose: d^2 = e^T S^-1 e of the board pose error e in measurement sigmas (the dataset's "
+      "sigma_t / sigma_r, else 0.2 mm / 0.03 deg) with S = I + J D J^T from the result's "
+      "parameter sigmas; chi-square(6) for an unchanged robot.");
+  command->callback([options] {
+    std::string why;
+    if (!options->check.IsValid(&why)) throw std::invalid_argument("check: " + why);
+    Run(*options);
+  });
+}
+
+}  // namespace h4::host::cli

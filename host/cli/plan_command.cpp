@@ -1,0 +1,191 @@
+// `h4cal plan`: choose N calibration poses for the measurement-space identification
+// (host/planning/pose_design.h: the predicted accuracy over the paper's grid poses by
+// default, or D-optimality, the information, with --criterion d) among the poses
+// the a priori robot reaches with the whole board in the camera's image
+// (host/planning/candidate_poses.h); writes them as a poses CSV (common/formats/README.md:
+// pose_id,X,Y,Z,theta in B) for `h4cal collect --plan`, prints them with the predicted
+// accuracy beside the paper's grid, and with --curve the predicted accuracy against N.
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+
+#include <spdlog/fmt/fmt.h>
+#include <spdlog/spdlog.h>
+
+#include "common/formats/board_yaml.h"
+#include "common/formats/camera_yaml.h"
+#include "common/formats/file_output.h"
+#include "common/formats/poses_csv.h"
+#include "common/formats/robot_yaml.h"
+#include "common/units.h"
+#include "host/cli/commands.h"
+#include "host/planning/pose_planner.h"
+
+namespace h4::host::cli {
+namespace {
+
+struct PlanCommandOptions {
+  std::string robot_path, camera_path, board_path, out_path;
+  std::string model = "31";
+  std::string criterion = "accuracy";  ///< "accuracy" (I-optimal over the grid) or "d" (D-optimal)
+  int pose_count = 25;
+  uint64_t seed = 1;
+  int64_t first_id = 1;
+  std::string joint_range_deg;  ///< "MIN,MAX", empty: no limit
+  double margin_px = 20.0;
+  double max_tilt_deg = 60.0;
+  double min_depth = 0.15, max_depth = 2.0;
+  double step = 0.025;
+  std::string curve_path;  ///< CSV of predicted accuracy against N, empty: none
+  std::vector<int> curve_n = {10, 15, 20, 25, 30, 40, 50, 60, 71};
+};
+
+// "MIN,MAX" in degrees as a range in rad; throws naming the option on anything else.
+Eigen::Vector2d ParseJointRange(const std::string& text) {
+  char* end = nullptr;
+  const double low = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != ',') {
+    throw std::invalid_argument("--joint-range-deg \"" + text + "\": expected MIN,MAX in degrees");
+  }
+  const char* at = end + 1;
+  const double high = std::strtod(at, &end);
+  if (end == at || *end != '\0' || !(low < high) || !std::isfinite(low) || !std::isfinite(high)) {
+    throw std::invalid_argument("--joint-range-deg \"" + text +
+                                "\": expected MIN,MAX in degrees with MIN < MAX");
+  }
+  return {RadiansFromDegrees(low), RadiansFromDegrees(high)};
+}
+
+PlanningProblemOptions ProblemOptions(const PlanCommandOptions& o) {
+  PlanningProblemOptions options;
+  options.model = *ParseModelKind(o.model);  // CLI11 checked the text
+  options.candidates.image_margin_px = o.margin_px;
+  options.candidates.max_tilt = RadiansFromDegrees(o.max_tilt_deg);
+  options.candidates.min_depth = o.min_depth;
+  options.candidates.max_depth = o.max_depth;
+  options.candidates.position_step = o.step;
+  if (!o.joint_range_deg.empty()) {
+    options.candidates.joint_range = ParseJointRange(o.joint_range_deg);
+  }
+  return options;
+}
+
+PlanCriterion Criterion(const PlanCommandOptions& o) {
+  return o.criterion == "accuracy" ? PlanCriterion::kAccuracy : PlanCriterion::kDOptimal;
+}
+
+void PrintPlan(const PlannedCampaign& campaign, const PlanningProblem& problem, uint64_t seed) {
+  std::printf("planned %zu poses (Model %s, %d exchanges%s):\n", campaign.plan.size(),
+              ToString(problem.info.model), campaign.design.exchanges,
+              campaign.design.converged ? "" : ", stopped before convergence");
+  std::printf("  pose_id    X mm    Y mm    Z mm  theta deg\n");
+  for (const PlannedPose& pose : campaign.plan) {
+    std::printf("  %7lld %7.1f %7.1f %7.1f %10.1f\n", static_cast<long long>(pose.pose_id),
+                pose.x[0] * 1e3, pose.x[1] * 1e3, pose.x[2] * 1e3, DegreesFromRadians(pose.x[3]));
+  }
+  const double grid71 = GridPredictedPositionRms(problem, 71, seed);
+  std::printf(
+      "predicted board position error (one sigma, RMS over the paper's 81 grid poses): "
+      "%.4f mm with these %zu poses; %.4f mm with the grid's 71 calibration poses\n",
+      campaign.predicted_position_rms * 1e3, campaign.plan.size(), grid71 * 1e3);
+}
+
+void WriteCurve(const PlanCommandOptions& o, const PlanningProblem& problem) {
+  std::string csv = "n,planned_position_rms_m,grid_position_rms_m\n";
+  std::printf("predicted board position error against the number of poses (one sigma, mm):\n");
+  std::printf("      N   planned      grid\n");
+  for (int n : o.curve_n) {
+    if (n < 1 || n > problem.candidate_count()) continue;
+    DesignOptions design;
+    design.pose_count = n;
+    design.seed = o.seed;
+    const double planned = PlanCampaign(problem, design, 1, Criterion(o)).predicted_position_rms;
+    const bool grid_has_n = n <= static_cast<int>(problem.grid.size());
+    const double grid = grid_has_n ? GridPredictedPositionRms(problem, n, o.seed) : NAN;
+    std::printf("  %5d %9.4f %9.4f\n", n, planned * 1e3, grid * 1e3);
+    csv += fmt::format("{},{:.9g},{}\n", n, planned, grid_has_n ? fmt::format("{:.9g}", grid) : "");
+  }
+  WriteFileAtomically(o.curve_path, csv);
+  spdlog::info("wrote the curve to {}", o.curve_path);
+}
+
+void Run(const PlanCommandOptions& o) {
+  const RobotDescription robot = ReadRobotYaml(o.robot_path);
+  const CameraModel camera(ReadCameraYaml(o.camera_path));
+  const BoardModel board(ReadBoardYaml(o.board_path));
+  const PlanningProblem problem = MakePlanningProblem(robot, camera, board, ProblemOptions(o));
+  spdlog::info("{}", problem.candidates.Summary());
+  spdlog::info("{} free parameters; fixed by the identifiability analysis: {}",
+               problem.info.parameter_count(), problem.info.fixed.size());
+  DesignOptions design;
+  design.pose_count = o.pose_count;
+  design.seed = o.seed;
+  const PlannedCampaign campaign = PlanCampaign(problem, design, o.first_id, Criterion(o));
+  WritePosesCsv(o.out_path, RowsFromPosePlan(campaign.plan));
+  PrintPlan(campaign, problem, o.seed);
+  spdlog::info("wrote {} poses to {}", campaign.plan.size(), o.out_path);
+  if (!o.curve_path.empty()) WriteCurve(o, problem);
+}
+
+}  // namespace
+
+void AddPlanCommand(CLI::App& app) {
+  auto options = std::make_shared<PlanCommandOptions>();
+  CLI::App* command = app.add_subcommand(
+      "plan",
+      "Plan N calibration poses (the most accurate design for the identification) among the poses "
+      "the robot "
+      "reaches with the whole board in the image; writes a poses CSV for h4cal collect --plan");
+  command->add_option("--robot", options->robot_path, "A priori robot.yaml (with X_BC, X_TE)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--camera", options->camera_path, "Camera intrinsics YAML")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--board", options->board_path, "Board YAML")
+      ->required()
+      ->check(CLI::ExistingFile);
+  command->add_option("--out", options->out_path, "Output poses CSV")->required();
+  command->add_option("--poses", options->pose_count, "Number of poses N")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  command->add_option("--model", options->model, "Model the poses are planned for")
+      ->check(CLI::IsMember({"12", "31"}))
+      ->capture_default_str();
+  command
+      ->add_option("--criterion", options->criterion,
+                   "d: D-optimal (information); accuracy: the predicted accuracy over the grid's "
+                   "poses (I-optimal, from the D-optimal design)")
+      ->check(CLI::IsMember({"d", "accuracy"}))
+      ->capture_default_str();
+  command->add_option("--seed", options->seed, "Seed of the exchange's start")
+      ->capture_default_str();
+  command->add_option("--first-id", options->first_id, "pose_id of the first pose")
+      ->capture_default_str();
+  command->add_option("--joint-range-deg", options->joint_range_deg,
+                      "MIN,MAX joint range (encoder values, deg) every joint must stay in");
+  command
+      ->add_option("--margin-px", options->margin_px,
+                   "Board corners at least this far inside the image, px")
+      ->capture_default_str();
+  command
+      ->add_option("--max-tilt-deg", options->max_tilt_deg,
+                   "Largest board tilt from the line of sight, deg")
+      ->capture_default_str();
+  command->add_option("--min-depth", options->min_depth, "Nearest board depth in focus, m")
+      ->capture_default_str();
+  command->add_option("--max-depth", options->max_depth, "Farthest board depth in focus, m")
+      ->capture_default_str();
+  command->add_option("--step", options->step, "Candidate grid step, m")->capture_default_str();
+  command->add_option("--curve", options->curve_path,
+                      "Also write the predicted accuracy against N (planned and grid) to this CSV");
+  command->add_option("--curve-n", options->curve_n, "The N of the curve")->capture_default_str();
+  command->footer(
+      "Candidates: a grid of (X, Y, Z, theta) around (0, 0, -0.45) m (+-150, +-150, +-100 mm, "
+      "theta -30..30 deg by 10). The predicted accuracy is the one-sigma board position error "
+      "the identification's covariance predicts, RMS over the paper's 81 grid poses.");
+  command->callback([options] { Run(*options); });
+}
+
+}  // namespace h4::host::cli

@@ -1,0 +1,170 @@
+// The candidate set of pose planning (candidate_poses.h).
+#include "host/planning/candidate_poses.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <spdlog/fmt/fmt.h>
+
+#include "host/kinematics/measurement_chain.h"
+#include "host/kinematics/model12.h"
+
+namespace h4::host {
+
+bool CandidateOptions::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& text) {
+    if (why) *why = text;
+    return false;
+  };
+  if (!centre.allFinite()) return fail("centre must be finite");
+  if (!half_extent.allFinite() || (half_extent.array() < 0.0).any()) {
+    return fail("half_extent must be finite and >= 0");
+  }
+  if (!(position_step > 1e-4)) return fail("position_step must be > 0.1 mm");
+  if ((half_extent.array() / position_step).maxCoeff() > 200.0) {
+    return fail("half_extent / position_step must be <= 200 per axis");
+  }
+  if (theta.empty()) return fail("theta must hold at least one angle");
+  for (double t : theta) {
+    if (!std::isfinite(t) || std::abs(t) > M_PI) return fail("theta must be within +-pi rad");
+  }
+  if (joint_range && (!joint_range->allFinite() || (*joint_range)[0] >= (*joint_range)[1])) {
+    return fail("joint_range must be finite with min < max");
+  }
+  if (!(image_margin_px >= 0.0)) return fail("image_margin_px must be >= 0");
+  if (!(max_tilt > 0.0 && max_tilt < M_PI / 2)) return fail("max_tilt must be in (0, pi/2)");
+  if (!(min_depth > 0.0 && max_depth > min_depth)) {
+    return fail("depth range must satisfy 0 < min_depth < max_depth");
+  }
+  return true;
+}
+
+const char* ToString(CandidateVerdict verdict) {
+  switch (verdict) {
+    case CandidateVerdict::kOk:
+      return "ok";
+    case CandidateVerdict::kUnreachable:
+      return "unreachable";
+    case CandidateVerdict::kJointRange:
+      return "joint range";
+    case CandidateVerdict::kOutOfImage:
+      return "board not whole in the image";
+    case CandidateVerdict::kTilt:
+      return "board tilted";
+    case CandidateVerdict::kDepth:
+      return "out of the depth range";
+  }
+  return "?";
+}
+
+std::vector<Eigen::Vector3d> OuterBoardCorners(const BoardModel& board) {
+  Eigen::Vector2d low = Eigen::Vector2d::Constant(INFINITY);
+  Eigen::Vector2d high = Eigen::Vector2d::Constant(-INFINITY);
+  for (const Eigen::Vector3d& p_TQ : board.corners()) {
+    low = low.cwiseMin(p_TQ.head<2>());
+    high = high.cwiseMax(p_TQ.head<2>());
+  }
+  return {{low.x(), low.y(), 0.0},
+          {high.x(), low.y(), 0.0},
+          {high.x(), high.y(), 0.0},
+          {low.x(), high.y(), 0.0}};
+}
+
+CandidateFilter::CandidateFilter(const RobotDescription& robot, const CameraModel& camera,
+                                 const BoardModel& board, const CandidateOptions& options)
+    : robot_(robot), camera_(camera), corners_T_(board.corners()), options_(options) {
+  p_TBoardCentre_ = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : OuterBoardCorners(board)) p_TBoardCentre_ += p / 4.0;
+}
+
+CandidateVerdict CandidateFilter::Check(const EePose& x_B, JointVector* joints) const {
+  // Poses live in B, Model 12's base: the a priori Model 12 decides reachability (the
+  // nominal Model 31 is the same geometry).
+  const Model12 model(robot_.model12, robot_.assembly);
+  const IkResult ik = model.InverseKinematics(x_B);
+  if (!ik.ok()) return CandidateVerdict::kUnreachable;
+  if (options_.joint_range) {
+    const Eigen::Vector2d& range = *options_.joint_range;
+    if ((ik.q.array() < range[0]).any() || (ik.q.array() > range[1]).any()) {
+      return CandidateVerdict::kJointRange;
+    }
+  }
+  if (joints) *joints = ik.q;
+  return CheckView(x_B);
+}
+
+CandidateVerdict CandidateFilter::CheckView(const EePose& x_B) const {
+  const RigidTransform X_CT = PredictedBoardPose(robot_.X_BC, x_B, robot_.X_TE);
+  const Eigen::Vector3d p_CBoardCentre = X_CT * p_TBoardCentre_;
+  if (p_CBoardCentre.z() < options_.min_depth || p_CBoardCentre.z() > options_.max_depth) {
+    return CandidateVerdict::kDepth;
+  }
+  const Eigen::Vector3d normal_C = X_CT.rotation().col(2);
+  const double cos_tilt = std::abs(normal_C.dot(p_CBoardCentre.normalized()));
+  if (cos_tilt < std::cos(options_.max_tilt)) return CandidateVerdict::kTilt;
+  const double margin = options_.image_margin_px;
+  // Every corner, not only the outer four: the lens distortion bends the board's edges, so
+  // an edge's middle can leave the image while its ends stay inside.
+  for (const Eigen::Vector3d& p_TQ : corners_T_) {
+    Eigen::Vector2d uv;
+    if (!camera_.Project(X_CT * p_TQ, &uv)) return CandidateVerdict::kOutOfImage;
+    // Pixel centres run from 0 to width - 1 (common/formats/README.md).
+    if (uv.x() < margin || uv.y() < margin || uv.x() > camera_.width() - 1 - margin ||
+        uv.y() > camera_.height() - 1 - margin) {
+      return CandidateVerdict::kOutOfImage;
+    }
+  }
+  return CandidateVerdict::kOk;
+}
+
+std::string CandidateSet::Summary() const {
+  std::string text = fmt::format("{} candidate poses of {} examined", poses.size(), examined);
+  for (size_t v = 1; v < rejected.size(); ++v) {
+    if (rejected[v] > 0) {
+      text += fmt::format("; {} {}", rejected[v], ToString(static_cast<CandidateVerdict>(v)));
+    }
+  }
+  return text;
+}
+
+namespace {
+
+// The grid values along one axis: centre + k step for |k step| <= half extent.
+std::vector<double> AxisValues(double centre, double half_extent, double step) {
+  const int steps = static_cast<int>(std::floor(half_extent / step + 1e-9));
+  std::vector<double> values;
+  for (int k = -steps; k <= steps; ++k) values.push_back(centre + k * step);
+  return values;
+}
+
+}  // namespace
+
+CandidateSet MakeCandidateSet(const RobotDescription& robot, const CameraModel& camera,
+                              const BoardModel& board, const CandidateOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("candidate options: " + why);
+  const CandidateFilter filter(robot, camera, board, options);
+  const double step = options.position_step;
+  CandidateSet set;
+  for (double z : AxisValues(options.centre.z(), options.half_extent.z(), step)) {
+    for (double y : AxisValues(options.centre.y(), options.half_extent.y(), step)) {
+      for (double x : AxisValues(options.centre.x(), options.half_extent.x(), step)) {
+        for (double theta : options.theta) {
+          CandidatePose pose;
+          pose.x_B = EePose(x, y, z, theta);
+          ++set.examined;
+          const CandidateVerdict verdict = filter.Check(pose.x_B, &pose.q);
+          if (verdict == CandidateVerdict::kOk) {
+            set.poses.push_back(pose);
+          } else {
+            ++set.rejected[static_cast<size_t>(verdict)];
+          }
+        }
+      }
+    }
+  }
+  return set;
+}
+
+}  // namespace h4::host

@@ -1,0 +1,111 @@
+// Whether a robot still matches an identification result (drift_check.h).
+#include "host/planning/drift_check.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Cholesky>
+#include <spdlog/fmt/fmt.h>
+
+namespace h4::host {
+
+bool DriftCheckOptions::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& text) {
+    if (why) *why = text;
+    return false;
+  };
+  if (!(pose_false_alarm > 0.0 && pose_false_alarm < 0.5)) {
+    return fail("pose_false_alarm must be in (0, 0.5)");
+  }
+  if (!(total_false_alarm > 0.0 && total_false_alarm < 0.5)) {
+    return fail("total_false_alarm must be in (0, 0.5)");
+  }
+  return true;
+}
+
+namespace {
+
+// P(X > x) for chi-square with 2m degrees of freedom: exp(-x/2) sum_{i<m} (x/2)^i / i!,
+// summed in the log domain so large m and x stay finite.
+double ChiSquareEvenDofTail(int dof, double x) {
+  if (x <= 0.0) return 1.0;
+  const double half = 0.5 * x;
+  double sum = 0.0;
+  double log_term = -half;  // i = 0
+  for (int i = 0; i < dof / 2; ++i) {
+    if (i > 0) log_term += std::log(half) - std::log(static_cast<double>(i));
+    sum += std::exp(log_term);
+  }
+  return std::min(1.0, sum);
+}
+
+}  // namespace
+
+double ChiSquareUpperQuantileEvenDof(int dof, double tail_probability) {
+  if (dof < 2 || dof % 2 != 0) throw std::invalid_argument("chi-square: even dof >= 2 expected");
+  double low = 0.0, high = static_cast<double>(dof);
+  while (ChiSquareEvenDofTail(dof, high) > tail_probability) high *= 2.0;
+  for (int k = 0; k < 200 && high - low > 1e-10 * high; ++k) {
+    const double mid = 0.5 * (low + high);
+    (ChiSquareEvenDofTail(dof, mid) > tail_probability ? low : high) = mid;
+  }
+  return 0.5 * (low + high);
+}
+
+std::string DriftCheckResult::Summary() const {
+  if (!evaluable) return "not evaluable: " + message;
+  int flagged = 0;
+  for (const PoseCheck& pose : poses) flagged += pose.flagged ? 1 : 0;
+  return fmt::format(
+      "{}: {} of {} poses flagged (d^2 > {:.1f}); chi-square {:.1f} for {} dof (limit {:.1f})",
+      drift ? "DRIFT: the robot no longer matches the result" : "the robot matches the result",
+      flagged, poses.size(), pose_threshold, chi2, dof, total_threshold);
+}
+
+DriftCheckResult CheckForDrift(const KinematicModel& model, const ParameterVector& p,
+                               const Eigen::VectorXd& parameter_std,
+                               const std::vector<DatasetRow>& rows,
+                               const DriftCheckOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("drift check options: " + why);
+  if (rows.empty()) throw std::invalid_argument("drift check: no pose to check");
+  if (parameter_std.size() != p.size()) {
+    throw std::invalid_argument("drift check: one std per parameter expected");
+  }
+  const int n = static_cast<int>(rows.size());
+  DriftCheckResult result;
+  result.dof = 6 * n;
+  result.pose_threshold = ChiSquareUpperQuantileEvenDof(6, options.pose_false_alarm / n);
+  result.total_threshold = ChiSquareUpperQuantileEvenDof(result.dof, options.total_false_alarm);
+
+  IdentificationCost cost(CostKind::kMeasurement, model, rows, options.cost);
+  Eigen::VectorXd r;
+  Eigen::MatrixXd J;
+  if (!cost.Evaluate(p, &r, &J, &why)) {
+    result.evaluable = false;
+    result.drift = true;  // a pose the result cannot even predict does not match it
+    result.message = why;
+    return result;
+  }
+  const Eigen::MatrixXd JD = J * parameter_std.asDiagonal();
+  for (int j = 0; j < n; ++j) {
+    const auto r_j = r.segment<6>(6 * j);
+    const Eigen::MatrixXd JD_j = JD.middleRows(6 * j, 6);
+    const Eigen::Matrix<double, 6, 6> S =
+        Eigen::Matrix<double, 6, 6>::Identity() + JD_j * JD_j.transpose();
+    PoseCheck check;
+    check.pose_id = rows[static_cast<size_t>(j)].pose_id;
+    check.mahalanobis2 = r_j.dot(S.llt().solve(r_j));
+    check.rotation_error = r_j.head<3>().norm() / cost.RotationWeight(rows[static_cast<size_t>(j)]);
+    check.position_error =
+        r_j.tail<3>().norm() / cost.TranslationWeight(rows[static_cast<size_t>(j)]);
+    check.flagged = check.mahalanobis2 > result.pose_threshold;
+    result.chi2 += check.mahalanobis2;
+    result.drift = result.drift || check.flagged;
+    result.poses.push_back(check);
+  }
+  result.drift = result.drift || result.chi2 > result.total_threshold;
+  return result;
+}
+
+}  // namespace h4::host

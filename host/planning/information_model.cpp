@@ -1,0 +1,107 @@
+// The information model of pose planning (information_model.h).
+#include "host/planning/information_model.h"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include <Eigen/Cholesky>
+
+#include "host/identification/identifiability.h"
+#include "host/identification/identification.h"
+#include "host/simulation/dataset_simulator.h"
+
+namespace h4::host {
+namespace {
+
+// The a priori robot as a noise-free "truth", so that the simulated rows are exactly what
+// the a priori model predicts (residuals zero, Jacobian at the a priori).
+SimulatedRobot AprioriAsTruth(const RobotDescription& robot) {
+  SimulatedRobot truth;
+  truth.model12 = robot.model12;
+  truth.model31 = robot.model31;
+  truth.assembly = robot.assembly;
+  truth.X_BC = robot.X_BC;
+  truth.X_TE = robot.X_TE;
+  return truth;
+}
+
+std::vector<DatasetRow> NoiseFreeRows(const RobotDescription& robot,
+                                      const std::vector<EePose>& poses_B) {
+  PosePlan plan;
+  for (size_t j = 0; j < poses_B.size(); ++j) {
+    plan.push_back({static_cast<int64_t>(j + 1), poses_B[j]});
+  }
+  DatasetOptions options;
+  options.noise = NoiseOptions{0.0, 0.0, 0.0};
+  options.valid_count = 0;
+  options.fill_sigma = false;  // the cost's default sigmas weight the rows
+  SimulatedDataset data = SimulateDataset(AprioriAsTruth(robot), plan, options);
+  if (!data.unreachable.empty()) {
+    throw std::runtime_error("pose planning: pose " + std::to_string(data.unreachable.front()) +
+                             " of the " + std::to_string(poses_B.size()) +
+                             " is out of the a priori robot's reach");
+  }
+  return std::move(data.rows);
+}
+
+}  // namespace
+
+InformationModel BuildInformationModel(const RobotDescription& robot, ModelKind kind,
+                                       const std::vector<EePose>& poses_B, int analysed_count,
+                                       const CostOptions& cost_options) {
+  AprioriModel apriori = AprioriModelOf(robot, kind);
+  IdentificationCost cost(CostKind::kMeasurement, *apriori.model, NoiseFreeRows(robot, poses_B),
+                          cost_options);
+  Eigen::VectorXd r;
+  Eigen::MatrixXd J_full;
+  std::string why;
+  if (!cost.Evaluate(apriori.parameters, &r, &J_full, &why)) {
+    throw std::runtime_error("pose planning: the measurement cost fails: " + why);
+  }
+  ParameterVector& p = apriori.parameters;
+  const IdentifiabilityReport report =
+      AnalyzeIdentifiability(J_full.topRows(6 * static_cast<Eigen::Index>(analysed_count)), kind,
+                             IdentifiabilityOptions{}, &p);
+
+  InformationModel info;
+  info.model = kind;
+  for (const FixedByAnalysis& f : report.fixed) info.fixed.push_back(f.name + ": " + f.reason);
+  for (int i : p.FreeIndices()) info.free_names.push_back(p.names()[static_cast<size_t>(i)]);
+  info.J_scaled = FreeColumns(J_full, p);
+  const Eigen::VectorXd column_norm =
+      info.J_scaled.topRows(6 * static_cast<Eigen::Index>(analysed_count)).colwise().norm();
+  for (Eigen::Index c = 0; c < info.J_scaled.cols(); ++c) {
+    if (column_norm[c] > 0.0) info.J_scaled.col(c) /= column_norm[c];
+  }
+  info.sigma_t = cost_options.default_sigma_t;
+  return info;
+}
+
+Eigen::MatrixXd InformationMatrix(const InformationModel& info, const std::vector<int>& chosen,
+                                  double ridge) {
+  const int k = info.parameter_count();
+  Eigen::MatrixXd M = ridge * Eigen::MatrixXd::Identity(k, k);
+  for (int j : chosen) M.noalias() += info.Block(j).transpose() * info.Block(j);
+  return M;
+}
+
+double PredictedPositionRms(const InformationModel& info, const Eigen::MatrixXd& M,
+                            const std::vector<int>& evaluated) {
+  const Eigen::LLT<Eigen::MatrixXd> llt(M);
+  if (llt.info() != Eigen::Success || evaluated.empty()) {
+    return std::numeric_limits<double>::infinity();
+  }
+  // The smallest eigenvalue relative to the largest says whether M^-1 means anything.
+  const Eigen::VectorXd diag = llt.matrixL().toDenseMatrix().diagonal();
+  if (diag.minCoeff() < 1e-7 * diag.maxCoeff()) return std::numeric_limits<double>::infinity();
+  double sum_variance = 0.0;
+  for (int j : evaluated) {
+    // trace(T M^-1 T^T) = |L^-1 T^T|_F^2.
+    const Eigen::MatrixXd T_t = info.Block(j).bottomRows(3).transpose();
+    sum_variance += llt.matrixL().solve(T_t).squaredNorm();
+  }
+  return info.sigma_t * std::sqrt(sum_variance / static_cast<double>(evaluated.size()));
+}
+
+}  // namespace h4::host

@@ -1,0 +1,178 @@
+// D-optimal pose design by exchange (pose_design.h).
+#include "host/planning/pose_design.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <random>
+#include <stdexcept>
+
+#include <Eigen/Cholesky>
+
+namespace h4::host {
+
+bool DesignOptions::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& text) {
+    if (why) *why = text;
+    return false;
+  };
+  if (pose_count < 1) return fail("pose_count must be >= 1");
+  if (max_exchanges < 0) return fail("max_exchanges must be >= 0");
+  if (!(ridge > 0.0 && ridge < 1.0)) return fail("ridge must be in (0, 1)");
+  return true;
+}
+
+double LogDet(const Eigen::MatrixXd& M) {
+  const Eigen::LLT<Eigen::MatrixXd> llt(M);
+  if (llt.info() != Eigen::Success) return -std::numeric_limits<double>::infinity();
+  return 2.0 * llt.matrixLLT().diagonal().array().log().sum();
+}
+
+// A Fisher-Yates prefix written out, so that the draw does not depend on the standard
+// library's shuffle.
+std::vector<int> SeededSubset(int count, int n, uint64_t seed) {
+  std::vector<int> order(static_cast<size_t>(count));
+  std::iota(order.begin(), order.end(), 0);
+  std::mt19937_64 rng(seed);
+  for (int i = 0; i < n; ++i) {
+    const uint64_t span = static_cast<uint64_t>(count - i);
+    const int k = i + static_cast<int>(rng() % span);
+    std::swap(order[static_cast<size_t>(i)], order[static_cast<size_t>(k)]);
+  }
+  order.resize(static_cast<size_t>(n));
+  return order;
+}
+
+namespace {
+
+// For each candidate j, log det(I + A_j M^-1 A_j^T) (sign +1: the gain of adding it) or
+// log det(I - A_j M^-1 A_j^T) (sign -1: the change of dropping it), by the matrix
+// determinant lemma; W = A L^-T for M = L L^T makes each a 6 x 6 determinant.
+std::vector<double> LogDetChanges(const InformationModel& info, const Eigen::MatrixXd& M,
+                                  const std::vector<int>& poses, double sign) {
+  const Eigen::LLT<Eigen::MatrixXd> llt(M);
+  std::vector<double> change(poses.size(), -std::numeric_limits<double>::infinity());
+  for (size_t n = 0; n < poses.size(); ++n) {
+    const Eigen::MatrixXd W = llt.matrixL().solve(info.Block(poses[n]).transpose());
+    const Eigen::Matrix<double, 6, 6> S =
+        Eigen::Matrix<double, 6, 6>::Identity() + sign * (W.transpose() * W);
+    change[n] = LogDet(S);
+  }
+  return change;
+}
+
+// For each pose j, the fall of trace(A M^-1) when it is added (sign +1),
+// trace((I + G)^-1 H), or minus its rise when it is dropped (sign -1),
+// -trace((I - G)^-1 H), with G = B M^-1 B^T and H = B M^-1 A M^-1 B^T for its block B
+// (Woodbury): higher is better either way.
+std::vector<double> AccuracyChanges(const InformationModel& info, const Eigen::MatrixXd& M,
+                                    const Eigen::MatrixXd& A, const std::vector<int>& poses,
+                                    double sign) {
+  const Eigen::LLT<Eigen::MatrixXd> llt(M);
+  std::vector<double> change(poses.size(), -std::numeric_limits<double>::infinity());
+  for (size_t n = 0; n < poses.size(); ++n) {
+    const Eigen::MatrixXd B = info.Block(poses[n]);
+    const Eigen::MatrixXd X = llt.solve(B.transpose());  // M^-1 B^T
+    const Eigen::Matrix<double, 6, 6> G = B * X;
+    const Eigen::Matrix<double, 6, 6> H = X.transpose() * A * X;
+    const Eigen::Matrix<double, 6, 6> S = Eigen::Matrix<double, 6, 6>::Identity() + sign * G;
+    const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(S);
+    if (sign < 0.0 && ldlt.vectorD().minCoeff() <= 1e-12) continue;  // dropping it: singular
+    change[n] = sign * ldlt.solve(H).trace();
+  }
+  return change;
+}
+
+size_t ArgMax(const std::vector<double>& values) {
+  return static_cast<size_t>(std::max_element(values.begin(), values.end()) - values.begin());
+}
+
+// The exchange: add the pose `scores` ranks best (sign +1) among those outside, drop the
+// one it ranks best to drop (sign -1) among the design and the added, until the dropped is
+// the added.
+template <typename Scores>
+Design Exchange(const InformationModel& info, int candidate_count, std::vector<int> design,
+                double ridge, int max_exchanges, Scores scores) {
+  std::vector<char> in_design(static_cast<size_t>(candidate_count), 0);
+  for (int j : design) in_design[static_cast<size_t>(j)] = 1;
+  Eigen::MatrixXd M = InformationMatrix(info, design, ridge);
+  Design result;
+  while (result.exchanges < max_exchanges) {
+    std::vector<int> outside;
+    for (int j = 0; j < candidate_count; ++j) {
+      if (!in_design[static_cast<size_t>(j)]) outside.push_back(j);
+    }
+    if (outside.empty()) {
+      result.converged = true;
+      break;
+    }
+    const int added = outside[ArgMax(scores(M, outside, +1.0))];
+    M.noalias() += info.Block(added).transpose() * info.Block(added);
+    design.push_back(added);
+    const size_t drop_at = ArgMax(scores(M, design, -1.0));
+    const int dropped = design[drop_at];
+    design.erase(design.begin() + static_cast<std::ptrdiff_t>(drop_at));
+    M = InformationMatrix(info, design, ridge);  // fresh: no drift from adding and removing
+    if (dropped == added) {
+      result.converged = true;
+      break;
+    }
+    in_design[static_cast<size_t>(added)] = 1;
+    in_design[static_cast<size_t>(dropped)] = 0;
+    ++result.exchanges;
+  }
+  result.chosen = design;
+  return result;
+}
+
+}  // namespace
+
+Design PlanDOptimal(const InformationModel& info, int candidate_count,
+                    const DesignOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("design options: " + why);
+  if (candidate_count > info.pose_count() || options.pose_count > candidate_count) {
+    throw std::invalid_argument("pose planning: " + std::to_string(options.pose_count) +
+                                " poses asked of " + std::to_string(candidate_count) +
+                                " candidates");
+  }
+  std::vector<int> design = SeededSubset(candidate_count, options.pose_count, options.seed);
+  // The ridge relative to the mean diagonal of all the candidates' information.
+  const double ridge =
+      options.ridge *
+      info.J_scaled.topRows(6 * static_cast<Eigen::Index>(candidate_count)).squaredNorm() /
+      std::max(1, info.parameter_count());
+  Design result = Exchange(info, candidate_count, design, ridge, options.max_exchanges,
+                           [&](const Eigen::MatrixXd& M_now, const std::vector<int>& poses,
+                               double sign) { return LogDetChanges(info, M_now, poses, sign); });
+  design = result.chosen;
+  std::sort(design.begin(), design.end());
+  result.chosen = design;
+  result.log_det = LogDet(InformationMatrix(info, design));
+  return result;
+}
+
+Design PlanForAccuracy(const InformationModel& info, int candidate_count,
+                       const std::vector<int>& evaluated, const DesignOptions& options) {
+  const Design start = PlanDOptimal(info, candidate_count, options);
+  const int k = info.parameter_count();
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(k, k);
+  for (int j : evaluated) {
+    const Eigen::MatrixXd T = info.Block(j).bottomRows(3);
+    A.noalias() += T.transpose() * T;
+  }
+  const double ridge =
+      options.ridge *
+      info.J_scaled.topRows(6 * static_cast<Eigen::Index>(candidate_count)).squaredNorm() /
+      std::max(1, k);
+  Design result = Exchange(info, candidate_count, start.chosen, ridge, options.max_exchanges,
+                           [&](const Eigen::MatrixXd& M, const std::vector<int>& poses,
+                               double sign) { return AccuracyChanges(info, M, A, poses, sign); });
+  result.exchanges += start.exchanges;
+  std::sort(result.chosen.begin(), result.chosen.end());
+  result.log_det = LogDet(InformationMatrix(info, result.chosen));
+  return result;
+}
+
+}  // namespace h4::host

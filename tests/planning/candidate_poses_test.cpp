@@ -1,0 +1,114 @@
+// Tests of the candidate set of pose planning: every candidate is reachable by the a priori
+// robot and shows the whole board in the simulated camera (its outer corners projected
+// here independently, through X_CT = inv(X_BC) X_BE inv(X_TE)), and the filter rejects
+// poses that break each rule.
+#include "host/planning/candidate_poses.h"
+
+#include <Eigen/Geometry>
+#include <gtest/gtest.h>
+
+#include "common/formats/board_yaml.h"
+#include "common/formats/camera_yaml.h"
+#include "host/kinematics/model12.h"
+#include "host/simulation/paper_scenario.h"
+
+namespace h4::host {
+namespace {
+
+BoardModel DemoBoard() {
+  return BoardModel(ReadBoardYaml(H4_SOURCE_DIR "/boards/aprilgrid_6x6_30mm.yaml"));
+}
+CameraModel DemoCamera() {
+  return CameraModel(ReadCameraYaml(H4_SOURCE_DIR "/boards/sim_camera_1024x768.yaml"));
+}
+
+// True when every corner of the board (not only the outer ones) projects inside the image
+// with `margin_px`.
+bool WholeBoardInImage(const RobotDescription& robot, const CameraModel& camera,
+                       const BoardModel& board, const EePose& x_B, double margin_px) {
+  const RigidTransform X_BE(Eigen::AngleAxisd(x_B[3], Eigen::Vector3d::UnitZ()).toRotationMatrix(),
+                            x_B.head<3>());
+  const RigidTransform X_CT = robot.X_BC.inverse() * X_BE * robot.X_TE.inverse();
+  for (const Eigen::Vector3d& p_TQ : board.corners()) {
+    Eigen::Vector2d uv;
+    if (!camera.Project(X_CT * p_TQ, &uv)) return false;
+    if (uv.x() < margin_px || uv.y() < margin_px || uv.x() > camera.width() - 1 - margin_px ||
+        uv.y() > camera.height() - 1 - margin_px) {
+      return false;
+    }
+  }
+  return true;
+}
+
+TEST(CandidatePoses, EveryCandidateIsReachableAndShowsTheWholeBoard) {
+  const RobotDescription robot = PaperAprioriRobot();
+  const CameraModel camera = DemoCamera();
+  const BoardModel board = DemoBoard();
+  const CandidateOptions options;
+  const CandidateSet set = MakeCandidateSet(robot, camera, board, options);
+  ASSERT_GT(set.poses.size(), 100u) << set.Summary();
+  const Model12 model(robot.model12, robot.assembly);
+  for (const CandidatePose& pose : set.poses) {
+    const IkResult ik = model.InverseKinematics(pose.x_B);
+    ASSERT_TRUE(ik.ok()) << pose.x_B.transpose();
+    EXPECT_LT((ik.q - pose.q).norm(), 1e-12);
+    EXPECT_TRUE(WholeBoardInImage(robot, camera, board, pose.x_B, options.image_margin_px))
+        << pose.x_B.transpose();
+  }
+}
+
+TEST(CandidatePoses, SomeGridPosesAreRejectedForTheImageAndTheRestKept) {
+  // A wide grid must lose poses to the image border, else the filter is not filtering.
+  const RobotDescription robot = PaperAprioriRobot();
+  CandidateOptions options;
+  options.half_extent = Eigen::Vector3d(0.3, 0.3, 0.1);
+  options.position_step = 0.05;
+  const CandidateSet set = MakeCandidateSet(robot, DemoCamera(), DemoBoard(), options);
+  EXPECT_GT(set.rejected[static_cast<size_t>(CandidateVerdict::kOutOfImage)], 0) << set.Summary();
+  EXPECT_GT(set.poses.size(), 0u) << set.Summary();
+  int rejected = 0;
+  for (int count : set.rejected) rejected += count;
+  EXPECT_EQ(rejected + static_cast<int>(set.poses.size()), set.examined);
+}
+
+TEST(CandidatePoses, JointRangeDepthAndTiltRulesReject) {
+  const RobotDescription robot = PaperAprioriRobot();
+  const CameraModel camera = DemoCamera();
+  const BoardModel board = DemoBoard();
+  const EePose centre(0.0, 0.0, -0.45, 0.0);
+
+  CandidateOptions options;
+  EXPECT_EQ(CandidateFilter(robot, camera, board, options).Check(centre, nullptr),
+            CandidateVerdict::kOk);
+  EXPECT_EQ(
+      CandidateFilter(robot, camera, board, options).Check(EePose(0.0, 0.0, -3.0, 0.0), nullptr),
+      CandidateVerdict::kUnreachable);
+
+  CandidateOptions narrow_joints = options;
+  narrow_joints.joint_range = Eigen::Vector2d(-1e-3, 1e-3);
+  EXPECT_EQ(CandidateFilter(robot, camera, board, narrow_joints).Check(centre, nullptr),
+            CandidateVerdict::kJointRange);
+
+  CandidateOptions near_focus = options;
+  near_focus.max_depth = near_focus.min_depth + 1e-3;
+  EXPECT_EQ(CandidateFilter(robot, camera, board, near_focus).Check(centre, nullptr),
+            CandidateVerdict::kDepth);
+
+  CandidateOptions strict_tilt = options;
+  strict_tilt.max_tilt = 1e-6;
+  EXPECT_EQ(CandidateFilter(robot, camera, board, strict_tilt).Check(centre, nullptr),
+            CandidateVerdict::kTilt);
+}
+
+TEST(CandidatePoses, InvalidOptionsAreRefusedWithTheField) {
+  CandidateOptions options;
+  options.position_step = 0.0;
+  std::string why;
+  EXPECT_FALSE(options.IsValid(&why));
+  EXPECT_NE(why.find("position_step"), std::string::npos);
+  EXPECT_THROW(MakeCandidateSet(PaperAprioriRobot(), DemoCamera(), DemoBoard(), options),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace h4::host
