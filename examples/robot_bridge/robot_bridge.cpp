@@ -3,19 +3,10 @@
 
 #include <cstdio>
 
+#include "common/timing/clock.h"
 #include "messages/channels.h"
 
 namespace h4::example {
-namespace {
-
-int64_t NowUtime() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-}  // namespace
-
 RobotBridge::RobotBridge(lcm::LCM& lcm, Controller& controller, RobotBridgeOptions options)
     : lcm_(lcm), controller_(controller), options_(options) {
   lcm_.subscribe(channels::kRobotTarget, &RobotBridge::OnTarget, this);

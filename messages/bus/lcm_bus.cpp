@@ -7,6 +7,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/timing/clock.h"
+
 namespace h4::bus {
 
 std::string ResolveLcmUrl(const std::string& url) {
@@ -16,16 +18,6 @@ std::string ResolveLcmUrl(const std::string& url) {
   }
   return kDefaultLcmUrl;
 }
-
-namespace {
-
-int64_t NowUtime() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-}  // namespace
 
 std::optional<BusAuth> BusAuthFromKeyFile(const std::string& key_path, AuthOptions options) {
   if (key_path.empty()) return std::nullopt;
