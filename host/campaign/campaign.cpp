@@ -238,9 +238,12 @@ void Campaign::NoteWhoWasHeard(Clock::time_point now) {
   if (first_step_ == Clock::time_point{}) first_step_ = now;
   last_step_ = now;
   if (counters_.joint_states != joint_states_at_last_step_) robot_heard_at_ = now;
-  if (camera_statuses_ != camera_statuses_at_last_step_) camera_heard_at_ = now;
+  // A board pose is heard from the camera too: while it measures a group it may skip a
+  // heartbeat or two, and the pose it then sends shows it alive.
+  const int64_t camera_messages = camera_statuses_ + counters_.board_poses;
+  if (camera_messages != camera_messages_at_last_step_) camera_heard_at_ = now;
   joint_states_at_last_step_ = counters_.joint_states;
-  camera_statuses_at_last_step_ = camera_statuses_;
+  camera_messages_at_last_step_ = camera_messages;
 }
 
 std::string Campaign::silent_sides() const {

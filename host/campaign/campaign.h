@@ -146,7 +146,7 @@ class Campaign {
   bool joints_heard_ = false;
   int64_t camera_statuses_ = 0;               ///< camera heartbeats heard
   int64_t joint_states_at_last_step_ = 0;     ///< counters_.joint_states at the last Step()
-  int64_t camera_statuses_at_last_step_ = 0;  ///< camera_statuses_ at the last Step()
+  int64_t camera_messages_at_last_step_ = 0;  ///< heartbeats + board poses at the last Step()
   std::optional<Clock::time_point> robot_heard_at_, camera_heard_at_;  ///< by Step()'s clock
   Clock::time_point first_step_{}, last_step_{}, silence_logged_at_{};
   std::vector<int64_t> unsettled_in_a_row_;  ///< poses skipped as not settled since the last
