@@ -9,11 +9,18 @@
 namespace h4::example {
 RobotBridge::RobotBridge(lcm::LCM& lcm, Controller& controller, RobotBridgeOptions options)
     : lcm_(lcm), controller_(controller), options_(options) {
-  lcm_.subscribe(channels::kRobotTarget, &RobotBridge::OnTarget, this);
+  // A plain function and a context pointer, not subscribe(channel, &RobotBridge::OnTarget,
+  // this): GCC 12 under -fsanitize=vptr miscompiles LCM's pointer-to-member dispatch
+  // (cmake/H4Sanitizers.cmake).
+  lcm_.subscribeFunction(channels::kRobotTarget, &RobotBridge::OnTargetMessage, this);
 }
 
-void RobotBridge::OnTarget(const lcm::ReceiveBuffer*, const std::string&,
-                           const h4msgs::robot_target_t* target) {
+void RobotBridge::OnTargetMessage(const lcm::ReceiveBuffer*, const std::string&,
+                                  const h4msgs::robot_target_t* target, RobotBridge* bridge) {
+  bridge->OnTarget(target);
+}
+
+void RobotBridge::OnTarget(const h4msgs::robot_target_t* target) {
   ++targets_received_;
   // collect repeats a target until the joint states carry its id: the same target again
   // changes nothing (the robot keeps moving, or stays settled).

@@ -41,7 +41,9 @@ class RobotBridge {
   int64_t targets_refused() const { return targets_refused_; }
 
  private:
-  void OnTarget(const lcm::ReceiveBuffer*, const std::string&, const h4msgs::robot_target_t* t);
+  static void OnTargetMessage(const lcm::ReceiveBuffer*, const std::string&,
+                              const h4msgs::robot_target_t* target, RobotBridge* bridge);
+  void OnTarget(const h4msgs::robot_target_t* target);
 
   lcm::LCM& lcm_;
   Controller& controller_;
