@@ -60,7 +60,7 @@ BoardRenderer::BoardRenderer(const BoardSpec& board, const CameraIntrinsics& cam
       corner_rays_[static_cast<size_t>(j * (width_ + 1) + i)] = xn;
     }
   }
-  const int f = std::max(1, options_.supersampling);
+  const int f = Supersampling();
   strata_ = std::max(1, static_cast<int>(std::ceil(
                             std::sqrt(static_cast<double>(options_.samples_per_pixel) / (f * f)))));
 }
@@ -117,6 +117,19 @@ cv::Mat BoardRenderer::DefocusRadiusMap(const Eigen::Matrix3d& Minv, const Regio
   return radius;
 }
 
+namespace {
+
+// The board point (x, y) a normalised ray xn meets: M^-1 (xn, 1) = (x, y, 1) / depth, with
+// M = [r1 r2 p_CT]; false when the plane is behind the camera along the ray.
+bool BoardPointOnRay(const Eigen::Matrix3d& Minv, const Eigen::Vector2d& xn, Eigen::Vector2d* p) {
+  const Eigen::Vector3d h = Minv * Eigen::Vector3d(xn.x(), xn.y(), 1.0);
+  if (!(h.z() > 1e-12)) return false;
+  *p = h.head<2>() / h.z();
+  return true;
+}
+
+}  // namespace
+
 cv::Mat BoardRenderer::RenderClean(const RigidTransform& X_CT) const {
   cv::Mat image = RenderBackground();
   if (!ok()) return image;
@@ -131,62 +144,83 @@ cv::Mat BoardRenderer::RenderClean(const RigidTransform& X_CT) const {
   const Eigen::Matrix3d Minv = lu.inverse();
 
   const Region region = BoardRegion(X_CT);
-  const int u0 = region.u0, v0 = region.v0, u1 = region.u1, v1 = region.v1;
-  if (u1 <= u0 || v1 <= v0) return image;
-  const int f = std::max(1, options_.supersampling);
-
-  const float levels[3] = {static_cast<float>(options_.background_level),
-                           static_cast<float>(options_.black_level),
-                           static_cast<float>(options_.white_level)};
-  auto level = [&](BoardPattern::Colour c) { return levels[static_cast<int>(c) + 1]; };
-  auto board_point = [&](const Eigen::Vector2d& xn, Eigen::Vector2d* p) {
-    const Eigen::Vector3d h = Minv * Eigen::Vector3d(xn.x(), xn.y(), 1.0);
-    if (!(h.z() > 1e-12)) return false;
-    *p = h.head<2>() / h.z();
-    return true;
-  };
-  // Ray of a fine grid corner (I, J) of the region: bilinear in the pixel-corner rays.
-  const size_t stride = static_cast<size_t>(width_ + 1);
-  auto fine_ray = [&](int I, int J) {
-    const int ci = u0 + I / f, cj = v0 + J / f;
-    const double a = static_cast<double>(I % f) / f, b = static_cast<double>(J % f) / f;
-    const size_t k = static_cast<size_t>(cj) * stride + static_cast<size_t>(ci);
-    const Eigen::Vector2d& r00 = corner_rays_[k];
-    if (a == 0 && b == 0) return r00;
-    const Eigen::Vector2d& r10 = corner_rays_[a > 0 ? k + 1 : k];
-    const Eigen::Vector2d& r01 = corner_rays_[b > 0 ? k + stride : k];
-    const Eigen::Vector2d& r11 = corner_rays_[(a > 0 ? k + 1 : k) + (b > 0 ? stride : 0)];
-    return Eigen::Vector2d((1 - b) * ((1 - a) * r00 + a * r10) + b * ((1 - a) * r01 + a * r11));
-  };
-
-  // Render the region f times finer (area-sampled), blur it there, then average f x f
-  // blocks: optical blur acts on the continuous image before the pixels integrate it,
+  if (region.u1 <= region.u0 || region.v1 <= region.v0) return image;
+  // Render the region f times finer (area-sampled), light and blur it there, then average
+  // f x f blocks: optical blur acts on the continuous image before the pixels integrate it,
   // as in a camera. (Blurring the pixel values instead gives a visibly different edge
   // profile for blur sigmas below a pixel.)
-  const int wf = (u1 - u0) * f, hf = (v1 - v0) * f;
+  cv::Mat fine = RenderFineRegion(Minv, region);
+  ApplyOptics(Minv, region, fine);
+  cv::Mat coarse;
+  const cv::Rect rect(region.u0, region.v0, region.u1 - region.u0, region.v1 - region.v0);
+  cv::resize(fine, coarse, rect.size(), 0, 0, cv::INTER_AREA);
+  coarse.copyTo(image(rect));
+  return image;
+}
+
+float BoardRenderer::Level(BoardPattern::Colour colour) const {
+  switch (colour) {
+    case BoardPattern::kBlack:
+      return static_cast<float>(options_.black_level);
+    case BoardPattern::kWhite:
+      return static_cast<float>(options_.white_level);
+    default:
+      return static_cast<float>(options_.background_level);
+  }
+}
+
+// Ray of the fine grid corner (I, J) of the region: bilinear in the pixel-corner rays.
+Eigen::Vector2d BoardRenderer::FineRay(const Region& region, int I, int J) const {
+  const int f = Supersampling();
+  const size_t stride = static_cast<size_t>(width_ + 1);
+  const int ci = region.u0 + I / f, cj = region.v0 + J / f;
+  const double a = static_cast<double>(I % f) / f, b = static_cast<double>(J % f) / f;
+  const size_t k = static_cast<size_t>(cj) * stride + static_cast<size_t>(ci);
+  const Eigen::Vector2d& r00 = corner_rays_[k];
+  if (a == 0 && b == 0) return r00;
+  const Eigen::Vector2d& r10 = corner_rays_[a > 0 ? k + 1 : k];
+  const Eigen::Vector2d& r01 = corner_rays_[b > 0 ? k + stride : k];
+  const Eigen::Vector2d& r11 = corner_rays_[(a > 0 ? k + 1 : k) + (b > 0 ? stride : 0)];
+  return Eigen::Vector2d((1 - b) * ((1 - a) * r00 + a * r10) + b * ((1 - a) * r01 + a * r11));
+}
+
+// The rays of one row of fine grid corners and the board points they meet.
+struct BoardRenderer::FineCornerRow {
+  std::vector<Eigen::Vector2d> rays, points;
+  std::vector<unsigned char> valid;  ///< the ray meets the board plane in front of the camera
+};
+
+void BoardRenderer::FillFineCornerRow(const Eigen::Matrix3d& Minv, const Region& region, int J,
+                                      FineCornerRow* row) const {
+  const size_t corners = static_cast<size_t>((region.u1 - region.u0) * Supersampling() + 1);
+  row->rays.resize(corners);
+  row->points.resize(corners);
+  row->valid.resize(corners);
+  for (size_t i = 0; i < corners; ++i) {
+    row->rays[i] = FineRay(region, static_cast<int>(i), J);
+    row->valid[i] = BoardPointOnRay(Minv, row->rays[i], &row->points[i]) ? 1 : 0;
+  }
+}
+
+// The printed pattern over the region, f times finer than the pixels: a fine pixel whose
+// four corners fall inside one square takes its level; one that may straddle an edge is
+// area-sampled.
+cv::Mat BoardRenderer::RenderFineRegion(const Eigen::Matrix3d& Minv, const Region& region) const {
+  const int f = Supersampling();
+  const int wf = (region.u1 - region.u0) * f, hf = (region.v1 - region.v0) * f;
   cv::Mat fine(hf, wf, CV_32F);
-  std::vector<Eigen::Vector2d> rays[2], points[2];
-  std::vector<unsigned char> valid[2];
-  auto fill_row = [&](int J, int slot) {
-    rays[slot].resize(static_cast<size_t>(wf + 1));
-    points[slot].resize(static_cast<size_t>(wf + 1));
-    valid[slot].resize(static_cast<size_t>(wf + 1));
-    for (int I = 0; I <= wf; ++I) {
-      const size_t i = static_cast<size_t>(I);
-      rays[slot][i] = fine_ray(I, J);
-      valid[slot][i] = board_point(rays[slot][i], &points[slot][i]) ? 1 : 0;
-    }
-  };
-  fill_row(0, 0);
+  FineCornerRow rows[2];
+  FillFineCornerRow(Minv, region, 0, &rows[0]);
   for (int J = 0; J < hf; ++J) {
-    const int top = J % 2, bottom = 1 - top;
-    fill_row(J + 1, bottom);
-    float* row = fine.ptr<float>(J);
+    const FineCornerRow& top = rows[J % 2];
+    FineCornerRow& bottom = rows[1 - J % 2];
+    FillFineCornerRow(Minv, region, J + 1, &bottom);
+    float* out = fine.ptr<float>(J);
     for (int I = 0; I < wf; ++I) {
       const size_t i = static_cast<size_t>(I);
-      const Eigen::Vector2d* p[4] = {&points[top][i], &points[top][i + 1], &points[bottom][i],
-                                     &points[bottom][i + 1]};
-      if (valid[top][i] && valid[top][i + 1] && valid[bottom][i] && valid[bottom][i + 1]) {
+      if (top.valid[i] && top.valid[i + 1] && bottom.valid[i] && bottom.valid[i + 1]) {
+        const Eigen::Vector2d* p[4] = {&top.points[i], &top.points[i + 1], &bottom.points[i],
+                                       &bottom.points[i + 1]};
         Eigen::Vector2d lo = *p[0], hi = *p[0];
         for (int c = 1; c < 4; ++c) {
           lo = lo.cwiseMin(*p[c]);
@@ -194,35 +228,45 @@ cv::Mat BoardRenderer::RenderClean(const RigidTransform& X_CT) const {
         }
         if (!pattern_.MayChange(lo.x(), lo.y(), hi.x(), hi.y())) {
           const Eigen::Vector2d mid = 0.5 * (lo + hi);
-          row[I] = level(pattern_.At(mid.x(), mid.y()));
+          out[I] = Level(pattern_.At(mid.x(), mid.y()));
           continue;
         }
       }
-      // Supersample: bilinear ray inside the sub-pixel, exact plane intersection.
-      const Eigen::Vector2d& r00 = rays[top][i];
-      const Eigen::Vector2d& r10 = rays[top][i + 1];
-      const Eigen::Vector2d& r01 = rays[bottom][i];
-      const Eigen::Vector2d& r11 = rays[bottom][i + 1];
-      SplitMix64 rng{static_cast<uint64_t>(J) * 1000003ULL + static_cast<uint64_t>(I)};
-      const double step = 1.0 / strata_;
-      double sum = 0;
-      for (int sy = 0; sy < strata_; ++sy) {
-        for (int sx = 0; sx < strata_; ++sx) {
-          const double x = (sx + rng.Uniform()) * step, y = (sy + rng.Uniform()) * step;
-          const Eigen::Vector2d upper = r00 + x * (r10 - r00);
-          const Eigen::Vector2d lower = r01 + x * (r11 - r01);
-          Eigen::Vector2d q;
-          const BoardPattern::Colour c = board_point(upper + y * (lower - upper), &q)
-                                             ? pattern_.At(q.x(), q.y())
-                                             : BoardPattern::kOff;
-          sum += level(c);
-        }
-      }
-      row[I] = static_cast<float>(sum / (strata_ * strata_));
+      out[I] = AreaSample(Minv, top.rays[i], top.rays[i + 1], bottom.rays[i], bottom.rays[i + 1],
+                          static_cast<uint64_t>(J) * 1000003ULL + static_cast<uint64_t>(I));
     }
   }
-  // Light on the board, then the optics, all on the continuous (fine) image.
-  illumination_.Apply(fine, u0, v0, 1.0 / f);
+  return fine;
+}
+
+// Mean level over a fine pixel with corner rays r00, r10 (top) and r01, r11 (bottom):
+// jittered stratified samples, the ray bilinear inside the pixel and the plane met exactly.
+float BoardRenderer::AreaSample(const Eigen::Matrix3d& Minv, const Eigen::Vector2d& r00,
+                                const Eigen::Vector2d& r10, const Eigen::Vector2d& r01,
+                                const Eigen::Vector2d& r11, uint64_t seed) const {
+  SplitMix64 rng{seed};
+  const double step = 1.0 / strata_;
+  double sum = 0;
+  for (int sy = 0; sy < strata_; ++sy) {
+    for (int sx = 0; sx < strata_; ++sx) {
+      const double x = (sx + rng.Uniform()) * step, y = (sy + rng.Uniform()) * step;
+      const Eigen::Vector2d upper = r00 + x * (r10 - r00);
+      const Eigen::Vector2d lower = r01 + x * (r11 - r01);
+      Eigen::Vector2d q;
+      const BoardPattern::Colour c = BoardPointOnRay(Minv, upper + y * (lower - upper), &q)
+                                         ? pattern_.At(q.x(), q.y())
+                                         : BoardPattern::kOff;
+      sum += Level(c);
+    }
+  }
+  return static_cast<float>(sum / (strata_ * strata_));
+}
+
+// Light on the board, then the optics (Gaussian PSF, defocus disk), all on the fine image.
+void BoardRenderer::ApplyOptics(const Eigen::Matrix3d& Minv, const Region& region,
+                                cv::Mat& fine) const {
+  const int f = Supersampling();
+  illumination_.Apply(fine, region.u0, region.v0, 1.0 / f);
   if (options_.blur_sigma_px > 0) {
     const double sigma = options_.blur_sigma_px * f;
     cv::GaussianBlur(fine, fine, cv::Size(0, 0), sigma, sigma, cv::BORDER_REPLICATE);
@@ -230,10 +274,6 @@ cv::Mat BoardRenderer::RenderClean(const RigidTransform& X_CT) const {
   if (options_.focus_distance > 0 && options_.aperture_diameter > 0) {
     SpatiallyVaryingPillbox(fine, DefocusRadiusMap(Minv, region) * f, f);
   }
-  cv::Mat coarse;
-  cv::resize(fine, coarse, cv::Size(u1 - u0, v1 - v0), 0, 0, cv::INTER_AREA);
-  coarse.copyTo(image(cv::Rect(u0, v0, u1 - u0, v1 - v0)));
-  return image;
 }
 
 cv::Mat BoardRenderer::RenderBackground() const {

@@ -8,6 +8,7 @@
 // seed. The steps and their options: render_options.h.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -50,6 +51,17 @@ class BoardRenderer {
   };
   Region BoardRegion(const RigidTransform& X_CT) const;
   cv::Mat DefocusRadiusMap(const Eigen::Matrix3d& Minv, const Region& region) const;
+  struct FineCornerRow;
+  cv::Mat RenderFineRegion(const Eigen::Matrix3d& Minv, const Region& region) const;
+  void FillFineCornerRow(const Eigen::Matrix3d& Minv, const Region& region, int J,
+                         FineCornerRow* row) const;
+  Eigen::Vector2d FineRay(const Region& region, int I, int J) const;
+  float AreaSample(const Eigen::Matrix3d& Minv, const Eigen::Vector2d& r00,
+                   const Eigen::Vector2d& r10, const Eigen::Vector2d& r01,
+                   const Eigen::Vector2d& r11, uint64_t seed) const;
+  void ApplyOptics(const Eigen::Matrix3d& Minv, const Region& region, cv::Mat& fine) const;
+  float Level(BoardPattern::Colour colour) const;
+  int Supersampling() const { return std::max(1, options_.supersampling); }
 
   RenderOptions options_;
   CameraModel camera_;
