@@ -273,89 +273,110 @@ bool Campaign::Step(Clock::time_point now) {
   if (options_.mode == CampaignMode::kPassive) return true;  // handlers do all the work
   NoteWhoWasHeard(now);
   LogSilentSides(now);
-  const PlannedPose& pose = current();
   if (recorded_current_) {
     NextPose();
     return !finished();
   }
   switch (phase_) {
-    case Phase::kWaitForDevices: {
-      // Do not send into the void: a target published before the robot subscribes is lost.
-      if (phase_start_ == Clock::time_point{}) phase_start_ = now;
-      if (joints_heard_ && camera_heard_) {
-        spdlog::info("robot and camera heard; starting");
-        phase_ = Phase::kSendTarget;
-      } else if (Seconds(now - phase_start_) > options_.settle_timeout_s) {
-        std::string silent = !joints_heard_ ? "no joint state on H4_JOINT_STATE (is the robot "
-                                              "controller or h4cal sim-robot running?)"
-                                            : "";
-        if (!camera_heard_) {
-          silent += std::string(silent.empty() ? "" : "; ") +
-                    "no camera status on H4_CAMERA_STATUS (is h4cam running?)";
-        }
-        throw std::runtime_error(fmt::format("nothing heard for {:.0f} s on {}: {}",
-                                             options_.settle_timeout_s, bus_.url(), silent));
-      }
+    case Phase::kWaitForDevices:
+      WaitForDevices(now);
       break;
-    }
-    case Phase::kSendTarget: {
-      if (options_.mode == CampaignMode::kActive) {
-        if (!PublishTarget(pose, now)) break;
-      } else {
-        spdlog::info(
-            "pose {}: move the robot to X={:.4f} Y={:.4f} Z={:.4f} m theta={:.2f} deg "
-            "and let it settle",
-            pose.pose_id, pose.x[0], pose.x[1], pose.x[2], DegreesFromRadians(pose.x[3]));
-      }
-      settled_seen_ = false;
-      phase_ = Phase::kSettling;
-      phase_start_ = now;
+    case Phase::kSendTarget:
+      SendTarget(now);
       break;
-    }
-    case Phase::kSettling: {
-      if (settled_seen_) {
-        unsettled_in_a_row_.clear();
-        phase_ = Phase::kSendRequest;
-        break;
-      }
-      if (options_.mode == CampaignMode::kActive &&
-          Seconds(now - target_sent_) > options_.target_resend_s) {
-        const std::optional<JointReading> latest = history_.Latest();
-        if (!latest || latest->pose_id != pose.pose_id) {
-          spdlog::info("pose {}: the robot has not taken the target yet; sending it again",
-                       pose.pose_id);
-          PublishTarget(pose, now);
-        }
-      }
-      if (Seconds(now - phase_start_) > options_.settle_timeout_s) RetryUnsettled(now);
+    case Phase::kSettling:
+      WaitForSettled(now);
       break;
-    }
-    case Phase::kSendRequest: {
-      h4msgs::capture_request_t request{};
-      request.utime = NowUtime();
-      request.pose_id = pose.pose_id;
-      request.frame_count = options_.frame_count;
-      bus_.Publish(channels::kCaptureRequest, request);
-      failed_attempt_.reset();
-      phase_ = Phase::kMeasuring;
-      phase_start_ = now;
+    case Phase::kSendRequest:
+      SendCaptureRequest(now);
       break;
-    }
-    case Phase::kMeasuring: {
-      if (failed_attempt_) {
-        Retry(Phase::kSendRequest, *failed_attempt_, now);
-      } else if (Seconds(now - phase_start_) > options_.capture_timeout_s) {
-        const std::string hint = camera_heard_ ? ""
-                                               : " (no camera status heard at all: is "
-                                                 "h4cam running?)";
-        Retry(Phase::kSendRequest,
-              fmt::format("no measurement after {:.1f} s{}", options_.capture_timeout_s, hint),
-              now);
-      }
+    case Phase::kMeasuring:
+      WaitForMeasurement(now);
       break;
-    }
   }
   return !finished();
+}
+
+// Do not send into the void: a target published before the robot subscribes is lost.
+void Campaign::WaitForDevices(Clock::time_point now) {
+  if (phase_start_ == Clock::time_point{}) phase_start_ = now;
+  if (joints_heard_ && camera_heard_) {
+    spdlog::info("robot and camera heard; starting");
+    phase_ = Phase::kSendTarget;
+    return;
+  }
+  if (Seconds(now - phase_start_) <= options_.settle_timeout_s) return;
+  std::string silent = !joints_heard_ ? "no joint state on H4_JOINT_STATE (is the robot "
+                                        "controller or h4cal sim-robot running?)"
+                                      : "";
+  if (!camera_heard_) {
+    silent += std::string(silent.empty() ? "" : "; ") +
+              "no camera status on H4_CAMERA_STATUS (is h4cam running?)";
+  }
+  throw std::runtime_error(fmt::format("nothing heard for {:.0f} s on {}: {}",
+                                       options_.settle_timeout_s, bus_.url(), silent));
+}
+
+// Active: the target goes to the robot; guided: the operator is asked to move it.
+void Campaign::SendTarget(Clock::time_point now) {
+  const PlannedPose& pose = current();
+  if (options_.mode == CampaignMode::kActive) {
+    if (!PublishTarget(pose, now)) return;
+  } else {
+    spdlog::info(
+        "pose {}: move the robot to X={:.4f} Y={:.4f} Z={:.4f} m theta={:.2f} deg "
+        "and let it settle",
+        pose.pose_id, pose.x[0], pose.x[1], pose.x[2], DegreesFromRadians(pose.x[3]));
+  }
+  settled_seen_ = false;
+  phase_ = Phase::kSettling;
+  phase_start_ = now;
+}
+
+// Until the robot reports settled at the target; the target is sent again while the
+// robot has not taken it, and the pose retried when it never settles.
+void Campaign::WaitForSettled(Clock::time_point now) {
+  if (settled_seen_) {
+    unsettled_in_a_row_.clear();
+    phase_ = Phase::kSendRequest;
+    return;
+  }
+  const PlannedPose& pose = current();
+  if (options_.mode == CampaignMode::kActive &&
+      Seconds(now - target_sent_) > options_.target_resend_s) {
+    const std::optional<JointReading> latest = history_.Latest();
+    if (!latest || latest->pose_id != pose.pose_id) {
+      spdlog::info("pose {}: the robot has not taken the target yet; sending it again",
+                   pose.pose_id);
+      PublishTarget(pose, now);
+    }
+  }
+  if (Seconds(now - phase_start_) > options_.settle_timeout_s) RetryUnsettled(now);
+}
+
+void Campaign::SendCaptureRequest(Clock::time_point now) {
+  h4msgs::capture_request_t request{};
+  request.utime = NowUtime();
+  request.pose_id = current().pose_id;
+  request.frame_count = options_.frame_count;
+  bus_.Publish(channels::kCaptureRequest, request);
+  failed_attempt_.reset();
+  phase_ = Phase::kMeasuring;
+  phase_start_ = now;
+}
+
+// Until the camera's board pose is recorded (by the handler); a failed measurement or
+// none within the capture timeout retries the request.
+void Campaign::WaitForMeasurement(Clock::time_point now) {
+  if (failed_attempt_) {
+    Retry(Phase::kSendRequest, *failed_attempt_, now);
+  } else if (Seconds(now - phase_start_) > options_.capture_timeout_s) {
+    const std::string hint = camera_heard_ ? ""
+                                           : " (no camera status heard at all: is "
+                                             "h4cam running?)";
+    Retry(Phase::kSendRequest,
+          fmt::format("no measurement after {:.1f} s{}", options_.capture_timeout_s, hint), now);
+  }
 }
 
 std::string Campaign::waiting_for() const {

@@ -115,6 +115,12 @@ class Campaign {
   /// The robot did not settle at the current pose in time: Retry, and stop the campaign
   /// (throw) once max_unsettled_in_a_row poses in a row were skipped so.
   void RetryUnsettled(Clock::time_point now);
+  /// One Step() in each phase of the state machine.
+  void WaitForDevices(Clock::time_point now);
+  void SendTarget(Clock::time_point now);
+  void WaitForSettled(Clock::time_point now);
+  void SendCaptureRequest(Clock::time_point now);
+  void WaitForMeasurement(Clock::time_point now);
   /// Sends the target of `pose`; false (pose skipped) when the control law cannot reach it.
   bool PublishTarget(const PlannedPose& pose, Clock::time_point now);
   void NextPose();

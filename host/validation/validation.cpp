@@ -118,48 +118,56 @@ double ValidationReport::StraightnessImprovementPercent(size_t m, size_t r) cons
   return before > 0.0 ? 100.0 * (before - after) / before : 0.0;
 }
 
-ValidationReport Validate(const ValidationInputs& in) {
+namespace {
+
+// A model to validate: its label, kinematics and camera / board placement.
+struct Candidate {
+  std::string label;
+  std::unique_ptr<KinematicModel> model;
+  RigidTransform X_BC, X_TE;
+};
+
+void CheckInputs(const ValidationInputs& in) {
   CheckModel(in.result12, ModelKind::k12);
   CheckModel(in.result31, ModelKind::k31);
   if (!in.result12 && !in.result31) {
     throw std::invalid_argument("validation needs an identification result (Model 12 or 31)");
   }
   if (in.rows.empty()) throw std::invalid_argument(in.dataset_name + ": no pose");
+}
 
-  ValidationReport report;
-  // The measured squares first: their input errors need no kinematics to be found.
-  report.measured_squares = MeasuredSquares(in);
-  for (const MeasuredSquareRun& m : report.measured_squares) {
+// Notes on the square runs measured by the camera: planned points missing, rows not planned.
+void NoteMeasuredSquareGaps(const std::vector<MeasuredSquareRun>& runs,
+                            std::vector<std::string>* notes) {
+  for (const MeasuredSquareRun& m : runs) {
     if (!m.missing_ids.empty()) {
-      report.notes.push_back(fmt::format(
+      notes->push_back(fmt::format(
           "square (measured), {} controller: {} of {} planned points missing from {} (pose ids "
           "{}); the side errors use the others",
           m.label, m.missing_ids.size(), m.planned, m.dataset_name, PoseIdList(m.missing_ids)));
     }
     if (m.unplanned_rows > 0) {
-      report.notes.push_back(fmt::format(
+      notes->push_back(fmt::format(
           "square (measured), {} controller: {} rows of {} are not in the plan (ignored)", m.label,
           m.unplanned_rows, m.dataset_name));
     }
   }
-  const std::vector<DatasetRow> held = HeldOutRows(in, &report.heldout_ids, &report.notes);
+}
 
-  struct Candidate {
-    std::string label;
-    std::unique_ptr<KinematicModel> model;
-    RigidTransform X_BC, X_TE;
-  };
+// The a priori robot, then each identified result. "Before calibration" isolates the
+// kinematic parameters: the a priori Model 12 with the placement the Model 12
+// identification found (the a priori placement, off by centimetres, would measure the
+// camera set-up instead of the robot).
+std::vector<Candidate> CandidatesToValidate(const ValidationInputs& in,
+                                            std::vector<std::string>* notes) {
   std::vector<Candidate> candidates;
-  // "Before calibration" isolates the kinematic parameters: the a priori Model 12 with the
-  // placement the Model 12 identification found (the a priori placement, off by centimetres,
-  // would measure the camera set-up instead of the robot).
   Candidate apriori{"a priori", std::make_unique<Model12>(in.apriori.model12, in.apriori.assembly),
                     in.apriori.X_BC, in.apriori.X_TE};
   if (in.result12) {
     apriori.X_BC = in.result12->X_BC;
     apriori.X_TE = in.result12->X_TE;
   } else {
-    report.notes.push_back(
+    notes->push_back(
         "no Model 12 result: the a priori row uses the a priori camera and board placement");
   }
   candidates.push_back(std::move(apriori));
@@ -169,48 +177,71 @@ ValidationReport Validate(const ValidationInputs& in) {
     candidates.push_back(
         {ModelLabel((*result)->model), std::move(robot.model), robot.X_BC, robot.X_TE});
   }
+  return candidates;
+}
 
-  std::unique_ptr<KinematicModel> true_model;
+// The true robot of a simulation, or null with a note on what is then not computed.
+std::unique_ptr<KinematicModel> TrueModel(const ValidationInputs& in, ValidationReport* report) {
   if (in.truth) {
-    report.has_truth = true;
-    report.paper_scenario = IsPaperScenario(in.apriori, *in.truth);
-    true_model = in.truth->robot.MakeModel();
-  } else {
-    report.notes.push_back(
-        in.square_measured.empty()
-            ? "no truth file: the square path needs the true robot (simulation), not computed"
-            : "no truth file: the simulated square path needs the true robot, not computed "
-              "(the measured square runs are shown)");
+    report->has_truth = true;
+    report->paper_scenario = IsPaperScenario(in.apriori, *in.truth);
+    return in.truth->robot.MakeModel();
   }
+  report->notes.push_back(
+      in.square_measured.empty()
+          ? "no truth file: the square path needs the true robot (simulation), not computed"
+          : "no truth file: the simulated square path needs the true robot, not computed "
+            "(the measured square runs are shown)");
+  return nullptr;
+}
+
+// One candidate's figures: joint residuals (held-out and all poses), positioning error,
+// straightness runs and, for a Model 12 with the true robot known, the square path.
+ModelValidation ValidateCandidate(const ValidationInputs& in, const Candidate& c,
+                                  const std::vector<DatasetRow>& held,
+                                  const KinematicModel* true_model) {
+  ModelValidation v;
+  v.label = c.label;
+  v.heldout = JointResidualsOf(*c.model, c.X_BC, c.X_TE, held);
+  if (v.heldout.poses == 0) {
+    throw std::invalid_argument(fmt::format(
+        "{}: no held-out pose is within the reach of the {} model", in.dataset_name, c.label));
+  }
+  v.all = JointResidualsOf(*c.model, c.X_BC, c.X_TE, in.rows);
+  v.positioning = PositioningErrorOf(*c.model, c.X_BC, c.X_TE, held);
+  for (size_t r = 0; r < in.straightness.size(); ++r) {
+    StraightnessRun run = StraightnessOf(*c.model, in.straightness[r]);
+    if (!run.ok) {
+      throw std::invalid_argument(
+          fmt::format("straightness run {} with the {} model: {}", r + 1, c.label, run.message));
+    }
+    v.straightness.push_back(std::move(run));
+  }
+  if (true_model != nullptr && c.model->kind() == ModelKind::k12) {
+    v.square = RunSquare(*c.model, {true_model, in.truth->robot.X_ModelB()}, in.square);
+  }
+  return v;
+}
+
+}  // namespace
+
+ValidationReport Validate(const ValidationInputs& in) {
+  CheckInputs(in);
+  ValidationReport report;
+  // The measured squares first: their input errors need no kinematics to be found.
+  report.measured_squares = MeasuredSquares(in);
+  NoteMeasuredSquareGaps(report.measured_squares, &report.notes);
+  const std::vector<DatasetRow> held = HeldOutRows(in, &report.heldout_ids, &report.notes);
+  const std::vector<Candidate> candidates = CandidatesToValidate(in, &report.notes);
+  const std::unique_ptr<KinematicModel> true_model = TrueModel(in, &report);
   if (in.straightness.empty()) {
     report.notes.push_back("no straightness run given: Table 4 not computed");
   }
-
-  for (Candidate& c : candidates) {
-    ModelValidation v;
-    v.label = c.label;
-    v.heldout = JointResidualsOf(*c.model, c.X_BC, c.X_TE, held);
-    if (v.heldout.poses == 0) {
-      throw std::invalid_argument(fmt::format(
-          "{}: no held-out pose is within the reach of the {} model", in.dataset_name, c.label));
-    }
-    v.all = JointResidualsOf(*c.model, c.X_BC, c.X_TE, in.rows);
-    v.positioning = PositioningErrorOf(*c.model, c.X_BC, c.X_TE, held);
-    for (size_t r = 0; r < in.straightness.size(); ++r) {
-      StraightnessRun run = StraightnessOf(*c.model, in.straightness[r]);
-      if (!run.ok) {
-        throw std::invalid_argument(
-            fmt::format("straightness run {} with the {} model: {}", r + 1, c.label, run.message));
-      }
-      v.straightness.push_back(std::move(run));
-    }
-    if (true_model && c.model->kind() == ModelKind::k12) {
-      v.square = RunSquare(*c.model, {true_model.get(), in.truth->robot.X_ModelB()}, in.square);
-    }
-    report.models.push_back(std::move(v));
+  for (const Candidate& c : candidates) {
+    report.models.push_back(ValidateCandidate(in, c, held, true_model.get()));
   }
-  report.apriori_all =
-      PositioningErrorOf(*candidates[0].model, candidates[0].X_BC, candidates[0].X_TE, in.rows);
+  const Candidate& apriori = candidates.front();
+  report.apriori_all = PositioningErrorOf(*apriori.model, apriori.X_BC, apriori.X_TE, in.rows);
   report.prior = AnalyzeRotationAxis(in.rows, in.apriori.X_BC, in.apriori.X_TE);
   if (!report.prior.ok) report.notes.push_back("4-DoF check: " + report.prior.message);
   return report;
