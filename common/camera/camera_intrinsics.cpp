@@ -40,4 +40,13 @@ std::string ExpectedDistortionCoefficients(DistortionModel model) {
   return "";
 }
 
+CameraIntrinsics CameraIntrinsics::Pinhole(int width, int height, double fx, double fy, double cx,
+                                           double cy) {
+  CameraIntrinsics camera;
+  camera.width = width;
+  camera.height = height;
+  camera.K << fx, 0.0, cx, 0.0, fy, cy, 0.0, 0.0, 1.0;
+  return camera;
+}
+
 }  // namespace h4

@@ -43,6 +43,11 @@ struct CameraIntrinsics {
   /// distortion_coefficients in OpenCV's order for distortion_model (see DistortionModel).
   Eigen::VectorXd distortion = Eigen::VectorXd::Zero(5);
   std::optional<double> avg_reprojection_error;  ///< px, when the calibration wrote it
+
+  /// A width x height px camera with focal lengths (fx, fy) and principal point (cx, cy),
+  /// px, no skew, and no distortion until the caller sets one.
+  static CameraIntrinsics Pinhole(int width, int height, double fx, double fy, double cx,
+                                  double cy);
 };
 
 }  // namespace h4

@@ -25,6 +25,7 @@
 #include <opencv2/calib3d.hpp>
 
 #include "common/geometry/rotation.h"
+#include "common/units.h"
 #include "firmware/pose/measure_pipeline.h"
 #include "firmware/render/paper_scenes.h"
 #include "firmware/sources/sim_source.h"
@@ -214,7 +215,7 @@ void PrintRow(const char* condition, const char* depth, const char* method, cons
     return;
   }
   const double rms_t_mm = std::sqrt(t.err_t2 / t.measured) * 1e3;
-  const double rms_r_deg = std::sqrt(t.err_r2 / t.measured) * 180 / M_PI;
+  const double rms_r_deg = DegreesFromRadians(std::sqrt(t.err_r2 / t.measured));
   char ratio[64] = "-";
   if (t.has_sigma) {
     std::snprintf(ratio, sizeof(ratio), "%.2f / %.2f", std::sqrt(t.sig_t2 / t.err_t2),

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "common/geometry/rotation.h"
+#include "common/units.h"
 #include "firmware/bench/degraded_scene.h"
 #include "firmware/pose/measure_pipeline.h"
 #include "firmware/render/paper_scenes.h"
@@ -137,8 +138,9 @@ int main(int argc, char** argv) {
     const int n = std::max(sums.used, 1);
     std::printf("%-46s %3d/%-2d %9.5f %10.6f %7.2f %7.2f %10.4f\n", condition.name.c_str(),
                 sums.used, count, std::sqrt(sums.err_t2 / n) * 1e3,
-                std::sqrt(sums.err_r2 / n) * 180 / M_PI, std::sqrt(sums.sig_t2 / sums.err_t2),
-                std::sqrt(sums.sig_r2 / sums.err_r2), sums.erosion_px / n);
+                DegreesFromRadians(std::sqrt(sums.err_r2 / n)),
+                std::sqrt(sums.sig_t2 / sums.err_t2), std::sqrt(sums.sig_r2 / sums.err_r2),
+                sums.erosion_px / n);
     std::fflush(stdout);
   }
   const double seconds =

@@ -8,10 +8,10 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include "common/units.h"
+
 namespace h4::cam {
 namespace {
-
-constexpr double kRadToDeg = 180.0 / M_PI;
 
 struct Solution {
   cv::Mat K, distortion;
@@ -116,11 +116,13 @@ bool Solve(const std::vector<const CalibrationView*>& views, cv::Size image_size
 }
 
 double AngleDeg(const cv::Vec3d& a, const cv::Vec3d& b) {
-  return std::acos(std::clamp(a.dot(b) / (cv::norm(a) * cv::norm(b)), -1.0, 1.0)) * kRadToDeg;
+  return DegreesFromRadians(
+      std::acos(std::clamp(a.dot(b) / (cv::norm(a) * cv::norm(b)), -1.0, 1.0)));
 }
 
 double TiltDeg(const cv::Vec3d& board_normal) {
-  return std::acos(std::min(1.0, std::abs(board_normal[2]) / cv::norm(board_normal))) * kRadToDeg;
+  return DegreesFromRadians(
+      std::acos(std::min(1.0, std::abs(board_normal[2]) / cv::norm(board_normal))));
 }
 
 // Greedy clustering of the board normals: a view starts a new orientation when it is at

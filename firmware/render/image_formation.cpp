@@ -6,6 +6,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "common/units.h"
+
 namespace h4::cam {
 
 Illumination::Illumination(const RenderOptions& options, int width, int height)
@@ -13,7 +15,7 @@ Illumination::Illumination(const RenderOptions& options, int width, int height)
       gradient_(options.illumination_gradient),
       cx_(0.5 * (width - 1)),
       cy_(0.5 * (height - 1)) {
-  const double angle = options.illumination_gradient_direction_deg * M_PI / 180.0;
+  const double angle = RadiansFromDegrees(options.illumination_gradient_direction_deg);
   dx_ = std::cos(angle);
   dy_ = std::sin(angle);
   // The image spans [-extent/2, extent/2] along the direction: the light goes from

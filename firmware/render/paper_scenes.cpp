@@ -5,14 +5,12 @@
 
 #include "common/board/board_model.h"
 #include "common/geometry/rotation.h"
+#include "common/units.h"
 
 namespace h4::cam::scenes {
 
 CameraIntrinsics PaperCamera() {
-  CameraIntrinsics camera;
-  camera.width = 1024;
-  camera.height = 768;
-  camera.K << 817.0, 0.0, 515.3, 0.0, 816.2, 380.7, 0.0, 0.0, 1.0;
+  CameraIntrinsics camera = CameraIntrinsics::Pinhole(1024, 768, 817.0, 816.2, 515.3, 380.7);
   camera.distortion = Eigen::VectorXd(5);
   camera.distortion << -0.12, 0.08, 0.0004, -0.0003, -0.01;
   return camera;
@@ -46,7 +44,7 @@ std::vector<RigidTransform> RandomPoses(int count, uint64_t seed, double min_dep
   const AprilGridSpec board = PaperBoard();
   for (int i = 0; i < count; ++i) {
     const double depth = rng.uniform(min_depth, max_depth);
-    const double tilt = rng.uniform(0.0, 25.0) * M_PI / 180.0;
+    const double tilt = RadiansFromDegrees(rng.uniform(0.0, 25.0));
     poses.push_back(BoardPose(board, depth, tilt, rng.uniform(-M_PI, M_PI),
                               rng.uniform(-M_PI, M_PI), rng.uniform(-0.04, 0.04),
                               rng.uniform(-0.03, 0.03)));

@@ -13,10 +13,7 @@ namespace h4 {
 namespace {
 
 CameraIntrinsics Camera(int distortion_count) {
-  CameraIntrinsics c;
-  c.width = 1024;
-  c.height = 768;
-  c.K << 800.0, 0.0, 512.0, 0.0, 810.0, 384.0, 0.0, 0.0, 1.0;
+  CameraIntrinsics c = CameraIntrinsics::Pinhole(1024, 768, 800.0, 810.0, 512.0, 384.0);
   c.distortion = Eigen::VectorXd::Zero(distortion_count);
   const double all[8] = {-0.2, 0.05, 0.001, -0.002, 0.01, 0.02, -0.01, 0.005};
   for (int i = 0; i < distortion_count; ++i) c.distortion[i] = all[i];
@@ -26,10 +23,7 @@ CameraIntrinsics Camera(int distortion_count) {
 // A wide-angle fisheye module: 1024 x 768 at 300 px focal length sees about 90 degrees
 // off-axis along the long side; the image corners are beyond 90 degrees.
 CameraIntrinsics Fisheye() {
-  CameraIntrinsics c;
-  c.width = 1024;
-  c.height = 768;
-  c.K << 300.0, 0.0, 510.0, 0.0, 301.0, 386.0, 0.0, 0.0, 1.0;
+  CameraIntrinsics c = CameraIntrinsics::Pinhole(1024, 768, 300.0, 301.0, 510.0, 386.0);
   c.distortion_model = DistortionModel::kEquidistant;
   c.distortion = Eigen::Vector4d(-0.02, 0.004, -0.0015, 0.0002);
   return c;

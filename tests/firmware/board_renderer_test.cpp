@@ -16,11 +16,7 @@ namespace {
 
 // A camera without distortion, 1 px per mm at 1 m.
 CameraIntrinsics UnitCamera() {
-  CameraIntrinsics camera;
-  camera.width = 320;
-  camera.height = 240;
-  camera.K << 1000.0, 0.0, 160.0, 0.0, 1000.0, 120.0, 0.0, 0.0, 1.0;
-  camera.distortion = Eigen::VectorXd::Zero(5);
+  CameraIntrinsics camera = CameraIntrinsics::Pinhole(320, 240, 1000.0, 1000.0, 160.0, 120.0);
   return camera;
 }
 

@@ -14,10 +14,7 @@ namespace {
 TEST(CameraProjectionTest, MatchesCvProjectPoints) {
   const double all[8] = {-0.25, 0.09, 0.0012, -0.0008, -0.02, 0.03, -0.01, 0.004};
   for (int n : {4, 5, 8}) {
-    CameraIntrinsics intrinsics;
-    intrinsics.width = 1024;
-    intrinsics.height = 768;
-    intrinsics.K << 817.0, 0.0, 515.3, 0.0, 816.2, 380.7, 0.0, 0.0, 1.0;
+    CameraIntrinsics intrinsics = CameraIntrinsics::Pinhole(1024, 768, 817.0, 816.2, 515.3, 380.7);
     intrinsics.distortion = Eigen::VectorXd(n);
     for (int i = 0; i < n; ++i) intrinsics.distortion[i] = all[i];
     const CameraModel camera(intrinsics);
@@ -42,10 +39,7 @@ TEST(CameraProjectionTest, MatchesCvProjectPoints) {
 }
 
 CameraIntrinsics WideFisheye() {
-  CameraIntrinsics intrinsics;
-  intrinsics.width = 1280;
-  intrinsics.height = 960;
-  intrinsics.K << 340.0, 0.0, 641.5, 0.0, 339.2, 478.9, 0.0, 0.0, 1.0;
+  CameraIntrinsics intrinsics = CameraIntrinsics::Pinhole(1280, 960, 340.0, 339.2, 641.5, 478.9);
   intrinsics.distortion_model = DistortionModel::kEquidistant;
   intrinsics.distortion = Eigen::Vector4d(0.031, -0.012, 0.0041, -0.0007);
   return intrinsics;

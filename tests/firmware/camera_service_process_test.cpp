@@ -23,7 +23,8 @@
 #include "firmware/service/service_node.h"
 #include "messages/bus/lcm_bus.h"
 #include "messages/channels.h"
-#include "tests/firmware/program_command.h"
+#include "tests/support/private_netns.h"
+#include "tests/support/program_command.h"
 
 extern char** environ;
 
@@ -44,7 +45,7 @@ bool Spawn(const std::vector<std::string>& command, pid_t* pid) {
 
 // Runs inside the namespace (started by the test below through scripts/in-private-netns).
 TEST(CameraServiceProcessTest, ChildInNamespace) {
-  if (std::getenv("H4_IN_NETNS") == nullptr) GTEST_SKIP() << "only inside scripts/in-private-netns";
+  if (!test::InPrivateNamespace()) GTEST_SKIP() << "only inside scripts/in-private-netns";
   const std::string binary = H4_BINARY_DIR "/firmware/h4cam";
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("h4cam_run_" + std::to_string(getpid()));
@@ -121,29 +122,7 @@ TEST(CameraServiceProcessTest, ChildInNamespace) {
 TEST(CameraServiceProcessTest, RunAnswersACaptureRequestOverUdpmAndStopsOnSigterm) {
   const std::string binary = H4_BINARY_DIR "/firmware/h4cam";
   if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
-  // The namespace (loopback with a multicast route) comes from scripts/in-private-netns,
-  // which exits 77 where none can be made (a chroot without root, a locked-down kernel).
-  const std::string netns = H4_SOURCE_DIR "/scripts/in-private-netns";
-  const int check = std::system((netns + " --check > /dev/null 2>&1").c_str());
-  if (WIFEXITED(check) && WEXITSTATUS(check) == 77) {
-    GTEST_SKIP() << "no private network namespace here (" << netns << " --check)";
-  }
-  ASSERT_TRUE(WIFEXITED(check) && WEXITSTATUS(check) == 0) << netns << " --check failed";
-  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
-  const std::string command = netns + " env H4_IN_NETNS=1 timeout 60 " +
-                              test::ProgramCommand(self) +
-                              " --gtest_filter=CameraServiceProcessTest.ChildInNamespace";
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string output;
-  char buffer[256];
-  while (fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
-  const int status = pclose(pipe);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output;
-  // Ran, not skipped.
-  EXPECT_NE(output.find("[       OK ] CameraServiceProcessTest.ChildInNamespace"),
-            std::string::npos)
-      << output;
+  test::RunChildTestInPrivateNamespace("CameraServiceProcessTest.ChildInNamespace", 60);
 }
 
 }  // namespace

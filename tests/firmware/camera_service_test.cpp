@@ -23,8 +23,8 @@
 #include "firmware/sources/sim_source.h"
 #include "messages/bus/lcm_bus.h"
 #include "messages/channels.h"
-#include "tests/firmware/program_command.h"
 #include "tests/messages/wire_bytes.h"
+#include "tests/support/program_command.h"
 
 namespace h4::cam {
 namespace {

@@ -9,10 +9,7 @@ namespace h4::cam {
 namespace {
 
 CameraIntrinsics SmallCamera(DistortionModel model) {
-  CameraIntrinsics camera;
-  camera.width = 160;
-  camera.height = 120;
-  camera.K << 70.0, 0.0, 81.0, 0.0, 70.5, 58.0, 0.0, 0.0, 1.0;
+  CameraIntrinsics camera = CameraIntrinsics::Pinhole(160, 120, 70.0, 70.5, 81.0, 58.0);
   camera.distortion_model = model;
   if (model == DistortionModel::kEquidistant) {
     camera.distortion = Eigen::Vector4d(0.02, -0.01, 0.003, -0.0005);  // 50 deg at the edges

@@ -258,11 +258,7 @@ TEST(IntrinsicsCalibration, OpenCvSampleImagesGiveOpenCvsPublishedIntrinsics) {
 TEST(IntrinsicsCalibration, RenderedAprilGridViewsGiveBackTheRenderingCamera) {
   AprilGridSpec grid;  // 6 x 6 tag36h11, 30 mm, spacing 0.25 (boards/aprilgrid_6x6_30mm.yaml)
   grid.layout = AprilGridLayout::kH4Legacy;
-  CameraIntrinsics truth;
-  truth.width = 640;
-  truth.height = 480;
-  truth.K << 500.0, 0.0, 322.0, 0.0, 500.0, 236.0, 0.0, 0.0, 1.0;
-  truth.distortion = Eigen::VectorXd::Zero(5);
+  CameraIntrinsics truth = CameraIntrinsics::Pinhole(640, 480, 500.0, 500.0, 322.0, 236.0);
   truth.distortion(0) = -0.1;
   RenderOptions render;
   render.samples_per_pixel = 34;
@@ -329,10 +325,7 @@ std::vector<std::string> RenderGridViews(const CameraIntrinsics& camera, int cou
 }
 
 TEST(CalibrateIntrinsicsCommand, EquidistantModelOnRenderedFisheyeViewsGivesBackTheLens) {
-  CameraIntrinsics truth;
-  truth.width = 640;
-  truth.height = 480;
-  truth.K << 280.0, 0.0, 322.0, 0.0, 280.0, 236.0, 0.0, 0.0, 1.0;
+  CameraIntrinsics truth = CameraIntrinsics::Pinhole(640, 480, 280.0, 280.0, 322.0, 236.0);
   truth.distortion_model = DistortionModel::kEquidistant;
   truth.distortion = Eigen::Vector4d(0.02, -0.01, 0.003, -0.0005);
   const TempDir dir("h4_fisheye_views");
@@ -370,10 +363,7 @@ TEST(CalibrateIntrinsicsCommand, EquidistantModelOnRenderedFisheyeViewsGivesBack
 // Eight copies of one image fit any focal length almost exactly (OpenCV returned fx 8379
 // for a true 817 at 0.02 px RMS): the command must refuse, write nothing, and fail.
 TEST(CalibrateIntrinsicsCommand, CopiesOfOneImageFailWithoutWritingAFile) {
-  CameraIntrinsics truth;
-  truth.width = 640;
-  truth.height = 480;
-  truth.K << 500.0, 0.0, 322.0, 0.0, 500.0, 236.0, 0.0, 0.0, 1.0;
+  CameraIntrinsics truth = CameraIntrinsics::Pinhole(640, 480, 500.0, 500.0, 322.0, 236.0);
   const TempDir dir("h4_copied_views");
   CalibrateIntrinsicsArgs args;
   args.board_path = std::string(H4_SOURCE_DIR) + "/boards/aprilgrid_6x6_30mm.yaml";

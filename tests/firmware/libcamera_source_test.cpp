@@ -12,6 +12,7 @@
 #include "firmware/sources/libcamera_compat.h"
 #include "firmware/sources/libcamera_frame.h"
 #include "firmware/sources/libcamera_manager.h"
+#include "tests/support/options_check.h"
 
 namespace h4::cam {
 namespace {
@@ -123,9 +124,7 @@ TEST(LibcameraSourceLifecycle, StartBeforeConfigureFailsWithAnError) {
 TEST(LibcameraSourceLifecycle, InvalidOptionsAreRejectedByOpen) {
   LibcameraSourceOptions options;
   options.analogue_gain = 0.5f;
-  std::string why;
-  EXPECT_FALSE(options.IsValid(&why));
-  EXPECT_NE(why.find("analogue gain"), std::string::npos);
+  EXPECT_TRUE(RefusedNaming(options, "analogue gain"));
   LibcameraSource source(options);
   EXPECT_FALSE(source.Open());
   EXPECT_NE(source.error().find("analogue gain"), std::string::npos) << source.error();

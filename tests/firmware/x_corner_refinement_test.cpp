@@ -16,11 +16,7 @@ namespace h4::cam {
 namespace {
 
 CameraIntrinsics FaceOnCamera() {
-  CameraIntrinsics camera;
-  camera.width = 200;
-  camera.height = 160;
-  camera.K << 1000.0, 0.0, 100.0, 0.0, 1000.0, 80.0, 0.0, 0.0, 1.0;
-  camera.distortion = Eigen::VectorXd::Zero(5);
+  CameraIntrinsics camera = CameraIntrinsics::Pinhole(200, 160, 1000.0, 1000.0, 100.0, 80.0);
   return camera;
 }
 

@@ -16,12 +16,9 @@ namespace {
 constexpr int kMaxFuzzPixels = 160 * 120;
 
 h4::CameraIntrinsics CameraOfSize(int width, int height) {
-  h4::CameraIntrinsics camera;
-  camera.width = width;
-  camera.height = height;
   const double f_px = 1.2 * std::max(width, height);
-  camera.K << f_px, 0, 0.5 * (width - 1), 0, f_px, 0.5 * (height - 1), 0, 0, 1;
-  return camera;
+  return h4::CameraIntrinsics::Pinhole(width, height, f_px, f_px, 0.5 * (width - 1),
+                                       0.5 * (height - 1));
 }
 
 // boards/aprilgrid_6x6_30mm.yaml, the demo's board.

@@ -29,6 +29,8 @@
 #include "common/timing/clock.h"
 #include "messages/channels.h"
 #include "tests/messages/wire_bytes.h"
+#include "tests/support/private_netns.h"
+#include "tests/support/test_dir.h"
 
 namespace h4::host {
 namespace {
@@ -178,11 +180,7 @@ CampaignOptions FastOptions() {
 class CampaignTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("h4_campaign_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = FreshTestDir("h4_campaign_");
     path_ = (dir_ / "dataset.csv").string();
   }
   void TearDown() override { fs::remove_all(dir_); }
@@ -894,7 +892,7 @@ TEST_F(CampaignTest, ARobotClockJumpSkipsThePosesWithTheReasonAndRecordsNoWrongP
 // scripted cell's), inside a private network namespace (scripts/in-private-netns; skipped
 // where none can be made). The kernel here has no netem, so the cell drops and reorders.
 TEST(CampaignUdpm, ChildInNamespace) {
-  if (std::getenv("H4_IN_NETNS") == nullptr) GTEST_SKIP() << "only inside scripts/in-private-netns";
+  if (!test::InPrivateNamespace()) GTEST_SKIP() << "only inside scripts/in-private-netns";
   const std::string url = "udpm://239.255.76.67:7667?ttl=0";
   const fs::path dir = fs::temp_directory_path() / ("h4_campaign_udpm_" + std::to_string(getpid()));
   fs::remove_all(dir);
@@ -924,23 +922,7 @@ TEST(CampaignUdpm, ChildInNamespace) {
 }
 
 TEST(CampaignUdpm, LossyCampaignOverMulticastInAPrivateNamespace) {
-  const std::string netns = H4_SOURCE_DIR "/scripts/in-private-netns";
-  const int check = std::system((netns + " --check > /dev/null 2>&1").c_str());
-  if (WIFEXITED(check) && WEXITSTATUS(check) == 77) {
-    GTEST_SKIP() << "no private network namespace here (" << netns << " --check)";
-  }
-  ASSERT_TRUE(WIFEXITED(check) && WEXITSTATUS(check) == 0) << netns << " --check failed";
-  const std::string self = fs::read_symlink("/proc/self/exe").string();
-  const std::string command = netns + " env H4_IN_NETNS=1 timeout 120 " + self +
-                              " --gtest_filter=CampaignUdpm.ChildInNamespace 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string output;
-  char buffer[256];
-  while (fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
-  const int status = pclose(pipe);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output;
-  EXPECT_NE(output.find("[       OK ] CampaignUdpm.ChildInNamespace"), std::string::npos) << output;
+  test::RunChildTestInPrivateNamespace("CampaignUdpm.ChildInNamespace", 120);
 }
 
 /// Another host on the network, without the campaign's key (or with another one): on every

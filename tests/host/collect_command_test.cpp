@@ -29,6 +29,7 @@
 
 #include "common/formats/dataset_csv.h"
 #include "messages/channels.h"
+#include "tests/support/test_dir.h"
 
 extern char** environ;
 
@@ -162,11 +163,7 @@ class CollectCommandTest : public ::testing::Test {
  protected:
   void SetUp() override {
     if (!fs::exists(kH4cal)) GTEST_SKIP() << kH4cal << " not built";
-    dir_ = fs::temp_directory_path() /
-           ("h4_collect_cmd_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = FreshTestDir("h4_collect_cmd_");
     plan_ = (dir_ / "plan.csv").string();
     log_ = (dir_ / "campaign.lcmlog").string();
     out_ = (dir_ / "dataset.csv").string();
@@ -242,7 +239,8 @@ TEST_F(CollectCommandTest, ASecondCampaignOnTheSameDatasetIsRefusedAndTheFileSta
   int status = 0;
   ::waitpid(first, &status, 0);
 
-  ASSERT_TRUE(locked) << "the first campaign never locked " << out_ << ": " << LogOrDatasetText(first_log);
+  ASSERT_TRUE(locked) << "the first campaign never locked " << out_ << ": "
+                      << LogOrDatasetText(first_log);
   EXPECT_EQ(second, 1) << output;
   EXPECT_NE(output.find("another campaign is writing it (process " + std::to_string(first)),
             std::string::npos)

@@ -13,6 +13,7 @@
 #include "host/simulation/dataset_simulator.h"
 #include "host/simulation/paper_scenario.h"
 #include "host/simulation/true_robot.h"
+#include "tests/support/options_check.h"
 
 namespace h4::host {
 namespace {
@@ -138,11 +139,9 @@ TEST(CrossValidationTest, FoldsAreDealtEvenlyAndEveryPoseIsPredictedOnce) {
 TEST(CrossValidationOptionsTest, OneFoldIsRefused) {
   CrossValidationOptions options;
   options.folds = 1;
-  std::string why;
-  EXPECT_FALSE(options.IsValid(&why));
-  EXPECT_NE(why.find("folds"), std::string::npos);
+  EXPECT_TRUE(RefusedNaming(options, "folds"));
   options.folds = 0;
-  EXPECT_TRUE(options.IsValid(&why));
+  EXPECT_TRUE(options.IsValid(nullptr));
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "common/formats/format_error.h"
+#include "tests/support/test_dir.h"
 
 namespace h4::host {
 namespace {
@@ -44,11 +45,7 @@ std::string Slurp(const std::string& path) {
 class DatasetJournalTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("h4_journal_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = FreshTestDir("h4_journal_");
     path_ = (dir_ / "dataset.csv").string();
   }
   void TearDown() override { fs::remove_all(dir_); }

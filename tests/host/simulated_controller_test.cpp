@@ -14,6 +14,7 @@
 #include "host/kinematics/model31.h"
 #include "host/simulation/paper_scenario.h"
 #include "host/simulation/true_robot.h"
+#include "tests/support/options_check.h"
 
 namespace h4::host {
 namespace {
@@ -249,9 +250,7 @@ TEST_F(SimulatedControllerTest, EncoderNoiseHasTheConfiguredStandardDeviation) {
 TEST(SimulatedControllerOptions, RejectsNonPositiveSpeed) {
   SimulatedControllerOptions options;
   options.joint_speed = 0.0;
-  std::string why;
-  EXPECT_FALSE(options.IsValid(&why));
-  EXPECT_NE(why.find("joint speed"), std::string::npos);
+  EXPECT_TRUE(RefusedNaming(options, "joint speed"));
   EXPECT_THROW(
       SimulatedController(PaperTruthWithPlacement(), kPaperAprioriModel12, Assembly{}, options),
       std::invalid_argument);

@@ -1,10 +1,7 @@
 #!/usr/bin/env bash
 # Bad input to h4cal gives a non-zero exit and a message naming the file, line and field.
 set -uo pipefail
-h4cal=$1
-dir=$2
-rm -rf "$dir"; mkdir -p "$dir"
-fail() { echo "FAIL: $*" >&2; exit 1; }
+. "$(dirname "$0")/h4cal_test_lib.sh"
 
 "$h4cal" simulate --truth 12 --out-dir "$dir/sim" 2>/dev/null || fail "simulate"
 # A non-unit quaternion on line 5 (the 4th data row).

@@ -5,11 +5,7 @@
 # 0.2 mm / 0.03 deg camera noise): Model 12 data with Model 12 <= 0.10 mm / 0.02 deg;
 # Model 31 data with Model 31 <= 0.20 mm / 0.04 deg and Model 12 clearly worse.
 set -euo pipefail
-h4cal=$1
-dir=$2
-rm -rf "$dir"; mkdir -p "$dir"
-
-fail() { echo "FAIL: $*" >&2; exit 1; }
+. "$(dirname "$0")/h4cal_test_lib.sh"
 
 # score RESULT DIR -> "position_mm rotation_deg"
 score() {

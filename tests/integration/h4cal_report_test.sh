@@ -5,10 +5,7 @@
 # the other model, a dataset missing held-out poses, an unreachable square) must fail with
 # a clear message and write no report. Exit 77 (skipped) when Chromium is missing.
 set -uo pipefail
-h4cal=$1
-dir=$2
-rm -rf "$dir"; mkdir -p "$dir"
-fail() { echo "FAIL: $*" >&2; exit 1; }
+. "$(dirname "$0")/h4cal_test_lib.sh"
 
 sim=$dir/sim
 "$h4cal" simulate --paper --out-dir "$sim" 2>/dev/null || fail "simulate --paper"

@@ -4,10 +4,7 @@
 # is a clear error, a bad truth path names the file, and a short run on a real truth file
 # exits 0 after --duration.
 set -uo pipefail
-h4cal=$1
-dir=$2
-rm -rf "$dir"; mkdir -p "$dir"
-fail() { echo "FAIL: $*" >&2; exit 1; }
+. "$(dirname "$0")/h4cal_test_lib.sh"
 
 help=$("$h4cal" sim-robot --help 2>&1) || fail "--help exited non-zero: $help"
 for option in --truth --robot --paper --robot-seed --joint-speed --settle-time --sigma-q \

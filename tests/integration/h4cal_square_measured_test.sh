@@ -8,10 +8,7 @@
 # points, and rejects bad input with a clear message. The report, when gnuplot is there,
 # holds the measured square's section.
 set -uo pipefail
-h4cal=$1
-dir=$2
-rm -rf "$dir"; mkdir -p "$dir"
-fail() { echo "FAIL: $*" >&2; exit 1; }
+. "$(dirname "$0")/h4cal_test_lib.sh"
 # expect_error NAME MESSAGE COMMAND... : non-zero exit and MESSAGE in the output.
 expect_error() {
   local name=$1 message=$2; shift 2

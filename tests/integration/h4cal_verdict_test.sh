@@ -4,10 +4,7 @@
 # columns, Model 12 on a Model 31 robot and a 10-pose dataset each get their own verdict,
 # printed first, in the result JSON, and exit code 3.
 set -uo pipefail
-h4cal=$1
-dir=$2
-rm -rf "$dir"; mkdir -p "$dir"
-fail() { echo "FAIL: $*" >&2; exit 1; }
+. "$(dirname "$0")/h4cal_test_lib.sh"
 
 # expect_verdict NAME CODE RC ROBOT DATA [identify options...]
 expect_verdict() {

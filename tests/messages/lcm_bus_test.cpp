@@ -17,6 +17,7 @@
 
 #include "messages/channels.h"
 #include "tests/messages/wire_bytes.h"
+#include "tests/support/private_netns.h"
 
 namespace h4::bus {
 namespace {
@@ -167,7 +168,7 @@ constexpr const char* kUdpmUrl = "udpm://239.255.76.67:7667?ttl=0";
 // Runs inside the namespace (started by the test below through scripts/in-private-netns):
 // another LCM instance sends the hostile set over real multicast.
 TEST(LcmBusUdpm, ChildInNamespace) {
-  if (std::getenv("H4_IN_NETNS") == nullptr) GTEST_SKIP() << "only inside scripts/in-private-netns";
+  if (!test::InPrivateNamespace()) GTEST_SKIP() << "only inside scripts/in-private-netns";
   LcmBus bus(kUdpmUrl);
   ASSERT_TRUE(bus.good()) << bus.error();
   Received received;
@@ -200,23 +201,7 @@ TEST(LcmBusUdpm, ChildInNamespace) {
 }
 
 TEST(LcmBusUdpm, SurvivesHostileMulticastInAPrivateNamespace) {
-  const std::string netns = H4_SOURCE_DIR "/scripts/in-private-netns";
-  const int check = std::system((netns + " --check > /dev/null 2>&1").c_str());
-  if (WIFEXITED(check) && WEXITSTATUS(check) == 77) {
-    GTEST_SKIP() << "no private network namespace here (" << netns << " --check)";
-  }
-  ASSERT_TRUE(WIFEXITED(check) && WEXITSTATUS(check) == 0) << netns << " --check failed";
-  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
-  const std::string command = netns + " env H4_IN_NETNS=1 timeout 60 " + self +
-                              " --gtest_filter=LcmBusUdpm.ChildInNamespace 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string output;
-  char buffer[256];
-  while (fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
-  const int status = pclose(pipe);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output;
-  EXPECT_NE(output.find("[       OK ] LcmBusUdpm.ChildInNamespace"), std::string::npos) << output;
+  test::RunChildTestInPrivateNamespace("LcmBusUdpm.ChildInNamespace", 60);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "common/formats/camera_yaml.h"
 #include "host/kinematics/model12.h"
 #include "host/simulation/paper_scenario.h"
+#include "tests/support/options_check.h"
 
 namespace h4::host {
 namespace {
@@ -103,9 +104,7 @@ TEST(CandidatePoses, JointRangeDepthAndTiltRulesReject) {
 TEST(CandidatePoses, InvalidOptionsAreRefusedWithTheField) {
   CandidateOptions options;
   options.position_step = 0.0;
-  std::string why;
-  EXPECT_FALSE(options.IsValid(&why));
-  EXPECT_NE(why.find("position_step"), std::string::npos);
+  EXPECT_TRUE(RefusedNaming(options, "position_step"));
   EXPECT_THROW(MakeCandidateSet(PaperAprioriRobot(), DemoCamera(), DemoBoard(), options),
                std::invalid_argument);
 }

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace h4::cam::test {
+namespace h4::test {
 
 // The argv that runs `command` (program path first, then its arguments). Natively that is
 // `command` itself. In a cross build (scripts/cross-build) the emulator ctest runs the tests
@@ -40,4 +40,4 @@ inline std::string ProgramCommand(const std::string& program) {
   return command;
 }
 
-}  // namespace h4::cam::test
+}  // namespace h4::test

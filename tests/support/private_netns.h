@@ -1,0 +1,49 @@
+// Test helper for UDP multicast tests: the test program runs one of its own tests again
+// inside a private network namespace (scripts/in-private-netns: loopback only, with a
+// multicast route), so real LCM traffic never reaches a real network.
+#pragma once
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include "tests/support/program_command.h"
+
+namespace h4::test {
+
+/// True inside the namespace RunChildTestInPrivateNamespace made; the child test skips
+/// itself elsewhere.
+inline bool InPrivateNamespace() { return std::getenv("H4_IN_NETNS") != nullptr; }
+
+/// Runs this test program's test `child_test` ("Suite.Name") inside a private network
+/// namespace with H4_IN_NETNS=1 and a timeout. Skips the calling test where no namespace
+/// can be made (scripts/in-private-netns --check exits 77: a chroot without root, a
+/// locked-down kernel); else fails it unless the child test ran (not skipped) and passed.
+inline void RunChildTestInPrivateNamespace(const std::string& child_test, int timeout_s) {
+  const std::string netns = H4_SOURCE_DIR "/scripts/in-private-netns";
+  const int check = std::system((netns + " --check > /dev/null 2>&1").c_str());
+  if (WIFEXITED(check) && WEXITSTATUS(check) == 77) {
+    GTEST_SKIP() << "no private network namespace here (" << netns << " --check)";
+  }
+  ASSERT_TRUE(WIFEXITED(check) && WEXITSTATUS(check) == 0) << netns << " --check failed";
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
+  const std::string command = netns + " env H4_IN_NETNS=1 timeout " + std::to_string(timeout_s) +
+                              " " + ProgramCommand(self) + " --gtest_filter=" + child_test +
+                              " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  char buffer[256];
+  while (fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
+  const int status = pclose(pipe);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output;
+  EXPECT_NE(output.find("[       OK ] " + child_test), std::string::npos)
+      << "the child test did not run or did not pass:\n"
+      << output;
+}
+
+}  // namespace h4::test
