@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "common/units.h"
+
 namespace h4 {
 namespace {
 
@@ -113,7 +115,7 @@ TEST(CameraModelTest, EquidistantModelMatchesTheFisheyeFormula) {
 TEST(CameraModelTest, EquidistantJacobianMatchesFiniteDifferencesFromAxisTo85Degrees) {
   const CameraModel camera(Fisheye());
   for (double angle_deg : {0.0, 1e-6, 0.5, 20.0, 45.0, 70.0, 85.0}) {
-    const double theta = angle_deg * M_PI / 180.0;
+    const double theta = RadiansFromDegrees(angle_deg);
     for (double azimuth : {0.3, 2.0, 4.4}) {
       const Eigen::Vector3d p(std::sin(theta) * std::cos(azimuth),
                               std::sin(theta) * std::sin(azimuth), std::cos(theta));
@@ -144,7 +146,7 @@ TEST(CameraModelTest, EquidistantUndistortionInvertsOverTheImageUpTo90Degrees) {
       }
       ASSERT_TRUE(ok) << uv.transpose();
       ++inverted;
-      widest_deg = std::max(widest_deg, std::atan(xn.norm()) * 180.0 / M_PI);
+      widest_deg = std::max(widest_deg, DegreesFromRadians(std::atan(xn.norm())));
       EXPECT_NEAR((camera.PixelFromNormalized(xn) - uv).norm(), 0.0, 1e-8) << uv.transpose();
     }
   }

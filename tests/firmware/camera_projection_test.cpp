@@ -7,6 +7,7 @@
 #include <opencv2/calib3d.hpp>
 
 #include "common/camera/camera_model.h"
+#include "common/units.h"
 
 namespace h4 {
 namespace {
@@ -50,7 +51,7 @@ std::vector<cv::Point3d> WideRays() {
   std::vector<cv::Point3d> points;
   for (double angle_deg = 0; angle_deg <= 85; angle_deg += 5) {
     for (double azimuth = 0.1; azimuth < 2 * M_PI; azimuth += 0.7) {
-      const double theta = angle_deg * M_PI / 180.0;
+      const double theta = RadiansFromDegrees(angle_deg);
       points.emplace_back(std::sin(theta) * std::cos(azimuth), std::sin(theta) * std::sin(azimuth),
                           std::cos(theta));
     }

@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "common/geometry/rotation.h"
+#include "common/units.h"
 #include "firmware/render/paper_scenes.h"
 #include "firmware/service/service_node.h"
 #include "firmware/sources/image_file_source.h"
@@ -118,7 +119,7 @@ TEST_F(ServiceFixture, CaptureRequestMeasuresTheTruePoseWithTheRequestsPoseId) {
       Eigen::Vector4d(m.quaternion[0], m.quaternion[1], m.quaternion[2], m.quaternion[3]));
   EXPECT_LT((measured.translation() - X_CT.translation()).norm(), 0.1e-3);
   const double angle = So3Log(X_CT.rotation().transpose() * measured.rotation()).norm();
-  EXPECT_LT(angle, 0.02 * M_PI / 180);
+  EXPECT_LT(angle, RadiansFromDegrees(0.02));
   // Covariance: symmetric, positive variances, order (t in C, r in T).
   for (int i = 0; i < 6; ++i) {
     EXPECT_GT(m.covariance[7 * i], 0.0);

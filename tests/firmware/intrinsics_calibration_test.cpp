@@ -18,6 +18,7 @@
 #include "common/formats/camera_yaml.h"
 #include "common/geometry/rigid_transform.h"
 #include "common/geometry/rotation.h"
+#include "common/units.h"
 #include "firmware/calibration/board_views.h"
 #include "firmware/cli/calibrate_intrinsics_command.h"
 #include "firmware/render/board_renderer.h"
@@ -348,7 +349,7 @@ TEST(CalibrateIntrinsicsCommand, EquidistantModelOnRenderedFisheyeViewsGivesBack
   // The lens as a whole: rays across the board's field land where the true lens puts them.
   const CameraModel true_lens(truth), found_lens(camera);
   for (double angle_deg : {10.0, 25.0, 40.0}) {
-    const double theta = angle_deg * M_PI / 180.0;
+    const double theta = RadiansFromDegrees(angle_deg);
     for (double azimuth : {0.5, 2.5, 4.0}) {
       const Eigen::Vector3d ray(std::sin(theta) * std::cos(azimuth),
                                 std::sin(theta) * std::sin(azimuth), std::cos(theta));

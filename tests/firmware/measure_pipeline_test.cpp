@@ -1,5 +1,5 @@
 // Accuracy of the whole measuring pipeline (average 10 frames -> detect -> pose) on
-// rendered scenes like the paper's, against the goals of issue 5: position error RMS
+// rendered scenes like the paper's, against the camera's goals: position error RMS
 // <= 0.05 mm, rotation error RMS <= 0.01 deg, reported sigma within a factor 2 of the
 // actual error. firmware/bench/measure_accuracy runs the same on more scenes.
 #include "firmware/pose/measure_pipeline.h"
@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "common/geometry/rotation.h"
+#include "common/units.h"
 #include "firmware/bench/degraded_scene.h"
 #include "firmware/render/paper_scenes.h"
 #include "firmware/sources/sim_source.h"
@@ -40,9 +41,9 @@ TEST(MeasurePipelineTest, PaperScenesMeetAccuracyGoalsAndSigmaIsHonest) {
   }
   const double n = static_cast<double>(poses.size());
   const double rms_t = std::sqrt(3 * err_t2 / n), rms_r = std::sqrt(3 * err_r2 / n);
-  EXPECT_LT(rms_t, 0.05e-3);            // position error RMS (norm), m
-  EXPECT_LT(rms_t, 0.01e-3);            // issue 12: the erosion fit keeps clean scenes
-  EXPECT_LT(rms_r, 0.01 * M_PI / 180);  // rotation error RMS (angle), rad
+  EXPECT_LT(rms_t, 0.05e-3);                   // position error RMS (norm), m
+  EXPECT_LT(rms_t, 0.01e-3);                   // the erosion fit keeps clean scenes
+  EXPECT_LT(rms_r, RadiansFromDegrees(0.01));  // rotation error RMS (angle), rad
   const double ratio_t = std::sqrt(sig_t2 / err_t2), ratio_r = std::sqrt(sig_r2 / err_r2);
   EXPECT_GT(ratio_t, 0.5);
   EXPECT_LT(ratio_t, 2.0);
@@ -51,7 +52,7 @@ TEST(MeasurePipelineTest, PaperScenesMeetAccuracyGoalsAndSigmaIsHonest) {
 }
 
 TEST(MeasurePipelineTest, UnknownResponseBlurAndGradientKeepThePoseWithinGoals) {
-  // Issue 12: scenes whose response (gamma 0.45-0.8), blur (0.6-1.5 px), +-20 %
+  // Scenes whose response (gamma 0.45-0.8), blur (0.6-1.5 px), +-20 %
   // illumination gradient and shot noise the pipeline is not told about. Without the
   // erosion parameters the position error is ~0.3-0.5 mm here (tags look eroded, the board
   // smaller, hence farther). Three frames averaged to keep the test short.
@@ -88,7 +89,7 @@ TEST(MeasurePipelineTest, UnknownResponseBlurAndGradientKeepThePoseWithinGoals) 
   }
   const double n = static_cast<double>(poses.size());
   EXPECT_LT(std::sqrt(3 * err_t2 / n), 0.03e-3);
-  EXPECT_LT(std::sqrt(3 * err_r2 / n), 0.005 * M_PI / 180);
+  EXPECT_LT(std::sqrt(3 * err_r2 / n), RadiansFromDegrees(0.005));
   const double ratio_t = std::sqrt(sig_t2 / err_t2), ratio_r = std::sqrt(sig_r2 / err_r2);
   EXPECT_GT(ratio_t, 0.5);
   EXPECT_LT(ratio_t, 2.0);

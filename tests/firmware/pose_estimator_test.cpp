@@ -7,6 +7,7 @@
 
 #include "common/board/board_model.h"
 #include "common/geometry/rotation.h"
+#include "common/units.h"
 #include "firmware/render/paper_scenes.h"
 
 namespace h4::cam {
@@ -74,11 +75,12 @@ TEST(PoseEstimatorTest, NearFrontalBoardPicksTheTrueOfTheTwoPlanarSolutions) {
   cv::RNG rng(5);
   int ambiguous = 0;
   for (int trial = 0; trial < 20; ++trial) {
-    const RigidTransform X_CT = scenes::BoardPose(spec, 1.0, 8.0 * M_PI / 180, trial * 0.3, 0.2);
+    const RigidTransform X_CT =
+        scenes::BoardPose(spec, 1.0, RadiansFromDegrees(8.0), trial * 0.3, 0.2);
     const PoseEstimate estimate = EstimatePose(Project(board, camera, X_CT, 0.05, &rng), camera);
     ASSERT_TRUE(estimate.ok());
     EXPECT_LT(So3Log(estimate.X_CT.rotation().transpose() * X_CT.rotation()).norm(),
-              4.0 * M_PI / 180)
+              RadiansFromDegrees(4.0))
         << trial;
     EXPECT_LE(estimate.rms_px, estimate.alternative_rms_px);
     if (std::isfinite(estimate.alternative_rms_px) &&
@@ -113,6 +115,30 @@ TEST(PoseEstimatorTest, ResidualJacobianMatchesFiniteDifferences) {
   }
 }
 
+using Vector6 = Eigen::Matrix<double, 6, 1>;
+
+// An estimate's error in the covariance's coordinates: translation, then the rotation
+// error on the right (in T).
+Vector6 ErrorInCovarianceOrder(const RigidTransform& estimate, const RigidTransform& truth) {
+  Vector6 err;
+  err.head<3>() = estimate.translation() - truth.translation();
+  err.tail<3>() = So3Log(truth.rotation().transpose() * estimate.rotation());
+  return err;
+}
+
+// Over Monte-Carlo trials: the mean squared error per coordinate and the mean variance two
+// covariance models state for it.
+struct CovarianceCheck {
+  Vector6 mean_sq_error = Vector6::Zero();
+  Vector6 stated = Vector6::Zero();
+  Vector6 stated_other = Vector6::Zero();
+  void Add(const Vector6& err, const PoseEstimate& e, const PoseEstimate& other, int trials) {
+    mean_sq_error += err.cwiseAbs2() / trials;
+    stated += e.covariance.diagonal() / trials;
+    stated_other += other.covariance.diagonal() / trials;
+  }
+};
+
 TEST(PoseEstimatorTest, CovarianceMatchesMonteCarloErrors) {
   const BoardModel board(scenes::PaperBoard());
   const CameraModel camera(scenes::PaperCamera());
@@ -120,14 +146,12 @@ TEST(PoseEstimatorTest, CovarianceMatchesMonteCarloErrors) {
   cv::RNG rng(17);
   const int trials = 300;
   double mahalanobis = 0;
-  Eigen::Matrix<double, 6, 1> sum_sq = Eigen::Matrix<double, 6, 1>::Zero();
-  Eigen::Matrix<double, 6, 1> predicted = Eigen::Matrix<double, 6, 1>::Zero();
+  Vector6 sum_sq = Vector6::Zero();
+  Vector6 predicted = Vector6::Zero();
   for (int t = 0; t < trials; ++t) {
     const PoseEstimate e = EstimatePose(Project(board, camera, X_CT, 0.05, &rng), camera);
     ASSERT_TRUE(e.ok());
-    Eigen::Matrix<double, 6, 1> err;
-    err.head<3>() = e.X_CT.translation() - X_CT.translation();
-    err.tail<3>() = So3Log(X_CT.rotation().transpose() * e.X_CT.rotation());  // right, in T
+    const Vector6 err = ErrorInCovarianceOrder(e.X_CT, X_CT);
     mahalanobis += err.dot(e.covariance.ldlt().solve(err)) / trials;
     sum_sq += err.cwiseAbs2() / trials;
     predicted += e.covariance.diagonal() / trials;
@@ -203,9 +227,7 @@ TEST(PoseEstimatorTest, CovarianceCountsTheErrorATagSharesOnce) {
   const RigidTransform X_CT = scenes::BoardPose(scenes::PaperBoard(), 0.55, 0.3, 0.7, 0.2);
   cv::RNG rng(29);
   const int trials = 200;
-  Eigen::Matrix<double, 6, 1> sum_sq = Eigen::Matrix<double, 6, 1>::Zero();
-  Eigen::Matrix<double, 6, 1> grouped = Eigen::Matrix<double, 6, 1>::Zero();
-  Eigen::Matrix<double, 6, 1> independent = Eigen::Matrix<double, 6, 1>::Zero();
+  CovarianceCheck check;
   PoseOptions edge_group, residual;
   edge_group.covariance = CovarianceModel::kEdgeGroup;
   residual.covariance = CovarianceModel::kResidual;
@@ -221,19 +243,15 @@ TEST(PoseEstimatorTest, CovarianceCountsTheErrorATagSharesOnce) {
     const PoseEstimate e = EstimatePose(corners, camera, edge_group);
     const PoseEstimate plain = EstimatePose(corners, camera, residual);
     ASSERT_TRUE(e.ok() && plain.ok());
-    Eigen::Matrix<double, 6, 1> err;
-    err.head<3>() = e.X_CT.translation() - X_CT.translation();
-    err.tail<3>() = So3Log(X_CT.rotation().transpose() * e.X_CT.rotation());
-    sum_sq += err.cwiseAbs2() / trials;
-    grouped += e.covariance.diagonal() / trials;
-    independent += plain.covariance.diagonal() / trials;
+    check.Add(ErrorInCovarianceOrder(e.X_CT, X_CT), e, plain, trials);
   }
   for (int k = 0; k < 6; ++k) {
-    const double ratio = std::sqrt(sum_sq[k] / grouped[k]);
+    const double ratio = std::sqrt(check.mean_sq_error[k] / check.stated[k]);
     EXPECT_GT(ratio, 0.75) << k;
     EXPECT_LT(ratio, 1.33) << k;
   }
-  EXPECT_GT(std::sqrt(sum_sq[2] / independent[2]), 1.5);  // depth, the worst understated
+  EXPECT_GT(std::sqrt(check.mean_sq_error[2] / check.stated_other[2]),
+            1.5);  // depth, the worst understated
 }
 
 // The noise of a tag's four fitted sides as the edge fit reports it (CornerNoisePx): side j
@@ -280,9 +298,7 @@ TEST(PoseEstimatorTest, CovarianceFollowsTheNoiseATagsSidesShare) {
   SetTagSideNoise(0.002, 0.005, &exact);
   cv::RNG rng(41);
   const int trials = 200;
-  Eigen::Matrix<double, 6, 1> sum_sq = Eigen::Matrix<double, 6, 1>::Zero();
-  Eigen::Matrix<double, 6, 1> edge_noise = Eigen::Matrix<double, 6, 1>::Zero();
-  Eigen::Matrix<double, 6, 1> independent = Eigen::Matrix<double, 6, 1>::Zero();
+  CovarianceCheck check;
   PoseOptions options, residual;
   options.erosion = residual.erosion = ErosionModel::kNone;
   options.corner_floor_px = residual.corner_floor_px = 0;
@@ -298,19 +314,15 @@ TEST(PoseEstimatorTest, CovarianceFollowsTheNoiseATagsSidesShare) {
     const PoseEstimate e = EstimatePose(corners, camera, options);
     const PoseEstimate plain = EstimatePose(corners, camera, residual);
     ASSERT_TRUE(e.ok() && plain.ok());
-    Eigen::Matrix<double, 6, 1> err;
-    err.head<3>() = e.X_CT.translation() - X_CT.translation();
-    err.tail<3>() = So3Log(X_CT.rotation().transpose() * e.X_CT.rotation());
-    sum_sq += err.cwiseAbs2() / trials;
-    edge_noise += e.covariance.diagonal() / trials;
-    independent += plain.covariance.diagonal() / trials;
+    check.Add(ErrorInCovarianceOrder(e.X_CT, X_CT), e, plain, trials);
   }
   for (int k = 0; k < 6; ++k) {
-    const double ratio = std::sqrt(sum_sq[k] / edge_noise[k]);
+    const double ratio = std::sqrt(check.mean_sq_error[k] / check.stated[k]);
     EXPECT_GT(ratio, 0.8) << k;
     EXPECT_LT(ratio, 1.25) << k;
   }
-  EXPECT_LT(std::sqrt(sum_sq[2] / independent[2]), 0.7);  // depth: independent overstates
+  EXPECT_LT(std::sqrt(check.mean_sq_error[2] / check.stated_other[2]),
+            0.7);  // depth: independent overstates
 }
 
 TEST(PoseEstimatorTest, TooFewCornersIsReportedNotGuessed) {

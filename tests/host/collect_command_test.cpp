@@ -1,5 +1,5 @@
-// `h4cal collect` as a user runs it (the program, files, exit codes) against the defects of
-// issue 13 on the live path: a recorded log holding messages that do not decode (string
+// `h4cal collect` as a user runs it (the program, files, exit codes) against hostile input
+// on the live path: a recorded log holding messages that do not decode (string
 // lengths 0 and negative, joint_count -1, random bytes after a valid fingerprint) is read to
 // the end by --from-log, and a second campaign on a dataset another one is writing is
 // refused without touching the file. Skipped when the program is not built.
@@ -120,7 +120,7 @@ h4msgs::board_pose_t MeasurementOf(int64_t pose_id, int64_t utime) {
   return m;
 }
 
-/// The hostile messages of issue 13, then each pose's settled readings and measurement.
+/// The hostile messages, then each pose's settled readings and measurement.
 int WriteHostileCampaignLog(const std::string& path, int poses) {
   LogWriter log(path);
   EXPECT_TRUE(log.good());

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
 #include <vector>
 
@@ -67,6 +68,33 @@ Eigen::MatrixXd FiniteDifferenceJacobian(const VectorFunction& f, const Eigen::V
             << ", numeric " << bad[k].numeric;
   }
   return ::testing::AssertionFailure() << message.str();
+}
+
+::testing::AssertionResult ConstraintJacobiansMatchFiniteDifferences(const KinematicModel& model,
+                                                                     const JointVector& q,
+                                                                     const EePose& x) {
+  Eigen::Matrix4d J_f_x;
+  Eigen::Vector4d J_f_q;
+  Eigen::MatrixXd J_f_xi;
+  model.ConstraintJacobians(q, x, &J_f_x, &J_f_q, &J_f_xi);
+  const double step = 1e-6, tolerance = 1e-8;
+  ::testing::AssertionResult by_x = JacobianMatchesFiniteDifferences(
+      [&](const Eigen::VectorXd& v) -> Eigen::VectorXd { return model.Constraints(q, v); }, x,
+      J_f_x, step, tolerance);
+  if (!by_x) return by_x << " (J_f_x)";
+  ::testing::AssertionResult by_q = JacobianMatchesFiniteDifferences(
+      [&](const Eigen::VectorXd& v) -> Eigen::VectorXd { return model.Constraints(v, x); }, q,
+      Eigen::MatrixXd(J_f_q.asDiagonal()), step, tolerance);
+  if (!by_q) return by_q << " (J_f_q)";
+  const std::unique_ptr<KinematicModel> perturbed = model.Clone();
+  ::testing::AssertionResult by_xi = JacobianMatchesFiniteDifferences(
+      [&](const Eigen::VectorXd& xi) -> Eigen::VectorXd {
+        perturbed->set_parameters(xi);
+        return perturbed->Constraints(q, x);
+      },
+      model.parameters(), J_f_xi, step, tolerance);
+  if (!by_xi) return by_xi << " (J_f_xi)";
+  return ::testing::AssertionSuccess();
 }
 
 }  // namespace h4::host::testing

@@ -8,6 +8,8 @@
 #include <Eigen/Core>
 #include <gtest/gtest.h>
 
+#include "host/kinematics/kinematic_model.h"
+
 namespace h4::host::testing {
 
 /// A function R^n -> R^m whose Jacobian is checked. Outputs that are angles must be
@@ -29,5 +31,12 @@ Eigen::MatrixXd FiniteDifferenceJacobian(const VectorFunction& f, const Eigen::V
                                                             const Eigen::VectorXd& x0,
                                                             const Eigen::MatrixXd& J_analytic,
                                                             double step, double tolerance);
+
+/// The three Jacobians of a model's closure constraints f(q, x, xi) (ConstraintJacobians:
+/// by x, by q, by the parameters xi) against finite differences at (q, x), step 1e-6,
+/// tolerance 1e-8; a failure names which Jacobian.
+::testing::AssertionResult ConstraintJacobiansMatchFiniteDifferences(const KinematicModel& model,
+                                                                     const JointVector& q,
+                                                                     const EePose& x);
 
 }  // namespace h4::host::testing

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "common/geometry/rotation.h"
+#include "common/units.h"
 #include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/model12.h"
 #include "host/simulation/paper_scenario.h"
@@ -23,7 +24,7 @@ TEST(PaperChecks, GridHas81PosesOfThePaper) {
     max = max.cwiseMax(pose.x);
     sum += pose.x;
   }
-  EXPECT_LT((max - min - Eigen::Vector4d(0.2, 0.2, 0.15, 40.0 * M_PI / 180.0)).norm(), 1e-12);
+  EXPECT_LT((max - min - Eigen::Vector4d(0.2, 0.2, 0.15, RadiansFromDegrees(40.0))).norm(), 1e-12);
   EXPECT_LT((sum / 81.0 - Eigen::Vector4d(0, 0, -0.45, 0)).norm(), 1e-12);
 }
 

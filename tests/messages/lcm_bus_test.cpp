@@ -43,7 +43,7 @@ h4msgs::joint_state_t GoodJointState() {
   return m;
 }
 
-/// The messages of issue 13, defect 1: string lengths 0 and negative, joint_count -1, and
+/// Hostile messages: string lengths 0 and negative, joint_count -1, and
 /// random bytes after a valid fingerprint.
 struct HostileSet {
   std::vector<std::vector<uint8_t>> board_poses, joint_states, camera_statuses;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installed like a tool (issue 16): `cmake --install` into a scratch DESTDIR puts h4cal and
+# Installed like a tool: `cmake --install` into a scratch DESTDIR puts h4cal and
 # h4cam in bin, their man pages in share/man/man1 (one section per subcommand), the boards
 # in share/h4cal/boards and the documentation in share/doc/h4cal; both installed programs
 # answer --version and --help, and so does every subcommand (exit 0, non-empty output).
