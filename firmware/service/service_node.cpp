@@ -10,12 +10,6 @@
 
 namespace h4::cam {
 
-int64_t NowUtime() {
-  return std::chrono::duration_cast<std::chrono::microseconds>(
-             std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
 std::optional<RigidTransform> TruthPose(const h4msgs::sim_board_truth_t& truth, std::string* why) {
   Eigen::Vector3d p(truth.translation[0], truth.translation[1], truth.translation[2]);
   Eigen::Vector4d q(truth.quaternion[0], truth.quaternion[1], truth.quaternion[2],

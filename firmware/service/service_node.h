@@ -9,6 +9,7 @@
 
 #include <h4msgs/sim_board_truth_t.hpp>
 
+#include "common/timing/clock.h"  // NowUtime, for the node and its users
 #include "common/timing/periodic_schedule.h"
 #include "firmware/service/camera_service.h"
 #include "firmware/sources/sim_source.h"
@@ -50,9 +51,6 @@ class ServiceNode {
   /// than a frame renders, so the handler only stores them and Poll() renders the newest.
   std::optional<RigidTransform> pending_truth_;
 };
-
-/// Microseconds since the Unix epoch, now.
-int64_t NowUtime();
 
 /// X_CT of a truth message; nullopt when a value is not finite or the quaternion is not
 /// unit within 1e-6 (then `why` says which).

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <thread>
 
+#include "common/timing/clock.h"
+
 namespace h4::cam {
 
 SimSource::SimSource(const BoardSpec& board, const CameraIntrinsics& camera,
@@ -49,13 +51,8 @@ std::optional<Frame> SimSource::Next(std::chrono::milliseconds timeout) {
   int64_t utime = options_.start_utime + static_cast<int64_t>(std::llround(sequence_ * period_us));
   if (options_.real_time) {
     // The sensor's next exposure: one period after the last frame, never before now.
-    const auto now_us = [] {
-      return std::chrono::duration_cast<std::chrono::microseconds>(
-                 std::chrono::system_clock::now().time_since_epoch())
-          .count();
-    };
-    const int64_t due = last_utime_ ? *last_utime_ + static_cast<int64_t>(period_us) : now_us();
-    const int64_t wait_us = due - now_us();
+    const int64_t due = last_utime_ ? *last_utime_ + static_cast<int64_t>(period_us) : NowUtime();
+    const int64_t wait_us = due - NowUtime();
     if (wait_us > 0) {
       if (std::chrono::microseconds(wait_us) > timeout) {
         std::this_thread::sleep_for(timeout);
@@ -63,7 +60,7 @@ std::optional<Frame> SimSource::Next(std::chrono::milliseconds timeout) {
       }
       std::this_thread::sleep_for(std::chrono::microseconds(wait_us));
     }
-    utime = std::max(due, now_us());
+    utime = std::max(due, NowUtime());
     last_utime_ = utime;
   }
   cv::Mat clean;
