@@ -2,6 +2,9 @@
 // Jacobian, and the covariance against Monte-Carlo error statistics.
 #include "firmware/pose/pose_estimator.h"
 
+#include <functional>
+#include <vector>
+
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
@@ -132,12 +135,31 @@ struct CovarianceCheck {
   Vector6 mean_sq_error = Vector6::Zero();
   Vector6 stated = Vector6::Zero();
   Vector6 stated_other = Vector6::Zero();
-  void Add(const Vector6& err, const PoseEstimate& e, const PoseEstimate& other, int trials) {
-    mean_sq_error += err.cwiseAbs2() / trials;
-    stated += e.covariance.diagonal() / trials;
-    stated_other += other.covariance.diagonal() / trials;
-  }
+  /// Actual over stated sigma, per coordinate, for the tested and the other model.
+  Vector6 Ratio() const { return mean_sq_error.cwiseQuotient(stated).cwiseSqrt(); }
+  Vector6 OtherRatio() const { return mean_sq_error.cwiseQuotient(stated_other).cwiseSqrt(); }
 };
+
+// Estimates X_CT from `trials` noisy corner sets (`noisy_corners`) with the `tested` and
+// the `other` options, and sums what CovarianceCheck holds.
+CovarianceCheck CheckCovariance(
+    const CameraModel& camera, const RigidTransform& X_CT,
+    const std::function<std::vector<CornerObservation>(cv::RNG&)>& noisy_corners,
+    const PoseOptions& tested, const PoseOptions& other, uint64_t seed, int trials) {
+  cv::RNG rng(seed);
+  CovarianceCheck check;
+  for (int t = 0; t < trials; ++t) {
+    const std::vector<CornerObservation> corners = noisy_corners(rng);
+    const PoseEstimate e = EstimatePose(corners, camera, tested);
+    const PoseEstimate plain = EstimatePose(corners, camera, other);
+    EXPECT_TRUE(e.ok() && plain.ok());
+    if (!e.ok() || !plain.ok()) return check;
+    check.mean_sq_error += ErrorInCovarianceOrder(e.X_CT, X_CT).cwiseAbs2() / trials;
+    check.stated += e.covariance.diagonal() / trials;
+    check.stated_other += plain.covariance.diagonal() / trials;
+  }
+  return check;
+}
 
 TEST(PoseEstimatorTest, CovarianceMatchesMonteCarloErrors) {
   const BoardModel board(scenes::PaperBoard());
@@ -225,13 +247,10 @@ TEST(PoseEstimatorTest, CovarianceCountsTheErrorATagSharesOnce) {
   const BoardModel board(scenes::PaperBoard());
   const CameraModel camera(scenes::PaperCamera());
   const RigidTransform X_CT = scenes::BoardPose(scenes::PaperBoard(), 0.55, 0.3, 0.7, 0.2);
-  cv::RNG rng(29);
-  const int trials = 200;
-  CovarianceCheck check;
   PoseOptions edge_group, residual;
   edge_group.covariance = CovarianceModel::kEdgeGroup;
   residual.covariance = CovarianceModel::kResidual;
-  for (int t = 0; t < trials; ++t) {
+  auto noisy_corners = [&](cv::RNG& rng) {
     auto corners = Project(board, camera, X_CT, 0.02, &rng);
     for (size_t first = 0; first < corners.size(); first += 4) {
       const Eigen::Vector2d shared(rng.gaussian(0.04), rng.gaussian(0.04));
@@ -240,18 +259,15 @@ TEST(PoseEstimatorTest, CovarianceCountsTheErrorATagSharesOnce) {
         corners[k].edge_group = static_cast<int>(first / 4);
       }
     }
-    const PoseEstimate e = EstimatePose(corners, camera, edge_group);
-    const PoseEstimate plain = EstimatePose(corners, camera, residual);
-    ASSERT_TRUE(e.ok() && plain.ok());
-    check.Add(ErrorInCovarianceOrder(e.X_CT, X_CT), e, plain, trials);
-  }
+    return corners;
+  };
+  const CovarianceCheck check =
+      CheckCovariance(camera, X_CT, noisy_corners, edge_group, residual, 29, 200);
   for (int k = 0; k < 6; ++k) {
-    const double ratio = std::sqrt(check.mean_sq_error[k] / check.stated[k]);
-    EXPECT_GT(ratio, 0.75) << k;
-    EXPECT_LT(ratio, 1.33) << k;
+    EXPECT_GT(check.Ratio()[k], 0.75) << k;
+    EXPECT_LT(check.Ratio()[k], 1.33) << k;
   }
-  EXPECT_GT(std::sqrt(check.mean_sq_error[2] / check.stated_other[2]),
-            1.5);  // depth, the worst understated
+  EXPECT_GT(check.OtherRatio()[2], 1.5);  // depth, the worst understated
 }
 
 // The noise of a tag's four fitted sides as the edge fit reports it (CornerNoisePx): side j
@@ -296,33 +312,27 @@ TEST(PoseEstimatorTest, CovarianceFollowsTheNoiseATagsSidesShare) {
   const RigidTransform X_CT = scenes::BoardPose(scenes::PaperBoard(), 0.55, 0.3, 0.7, 0.2);
   auto exact = Project(board, camera, X_CT, 0, nullptr);
   SetTagSideNoise(0.002, 0.005, &exact);
-  cv::RNG rng(41);
-  const int trials = 200;
-  CovarianceCheck check;
   PoseOptions options, residual;
   options.erosion = residual.erosion = ErosionModel::kNone;
   options.corner_floor_px = residual.corner_floor_px = 0;
   options.covariance = CovarianceModel::kEdgeNoise;
   residual.covariance = CovarianceModel::kResidual;
-  for (int t = 0; t < trials; ++t) {
+  auto noisy_corners = [&](cv::RNG& rng) {
     auto corners = exact;
     for (size_t first = 0; first < corners.size(); first += 4) {
       Eigen::Matrix<double, 8, 1> z;
       for (int i = 0; i < 8; ++i) z[i] = rng.gaussian(1.0);
       for (size_t k = first; k < first + 4; ++k) corners[k].uv += corners[k].noise_px * z;
     }
-    const PoseEstimate e = EstimatePose(corners, camera, options);
-    const PoseEstimate plain = EstimatePose(corners, camera, residual);
-    ASSERT_TRUE(e.ok() && plain.ok());
-    check.Add(ErrorInCovarianceOrder(e.X_CT, X_CT), e, plain, trials);
-  }
+    return corners;
+  };
+  const CovarianceCheck check =
+      CheckCovariance(camera, X_CT, noisy_corners, options, residual, 41, 200);
   for (int k = 0; k < 6; ++k) {
-    const double ratio = std::sqrt(check.mean_sq_error[k] / check.stated[k]);
-    EXPECT_GT(ratio, 0.8) << k;
-    EXPECT_LT(ratio, 1.25) << k;
+    EXPECT_GT(check.Ratio()[k], 0.8) << k;
+    EXPECT_LT(check.Ratio()[k], 1.25) << k;
   }
-  EXPECT_LT(std::sqrt(check.mean_sq_error[2] / check.stated_other[2]),
-            0.7);  // depth: independent overstates
+  EXPECT_LT(check.OtherRatio()[2], 0.7);  // depth: independent overstates
 }
 
 TEST(PoseEstimatorTest, TooFewCornersIsReportedNotGuessed) {
