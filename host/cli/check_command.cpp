@@ -8,6 +8,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/cli/shared_options.h"
 #include "common/formats/dataset_csv.h"
 #include "common/formats/identification_result.h"
 #include "common/formats/robot_yaml.h"
@@ -72,14 +73,10 @@ void AddCheckCommand(CLI::App& app) {
       "check",
       "Check that the robot still matches an identification result, from a short verification "
       "campaign; exit 3 when it has drifted");
-  command->add_option("--result", options->result_path, "Identification result JSON")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--data", options->data_path, "Verification dataset CSV")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--robot", options->robot_path, "robot.yaml to take the assembly signs from")
-      ->check(CLI::ExistingFile);
+  h4::cli::AddResultOption(command, &options->result_path)->required();
+  h4::cli::AddDataOption(command, &options->data_path, "Verification dataset CSV")->required();
+  h4::cli::AddRobotOption(command, &options->robot_path,
+                          "robot.yaml to take the assembly signs from");
   command
       ->add_option("--pose-false-alarm", options->check.pose_false_alarm,
                    "Probability that an unchanged robot has a pose flagged")
