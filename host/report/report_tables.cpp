@@ -1,5 +1,5 @@
-// HTML tables of the report (see report_tables.h). Angles in rad and lengths in m as in the
-// paper's tables, with mm where the paper speaks in mm.
+// HTML tables of the report (see report_tables.h). The paper's own tables (2, 3, 4) keep its
+// units (m, rad) so that its numbers compare by eye; every other figure is in mm and deg.
 #include "host/report/report_tables.h"
 
 #include <cmath>
@@ -8,6 +8,7 @@
 #include <spdlog/fmt/fmt.h>
 
 #include "common/text/markup_escape.h"
+#include "common/units.h"
 #include "host/report/paper_numbers.h"
 #include "host/simulation/paper_scenario.h"
 
@@ -16,6 +17,9 @@ namespace {
 
 std::string Sci(double v) { return fmt::format("{:.1e}", v); }
 std::string Mm(double v) { return fmt::format("{:.2f}", v * 1e3); }
+std::string Deg(double rad, int decimals) {
+  return fmt::format("{:.{}f}", DegreesFromRadians(rad), decimals);
+}
 
 // A row: first cell a header, then the cells.
 std::string Row(const std::string& head, const std::vector<std::string>& cells,
@@ -54,14 +58,13 @@ std::string SummaryTable(const ValidationInputs& in, const ValidationReport& rep
     if (paper) cells.push_back(theirs);
     t << Row(what, cells);
   };
-  add("a priori positioning error, every pose (mean, mm / rad)",
-      fmt::format("{} / {:.3f}", Mm(report.apriori_all.position_mean),
-                  report.apriori_all.theta_mean),
-      fmt::format("{} / {:.3f}", Mm(paper::kAprioriPosition), paper::kAprioriTheta));
+  add("a priori positioning error, every pose (mean, mm / deg)",
+      Mm(report.apriori_all.position_mean) + " / " + Deg(report.apriori_all.theta_mean, 2),
+      Mm(paper::kAprioriPosition) + " / " + Deg(paper::kAprioriTheta, 2));
   for (size_t m = 1; m < report.models.size(); ++m) {
     const auto& v = report.models[m];
-    add(v.label + " positioning error, held-out poses (mean, mm / rad)",
-        fmt::format("{} / {:.5f}", Mm(v.positioning.position_mean), v.positioning.theta_mean), "-");
+    add(v.label + " positioning error, held-out poses (mean, mm / deg)",
+        Mm(v.positioning.position_mean) + " / " + Deg(v.positioning.theta_mean, 4), "-");
   }
   for (size_t m = 0; m < report.models.size(); ++m) {
     if (!report.models[m].square) continue;
@@ -202,19 +205,18 @@ std::string Table3(const ValidationReport& report) {
 std::string PositioningTable(const ValidationReport& report) {
   std::ostringstream t;
   t << "<table>\n"
-    << Header({"model", "poses", "position mean (mm)", "position RMS (mm)", "theta mean (rad)",
-               "theta RMS (rad)", "FK failures"});
+    << Header({"model", "poses", "position mean (mm)", "position RMS (mm)", "theta mean (deg)",
+               "theta RMS (deg)", "FK failures"});
   auto add = [&](const std::string& label, const PositioningError& e) {
     t << Row(label, {std::to_string(e.poses), Mm(e.position_mean), Mm(e.position_rms),
-                     fmt::format("{:.2e}", e.theta_mean), fmt::format("{:.2e}", e.theta_rms),
-                     std::to_string(e.failed.size())});
+                     Deg(e.theta_mean, 4), Deg(e.theta_rms, 4), std::to_string(e.failed.size())});
   };
   add("a priori, every pose", report.apriori_all);
   for (const auto& v : report.models) add(v.label + ", held-out poses", v.positioning);
   t << "</table>\n<p>Forward kinematics of the encoder readings against the measured "
        "end-effector pose X_BC X_CT X_TE.</p>\n";
   if (report.paper_scenario) {
-    t << "<p>Paper: a priori positioning error 26 mm and 0.022 rad.</p>\n";
+    t << "<p>Paper: a priori positioning error 26 mm and 0.022 rad (1.26 deg).</p>\n";
   }
   return t.str();
 }
