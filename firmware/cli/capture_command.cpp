@@ -14,6 +14,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "common/board/board_model.h"
+#include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
@@ -242,7 +243,7 @@ void InstallCaptureStopSignal() {
 
 void SetCaptureExitCode(const CaptureSummary& summary) {
   if (summary.frames == 0 && g_capture_stop_requested.load()) {
-    SetExitCode(130);
+    SetExitCode(h4::cli::kExitInterrupted);
   } else if (summary.with_board == 0) {
     std::cerr << "h4cam: no frame showed the board\n";
     SetExitCode(kExitNothingUsable);

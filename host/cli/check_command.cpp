@@ -8,6 +8,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
 #include "common/formats/dataset_csv.h"
 #include "common/formats/identification_result.h"
@@ -62,7 +63,7 @@ void Run(const CheckCommandOptions& o) {
               o.result_path.c_str(), ToString(result.model), rows.size());
   if (check.evaluable) PrintPoses(check);
   std::printf("%s\n", check.Summary().c_str());
-  if (check.drift) SetExitCode(3);
+  if (check.drift) SetExitCode(h4::cli::kExitNothingUsable);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
 #include "common/formats/identification_result.h"
 #include "common/formats/poses_csv.h"
@@ -206,11 +207,11 @@ void Run(CollectOptions options, const std::string& command_line) {
                                       : "end of the log");
   PrintSummary(campaign, journal, bus, interrupted);
   if (interrupted) {
-    SetExitCode(130);
+    SetExitCode(h4::cli::kExitInterrupted);
     return;
   }
   if (!options.identify_dir.empty()) IdentifyAndReport(options, command_line);
-  if (!campaign.finished() || !campaign.skipped().empty()) SetExitCode(3);
+  if (!campaign.finished() || !campaign.skipped().empty()) SetExitCode(h4::cli::kExitNothingUsable);
 }
 
 }  // namespace

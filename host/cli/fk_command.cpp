@@ -8,6 +8,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
 #include "common/formats/file_output.h"
 #include "common/formats/joints_csv.h"
@@ -86,7 +87,7 @@ void Run(const FkCommandOptions& options) {
   if (!options.compare_path.empty()) Compare(rows, options.compare_path);
   if (!failed.empty()) {
     spdlog::error("{} rows had no forward kinematic solution (not written)", failed.size());
-    SetExitCode(3);
+    SetExitCode(h4::cli::kExitNothingUsable);
   }
 }
 

@@ -10,6 +10,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
 #include "common/formats/dataset_csv.h"
 #include "common/formats/file_output.h"
@@ -195,10 +196,10 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
   spdlog::debug("{}", outcome.summary.FullReport());
   PrintHeadline(outcome);
   spdlog::info("result written to {}", options.out_path);
-  if (outcome.verdict != Verdict::kGood) SetExitCode(3);
+  if (outcome.verdict != Verdict::kGood) SetExitCode(h4::cli::kExitNothingUsable);
   if (!outcome.summary.usable) {
     spdlog::error("the identification is not usable: {}", outcome.summary.message);
-    SetExitCode(3);
+    SetExitCode(h4::cli::kExitNothingUsable);
     if (!options.report_dir.empty()) spdlog::error("no report written for an unusable result");
     return;
   }

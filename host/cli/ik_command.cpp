@@ -2,6 +2,7 @@
 // (common/formats/README.md poses CSV) to joint readings; unreachable rows are reported, not NaN.
 #include <spdlog/spdlog.h>
 
+#include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
 #include "common/formats/file_output.h"
 #include "common/formats/joints_csv.h"
@@ -48,7 +49,7 @@ void Run(const IkCommandOptions& options) {
                options.out_path);
   if (unreachable > 0) {
     spdlog::error("{} poses are out of reach (not written)", unreachable);
-    SetExitCode(3);
+    SetExitCode(h4::cli::kExitNothingUsable);
   }
 }
 
