@@ -40,6 +40,22 @@ std::vector<std::string> Sci4(const std::array<double, 4>& v) {
   return {Sci(v[0]), Sci(v[1]), Sci(v[2]), Sci(v[3])};
 }
 
+// Whether a result parameter is an angle (common/README.md names them: alpha_i, q0_i,
+// psi_i, beta_i, and the angles rx, ry, rz of X_BC, X_TE) or a length (the rest).
+bool IsAngleParameter(const std::string& name) {
+  for (const char* prefix : {"alpha", "q0", "psi", "beta"}) {
+    if (name.rfind(prefix, 0) == 0) return true;
+  }
+  const size_t dot = name.find('.');
+  return dot != std::string::npos && name.compare(dot, 2, ".r") == 0;
+}
+
+// A parameter's value as people read it: deg for angles, mm for lengths.
+std::string ParameterValue(const std::string& name, double si_value) {
+  return IsAngleParameter(name) ? fmt::format("{:.5g}", DegreesFromRadians(si_value))
+                                : fmt::format("{:.6g}", si_value * 1e3);
+}
+
 std::array<double, 12> Table2Row(const Model12Parameters& p) {
   return {p.h,        p.arm,      p.R,     p.forearm, p.alpha[0], p.alpha[1],
           p.alpha[2], p.alpha[3], p.q0[0], p.q0[1],   p.q0[2],    p.q0[3]};
@@ -91,17 +107,20 @@ std::string ParameterTables(const ValidationInputs& in) {
     if (!*result) continue;
     const IdentificationResult& r = **result;
     t << "<h3>" << ModelLabel(r.model) << "</h3>\n<table>\n"
-      << Header({"parameter", "a priori", "identified", "one sigma", "status", "reason fixed"});
+      << Header({"parameter", "unit", "a priori", "identified", "one sigma", "status",
+                 "reason fixed"});
     for (const ResultParameter& p : r.parameters) {
       std::string reason;
       for (const FixedParameter& f : r.fixed) {
         if (f.name == p.name) reason = f.reason;
       }
-      t << Row(MarkupEscape(p.name),
-               {fmt::format("{:.6g}", p.apriori), fmt::format("{:.6g}", p.value),
-                p.std ? fmt::format("{:.2g}", *p.std) : "-", p.fixed ? "fixed" : "identified",
-                MarkupEscape(reason)},
-               p.fixed ? "fixed" : "");
+      const double std_scale = IsAngleParameter(p.name) ? DegreesFromRadians(1.0) : 1e3;
+      t << Row(
+          MarkupEscape(p.name),
+          {IsAngleParameter(p.name) ? "deg" : "mm", ParameterValue(p.name, p.apriori),
+           ParameterValue(p.name, p.value), p.std ? fmt::format("{:.2g}", *p.std * std_scale) : "-",
+           p.fixed ? "fixed" : "identified", MarkupEscape(reason)},
+          p.fixed ? "fixed" : "");
     }
     t << "</table>\n";
   }

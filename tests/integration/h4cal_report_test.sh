@@ -38,6 +38,9 @@ summary_line=$(grep -n '<section id="summary">' "$html" | cut -d: -f1)
   [ "$contents_line" -lt "$summary_line" ] || fail "report order: verdict, contents, details"
 grep -q "a priori positioning error, every pose (mean, mm / deg)" "$html" ||
   fail "the summary's angles are not in deg"
+grep -q "<tr><th>alpha1</th><td>deg</td>" "$html" && grep -q "<tr><th>h</th><td>mm</td>" "$html" ||
+  fail "the parameter table is not in mm and deg"
+[ "$(grep -c "residual (deg)" "$html")" -ge 2 ] || fail "the residual plots are not in deg"
 [ "$(grep -o '<svg' "$html" | wc -l)" -eq 4 ] || fail "report.html does not hold 4 figures"
 grep -q "before calibration (paper)" "$html" || fail "no paper rows on the paper scenario"
 ! grep -q "Not computed" "$html" || fail "a section was not computed"
