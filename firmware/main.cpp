@@ -1,11 +1,8 @@
 // h4cam: the camera module's program. One subcommand per file in firmware/cli/; this
 // file only lists them, and reports any error once.
-#include <exception>
-#include <iostream>
-#include <string>
-
 #include <CLI/CLI.hpp>
 
+#include "common/cli/command_line.h"
 #include "firmware/cli/calibrate_intrinsics_command.h"
 #include "firmware/cli/capture_command.h"
 #include "firmware/cli/exit_code.h"
@@ -17,8 +14,7 @@
 
 int main(int argc, char** argv) {
   CLI::App app{"h4cam: camera module of the H4 calibration (measure the board pose X_CT)"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("h4cam ") + H4_VERSION);
+  h4::cli::SetUpProgram(&app, "h4cam", H4_VERSION);
   h4::cam::AddListCamerasCommand(app);
   h4::cam::AddCalibrateIntrinsicsCommand(app);
   h4::cam::AddMakeBoardCommand(app);
@@ -27,13 +23,5 @@ int main(int argc, char** argv) {
   h4::cam::AddRunCommand(app);
   h4::cam::AddCaptureCommand(app);
   h4::cam::AddPreviewCommand(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  } catch (const std::exception& e) {
-    std::cerr << "h4cam: error: " << e.what() << "\n";
-    return 1;
-  }
-  return h4::cam::ExitCode();
+  return h4::cli::RunCommandLine(&app, "h4cam", argc, argv, h4::cam::ExitCode);
 }

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/formats/file_kind.h"
 #include "common/formats/file_output.h"
 #include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
@@ -71,6 +72,7 @@ std::vector<std::string> SplitLine(std::string_view line, const std::string& sou
 }  // namespace
 
 CsvTable CsvTable::Parse(const std::string& text, const std::string& source_name) {
+  RejectFileKind(text, source_name, {FileKind::kYaml, FileKind::kJson}, "a CSV file");
   CsvTable table;
   table.source_ = source_name;
   std::string_view rest(text);

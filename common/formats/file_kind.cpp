@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "common/formats/format_error.h"
+
 namespace h4 {
 namespace {
 
@@ -26,6 +28,7 @@ FileKind GuessFileKind(const std::string& text) {
   const std::string line = FirstContentLine(text);
   const auto commas = std::count(line.begin(), line.end(), ',');
   if (line.rfind("pose_id,utime,q1", 0) == 0) return FileKind::kDatasetCsv;
+  if (!line.empty() && (line[0] == '{' || line[0] == '[')) return FileKind::kJson;
   if (commas >= 2 && line.find(':') == std::string::npos) return FileKind::kOtherCsv;
   if (line.rfind("%YAML", 0) == 0 || line == "---" ||
       (commas == 0 && line.find(':') != std::string::npos)) {
@@ -42,10 +45,20 @@ const char* DescribeFileKind(FileKind kind) {
       return "a CSV file";
     case FileKind::kYaml:
       return "a YAML file";
+    case FileKind::kJson:
+      return "a JSON file";
     case FileKind::kUnknown:
       break;
   }
   return "an unknown file";
+}
+
+void RejectFileKind(const std::string& text, const std::string& source_name,
+                    std::initializer_list<FileKind> refused, const std::string& expected) {
+  const FileKind kind = GuessFileKind(text);
+  if (std::find(refused.begin(), refused.end(), kind) == refused.end()) return;
+  throw FormatError(source_name, 1, "",
+                    std::string("this looks like ") + DescribeFileKind(kind) + ", not " + expected);
 }
 
 }  // namespace h4

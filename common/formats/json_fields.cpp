@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/formats/file_kind.h"
 #include "common/formats/format_error.h"
 
 namespace h4 {
@@ -63,6 +64,8 @@ std::string WithoutExceptionId(const nlohmann::json::exception& e) {
 }  // namespace
 
 nlohmann::json LoadJson(const std::string& text, const std::string& source_name) {
+  RejectFileKind(text, source_name, {FileKind::kDatasetCsv, FileKind::kOtherCsv, FileKind::kYaml},
+                 "a JSON file (an identification result)");
   RequireBoundedDepth(text, source_name);
   try {
     return nlohmann::json::parse(text);

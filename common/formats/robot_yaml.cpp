@@ -120,10 +120,11 @@ RobotDescription ReadRobotYaml(const std::string& path) {
   return ParseRobotYaml(ReadTextFile(path), path);
 }
 
-std::string FormatRobotYaml(const RobotDescription& robot) {
+std::string FormatRobotYaml(const RobotDescription& robot, const std::string& kind) {
   const Model12Parameters& m12 = robot.model12;
   std::string text =
-      "# a priori description of the H4 and of the measurement set-up (SI units: m, rad)\n"
+      "# " + kind +
+      " description of the H4 and of the measurement set-up (SI units: m, rad)\n"
       "# names: common/README.md; layout: common/formats/README.md \"Robot description\"\n";
   text += "model12:\n  h: " + FormatDouble(m12.h, "model12.h") +
           "\n  arm: " + FormatDouble(m12.arm, "model12.arm") +
@@ -134,8 +135,8 @@ std::string FormatRobotYaml(const RobotDescription& robot) {
           "\n  q0: " + List(m12.q0, "model12.q0") + "\n";
   text += "assembly:\n  bar: " + Signs(robot.assembly.bar) +
           "  # s_i\n  elbow: " + Signs(robot.assembly.elbow) + "  # eps_i\n";
-  text += Transform("X_BC", "a priori camera pose in base", robot.X_BC);
-  text += Transform("X_TE", "a priori end-effector pose in board frame", robot.X_TE);
+  text += Transform("X_BC", kind + " camera pose in base", robot.X_BC);
+  text += Transform("X_TE", kind + " end-effector pose in board frame", robot.X_TE);
   if (robot.model31) {
     const Model31Parameters& m31 = *robot.model31;
     text += "model31:  # overrides the nominal Model 31 derived from model12\n";

@@ -1,6 +1,6 @@
-// The robot description YAML (common/formats/README.md "Robot description", `--robot`): the a priori
-// Model 12 parameters, assembly signs, a priori X_BC and X_TE, and an optional model31
-// block with the Model 31 names of common/README.md. SI units (m, rad).
+// The robot description YAML (common/formats/README.md "Robot description", `--robot`): the a
+// priori Model 12 parameters, assembly signs, a priori X_BC and X_TE, and an optional model31 block
+// with the Model 31 names of common/README.md. SI units (m, rad).
 #pragma once
 
 #include <string>
@@ -21,8 +21,9 @@ RobotDescription ParseRobotYaml(const std::string& text, const std::string& sour
 RobotDescription ReadRobotYaml(const std::string& path);
 
 /// Writes the same layout under a comment header, shortest round-trip numbers; the
-/// rotations of X_BC and X_TE as roll-pitch-yaw.
-std::string FormatRobotYaml(const RobotDescription& robot);
+/// rotations of X_BC and X_TE as roll-pitch-yaw. `kind` says in the comments what the
+/// values are: "a priori" (a robot.yaml), "identified" (h4cal export), "true" (a truth).
+std::string FormatRobotYaml(const RobotDescription& robot, const std::string& kind = "a priori");
 void WriteRobotYaml(const std::string& path, const RobotDescription& robot);
 
 }  // namespace h4

@@ -6,6 +6,7 @@
 #include <map>
 #include <string_view>
 
+#include "common/formats/file_kind.h"
 #include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
 
@@ -98,6 +99,8 @@ void RequireBoundedYamlDepth(const std::string& text, const std::string& source_
 }  // namespace
 
 YAML::Node LoadYaml(const std::string& text, const std::string& source_name) {
+  // A CSV parses as one long YAML scalar, and the error would quote all of it.
+  RejectFileKind(text, source_name, {FileKind::kDatasetCsv, FileKind::kOtherCsv}, "a YAML file");
   RequireBoundedYamlDepth(text, source_name);
   try {
     return YAML::Load(text);

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "common/cli/shared_options.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 
@@ -54,19 +55,18 @@ void AddCalibrateIntrinsicsCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "calibrate-intrinsics",
       "Camera intrinsics from images of a board (chessboard or AprilTag grid) -> camera YAML");
-  command->add_option("--board", args->board_path, "Board YAML")
-      ->required()
-      ->check(CLI::ExistingFile);
+  h4::cli::AddBoardOption(command, &args->board_path)->required();
   command->add_option("images", args->images, "Images of the board (at least --min-views)")
       ->required()
       ->check(CLI::ExistingFile);
-  command->add_option("--out", args->out_path, "Camera YAML to write")->required();
+  h4::cli::AddOutOption(command, &args->out_path, "Camera YAML to write");
   const std::map<std::string, IntrinsicsModel> models = {
       {"radtan", IntrinsicsModel::kRadTan},
       {"rational", IntrinsicsModel::kRational},
       {"equidistant", IntrinsicsModel::kEquidistant}};
   command
-      ->add_option("--model", args->options.model,
+      // The camera file's key; --model is identify's and plan's kinematic model.
+      ->add_option("--distortion-model,--model", args->options.model,
                    "Lens model: radtan (k1 k2 p1 p2 k3), rational (8 coefficients, "
                    "CALIB_RATIONAL_MODEL) or equidistant (fisheye k1..k4, cv::fisheye)")
       ->transform(CLI::CheckedTransformer(models))

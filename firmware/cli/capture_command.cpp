@@ -14,6 +14,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "common/board/board_model.h"
+#include "common/cli/command_line.h"
+#include "common/cli/shared_options.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/geometry/rotation.h"
@@ -196,15 +198,11 @@ namespace {
 void AddCaptureOptions(CLI::App* command, CaptureArgs* args) {
   command->add_option("--source", args->source, "Frames: libcamera, sim or dir:PATH")
       ->capture_default_str();
-  command->add_option("--board", args->board_path, "Board YAML")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command
-      ->add_option("--camera", args->camera_path,
-                   "Camera intrinsics YAML (OpenCV); nominal values will do before the camera "
-                   "is calibrated")
-      ->required()
-      ->check(CLI::ExistingFile);
+  h4::cli::AddBoardOption(command, &args->board_path)->required();
+  h4::cli::AddCameraOption(command, &args->camera_path,
+                           "Camera intrinsics YAML (OpenCV); nominal values will do before the "
+                           "camera is calibrated")
+      ->required();
   command->add_flag("--draw", args->draw, "Also write the frame with its detection drawn");
   command
       ->add_option("--interval", args->interval_s,
@@ -245,7 +243,7 @@ void InstallCaptureStopSignal() {
 
 void SetCaptureExitCode(const CaptureSummary& summary) {
   if (summary.frames == 0 && g_capture_stop_requested.load()) {
-    SetExitCode(130);
+    SetExitCode(h4::cli::kExitInterrupted);
   } else if (summary.with_board == 0) {
     std::cerr << "h4cam: no frame showed the board\n";
     SetExitCode(kExitNothingUsable);
@@ -264,7 +262,8 @@ void AddCaptureCommand(CLI::App& app) {
   command->add_option("--count", args->count, "Frames to save")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
-  command->add_option("--out", args->out_dir, "Folder of frame_NNNN.png (and overlay_NNNN.png)")
+  h4::cli::AddOutDirOption(command, &args->out_dir,
+                           "Folder of frame_NNNN.png (and overlay_NNNN.png)", "--out")
       ->required();
   command->footer(
       "Exit codes: 0 some frame showed the board, 3 none did, 130 interrupted, 1 error.");
@@ -286,7 +285,7 @@ void AddPreviewCommand(CLI::App& app) {
   command->add_option("--count", args->count, "Frames to check (0: until Ctrl-C)")
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
-  command->add_option("--out", args->out_dir, "Folder of preview.png (with --draw)");
+  h4::cli::AddOutDirOption(command, &args->out_dir, "Folder of preview.png (with --draw)", "--out");
   command->footer(
       "Exit codes: 0 some frame showed the board, 3 none did, 130 interrupted before any "
       "frame, 1 error.");

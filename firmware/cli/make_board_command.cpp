@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/cli/shared_options.h"
 #include "common/formats/board_yaml.h"
 #include "firmware/board_print/board_print.h"
 
@@ -30,10 +31,8 @@ void AddMakeBoardCommand(CLI::App& app) {
   auto args = std::make_shared<MakeBoardArgs>();
   CLI::App* command = app.add_subcommand(
       "make-board", "Printable board at exact scale (SVG, PDF or PNG by the --out extension)");
-  command->add_option("--board", args->board_path, "Board YAML")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--out", args->out_path, "Output file: .svg, .pdf or .png")->required();
+  h4::cli::AddBoardOption(command, &args->board_path)->required();
+  h4::cli::AddOutOption(command, &args->out_path, "Output file: .svg, .pdf or .png");
   command->add_option("--dpi", args->dpi, "PNG resolution, dots per inch")->default_val(args->dpi);
   command->add_option("--margin", args->margin, "White border around the pattern, m")
       ->default_val(args->margin);

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/cli/shared_options.h"
 #include "common/formats/board_poses_csv.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
@@ -89,22 +90,17 @@ void AddMeasureCommand(CLI::App& app) {
   auto args = std::make_shared<MeasureArgs>();
   CLI::App* command = app.add_subcommand(
       "measure", "Board poses X_CT from image files (groups of N images averaged)");
-  command->add_option("--board", args->board_path, "Board YAML")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--camera", args->camera_path, "Camera intrinsics YAML (OpenCV)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--group", args->group, "Images averaged per measurement")
+  h4::cli::AddBoardOption(command, &args->board_path)->required();
+  h4::cli::AddCameraOption(command, &args->camera_path)->required();
+  h4::cli::AddFramesOption(command, &args->group, "Images averaged per measurement", "--group")
       ->default_val(args->group)
       ->check(CLI::PositiveNumber);
   command
-      ->add_option("--max-spread", args->max_spread_px,
+      ->add_option("--max-spread-px,--max-spread", args->max_spread_px,
                    "Motion threshold: largest per-frame corner spread in a group, px")
       ->default_val(args->max_spread_px)
       ->check(CLI::PositiveNumber);
-  command->add_option("--out", args->out_path, "Output CSV (image,x,y,z,qw,qx,qy,qz,...)")
-      ->required();
+  h4::cli::AddOutOption(command, &args->out_path, "Output CSV (image,x,y,z,qw,qx,qy,qz,...)");
   command->add_option("images", args->images, "Image files or directories, in order")->required();
   command->footer(
       "Exit codes: 0 at least one row has a pose, 3 no image showed the board (the rows are "

@@ -1,7 +1,7 @@
-// `h4cam measure --board B.yaml --camera camera.yaml [--group 10] IMAGES... --out
-// poses.csv`: offline board poses (common/formats/README.md "Offline board poses") from image files,
-// each group of N consecutive images averaged into one measurement, one row per group
-// (empty pose fields when the group gives no usable pose). Progress on stderr.
+// `h4cam measure --board B.yaml --camera camera.yaml [--frames 10] IMAGES... --out
+// poses.csv`: offline board poses (common/formats/README.md "Offline board poses") from image
+// files, each group of N consecutive images averaged into one measurement, one row per group (empty
+// pose fields when the group gives no usable pose). Progress on stderr.
 #pragma once
 
 #include <iosfwd>
@@ -19,7 +19,7 @@ struct MeasureArgs {
   std::string camera_path;
   std::vector<std::string> images;  ///< files and/or directories, in order
   int group = 10;                   ///< images averaged per measurement
-  double max_spread_px = 0.1;       ///< motion threshold
+  double max_spread_px = 0.5;       ///< motion threshold, the camera service's (service_config.h)
   std::string out_path;
 };
 

@@ -12,6 +12,7 @@
 
 #include "common/board/board_model.h"
 #include "common/camera/camera_model.h"
+#include "common/cli/shared_options.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/geometry/rotation.h"
@@ -110,12 +111,8 @@ void AddRenderCommand(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* command =
       app.add_subcommand("render", "Synthetic camera frames of the board at a known pose X_CT");
-  command->add_option("--board", args->board_path, "Board YAML")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--camera", args->camera_path, "Camera intrinsics YAML (OpenCV)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  h4::cli::AddBoardOption(command, &args->board_path)->required();
+  h4::cli::AddCameraOption(command, &args->camera_path)->required();
   command->add_option("--pose", args->pose, "X_CT as x,y,z,qw,qx,qy,qz (m, unit quaternion)")
       ->required()
       ->delimiter(',')
@@ -129,7 +126,7 @@ void AddRenderCommand(CLI::App& app) {
                    "(a camera module's sRGB output: defocus, gradient, shot noise)")
       ->default_val(args->preset)
       ->check(CLI::IsMember({"clean", "processed"}));
-  command->add_option("--blur", args->blur_sigma_px, "Gaussian PSF sigma, px (0..20)")
+  command->add_option("--blur-px,--blur", args->blur_sigma_px, "Gaussian PSF sigma, px (0..20)")
       ->check(CLI::Range(0.0, 20.0));
   command
       ->add_option("--focus-distance", args->focus_distance,
@@ -161,8 +158,9 @@ void AddRenderCommand(CLI::App& app) {
       ->check(CLI::Range(0.0, 50.0));
   command->add_option("--response", args->response,
                       "Response curve: linear, srgb, gamma:EXPONENT or table:V0,V1,...");
-  command->add_option("--seed", args->seed, "Noise seed")->default_val(args->seed);
-  command->add_option("--out", args->out_dir, "Output directory")->required();
+  h4::cli::AddSeedOption(command, &args->seed, "Noise seed");
+  h4::cli::AddOutDirOption(command, &args->out_dir, "Output folder (frame_NNNN.png)", "--out")
+      ->required();
   command->footer(
       "Exit codes: 0 frames written, 3 the board is not in view at --pose (behind the "
       "camera or off the image; nothing written), 1 error.");

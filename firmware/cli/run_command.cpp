@@ -9,6 +9,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/cli/command_line.h"
+#include "common/cli/shared_options.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "firmware/service/camera_service.h"
@@ -43,7 +45,7 @@ LibcameraSourceOptions LibcameraOptions(const ServiceConfig& config) {
 
 // Fails before the service runs: the reason on stderr and in a STATE_ERROR status.
 int Fail(bus::LcmBus* bus, const ServiceConfig& config, const std::string& why, std::ostream& err) {
-  err << "h4cam run: " << why << "\n";
+  err << h4::cli::ErrorLine("h4cam", why) << "\n";
   if (bus != nullptr && bus->good()) {
     h4msgs::camera_status_t status{};
     status.utime = NowUtime();
@@ -160,20 +162,17 @@ void AddRunCommand(CLI::App& app) {
   command->add_option("--config", args->config_path, "Service configuration YAML")
       ->check(CLI::ExistingFile);
   command->add_option("--source", args->source, "Frames: libcamera (default), sim or dir:PATH");
-  command->add_option("--board", args->board_path, "Board YAML");
-  command->add_option("--camera", args->camera_path, "Camera intrinsics YAML (OpenCV)");
-  command->add_option("--frames", args->frames, "Frames averaged per measurement (default 10)")
+  h4::cli::AddBoardOption(command, &args->board_path);
+  h4::cli::AddCameraOption(command, &args->camera_path);
+  h4::cli::AddFramesOption(command, &args->frames, "Frames averaged per measurement (default 10)")
       ->check(CLI::Range(1, kMaxFramesPerRequest));
   command->add_option("--free-run", args->free_run_hz, "Measure continuously at this rate, Hz")
       ->check(CLI::Range(0.0, 100.0));
   command->add_option("--sim-preset", args->sim_preset,
                       "Rendered frames of --source sim: processed (default: a camera module's "
                       "sRGB output with defocus, gradient, shot noise) or clean");
-  command->add_option("--lcm-url", args->lcm_url, "LCM URL (default $LCM_DEFAULT_URL, ttl=0)");
-  command->add_option("--auth-key", args->auth_key_path,
-                      "Authenticate board poses, capture requests and status with this "
-                      "pre-shared key file (owner-only, >= 32 bytes; the same as collect "
-                      "--auth-key; default lcm.auth_key_file, else off)");
+  h4::cli::AddLcmUrlOption(command, &args->lcm_url);
+  h4::cli::AddAuthKeyOption(command, &args->auth_key_path, "lcm.auth_key_file, else off");
   command->add_option(
       "--camera-id", args->camera_id,
       "libcamera camera id (also the name in the messages unless camera.name is set)");

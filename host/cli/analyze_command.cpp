@@ -3,8 +3,10 @@
 // corrections it implies for the a priori X_BC / X_TE.
 #include <spdlog/spdlog.h>
 
+#include "common/cli/shared_options.h"
 #include "common/formats/dataset_csv.h"
 #include "common/formats/robot_yaml.h"
+#include "common/units.h"
 #include "host/cli/commands.h"
 #include "host/identification/prior_analysis.h"
 
@@ -15,6 +17,14 @@ struct AnalyzeOptions {
   std::string robot_path;
   std::string data_path;
 };
+
+// A placement as people read it: mm and deg (the files keep m and rad).
+void PrintPlacement(const char* name, const RigidTransform& X) {
+  const Eigen::Vector3d p_mm = 1e3 * X.translation(), rpy = X.rpy();
+  std::printf("%s: translation [%.2f, %.2f, %.2f] mm, rpy [%.4f, %.4f, %.4f] deg\n", name, p_mm.x(),
+              p_mm.y(), p_mm.z(), DegreesFromRadians(rpy.x()), DegreesFromRadians(rpy.y()),
+              DegreesFromRadians(rpy.z()));
+}
 
 void Run(const AnalyzeOptions& options) {
   const RobotDescription robot = ReadRobotYaml(options.robot_path);
@@ -29,12 +39,8 @@ void Run(const AnalyzeOptions& options) {
               a.axis_spread_deg, a.poses_used);
   std::printf("a priori camera z axis off by %.3f deg, board z axis off by %.3f deg\n",
               a.camera_axis_correction_deg, a.board_axis_correction_deg);
-  const Eigen::Vector3d t = a.X_BC.translation(), rpy = a.X_BC.rpy();
-  std::printf("initial X_BC: translation [%.5f, %.5f, %.5f] m, rpy [%.5f, %.5f, %.5f] rad\n", t.x(),
-              t.y(), t.z(), rpy.x(), rpy.y(), rpy.z());
-  const Eigen::Vector3d t2 = a.X_TE.translation(), rpy2 = a.X_TE.rpy();
-  std::printf("initial X_TE: translation [%.5f, %.5f, %.5f] m, rpy [%.5f, %.5f, %.5f] rad\n",
-              t2.x(), t2.y(), t2.z(), rpy2.x(), rpy2.y(), rpy2.z());
+  PrintPlacement("initial X_BC", a.X_BC);
+  PrintPlacement("initial X_TE", a.X_TE);
   spdlog::info("{}", a.message);
 }
 
@@ -44,12 +50,8 @@ void AddAnalyzeCommand(CLI::App& app) {
   auto options = std::make_shared<AnalyzeOptions>();
   CLI::App* command = app.add_subcommand(
       "analyze", "Prior kinematic analysis: rotation axis and 4-DoF check from the measured poses");
-  command->add_option("--robot", options->robot_path, "A priori robot.yaml")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--data", options->data_path, "Paired dataset CSV")
-      ->required()
-      ->check(CLI::ExistingFile);
+  h4::cli::AddRobotOption(command, &options->robot_path)->required();
+  h4::cli::AddDataOption(command, &options->data_path)->required();
   command->callback([options] { Run(*options); });
 }
 

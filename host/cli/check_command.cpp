@@ -8,6 +8,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/cli/command_line.h"
+#include "common/cli/shared_options.h"
 #include "common/formats/dataset_csv.h"
 #include "common/formats/identification_result.h"
 #include "common/formats/robot_yaml.h"
@@ -61,7 +63,7 @@ void Run(const CheckCommandOptions& o) {
               o.result_path.c_str(), ToString(result.model), rows.size());
   if (check.evaluable) PrintPoses(check);
   std::printf("%s\n", check.Summary().c_str());
-  if (check.drift) SetExitCode(3);
+  if (check.drift) SetExitCode(h4::cli::kExitNothingUsable);
 }
 
 }  // namespace
@@ -72,14 +74,10 @@ void AddCheckCommand(CLI::App& app) {
       "check",
       "Check that the robot still matches an identification result, from a short verification "
       "campaign; exit 3 when it has drifted");
-  command->add_option("--result", options->result_path, "Identification result JSON")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--data", options->data_path, "Verification dataset CSV")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--robot", options->robot_path, "robot.yaml to take the assembly signs from")
-      ->check(CLI::ExistingFile);
+  h4::cli::AddResultOption(command, &options->result_path)->required();
+  h4::cli::AddDataOption(command, &options->data_path, "Verification dataset CSV")->required();
+  h4::cli::AddRobotOption(command, &options->robot_path,
+                          "robot.yaml to take the assembly signs from");
   command
       ->add_option("--pose-false-alarm", options->check.pose_false_alarm,
                    "Probability that an unchanged robot has a pose flagged")

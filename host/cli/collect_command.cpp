@@ -9,6 +9,8 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "common/cli/command_line.h"
+#include "common/cli/shared_options.h"
 #include "common/formats/identification_result.h"
 #include "common/formats/poses_csv.h"
 #include "common/formats/robot_yaml.h"
@@ -205,11 +207,11 @@ void Run(CollectOptions options, const std::string& command_line) {
                                       : "end of the log");
   PrintSummary(campaign, journal, bus, interrupted);
   if (interrupted) {
-    SetExitCode(130);
+    SetExitCode(h4::cli::kExitInterrupted);
     return;
   }
   if (!options.identify_dir.empty()) IdentifyAndReport(options, command_line);
-  if (!campaign.finished() || !campaign.skipped().empty()) SetExitCode(3);
+  if (!campaign.finished() || !campaign.skipped().empty()) SetExitCode(h4::cli::kExitNothingUsable);
 }
 
 }  // namespace
@@ -220,40 +222,29 @@ void AddCollectCommand(CLI::App& app) {
       "collect",
       "Calibration campaign over LCM: move the robot through a pose plan, measure the board "
       "at each pose and append the paired rows to a dataset CSV (resumable)");
-  command
-      ->add_option("--out", options->out_path,
-                   "Dataset CSV; an existing one is resumed (its poses are not measured again)")
-      ->required();
-  command
-      ->add_option("--plan", options->plan_path,
-                   "Poses CSV (pose_id,X,Y,Z,theta); default the paper's 81-pose grid")
-      ->check(CLI::ExistingFile);
+  h4::cli::AddOutOption(command, &options->out_path,
+                        "Dataset CSV; an existing one is resumed (its poses are not measured "
+                        "again)");
+  h4::cli::AddInputFileOption(command, "--plan", &options->plan_path,
+                              "Poses CSV (pose_id,X,Y,Z,theta); default the paper's 81-pose grid");
   command->add_flag("--manual", options->manual,
                     "The operator moves the robot: each pose is measured once the robot has "
                     "moved and settled again; no targets are sent");
   command->add_flag("--passive", options->passive,
                     "Send nothing; pair the measurements and joint states heard (e.g. an "
                     "lcm-logplayer replay)");
-  command
-      ->add_option("--from-log", options->from_log,
-                   "Rebuild the dataset from an lcm-logger file (LCM's file:// provider)")
-      ->check(CLI::ExistingFile);
-  command
-      ->add_option("--controller", options->controller_path,
-                   "Send joint targets from the Model 12 inverse kinematics of this robot.yaml "
-                   "or Model 12 result.json (the paper's control law, e.g. for the square "
-                   "path; default: pose targets, the robot's own controller)")
-      ->check(CLI::ExistingFile);
-  command->add_option("--lcm-url", options->lcm_url,
-                      "LCM provider URL (default $LCM_DEFAULT_URL, else udpm with ttl=0)");
-  command->add_option("--auth-key", options->auth_key_path,
-                      "Authenticate board poses, capture requests and camera status with this "
-                      "pre-shared key file (owner-only, >= 32 bytes; the camera's "
-                      "lcm.auth_key_file): other messages on those channels are dropped and "
-                      "counted. Default off");
-  command
-      ->add_option("--frames", options->campaign.frame_count,
-                   "Frames averaged per measurement (0: the camera's default)")
+  h4::cli::AddInputFileOption(
+      command, "--from-log", &options->from_log,
+      "Rebuild the dataset from an lcm-logger file (LCM's file:// provider)");
+  h4::cli::AddInputFileOption(
+      command, "--controller", &options->controller_path,
+      "Send joint targets from the Model 12 inverse kinematics of this robot.yaml or Model 12 "
+      "result.json (the paper's control law, e.g. for the square path; default: pose targets, "
+      "the robot's own controller)");
+  h4::cli::AddLcmUrlOption(command, &options->lcm_url);
+  h4::cli::AddAuthKeyOption(command, &options->auth_key_path, "off");
+  h4::cli::AddFramesOption(command, &options->campaign.frame_count,
+                           "Frames averaged per measurement (0: the camera's default)")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   command
@@ -279,8 +270,7 @@ void AddCollectCommand(CLI::App& app) {
   command->add_option("--identify", options->identify_dir,
                       "After the campaign: identify Models 12 and 31, validate, and write "
                       "DIR/result12.json, DIR/result31.json, DIR/report.html (needs --robot)");
-  command->add_option("--robot", options->robot_path, "A priori robot.yaml (for --identify)")
-      ->check(CLI::ExistingFile);
+  h4::cli::AddRobotOption(command, &options->robot_path, "A priori robot.yaml (for --identify)");
   command->footer(
       "Exit codes: 0 every pose recorded, 3 some poses skipped (listed), 130 interrupted "
       "(run again to resume), 1 error.");

@@ -7,6 +7,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/cli/shared_options.h"
 #include "common/formats/file_output.h"
 #include "common/formats/identification_result.h"
 #include "common/formats/robot_yaml.h"
@@ -54,7 +55,7 @@ void Run(const ExportOptions& options) {
              " in the model31 block (model12 is the a priori of " + options.robot_path +
              "; X_BC is the camera in B31, the base frame of Model 31)\n";
   }
-  WriteFileAtomically(options.out_path, header + FormatRobotYaml(out));
+  WriteFileAtomically(options.out_path, header + FormatRobotYaml(out, "identified"));
   spdlog::info("wrote the Model {} controller parameters to {}", ToString(result.model),
                options.out_path);
 }
@@ -65,15 +66,11 @@ void AddExportCommand(CLI::App& app) {
   auto options = std::make_shared<ExportOptions>();
   CLI::App* command = app.add_subcommand(
       "export", "Export an identification result for the controller (robot.yaml keys)");
-  command->add_option("--result", options->result_path, "Identification result JSON")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command
-      ->add_option("--robot", options->robot_path,
-                   "A priori robot.yaml: assembly signs (and the model12 block of a Model 31 "
-                   "export)")
-      ->check(CLI::ExistingFile);
-  command->add_option("--out", options->out_path, "controller.yaml to write")->required();
+  h4::cli::AddResultOption(command, &options->result_path)->required();
+  h4::cli::AddRobotOption(command, &options->robot_path,
+                          "A priori robot.yaml: assembly signs (and the model12 block of a Model "
+                          "31 export)");
+  h4::cli::AddOutOption(command, &options->out_path, "controller.yaml to write");
   command->callback([options] { Run(*options); });
 }
 

@@ -8,6 +8,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/cli/command_line.h"
+#include "common/cli/shared_options.h"
 #include "common/formats/file_output.h"
 #include "common/formats/joints_csv.h"
 #include "common/formats/poses_csv.h"
@@ -85,7 +87,7 @@ void Run(const FkCommandOptions& options) {
   if (!options.compare_path.empty()) Compare(rows, options.compare_path);
   if (!failed.empty()) {
     spdlog::error("{} rows had no forward kinematic solution (not written)", failed.size());
-    SetExitCode(3);
+    SetExitCode(h4::cli::kExitNothingUsable);
   }
 }
 
@@ -96,17 +98,14 @@ void AddFkCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "fk", "Forward kinematics: joints CSV -> end-effector poses and board poses X_CT");
   AddRobotSourceOptions(command, &options->robot);
-  command->add_option("--joints", options->joints_path, "Joints CSV: pose_id,q1,q2,q3,q4 (rad)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command
-      ->add_option("--out", options->out_path, "Output CSV: pose_id,X,Y,Z,theta,x,y,z,qw,qx,qy,qz")
+  h4::cli::AddInputFileOption(command, "--joints", &options->joints_path,
+                              "Joints CSV: pose_id,q1,q2,q3,q4 (rad)")
       ->required();
-  command
-      ->add_option("--compare", options->compare_path,
-                   "Reference board poses in the same layout (e.g. a simulation's "
-                   "heldout_truth.csv): print the RMS position and rotation error")
-      ->check(CLI::ExistingFile);
+  h4::cli::AddOutOption(command, &options->out_path,
+                        "Output CSV: pose_id,X,Y,Z,theta,x,y,z,qw,qx,qy,qz");
+  h4::cli::AddInputFileOption(command, "--compare", &options->compare_path,
+                              "Reference board poses in the same layout (e.g. a simulation's "
+                              "heldout_truth.csv): print the RMS position and rotation error");
   command->footer(
       "Rows without a solution are reported and left out (exit code 3), never written as NaN.");
   command->callback([options] { Run(*options); });

@@ -10,6 +10,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/cli/command_line.h"
+#include "common/cli/shared_options.h"
 #include "common/formats/dataset_csv.h"
 #include "common/formats/file_output.h"
 #include "common/formats/identification_result.h"
@@ -67,11 +69,13 @@ void PrintHeadline(const IdentificationOutcome& outcome) {
   if (r.condition_number) std::printf("  condition number (scaled): %.3g\n", *r.condition_number);
   for (const FixedParameter& f : r.fixed)
     std::printf("  fixed %s: %s\n", f.name.c_str(), f.reason.c_str());
-  std::printf("  joint residual RMS (rad) calib: %.2e %.2e %.2e %.2e\n", r.calib_rms_rad[0],
-              r.calib_rms_rad[1], r.calib_rms_rad[2], r.calib_rms_rad[3]);
+  std::printf("  joint residual RMS (deg) calib: %.4f %.4f %.4f %.4f\n",
+              DegreesFromRadians(r.calib_rms_rad[0]), DegreesFromRadians(r.calib_rms_rad[1]),
+              DegreesFromRadians(r.calib_rms_rad[2]), DegreesFromRadians(r.calib_rms_rad[3]));
   if (!r.valid_poses.empty()) {
-    std::printf("  joint residual RMS (rad) valid: %.2e %.2e %.2e %.2e\n", r.valid_rms_rad[0],
-                r.valid_rms_rad[1], r.valid_rms_rad[2], r.valid_rms_rad[3]);
+    std::printf("  joint residual RMS (deg) valid: %.4f %.4f %.4f %.4f\n",
+                DegreesFromRadians(r.valid_rms_rad[0]), DegreesFromRadians(r.valid_rms_rad[1]),
+                DegreesFromRadians(r.valid_rms_rad[2]), DegreesFromRadians(r.valid_rms_rad[3]));
   }
   if (r.valid_position_rms_m && r.valid_rotation_rms_rad) {
     std::printf("  held-out board pose vs measured: %.4f mm, %.4f deg RMS\n",
@@ -192,10 +196,10 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
   spdlog::debug("{}", outcome.summary.FullReport());
   PrintHeadline(outcome);
   spdlog::info("result written to {}", options.out_path);
-  if (outcome.verdict != Verdict::kGood) SetExitCode(3);
+  if (outcome.verdict != Verdict::kGood) SetExitCode(h4::cli::kExitNothingUsable);
   if (!outcome.summary.usable) {
     spdlog::error("the identification is not usable: {}", outcome.summary.message);
-    SetExitCode(3);
+    SetExitCode(h4::cli::kExitNothingUsable);
     if (!options.report_dir.empty()) spdlog::error("no report written for an unusable result");
     return;
   }
@@ -219,12 +223,8 @@ void AddIdentifyCommand(CLI::App& app) {
   auto options = std::make_shared<IdentifyCommandOptions>();
   CLI::App* command = app.add_subcommand(
       "identify", "Identify the robot's geometry (Model 12 or 31) from a paired dataset");
-  command->add_option("--robot", options->robot_path, "A priori robot.yaml")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--data", options->data_path, "Paired dataset CSV")
-      ->required()
-      ->check(CLI::ExistingFile);
+  h4::cli::AddRobotOption(command, &options->robot_path)->required();
+  h4::cli::AddDataOption(command, &options->data_path)->required();
   command->add_option("--model", options->model, "Kinematic model")
       ->check(CLI::IsMember({"12", "31"}))
       ->capture_default_str();
@@ -234,19 +234,16 @@ void AddIdentifyCommand(CLI::App& app) {
                    "'set' column; 0: every pose in the fit, held-out figures by cross-validation")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  command->add_option("--seed", options->seed, "Seed of that split and of the folds")
-      ->capture_default_str();
+  h4::cli::AddSeedOption(command, &options->seed, "Seed of that split and of the folds");
   command
       ->add_option("--folds", options->folds,
                    "k of the k-fold cross-validation giving the held-out figures and judging "
                    "outliers (each pose predicted by a fit without it); 0: off")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  command
-      ->add_option("--from", options->from_path,
-                   "Model 12 result to start Model 31 from; parameters Model 31 must fix "
-                   "take its values (paper IV.C)")
-      ->check(CLI::ExistingFile);
+  h4::cli::AddInputFileOption(command, "--from", &options->from_path,
+                              "Model 12 result to start Model 31 from; parameters Model 31 must "
+                              "fix take its values (paper IV.C)");
   command
       ->add_option("--estimator", options->estimator,
                    "Cost: measurement (6-DoF board pose, weighted; default), joint (the "
@@ -266,9 +263,9 @@ void AddIdentifyCommand(CLI::App& app) {
   command->add_flag("--no-outlier-rejection", options->no_outliers, "Keep every pose");
   command->add_flag("--no-polish", options->no_polish,
                     "Skip the Levenberg-Marquardt polish: NLopt alone, run to tight tolerances");
-  command->add_option("--out", options->out_path, "Result JSON")->required();
-  command->add_option("--report", options->report_dir,
-                      "Also validate on the held-out poses and write DIR/report.html");
+  h4::cli::AddOutOption(command, &options->out_path, "Result JSON");
+  h4::cli::AddReportDirOption(command, &options->report_dir)
+      ->description("Also validate on the held-out poses and write DIR/report.html");
   command->footer(
       "Exit code 3: the result was written but its verdict is not 'good' (printed first, and "
       "in the result's 'verdict' key).");

@@ -2,6 +2,8 @@
 // (common/formats/README.md poses CSV) to joint readings; unreachable rows are reported, not NaN.
 #include <spdlog/spdlog.h>
 
+#include "common/cli/command_line.h"
+#include "common/cli/shared_options.h"
 #include "common/formats/file_output.h"
 #include "common/formats/joints_csv.h"
 #include "common/formats/poses_csv.h"
@@ -47,7 +49,7 @@ void Run(const IkCommandOptions& options) {
                options.out_path);
   if (unreachable > 0) {
     spdlog::error("{} poses are out of reach (not written)", unreachable);
-    SetExitCode(3);
+    SetExitCode(h4::cli::kExitNothingUsable);
   }
 }
 
@@ -58,11 +60,10 @@ void AddIkCommand(CLI::App& app) {
   CLI::App* command =
       app.add_subcommand("ik", "Inverse kinematics: end-effector poses CSV -> joints CSV");
   AddRobotSourceOptions(command, &options->robot);
-  command->add_option("--poses", options->poses_path, "Poses CSV: pose_id,X,Y,Z,theta (m, rad)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--out", options->out_path, "Output joints CSV: pose_id,q1,q2,q3,q4")
+  h4::cli::AddInputFileOption(command, "--poses", &options->poses_path,
+                              "Poses CSV: pose_id,X,Y,Z,theta (m, rad)")
       ->required();
+  h4::cli::AddOutOption(command, &options->out_path, "Output joints CSV: pose_id,q1,q2,q3,q4");
   command->footer("Unreachable rows are reported and left out (exit code 3).");
   command->callback([options] { Run(*options); });
 }

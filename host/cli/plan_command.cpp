@@ -13,6 +13,7 @@
 #include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
+#include "common/cli/shared_options.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/formats/file_output.h"
@@ -137,17 +138,13 @@ void AddPlanCommand(CLI::App& app) {
       "Plan N calibration poses (the most accurate design for the identification) among the poses "
       "the robot "
       "reaches with the whole board in the image; writes a poses CSV for h4cal collect --plan");
-  command->add_option("--robot", options->robot_path, "A priori robot.yaml (with X_BC, X_TE)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--camera", options->camera_path, "Camera intrinsics YAML")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--board", options->board_path, "Board YAML")
-      ->required()
-      ->check(CLI::ExistingFile);
-  command->add_option("--out", options->out_path, "Output poses CSV")->required();
-  command->add_option("--poses", options->pose_count, "Number of poses N")
+  h4::cli::AddRobotOption(command, &options->robot_path, "A priori robot.yaml (with X_BC, X_TE)")
+      ->required();
+  h4::cli::AddCameraOption(command, &options->camera_path)->required();
+  h4::cli::AddBoardOption(command, &options->board_path)->required();
+  h4::cli::AddOutOption(command, &options->out_path, "Output poses CSV");
+  // --poses is ik's poses CSV; here it was the count, still accepted.
+  command->add_option("--count,--poses", options->pose_count, "Number of poses N")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
   command->add_option("--model", options->model, "Model the poses are planned for")
@@ -159,8 +156,7 @@ void AddPlanCommand(CLI::App& app) {
                    "poses (I-optimal, from the D-optimal design)")
       ->check(CLI::IsMember({"d", "accuracy"}))
       ->capture_default_str();
-  command->add_option("--seed", options->seed, "Seed of the exchange's start")
-      ->capture_default_str();
+  h4::cli::AddSeedOption(command, &options->seed, "Seed of the exchange's start");
   command->add_option("--first-id", options->first_id, "pose_id of the first pose")
       ->capture_default_str();
   command->add_option("--joint-range-deg", options->joint_range_deg,

@@ -4,6 +4,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/cli/shared_options.h"
 #include "host/cli/commands.h"
 #include "host/cli/validation_inputs.h"
 #include "host/report/html_report.h"
@@ -28,7 +29,8 @@ void AddReportCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "report", "Write the calibration report (one self-contained HTML file) to DIR/report.html");
   AddValidationFileOptions(command, files.get());
-  command->add_option("--out-dir", *out_dir, "Folder of report.html")->required();
+  h4::cli::AddOutDirOption(command, out_dir.get(), "Folder of report.html", "--report-dir")
+      ->required();
   command->callback([files, out_dir, command] {
     const ValidationInputs inputs = LoadValidationInputs(*files);
     const ValidationReport report = Validate(inputs);

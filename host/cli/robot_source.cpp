@@ -1,6 +1,7 @@
 // Loading the robot of fk / ik / validate from --result or --robot; see robot_source.h.
 #include "host/cli/robot_source.h"
 
+#include "common/cli/shared_options.h"
 #include "common/formats/identification_result.h"
 #include "common/formats/robot_yaml.h"
 #include "host/kinematics/model12.h"
@@ -8,21 +9,15 @@
 namespace h4::host::cli {
 
 void AddRobotSourceOptions(CLI::App* command, RobotSourceOptions* options) {
-  auto* result = command
-                     ->add_option("--result", options->result_path,
-                                  "Identification result JSON (h4cal identify --out)")
-                     ->check(CLI::ExistingFile);
-  auto* robot = command
-                    ->add_option("--robot", options->robot_path,
-                                 "A priori robot.yaml (its Model 12 and X_BC, X_TE)")
-                    ->check(CLI::ExistingFile);
+  auto* result = h4::cli::AddResultOption(command, &options->result_path,
+                                          "Identification result JSON (h4cal identify --out)");
+  auto* robot = h4::cli::AddRobotOption(command, &options->robot_path,
+                                        "A priori robot.yaml (its Model 12 and X_BC, X_TE)");
   result->excludes(robot);
   robot->excludes(result);
-  command
-      ->add_option("--assembly-from", options->assembly_robot_path,
-                   "robot.yaml whose assembly signs (bar, elbow) go with --result "
-                   "(default: the standard H4 assembly)")
-      ->check(CLI::ExistingFile)
+  h4::cli::AddInputFileOption(command, "--assembly-from", &options->assembly_robot_path,
+                              "robot.yaml whose assembly signs (bar, elbow) go with --result "
+                              "(default: the standard H4 assembly)")
       ->needs(result);
 }
 

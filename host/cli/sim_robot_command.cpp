@@ -12,6 +12,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/cli/shared_options.h"
 #include "common/formats/robot_yaml.h"
 #include "host/campaign/sim_robot_node.h"
 #include "host/campaign/simulated_controller.h"
@@ -108,12 +109,12 @@ void AddSimRobotCommand(CLI::App& app) {
       "Simulated H4 controller on LCM: takes H4_ROBOT_TARGET, publishes H4_JOINT_STATE and "
       "the true board pose on H4_SIM_BOARD_TRUTH (for h4cam run --source sim)");
   CLI::Option* truth =
-      command->add_option("--truth", args->truth_path,
-                          "True robot: truth.yaml written by `h4cal simulate --out-dir DIR`");
-  command
-      ->add_option("--robot", args->robot_path,
-                   "A priori robot.yaml the controller believes (pose targets go through its "
-                   "inverse kinematics); default: robot.yaml beside the truth file")
+      h4::cli::AddInputFileOption(command, "--truth", &args->truth_path,
+                                  "True robot: truth.yaml written by `h4cal simulate --out-dir "
+                                  "DIR`");
+  h4::cli::AddRobotOption(command, &args->robot_path,
+                          "A priori robot.yaml the controller believes (pose targets go through "
+                          "its inverse kinematics); default: robot.yaml beside the truth file")
       ->needs(truth);
   CLI::Option* paper = command->add_flag(
       "--paper", args->paper,
@@ -142,8 +143,7 @@ void AddSimRobotCommand(CLI::App& app) {
                    "Joint limits: farthest a joint target may be from its home value, rad")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  command->add_option("--seed", args->node.seed, "Seed of the encoder noise")
-      ->capture_default_str();
+  h4::cli::AddSeedOption(command, &args->node.seed, "Seed of the encoder noise");
   command
       ->add_option("--rate", args->node.rate_hz,
                    "Joint states (and board truths) published per second, Hz")
@@ -154,8 +154,7 @@ void AddSimRobotCommand(CLI::App& app) {
                    "Seconds between status lines on stderr (0: none)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  command->add_option("--lcm-url", args->lcm_url,
-                      "LCM URL (default $LCM_DEFAULT_URL, else udpm with ttl=0)");
+  h4::cli::AddLcmUrlOption(command, &args->lcm_url);
   command
       ->add_option("--duration", args->duration_s,
                    "Run this many seconds (0: until SIGINT or SIGTERM)")

@@ -7,6 +7,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/cli/shared_options.h"
 #include "common/formats/dataset_csv.h"
 #include "common/formats/joints_csv.h"
 #include "common/formats/poses_csv.h"
@@ -122,24 +123,21 @@ void AddSimulateCommand(CLI::App& app) {
       "simulate", "Simulate a calibration campaign: dataset, a priori robot.yaml and truth");
   command->add_flag("--paper", options->paper,
                     "The paper's scenario: Table 2 'Identified' as the true robot, Table 2 a "
-                    "priori in robot.yaml (same as --truth paper)");
+                    "priori in robot.yaml (same as --truth-model paper)");
+  // --truth names a truth.yaml file in sim-robot and validate; here it was the model.
   command
-      ->add_option("--truth", options->truth,
+      ->add_option("--truth-model,--truth", options->truth,
                    "True geometry: 12 (a priori Model 12 perturbed), 31 (perturbed joint "
                    "positions, axes and lengths), paper (Table 2)")
       ->check(CLI::IsMember({"12", "31", "paper"}))
       ->capture_default_str();
-  command
-      ->add_option("--robot", options->robot_path,
-                   "A priori robot.yaml to draw the truth around (default: the paper's a priori)")
-      ->check(CLI::ExistingFile);
-  command
-      ->add_option("--plan", options->plan_path,
-                   "Poses CSV pose_id,X,Y,Z,theta (default: the paper's 81-pose grid, "
-                   "200x200x150 mm at (0,0,-0.45) m, theta -20/0/20 deg)")
-      ->check(CLI::ExistingFile);
-  command->add_option("--seed", options->seed, "Seed of the noise and of the calib/valid split")
-      ->capture_default_str();
+  h4::cli::AddRobotOption(
+      command, &options->robot_path,
+      "A priori robot.yaml to draw the truth around (default: the paper's a priori)");
+  h4::cli::AddInputFileOption(command, "--plan", &options->plan_path,
+                              "Poses CSV pose_id,X,Y,Z,theta (default: the paper's 81-pose grid, "
+                              "200x200x150 mm at (0,0,-0.45) m, theta -20/0/20 deg)");
+  h4::cli::AddSeedOption(command, &options->seed, "Seed of the noise and of the calib/valid split");
   command->add_option("--robot-seed", options->robot_seed, "Seed of the true robot's perturbation")
       ->capture_default_str();
   command->add_option("--sigma-t-mm", options->sigma_t_mm, "Camera translation noise per axis, mm")
@@ -154,7 +152,7 @@ void AddSimulateCommand(CLI::App& app) {
   command->add_option("--validation", options->valid, "Poses held out for validation")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  command->add_option("--out-dir", options->out_dir, "Output folder")->required();
+  h4::cli::AddOutDirOption(command, &options->out_dir, "Output folder")->required();
   command->callback([options] { Run(*options); });
 }
 

@@ -11,6 +11,7 @@
 #include <spdlog/fmt/fmt.h>
 #include <spdlog/spdlog.h>
 
+#include "common/cli/shared_options.h"
 #include "common/formats/poses_csv.h"
 #include "common/units.h"
 #include "host/cli/commands.h"
@@ -73,8 +74,9 @@ void AddSquarePlanCommand(CLI::App& app) {
       app.add_subcommand("square-plan",
                          "Write the commanded points of the square-path validation as a poses CSV "
                          "(pose_id,X,Y,Z,theta in B), for h4cal collect --plan --controller");
-  command->add_option("--out", options->out_path, "Output poses CSV")->required();
-  command->add_option("--side-mm", options->side_mm, "Side of the square, mm")
+  h4::cli::AddOutOption(command, &options->out_path, "Output poses CSV");
+  // The same name as validate's side of the square.
+  command->add_option("--square-mm,--side-mm", options->side_mm, "Side of the square, mm")
       ->capture_default_str();
   command
       ->add_option("--points-per-side", options->points_per_side,

@@ -6,6 +6,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/cli/shared_options.h"
 #include "host/cli/commands.h"
 #include "host/cli/validation_inputs.h"
 #include "host/report/html_report.h"
@@ -37,7 +38,7 @@ void AddValidateCommand(CLI::App& app) {
       "Validation experiments (paper IV.D): joint residuals (Table 3), straightness "
       "(Table 4), square path, 4-DoF check");
   AddValidationFileOptions(command, &options->files);
-  command->add_option("--report", options->report_dir, "Also write DIR/report.html");
+  h4::cli::AddReportDirOption(command, &options->report_dir);
   command->callback(
       [options, command] { Run(*options, "h4cal validate " + ReportCommandLine(*command)); });
 }

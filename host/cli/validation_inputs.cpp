@@ -8,8 +8,10 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "common/cli/shared_options.h"
 #include "common/formats/poses_csv.h"
 #include "common/formats/robot_yaml.h"
+#include "common/units.h"
 
 namespace h4::host::cli {
 namespace {
@@ -83,12 +85,14 @@ void AddValidationFileOptions(CLI::App* command, ValidationFileOptions* o) {
   command->add_option("--sim-dir", o->sim_dir,
                       "Folder written by `h4cal simulate` (+ result12.json, result31.json): "
                       "default for every file below");
-  command->add_option("--robot", o->robot_path, "A priori robot.yaml");
-  command->add_option("--data", o->data_path, "Paired dataset CSV");
-  command->add_option("--result12", o->result12_path, "Model 12 identification result JSON");
-  command->add_option("--result31", o->result31_path, "Model 31 identification result JSON");
-  command->add_option("--truth", o->truth_path,
-                      "truth.yaml of a simulation: the true robot for the square path");
+  h4::cli::AddRobotOption(command, &o->robot_path);
+  h4::cli::AddDataOption(command, &o->data_path);
+  h4::cli::AddInputFileOption(command, "--result12", &o->result12_path,
+                              "Model 12 identification result JSON");
+  h4::cli::AddInputFileOption(command, "--result31", &o->result31_path,
+                              "Model 31 identification result JSON");
+  h4::cli::AddInputFileOption(command, "--truth", &o->truth_path,
+                              "truth.yaml of a simulation: the true robot for the square path");
   command->add_option("--straightness", o->straightness_paths,
                       "Joints CSVs logged along a straight ruler, one per direction");
   command
@@ -97,11 +101,9 @@ void AddValidationFileOptions(CLI::App* command, ValidationFileOptions* o) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str()
       ->each([o](const std::string&) { o->square_mm_given = true; });
-  command
-      ->add_option("--square-plan", o->square_plan_path,
-                   "Poses CSV of the square driven on the robot (h4cal square-plan); also sets "
-                   "the simulated square")
-      ->check(CLI::ExistingFile);
+  h4::cli::AddInputFileOption(command, "--square-plan", &o->square_plan_path,
+                              "Poses CSV of the square driven on the robot (h4cal square-plan); "
+                              "also sets the simulated square");
   command
       ->add_option("--square-measured", o->square_measured,
                    "LABEL=DATASET, repeatable: dataset CSV collected along --square-plan by the "
@@ -157,28 +159,30 @@ ValidationInputs LoadValidationInputs(const ValidationFileOptions& o) {
 
 std::string FormatValidationText(const ValidationReport& report) {
   std::ostringstream t;
-  t << fmt::format("Table 3: joint residuals on {} held-out poses (rad, measured - model)\n",
+  // People read mm and deg (README "Using h4cal"); the files keep m and rad.
+  const auto deg = [](double rad) { return DegreesFromRadians(rad); };
+  t << fmt::format("Table 3: joint residuals on {} held-out poses (deg, measured - model)\n",
                    report.heldout_ids.size());
   for (const auto& v : report.models) {
     const auto& r = v.heldout;
-    t << fmt::format("  {:<10} mean {:9.1e} {:9.1e} {:9.1e} {:9.1e}\n", v.label, r.mean[0],
-                     r.mean[1], r.mean[2], r.mean[3]);
-    t << fmt::format("  {:<10} RMS  {:9.1e} {:9.1e} {:9.1e} {:9.1e}\n", "", r.rms[0], r.rms[1],
-                     r.rms[2], r.rms[3]);
+    t << fmt::format("  {:<10} mean {:9.4f} {:9.4f} {:9.4f} {:9.4f}\n", v.label, deg(r.mean[0]),
+                     deg(r.mean[1]), deg(r.mean[2]), deg(r.mean[3]));
+    t << fmt::format("  {:<10} RMS  {:9.4f} {:9.4f} {:9.4f} {:9.4f}\n", "", deg(r.rms[0]),
+                     deg(r.rms[1]), deg(r.rms[2]), deg(r.rms[3]));
   }
-  t << fmt::format("Positioning error: a priori, every pose: {:.2f} mm, {:.4f} rad (mean)\n",
-                   report.apriori_all.position_mean * 1e3, report.apriori_all.theta_mean);
+  t << fmt::format("Positioning error: a priori, every pose: {:.2f} mm, {:.3f} deg (mean)\n",
+                   report.apriori_all.position_mean * 1e3, deg(report.apriori_all.theta_mean));
   for (const auto& v : report.models) {
-    t << fmt::format("  {:<10} held out: {:.3f} mm, {:.5f} rad (mean)\n", v.label,
-                     v.positioning.position_mean * 1e3, v.positioning.theta_mean);
+    t << fmt::format("  {:<10} held out: {:.3f} mm, {:.4f} deg (mean)\n", v.label,
+                     v.positioning.position_mean * 1e3, deg(v.positioning.theta_mean));
   }
   if (!report.models.front().straightness.empty()) {
-    t << "Table 4: straightness (m)\n";
+    t << "Table 4: straightness (mm, RMS distance to the fitted line)\n";
     for (size_t m = 0; m < report.models.size(); ++m) {
       t << fmt::format("  {:<10}", report.models[m].label);
       for (size_t r = 0; r < report.models[m].straightness.size(); ++r) {
-        t << fmt::format("  dir {}: {:.1e}", r + 1,
-                         report.models[m].straightness[r].fit.rms_distance);
+        t << fmt::format("  dir {}: {:.4f}", r + 1,
+                         1e3 * report.models[m].straightness[r].fit.rms_distance);
         if (m > 0) t << fmt::format(" ({:.0f} %)", report.StraightnessImprovementPercent(m, r));
       }
       t << "\n";

@@ -34,6 +34,23 @@ std::string Section(const std::string& id, const std::string& title, const std::
   return fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n{}</section>\n", id, title, body);
 }
 
+// The report's sections in order, and their table of contents.
+class Sections {
+ public:
+  void Add(const std::string& id, const std::string& title, const std::string& body) {
+    html_ += Section(id, title, body);
+    contents_ += fmt::format("<li><a href=\"#{}\">{}</a></li>\n", id, title);
+  }
+  std::string TableOfContents() const {
+    return "<nav id=\"contents\">\n<h2>Contents</h2>\n<ol>\n" + contents_ + "</ol>\n</nav>\n";
+  }
+  const std::string& Html() const { return html_; }
+
+ private:
+  std::string html_;
+  std::string contents_;
+};
+
 std::string Figure(const std::string& svg, const std::string& caption) {
   return "<figure>\n" + svg + "\n<figcaption>" + caption + "</figcaption>\n</figure>\n";
 }
@@ -44,22 +61,76 @@ std::string NotComputed(const std::string& why) {
 
 }  // namespace
 
+namespace {
+
+// Every figure, drawn before anything is written: if gnuplot fails, nothing is.
+struct DrawnFigures {
+  bool has_straightness = false, has_square = false, has_measured = false;
+  std::string residuals, histograms, straightness, square, measured_square;
+};
+
+DrawnFigures DrawFigures(const ValidationInputs& in, const ValidationReport& report) {
+  DrawnFigures f;
+  f.has_straightness = !report.models.front().straightness.empty();
+  for (const auto& v : report.models) f.has_square = f.has_square || v.square.has_value();
+  f.has_measured = !report.measured_squares.empty() && in.square_plan.has_value();
+  f.residuals = ResidualsFigure(report);
+  f.histograms = HistogramFigure(report);
+  if (f.has_straightness) f.straightness = StraightnessFigure(report);
+  if (f.has_square) f.square = SquareFigure(report);
+  if (f.has_measured) f.measured_square = MeasuredSquareFigure(*in.square_plan, report);
+  return f;
+}
+
+// Everything after the verdict, in order.
+Sections DetailSections(const ValidationInputs& in, const ValidationReport& report,
+                        const DrawnFigures& f) {
+  Sections sections;
+  sections.Add("summary", "Summary", SummaryTable(in, report));
+  sections.Add("parameters", "Parameters", ParameterTables(in));
+  sections.Add("identifiability", "Identifiability", IdentifiabilityTable(in));
+  sections.Add("table2", "Table 2: Model 12 parameters", Table2(in, report));
+  sections.Add("table3", "Table 3: joint residuals on the held-out poses", Table3(report));
+  sections.Add("positioning", "Positioning error", PositioningTable(report));
+  sections.Add("residuals", "Residuals per pose and joint",
+               Figure(f.residuals, "Held-out poses, before and after calibration."));
+  sections.Add("histograms", "Residual histograms",
+               Figure(f.histograms, "All joints, every pose of the dataset."));
+  sections.Add("table4", "Table 4: straightness",
+               f.has_straightness ? Table4(report) : NotComputed("no ruler run given"));
+  sections.Add("straightness", "Straightness runs",
+               f.has_straightness ? Figure(f.straightness, "Distance to the fitted line.")
+                                  : NotComputed("no ruler run given"));
+  sections.Add("square", "Square path",
+               f.has_square || f.has_measured
+                   ? SquareTable(in, report)
+                   : NotComputed("needs the true robot (simulation truth file) or square "
+                                 "runs measured on the robot (--square-measured)"));
+  sections.Add("square-plot", "Square path plot",
+               f.has_square ? Figure(f.square, "Commanded and reached paths in the X-Y plane.")
+                            : NotComputed("needs the true robot (simulation truth file)"));
+  if (f.has_measured) {
+    sections.Add(kMeasuredSquareSection, "Square path measured by the camera",
+                 Figure(f.measured_square,
+                        "Commanded and measured paths in the X-Y plane of B, and each "
+                        "measured point's distance to its commanded side."));
+  }
+  sections.Add("four-dof", "4-DoF check", FourDofTable(report));
+  std::string notes;
+  for (const auto& note : report.notes) notes += "<li>" + MarkupEscape(note) + "</li>\n";
+  sections.Add("notes", "Notes", notes.empty() ? "<p>None.</p>\n" : "<ul>\n" + notes + "</ul>\n");
+  return sections;
+}
+
+}  // namespace
+
 std::string FormatHtmlReport(const ValidationInputs& in, const ValidationReport& report,
                              const std::string& command) {
   if (report.models.empty()) throw std::invalid_argument("nothing to report: no model validated");
-  const bool has_straightness = !report.models.front().straightness.empty();
-  bool has_square = false;
-  for (const auto& v : report.models) has_square = has_square || v.square.has_value();
+  const Sections sections = DetailSections(in, report, DrawFigures(in, report));
 
-  // Figures first: if gnuplot fails, nothing is written.
-  const std::string residuals = ResidualsFigure(report);
-  const std::string histograms = HistogramFigure(report);
-  const std::string straightness = has_straightness ? StraightnessFigure(report) : "";
-  const std::string square = has_square ? SquareFigure(report) : "";
-  const bool has_measured = !report.measured_squares.empty() && in.square_plan.has_value();
-  const std::string measured_square =
-      has_measured ? MeasuredSquareFigure(*in.square_plan, report) : "";
-
+  // The verdict and the figures that decide it first (with each result's version, date and
+  // inputs), then how the report was made, the contents, the details.
   std::ostringstream html;
   html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
        << "<title>h4cal calibration report</title>\n<style>" << kStyle << "</style>\n"
@@ -71,41 +142,9 @@ std::string FormatHtmlReport(const ValidationInputs& in, const ValidationReport&
                ? " <strong>Paper scenario</strong>: the paper's published numbers (rows "
                  "marked paper) stand beside ours."
                : "")
-       << "</p>\n";
-  html << Section("summary", "Summary", SummaryTable(in, report));
-  html << Section("parameters", "Parameters", ParameterTables(in));
-  html << Section("identifiability", "Identifiability", IdentifiabilityTable(in));
-  html << Section("table2", "Table 2: Model 12 parameters", Table2(in, report));
-  html << Section("table3", "Table 3: joint residuals on the held-out poses", Table3(report));
-  html << Section("positioning", "Positioning error", PositioningTable(report));
-  html << Section("residuals", "Residuals per pose and joint",
-                  Figure(residuals, "Held-out poses, before and after calibration."));
-  html << Section("histograms", "Residual histograms",
-                  Figure(histograms, "All joints, every pose of the dataset."));
-  html << Section("table4", "Table 4: straightness",
-                  has_straightness ? Table4(report) : NotComputed("no ruler run given"));
-  html << Section("straightness", "Straightness runs",
-                  has_straightness ? Figure(straightness, "Distance to the fitted line.")
-                                   : NotComputed("no ruler run given"));
-  html << Section("square", "Square path",
-                  has_square || has_measured
-                      ? SquareTable(in, report)
-                      : NotComputed("needs the true robot (simulation truth file) or square "
-                                    "runs measured on the robot (--square-measured)"));
-  html << Section("square-plot", "Square path plot",
-                  has_square ? Figure(square, "Commanded and reached paths in the X-Y plane.")
-                             : NotComputed("needs the true robot (simulation truth file)"));
-  if (has_measured) {
-    html << Section(kMeasuredSquareSection, "Square path measured by the camera",
-                    Figure(measured_square,
-                           "Commanded and measured paths in the X-Y plane of B, and each "
-                           "measured point's distance to its commanded side."));
-  }
-  html << Section("four-dof", "4-DoF check", FourDofTable(report));
-  std::string notes;
-  for (const auto& note : report.notes) notes += "<li>" + MarkupEscape(note) + "</li>\n";
-  html << Section("notes", "Notes",
-                  notes.empty() ? "<p>None.</p>\n" : "<ul>\n" + notes + "</ul>\n");
+       << " Lengths in mm and angles in deg, except the paper's Tables 2-4, in its m and "
+          "rad.</p>\n"
+       << sections.TableOfContents() << sections.Html();
   html << "</body>\n</html>\n";
   return html.str();
 }

@@ -1,5 +1,5 @@
 // gnuplot scripts of the report's figures (see report_figures.h). Data go inline as
-// gnuplot data blocks; values are converted to mrad and mm for reading.
+// gnuplot data blocks; values are converted to deg and mm for reading, as in the tables.
 #include "host/report/report_figures.h"
 
 #include <algorithm>
@@ -8,6 +8,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "common/units.h"
 #include "host/report/gnuplot_svg.h"
 
 namespace h4::host {
@@ -37,9 +38,10 @@ std::string ResidualsFigure(const ValidationReport& report) {
     std::ostringstream body;
     const auto& r = report.models[m].heldout;
     for (size_t k = 0; k < r.residuals.size(); ++k) {
-      body << fmt::format("{} {:.6g} {:.6g} {:.6g} {:.6g}\n", k + 1, r.residuals[k][0] * 1e3,
-                          r.residuals[k][1] * 1e3, r.residuals[k][2] * 1e3,
-                          r.residuals[k][3] * 1e3);
+      body << fmt::format(
+          "{} {:.6g} {:.6g} {:.6g} {:.6g}\n", k + 1, DegreesFromRadians(r.residuals[k][0]),
+          DegreesFromRadians(r.residuals[k][1]), DegreesFromRadians(r.residuals[k][2]),
+          DegreesFromRadians(r.residuals[k][3]));
     }
     gp << Block(fmt::format("r{}", m), body.str());
   }
@@ -48,7 +50,7 @@ std::string ResidualsFigure(const ValidationReport& report) {
       "(measured - model)'\n",
       n);
   gp << "set grid\nset key top right font ',10'\nset xlabel 'held-out pose'\n"
-        "set ylabel 'residual (mrad)'\n";
+        "set ylabel 'residual (deg)'\n";
   for (size_t m = 0; m < n; ++m) {
     gp << "set title " << Quoted(report.models[m].label) << "\n";
     gp << "plot ";
@@ -66,7 +68,7 @@ std::string HistogramFigure(const ValidationReport& report) {
   double extent = 0.0;
   for (size_t m = 1; m < report.models.size(); ++m) {
     for (const auto& r : report.models[m].all.residuals) {
-      for (double v : r) extent = std::max(extent, std::abs(v) * 1e3);
+      for (double v : r) extent = std::max(extent, std::abs(DegreesFromRadians(v)));
     }
   }
   if (extent <= 0.0) extent = 1.0;
@@ -78,13 +80,14 @@ std::string HistogramFigure(const ValidationReport& report) {
     std::vector<int> counts(bins, 0);
     double local_extent = 0.0;
     for (const auto& r : report.models[m].all.residuals) {
-      for (double v : r) local_extent = std::max(local_extent, std::abs(v) * 1e3);
+      for (double v : r) local_extent = std::max(local_extent, std::abs(DegreesFromRadians(v)));
     }
     const double w = m == 0 ? 2.0 * std::max(local_extent, 1e-9) / bins : width;
     const double lo = m == 0 ? -std::max(local_extent, 1e-9) : -extent;
     for (const auto& r : report.models[m].all.residuals) {
       for (double v : r) {
-        const int b = std::clamp(static_cast<int>(std::floor((v * 1e3 - lo) / w)), 0, bins - 1);
+        const int b =
+            std::clamp(static_cast<int>(std::floor((DegreesFromRadians(v) - lo) / w)), 0, bins - 1);
         ++counts[b];
       }
     }
@@ -97,7 +100,7 @@ std::string HistogramFigure(const ValidationReport& report) {
       "set multiplot layout 1,{} title 'Joint residuals, all joints, every pose "
       "of the dataset'\n",
       n);
-  gp << "set grid\nset style fill solid 0.6 border -1\nset xlabel 'residual (mrad)'\n"
+  gp << "set grid\nset style fill solid 0.6 border -1\nset xlabel 'residual (deg)'\n"
         "set ylabel 'count'\nunset key\n";
   for (size_t m = 0; m < n; ++m) {
     gp << "set title " << Quoted(report.models[m].label) << "\n";

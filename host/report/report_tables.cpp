@@ -1,5 +1,5 @@
-// HTML tables of the report (see report_tables.h). Angles in rad and lengths in m as in the
-// paper's tables, with mm where the paper speaks in mm.
+// HTML tables of the report (see report_tables.h). The paper's own tables (2, 3, 4) keep its
+// units (m, rad) so that its numbers compare by eye; every other figure is in mm and deg.
 #include "host/report/report_tables.h"
 
 #include <cmath>
@@ -8,6 +8,7 @@
 #include <spdlog/fmt/fmt.h>
 
 #include "common/text/markup_escape.h"
+#include "common/units.h"
 #include "host/report/paper_numbers.h"
 #include "host/simulation/paper_scenario.h"
 
@@ -16,6 +17,9 @@ namespace {
 
 std::string Sci(double v) { return fmt::format("{:.1e}", v); }
 std::string Mm(double v) { return fmt::format("{:.2f}", v * 1e3); }
+std::string Deg(double rad, int decimals) {
+  return fmt::format("{:.{}f}", DegreesFromRadians(rad), decimals);
+}
 
 // A row: first cell a header, then the cells.
 std::string Row(const std::string& head, const std::vector<std::string>& cells,
@@ -36,6 +40,22 @@ std::vector<std::string> Sci4(const std::array<double, 4>& v) {
   return {Sci(v[0]), Sci(v[1]), Sci(v[2]), Sci(v[3])};
 }
 
+// Whether a result parameter is an angle (common/README.md names them: alpha_i, q0_i,
+// psi_i, beta_i, and the angles rx, ry, rz of X_BC, X_TE) or a length (the rest).
+bool IsAngleParameter(const std::string& name) {
+  for (const char* prefix : {"alpha", "q0", "psi", "beta"}) {
+    if (name.rfind(prefix, 0) == 0) return true;
+  }
+  const size_t dot = name.find('.');
+  return dot != std::string::npos && name.compare(dot, 2, ".r") == 0;
+}
+
+// A parameter's value as people read it: deg for angles, mm for lengths.
+std::string ParameterValue(const std::string& name, double si_value) {
+  return IsAngleParameter(name) ? fmt::format("{:.5g}", DegreesFromRadians(si_value))
+                                : fmt::format("{:.6g}", si_value * 1e3);
+}
+
 std::array<double, 12> Table2Row(const Model12Parameters& p) {
   return {p.h,        p.arm,      p.R,     p.forearm, p.alpha[0], p.alpha[1],
           p.alpha[2], p.alpha[3], p.q0[0], p.q0[1],   p.q0[2],    p.q0[3]};
@@ -54,14 +74,13 @@ std::string SummaryTable(const ValidationInputs& in, const ValidationReport& rep
     if (paper) cells.push_back(theirs);
     t << Row(what, cells);
   };
-  add("a priori positioning error, every pose (mean, mm / rad)",
-      fmt::format("{} / {:.3f}", Mm(report.apriori_all.position_mean),
-                  report.apriori_all.theta_mean),
-      fmt::format("{} / {:.3f}", Mm(paper::kAprioriPosition), paper::kAprioriTheta));
+  add("a priori positioning error, every pose (mean, mm / deg)",
+      Mm(report.apriori_all.position_mean) + " / " + Deg(report.apriori_all.theta_mean, 2),
+      Mm(paper::kAprioriPosition) + " / " + Deg(paper::kAprioriTheta, 2));
   for (size_t m = 1; m < report.models.size(); ++m) {
     const auto& v = report.models[m];
-    add(v.label + " positioning error, held-out poses (mean, mm / rad)",
-        fmt::format("{} / {:.5f}", Mm(v.positioning.position_mean), v.positioning.theta_mean), "-");
+    add(v.label + " positioning error, held-out poses (mean, mm / deg)",
+        Mm(v.positioning.position_mean) + " / " + Deg(v.positioning.theta_mean, 4), "-");
   }
   for (size_t m = 0; m < report.models.size(); ++m) {
     if (!report.models[m].square) continue;
@@ -88,17 +107,20 @@ std::string ParameterTables(const ValidationInputs& in) {
     if (!*result) continue;
     const IdentificationResult& r = **result;
     t << "<h3>" << ModelLabel(r.model) << "</h3>\n<table>\n"
-      << Header({"parameter", "a priori", "identified", "one sigma", "status", "reason fixed"});
+      << Header({"parameter", "unit", "a priori", "identified", "one sigma", "status",
+                 "reason fixed"});
     for (const ResultParameter& p : r.parameters) {
       std::string reason;
       for (const FixedParameter& f : r.fixed) {
         if (f.name == p.name) reason = f.reason;
       }
-      t << Row(MarkupEscape(p.name),
-               {fmt::format("{:.6g}", p.apriori), fmt::format("{:.6g}", p.value),
-                p.std ? fmt::format("{:.2g}", *p.std) : "-", p.fixed ? "fixed" : "identified",
-                MarkupEscape(reason)},
-               p.fixed ? "fixed" : "");
+      const double std_scale = IsAngleParameter(p.name) ? DegreesFromRadians(1.0) : 1e3;
+      t << Row(
+          MarkupEscape(p.name),
+          {IsAngleParameter(p.name) ? "deg" : "mm", ParameterValue(p.name, p.apriori),
+           ParameterValue(p.name, p.value), p.std ? fmt::format("{:.2g}", *p.std * std_scale) : "-",
+           p.fixed ? "fixed" : "identified", MarkupEscape(reason)},
+          p.fixed ? "fixed" : "");
     }
     t << "</table>\n";
   }
@@ -202,19 +224,18 @@ std::string Table3(const ValidationReport& report) {
 std::string PositioningTable(const ValidationReport& report) {
   std::ostringstream t;
   t << "<table>\n"
-    << Header({"model", "poses", "position mean (mm)", "position RMS (mm)", "theta mean (rad)",
-               "theta RMS (rad)", "FK failures"});
+    << Header({"model", "poses", "position mean (mm)", "position RMS (mm)", "theta mean (deg)",
+               "theta RMS (deg)", "FK failures"});
   auto add = [&](const std::string& label, const PositioningError& e) {
     t << Row(label, {std::to_string(e.poses), Mm(e.position_mean), Mm(e.position_rms),
-                     fmt::format("{:.2e}", e.theta_mean), fmt::format("{:.2e}", e.theta_rms),
-                     std::to_string(e.failed.size())});
+                     Deg(e.theta_mean, 4), Deg(e.theta_rms, 4), std::to_string(e.failed.size())});
   };
   add("a priori, every pose", report.apriori_all);
   for (const auto& v : report.models) add(v.label + ", held-out poses", v.positioning);
   t << "</table>\n<p>Forward kinematics of the encoder readings against the measured "
        "end-effector pose X_BC X_CT X_TE.</p>\n";
   if (report.paper_scenario) {
-    t << "<p>Paper: a priori positioning error 26 mm and 0.022 rad.</p>\n";
+    t << "<p>Paper: a priori positioning error 26 mm and 0.022 rad (1.26 deg).</p>\n";
   }
   return t.str();
 }

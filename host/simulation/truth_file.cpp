@@ -22,7 +22,7 @@ std::string List3(const Eigen::Vector3d& v, const std::string& field) {
 
 std::string FormatTruthYaml(const SimulationTruth& truth) {
   const RigidTransform X_B31C = truth.robot.X_B31C();
-  std::string text = FormatRobotYaml(truth.robot.Description());
+  std::string text = FormatRobotYaml(truth.robot.Description(), "true");
   text += "simulation:  # the truth behind a simulated dataset (h4cal simulate)\n";
   text += std::string("  truth_model: \"") + ToString(truth.robot.truth_model()) + "\"\n";
   text += "  robot_seed: " + std::to_string(truth.robot_seed) + "\n";

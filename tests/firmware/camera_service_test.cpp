@@ -325,7 +325,7 @@ TEST(CameraServiceTest, RunWithoutACameraExitsNonZeroWithAClearMessage) {
   EXPECT_NE(WEXITSTATUS(status), 0) << output;
   EXPECT_NE(WEXITSTATUS(status), 124) << "timed out: " << output;
   EXPECT_NE(output.find("no camera"), std::string::npos) << output;
-  EXPECT_NE(output.find("h4cam run:"), std::string::npos) << output;
+  EXPECT_NE(output.find("h4cam: error:"), std::string::npos) << output;
 }
 
 TEST(CameraServiceTest, RunRefusesAKeyFileOthersCanReadNamingIt) {

@@ -24,7 +24,20 @@ sections="verdict summary parameters identifiability table2 table3 positioning r
           table4 straightness square square-plot four-dof notes"
 for id in $sections; do
   grep -q "<section id=\"$id\">" "$html" || fail "report.html has no section $id"
+  # The table of contents links every section after the verdict.
+  [ "$id" = verdict ] || grep -q "<li><a href=\"#$id\">" "$html" || fail "contents lack $id"
 done
+# The verdict comes first, then the contents, then the details.
+verdict_line=$(grep -n '<section id="verdict">' "$html" | cut -d: -f1)
+contents_line=$(grep -n '<nav id="contents">' "$html" | cut -d: -f1)
+summary_line=$(grep -n '<section id="summary">' "$html" | cut -d: -f1)
+[ -n "$contents_line" ] && [ "$verdict_line" -lt "$contents_line" ] &&
+  [ "$contents_line" -lt "$summary_line" ] || fail "report order: verdict, contents, details"
+grep -q "a priori positioning error, every pose (mean, mm / deg)" "$html" ||
+  fail "the summary's angles are not in deg"
+grep -q "<tr><th>alpha1</th><td>deg</td>" "$html" && grep -q "<tr><th>h</th><td>mm</td>" "$html" ||
+  fail "the parameter table is not in mm and deg"
+[ "$(grep -c "residual (deg)" "$html")" -ge 2 ] || fail "the residual plots are not in deg"
 [ "$(grep -o '<svg' "$html" | wc -l)" -eq 4 ] || fail "report.html does not hold 4 figures"
 grep -q "before calibration (paper)" "$html" || fail "no paper rows on the paper scenario"
 ! grep -q "Not computed" "$html" || fail "a section was not computed"

@@ -1,0 +1,104 @@
+// The options several commands of h4cal and h4cam take, declared once so that the same
+// thing has the same name everywhere (README.md, "Using h4cal", lists every option). The
+// rule: --out a file the command writes, --out-dir the folder it writes its files into,
+// --report-dir the folder of an extra report.html; input files by what they hold
+// (--robot, --data, --result, --board, --camera); --frames the frames averaged per
+// measurement; a name carries its unit when it is not SI (--square-mm, --joint-range-deg).
+// Old spellings follow the new name (command_line.h: accepted, not shown in --help).
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace h4::cli {
+
+/// An input file option (checked to exist); `names` as CLI11 takes them ("--new,--old").
+template <typename Path>
+CLI::Option* AddInputFileOption(CLI::App* command, const std::string& names, Path* path,
+                                const std::string& what) {
+  return command->add_option(names, *path, what)->check(CLI::ExistingFile);
+}
+
+template <typename Path>
+CLI::Option* AddRobotOption(CLI::App* command, Path* path,
+                            const std::string& what = "A priori robot.yaml") {
+  return AddInputFileOption(command, "--robot", path, what);
+}
+
+template <typename Path>
+CLI::Option* AddDataOption(CLI::App* command, Path* path,
+                           const std::string& what = "Paired dataset CSV") {
+  return AddInputFileOption(command, "--data", path, what);
+}
+
+template <typename Path>
+CLI::Option* AddResultOption(CLI::App* command, Path* path,
+                             const std::string& what = "Identification result JSON") {
+  return AddInputFileOption(command, "--result", path, what);
+}
+
+template <typename Path>
+CLI::Option* AddBoardOption(CLI::App* command, Path* path) {
+  return AddInputFileOption(command, "--board", path, "Board YAML");
+}
+
+template <typename Path>
+CLI::Option* AddCameraOption(CLI::App* command, Path* path,
+                             const std::string& what =
+                                 "Camera intrinsics YAML (OpenCV, or Kalibr's "
+                                 "camchain.yaml#camN)") {
+  return AddInputFileOption(command, "--camera", path, what);
+}
+
+/// --out FILE, required: the file the command writes.
+template <typename Path>
+CLI::Option* AddOutOption(CLI::App* command, Path* path, const std::string& what) {
+  return command->add_option("--out", *path, what)->required();
+}
+
+/// --out-dir DIR (old spelling --out on the commands whose --out was a folder).
+template <typename Path>
+CLI::Option* AddOutDirOption(CLI::App* command, Path* dir, const std::string& what,
+                             const std::string& old_names = "") {
+  return command->add_option("--out-dir" + (old_names.empty() ? "" : "," + old_names), *dir, what);
+}
+
+/// --report-dir DIR (old spelling --report): also write DIR/report.html.
+template <typename Path>
+CLI::Option* AddReportDirOption(CLI::App* command, Path* dir) {
+  return command->add_option("--report-dir,--report", *dir, "Also write DIR/report.html");
+}
+
+/// --frames N: frames averaged per measurement.
+template <typename Count>
+CLI::Option* AddFramesOption(CLI::App* command, Count* frames, const std::string& what,
+                             const std::string& old_names = "") {
+  return command->add_option("--frames" + (old_names.empty() ? "" : "," + old_names), *frames,
+                             what);
+}
+
+template <typename Seed>
+CLI::Option* AddSeedOption(CLI::App* command, Seed* seed, const std::string& what) {
+  return command->add_option("--seed", *seed, what)->capture_default_str();
+}
+
+template <typename Url>
+CLI::Option* AddLcmUrlOption(CLI::App* command, Url* url) {
+  return command->add_option("--lcm-url", *url,
+                             "LCM provider URL (default $LCM_DEFAULT_URL, else the default "
+                             "group with ttl=0)");
+}
+
+/// --auth-key FILE; the reader names the file when it is missing or others can read it.
+template <typename Path>
+CLI::Option* AddAuthKeyOption(CLI::App* command, Path* path, const std::string& default_text) {
+  return command->add_option("--auth-key", *path,
+                             "Authenticate board poses, capture requests and camera status with "
+                             "this pre-shared key file (owner-only, >= 32 bytes; the same on the "
+                             "camera, lcm.auth_key_file): other messages on those channels are "
+                             "dropped and counted. Default " +
+                                 default_text);
+}
+
+}  // namespace h4::cli

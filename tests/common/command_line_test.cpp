@@ -1,0 +1,86 @@
+// The command-line conventions both programs share (common/cli/command_line.h,
+// shared_options.h): old spellings accepted but not shown, one error line, exit codes.
+#include "common/cli/command_line.h"
+
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "common/cli/shared_options.h"
+#include "common/formats/format_error.h"
+
+namespace h4::cli {
+namespace {
+
+// A program with one command taking a required --out-dir whose old spelling is --out.
+struct Program {
+  CLI::App app{"test program"};
+  std::string out_dir;
+  CLI::App* command = nullptr;
+
+  Program() {
+    SetUpProgram(&app, "prog", "1.2.3");
+    command = app.add_subcommand("render", "Renders");
+    AddOutDirOption(command, &out_dir, "Output folder", "--out")->required();
+  }
+
+  int Run(std::vector<std::string> args) {
+    std::vector<char*> argv = {program_name.data()};
+    for (std::string& arg : args) argv.push_back(arg.data());
+    return RunCommandLine(&app, "prog", static_cast<int>(argv.size()), argv.data(),
+                          [] { return 0; });
+  }
+
+  std::string program_name = "prog";
+};
+
+TEST(CommandLineTest, NewAndOldSpellingWriteTheSameOption) {
+  Program by_new_name;
+  EXPECT_EQ(by_new_name.Run({"render", "--out-dir", "frames"}), 0);
+  EXPECT_EQ(by_new_name.out_dir, "frames");
+  Program by_old_name;  // the old spelling also satisfies the requirement
+  EXPECT_EQ(by_old_name.Run({"render", "--out", "old"}), 0);
+  EXPECT_EQ(by_old_name.out_dir, "old");
+}
+
+TEST(CommandLineTest, HelpShowsTheNewNameOnly) {
+  Program program;
+  const std::string help = program.command->help();
+  EXPECT_NE(help.find("--out-dir"), std::string::npos) << help;
+  EXPECT_EQ(help.find("--out-dir,--out"), std::string::npos) << help;
+  EXPECT_EQ(help.find("--out "), std::string::npos) << help;
+}
+
+TEST(CommandLineTest, MissingRequiredOptionIsNamedByItsNewName) {
+  Program program;
+  testing::internal::CaptureStderr();
+  const int code = program.Run({"render"});
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_GE(code, 100);  // CLI11's usage errors
+  EXPECT_NE(err.find("--out-dir"), std::string::npos) << err;
+}
+
+TEST(CommandLineTest, CommandErrorIsOneLineNamingFileLineAndField) {
+  Program program;
+  program.command->callback(
+      [] { throw FormatError("robot.yaml", 12, "model12.h", "expected a number, got 'abc'"); });
+  testing::internal::CaptureStderr();
+  const int code = program.Run({"render", "--out-dir", "x"});
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(code, kExitError);
+  EXPECT_EQ(err, "prog: error: robot.yaml:12: field 'model12.h': expected a number, got 'abc'\n");
+}
+
+TEST(CommandLineTest, ExitCodeOfTheCommandIsReturned) {
+  Program program;
+  std::vector<std::string> args = {"prog", "render", "--out-dir", "x"};
+  std::vector<char*> argv;
+  for (std::string& arg : args) argv.push_back(arg.data());
+  EXPECT_EQ(RunCommandLine(&program.app, "prog", static_cast<int>(argv.size()), argv.data(),
+                           [] { return kExitNothingUsable; }),
+            kExitNothingUsable);
+}
+
+}  // namespace
+}  // namespace h4::cli
