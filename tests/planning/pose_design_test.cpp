@@ -99,6 +99,30 @@ TEST(PoseDesign, TheAccuracyCriterionPredictsNoWorseThanDOptimality) {
   EXPECT_LT(accuracy.predicted_position_rms, GridPredictedPositionRms(problem, 20, 1));
 }
 
+// Restarts keep the best of several starts: never worse than the first start alone, and
+// each start is the design of its own seed.
+TEST(PoseDesign, RestartsKeepTheBestStart) {
+  const PlanningProblem& problem = CoarseProblem();
+  DesignOptions options;
+  options.pose_count = 20;
+  const PlannedCampaign one = PlanCampaign(problem, options, 1, PlanCriterion::kAccuracy);
+  options.restarts = 3;
+  const PlannedCampaign best = PlanCampaign(problem, options, 1, PlanCriterion::kAccuracy);
+  EXPECT_LE(best.predicted_position_rms, one.predicted_position_rms);
+  double best_single = INFINITY;
+  for (uint64_t seed = 1; seed <= 3; ++seed) {
+    DesignOptions single;
+    single.pose_count = 20;
+    single.seed = seed;
+    best_single =
+        std::min(best_single,
+                 PlanCampaign(problem, single, 1, PlanCriterion::kAccuracy).predicted_position_rms);
+  }
+  EXPECT_EQ(best.predicted_position_rms, best_single);
+  options.restarts = 0;
+  EXPECT_THROW(PlanCampaign(problem, options, 1, PlanCriterion::kAccuracy), std::invalid_argument);
+}
+
 TEST(PoseDesign, PlannedPosesAreCandidates) {
   const PlanningProblem& problem = CoarseProblem();
   DesignOptions options;
