@@ -7,7 +7,9 @@
 // predicted error (RMS Mahalanobis over the check poses), and counts the verdicts.
 //
 //   h4_check_study [--robots R] [--seeds S] [--drift-sigmas 3] [--check-poses grid|planned]
-//                  [--source-dir DIR]
+//                  [--without-covariance 1] [--source-dir DIR]
+// --without-covariance 1: check as against results written before parameter_covariance
+// (their sigmas alone); the drift is still sized with the full covariance.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -30,6 +32,7 @@ struct StudyOptions {
   int seeds = 20;
   double drift_sigmas = 3.0;
   bool planned_check_poses = false;  ///< 5 poses from the planner (else 5 grid poses)
+  bool without_covariance = false;   ///< results as before parameter_covariance (sigmas)
   std::string source_dir = H4_SOURCE_DIR;
 };
 
@@ -48,6 +51,8 @@ StudyOptions ParseOptions(int argc, char** argv) {
       if (value != "grid" && value != "planned")
         throw std::invalid_argument("--check-poses grid|planned");
       options.planned_check_poses = value == "planned";
+    } else if (flag == "--without-covariance") {  // VALUE: 1 or 0
+      options.without_covariance = value == "1";
     } else if (flag == "--source-dir") {
       options.source_dir = value;
     } else {
@@ -82,6 +87,7 @@ int Run(const StudyOptions& study) {
   options.check_plan =
       study.planned_check_poses ? PlannedCheckPoses(study.source_dir) : GridCheckPoses();
   options.drift_sigmas = study.drift_sigmas;
+  options.without_covariance = study.without_covariance;
   int trials = 0, unusable = 0, unchanged_passed = 0, drifted_flagged = 0;
   for (int robot = 1; robot <= study.robots; ++robot) {
     PerturbationOptions perturbation;

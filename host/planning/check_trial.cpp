@@ -117,13 +117,16 @@ CheckTrialOutcome RunCheckTrial(const RobotDescription& apriori, const Simulated
   outcome.identified = true;
   // Fresh noise for the verification campaigns, independent of the calibration's.
   const uint64_t check_seed = seed + 1000003;
+  // The drift is sized with the full covariance; the check may see the sigmas alone.
+  IdentificationResult checked = *result;
+  if (options.without_covariance) checked.parameter_covariance.reset();
   const DriftCheckResult unchanged = CheckResultForDrift(
-      *result, apriori.assembly,
+      checked, apriori.assembly,
       SimulateRows(truth, options.check_plan, options.noise, check_seed, 0), options.check);
   const SimulatedRobot drifted =
       WithJointOffsetMoved(truth, outcome.drifted_joint, outcome.joint_offset_change);
   const DriftCheckResult moved = CheckResultForDrift(
-      *result, apriori.assembly,
+      checked, apriori.assembly,
       SimulateRows(drifted, options.check_plan, options.noise, check_seed + 1, 0), options.check);
   outcome.unchanged_flagged = unchanged.drift;
   outcome.drifted_flagged = moved.drift;

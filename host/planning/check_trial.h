@@ -26,6 +26,9 @@ struct CheckTrialOptions {
   IdentificationOptions identification;  ///< `h4cal identify`'s defaults
   DriftCheckOptions check;               ///< `h4cal check`'s defaults
   NoiseOptions noise;                    ///< `h4cal simulate`'s noise
+  /// Check as against a result written before `parameter_covariance` (its sigmas alone):
+  /// to measure what the covariance adds.
+  bool without_covariance = false;
 
   bool IsValid(std::string* why) const;
 };
