@@ -6,7 +6,9 @@
 #include <cmath>
 #include <numbers>
 #include <set>
+#include <stdexcept>
 
+#include <Eigen/Eigenvalues>
 #include <nlohmann/json.hpp>
 
 #include "common/formats/csv_table.h"
@@ -158,6 +160,66 @@ void ReadJudgement(const JsonValue& root, IdentificationResult* result) {
   }
 }
 
+// One sigma per parameter as the file gives it (0 without one).
+Eigen::VectorXd StdOrZero(const IdentificationResult& result) {
+  Eigen::VectorXd std_dev =
+      Eigen::VectorXd::Zero(static_cast<Eigen::Index>(result.parameters.size()));
+  for (size_t i = 0; i < result.parameters.size(); ++i) {
+    std_dev[static_cast<Eigen::Index>(i)] = result.parameters[i].std.value_or(0.0);
+  }
+  return std_dev;
+}
+
+// A covariance agrees with the `std` keys: its diagonal is their square (a parameter without
+// one has a zero row), it is symmetric and, as correlations, positive semi-definite.
+void RequireConsistentCovariance(const JsonValue& field, const Eigen::MatrixXd& C,
+                                 const Eigen::VectorXd& std_dev) {
+  const Eigen::Index n = C.rows();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double sigma = std_dev[i];
+    const double diagonal = C(i, i);
+    const bool agrees = sigma > 0.0
+                            ? std::abs(std::sqrt(std::max(diagonal, 0.0)) - sigma) <= 1e-6 * sigma
+                            : C.row(i).isZero(0.0) && C.col(i).isZero(0.0);
+    if (!agrees) {
+      field.At(static_cast<size_t>(i))
+          .Fail(sigma > 0.0 ? "expected a diagonal equal to std^2 of the parameter"
+                            : "expected zeros for a parameter without std");
+    }
+    for (Eigen::Index j = 0; j < i; ++j) {
+      if (std::abs(C(i, j) - C(j, i)) > 1e-9 * std_dev[i] * std_dev[j]) {
+        field.At(static_cast<size_t>(i))
+            .At(static_cast<size_t>(j))
+            .Fail("expected a symmetric matrix");
+      }
+    }
+  }
+  const Eigen::VectorXd inverse_std =
+      std_dev.unaryExpr([](double s) { return s > 0.0 ? 1.0 / s : 0.0; });
+  const Eigen::MatrixXd correlation = inverse_std.asDiagonal() * C * inverse_std.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(correlation, Eigen::EigenvaluesOnly);
+  if (n > 0 && eigen.eigenvalues().minCoeff() < -1e-6) {
+    field.Fail("expected a positive semi-definite covariance");
+  }
+}
+
+// `parameter_covariance`: n x n numbers in the order of `parameters`.
+void ReadCovariance(const JsonValue& root, IdentificationResult* result) {
+  if (!root.HasNonNull("parameter_covariance")) return;
+  const JsonValue field = root["parameter_covariance"];
+  const size_t n = result->parameters.size();
+  field.ArraySize(n);
+  Eigen::MatrixXd C(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  for (size_t i = 0; i < n; ++i) {
+    const std::vector<double> row = field.At(i).Numbers(n);
+    for (size_t j = 0; j < n; ++j) {
+      C(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = row[j];
+    }
+  }
+  RequireConsistentCovariance(field, C, StdOrZero(*result));
+  result->parameter_covariance = C;
+}
+
 void ReadExtras(const JsonValue& root, IdentificationResult* result) {
   if (root.HasNonNull("estimator")) result->estimator = root["estimator"].String();
   result->condition_number = OptionalNumber(root, "condition_number");
@@ -182,6 +244,7 @@ void ReadExtras(const JsonValue& root, IdentificationResult* result) {
     for (size_t i = 0; i < n; ++i) result->log.push_back(list.At(i).String());
   }
   ReadJudgement(root, result);
+  ReadCovariance(root, result);
 }
 
 Ordered Numbers(const double* values, size_t n, const std::string& field) {
@@ -246,6 +309,21 @@ void WriteJudgement(const IdentificationResult& result, Ordered* root) {
   } else {
     (*root)["provenance"] = nullptr;
   }
+}
+
+Ordered Covariance(const IdentificationResult& result) {
+  if (!result.parameter_covariance) return nullptr;
+  const Eigen::MatrixXd& C = *result.parameter_covariance;
+  const Eigen::Index n = static_cast<Eigen::Index>(result.parameters.size());
+  if (C.rows() != n || C.cols() != n) {
+    throw std::invalid_argument("parameter_covariance: expected one row and column per parameter");
+  }
+  Ordered rows = Ordered::array();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::VectorXd row = C.row(i).transpose();
+    rows.push_back(Numbers(row.data(), static_cast<size_t>(n), "parameter_covariance"));
+  }
+  return rows;
 }
 
 }  // namespace
@@ -326,6 +404,7 @@ std::string FormatIdentificationResult(const IdentificationResult& result) {
       NumberOrNull(result.predicted_position_accuracy_m, "predicted_position_accuracy_m");
   root["log"] = result.log;
   WriteJudgement(result, &root);
+  root["parameter_covariance"] = Covariance(result);
   return root.dump(2) + "\n";
 }
 

@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "common/geometry/rigid_transform.h"
 #include "common/robot/model_kind.h"
 
@@ -88,6 +90,11 @@ struct IdentificationResult {
   std::vector<RejectedPose> rejected_details;           ///< one per rejected pose
   std::optional<ResultProvenance> provenance;
   std::optional<CrossValidationFigures> cross_validation;
+  /// `parameter_covariance`: n x n over `parameters` in their order, SI units (m^2, m rad,
+  /// rad^2), the covariance whose diagonal gives each `std` (scaled by the reduced
+  /// chi-square when it exceeds 1); a fixed parameter's row and column are zero. Absent in
+  /// results written before it, or when the covariance could not be computed.
+  std::optional<Eigen::MatrixXd> parameter_covariance;
 
   /// The parameter by name, or nullptr.
   const ResultParameter* Find(const std::string& name) const;
@@ -100,7 +107,9 @@ struct IdentificationResult {
 /// the kinematics (lengths h, arm, forearm, R, arm1..4, forearm1..4 positive; angles alpha*, q0*,
 /// psi*, beta* within 2 pi; every other value and the X_BC / X_TE translations within
 /// kMaxRobotSize_m); every `fixed` entry names a parameter with status "fixed"; RMS values >= 0;
-/// pose ids integers. The extra keys may be absent or null. The writer writes every key (absent
+/// pose ids integers; `parameter_covariance`, when given, n x n for n parameters, symmetric,
+/// positive semi-definite, its diagonal the square of each `std` (relative 1e-6) and zero for a
+/// parameter without one. The extra keys may be absent or null. The writer writes every key (absent
 /// optionals as null, std as null for fixed parameters), shortest round-trip numbers, and throws
 /// std::invalid_argument on a non-finite number (JSON has no NaN).
 IdentificationResult ReadIdentificationResult(const std::string& path);

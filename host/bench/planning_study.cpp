@@ -8,7 +8,11 @@
 // The poses are planned once from the a priori (a user plans before knowing the robot).
 //
 //   h4_planning_study [--robots R] [--seeds S] [--n 15,25,40,71] [--criterion accuracy|d]
-//                     [--source-dir DIR]
+//                     [--restarts K] [--half-extent-mm X,Y,Z] [--step-mm S]
+//                     [--theta-deg MAX,STEP] [--identify 12,31|31] [--source-dir DIR]
+// Every trial (robot, seed) has its own noise seed. --robots 0: the planned designs and
+// their predicted accuracy only. The candidate options are `h4cal plan`'s defaults unless
+// given.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -31,14 +35,6 @@
 namespace h4::host {
 namespace {
 
-struct StudyOptions {
-  int robots = 5;
-  int seeds = 2;
-  std::vector<int> pose_counts = {15, 25, 40, 71};
-  std::string source_dir = H4_SOURCE_DIR;
-  PlanCriterion criterion = PlanCriterion::kAccuracy;
-};
-
 std::vector<int> ParseList(const char* text) {
   std::vector<int> values;
   for (const char* at = text; *at != '\0';) {
@@ -49,6 +45,33 @@ std::vector<int> ParseList(const char* text) {
     at = *end == ',' ? end + 1 : end;
   }
   return values;
+}
+
+struct StudyOptions {
+  int robots = 5;
+  int seeds = 2;
+  std::vector<int> pose_counts = {15, 25, 40, 71};
+  std::string source_dir = H4_SOURCE_DIR;
+  PlanCriterion criterion = PlanCriterion::kAccuracy;
+  PlanningProblemOptions problem;     ///< candidates: `h4cal plan`'s defaults
+  bool model31_from_apriori = false;  ///< identify Model 31 straight (else Model 12 first)
+  int restarts = 1;                   ///< exchange starts (design seeds), the best kept
+};
+
+// "A,B,C" in mm as a vector in m.
+Eigen::Vector3d ParseMillimetres(const char* text) {
+  const std::vector<int> values = ParseList(text);
+  if (values.size() != 3) throw std::invalid_argument("expected X,Y,Z in mm");
+  return Eigen::Vector3d(values[0], values[1], values[2]) * 1e-3;
+}
+
+// Nacelle angles -max..max deg by step deg.
+std::vector<double> ThetaGrid(double max_deg, double step_deg) {
+  std::vector<double> theta;
+  for (double t = -max_deg; t <= max_deg + 1e-9; t += step_deg) {
+    theta.push_back(RadiansFromDegrees(t));
+  }
+  return theta;
 }
 
 StudyOptions ParseOptions(int argc, char** argv) {
@@ -64,6 +87,21 @@ StudyOptions ParseOptions(int argc, char** argv) {
       options.pose_counts = ParseList(value);
     } else if (flag == "--source-dir") {
       options.source_dir = value;
+    } else if (flag == "--half-extent-mm") {
+      options.problem.candidates.half_extent = ParseMillimetres(value);
+    } else if (flag == "--step-mm") {
+      options.problem.candidates.position_step = std::atof(value) * 1e-3;
+    } else if (flag == "--theta-deg") {  // MAX,STEP
+      const std::vector<int> values = ParseList(value);
+      if (values.size() != 2) throw std::invalid_argument("--theta-deg MAX,STEP");
+      options.problem.candidates.theta = ThetaGrid(values[0], values[1]);
+    } else if (flag == "--identify") {
+      if (std::string(value) != "12,31" && std::string(value) != "31") {
+        throw std::invalid_argument("--identify 12,31|31");
+      }
+      options.model31_from_apriori = std::string(value) == "31";
+    } else if (flag == "--restarts") {
+      options.restarts = std::atoi(value);
     } else if (flag == "--criterion") {
       options.criterion =
           std::string(value) == "accuracy" ? PlanCriterion::kAccuracy : PlanCriterion::kDOptimal;
@@ -91,11 +129,18 @@ std::vector<DatasetRow> TrueHeldOutRows(const SimulatedDataset& grid) {
 // RMS board position error (m) of the identified Model 31 on `heldout`; NaN when it fails.
 double HeldOutPositionRms(const IdentificationOutcome& outcome, const RobotDescription& apriori,
                           const std::vector<DatasetRow>& heldout) {
-  if (!outcome.summary.usable) return NAN;
+  if (!outcome.summary.usable) {
+    std::fprintf(stderr, "unusable identification: %s\n", outcome.summary.message.c_str());
+    return NAN;
+  }
   const AprioriModel model = AprioriModelOf(apriori, ModelKind::k31);
   IdentificationCost cost(CostKind::kMeasurement, *model.model, heldout);
   Eigen::VectorXd r;
-  if (!cost.Evaluate(outcome.parameters, &r, nullptr)) return NAN;
+  std::string why;
+  if (!cost.Evaluate(outcome.parameters, &r, nullptr, &why)) {
+    std::fprintf(stderr, "held-out poses not evaluable: %s\n", why.c_str());
+    return NAN;
+  }
   const double sigma_t = CostOptions{}.default_sigma_t;  // the rows carry no sigma
   double sum = 0.0;
   for (size_t j = 0; j < heldout.size(); ++j) {
@@ -106,8 +151,10 @@ double HeldOutPositionRms(const IdentificationOutcome& outcome, const RobotDescr
 
 // Identifies Model 12 then Model 31 from it (the demo's path) on the calibration rows.
 IdentificationOutcome IdentifyLikeTheDemo(const RobotDescription& apriori,
-                                          const std::vector<DatasetRow>& rows) {
+                                          const std::vector<DatasetRow>& rows,
+                                          bool model31_from_apriori) {
   const IdentificationOptions options;
+  if (model31_from_apriori) return IdentifyRobot(apriori, ModelKind::k31, rows, options);
   const IdentificationOutcome model12 = IdentifyRobot(apriori, ModelKind::k12, rows, options);
   return IdentifyModel31FromModel12(apriori, model12.result, rows, options);
 }
@@ -130,12 +177,13 @@ int Run(const StudyOptions& options) {
   const PlanningProblem problem = MakePlanningProblem(
       apriori, CameraModel(ReadCameraYaml(options.source_dir + "/boards/sim_camera_1024x768.yaml")),
       BoardModel(ReadBoardYaml(options.source_dir + "/boards/aprilgrid_6x6_30mm.yaml")),
-      PlanningProblemOptions{});
+      options.problem);
   std::printf("%s\n", problem.candidates.Summary().c_str());
   std::map<int, PosePlan> plans;
   for (int n : options.pose_counts) {
     DesignOptions design;
     design.pose_count = n;
+    design.restarts = options.restarts;
     const PlannedCampaign campaign = PlanCampaign(problem, design, 1, options.criterion);
     plans[n] = campaign.plan;
     std::printf("planned %d poses: predicted %.4f mm\n", n, campaign.predicted_position_rms * 1e3);
@@ -150,18 +198,23 @@ int Run(const StudyOptions& options) {
         MakeTrueRobot(apriori, TrueGeometry::kPerturbedModel31, perturbation);
     for (int seed = 1; seed <= options.seeds; ++seed) {
       DatasetOptions data;
-      data.seed = static_cast<uint64_t>(seed);
+      // One noise seed per trial: with the same seed on every robot the noise draws are the
+      // same and the robots differ too little for the trials to be independent (the
+      // ratios of 5 robots at one seed agreed to 0.05).
+      data.seed = static_cast<uint64_t>((robot - 1) * options.seeds + seed);
       const SimulatedDataset grid = SimulateDataset(truth, GridPosePlan(), data);
       const std::vector<DatasetRow> heldout = TrueHeldOutRows(grid);
-      const double grid_error =
-          HeldOutPositionRms(IdentifyLikeTheDemo(apriori, grid.rows), apriori, heldout);
+      const double grid_error = HeldOutPositionRms(
+          IdentifyLikeTheDemo(apriori, grid.rows, options.model31_from_apriori), apriori, heldout);
       errors[0].push_back(grid_error);
       std::printf("robot %d seed %d: grid-71 %.4f mm", robot, seed, grid_error * 1e3);
       for (int n : options.pose_counts) {
         data.valid_count = 0;
         const SimulatedDataset planned = SimulateDataset(truth, plans[n], data);
-        const double error = HeldOutPositionRms(
-            IdentifyLikeTheDemo(apriori, CalibrationRowsOnly(planned.rows)), apriori, heldout);
+        const double error =
+            HeldOutPositionRms(IdentifyLikeTheDemo(apriori, CalibrationRowsOnly(planned.rows),
+                                                   options.model31_from_apriori),
+                               apriori, heldout);
         errors[n].push_back(error);
         ratios[n].push_back(error / grid_error);
         std::printf(", planned-%d %.4f mm", n, error * 1e3);

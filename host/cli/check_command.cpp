@@ -15,7 +15,6 @@
 #include "common/formats/robot_yaml.h"
 #include "common/units.h"
 #include "host/cli/commands.h"
-#include "host/identification/identified_robot.h"
 #include "host/planning/drift_check.h"
 
 namespace h4::host::cli {
@@ -24,20 +23,9 @@ namespace {
 struct CheckCommandOptions {
   std::string result_path, data_path, robot_path;
   DriftCheckOptions check;
-  /// Judge against the measurement noise alone: the result's parameter sigmas come without
-  /// their correlations, so adding them widens what is allowed far beyond the truth.
+  /// Judge against the measurement noise alone, ignoring the result's uncertainty.
   bool no_parameter_sigmas = false;
 };
-
-// One sigma per parameter of p from the result (0 for a fixed or absent one).
-Eigen::VectorXd ParameterStd(const IdentificationResult& result, const ParameterVector& p) {
-  Eigen::VectorXd std_dev = Eigen::VectorXd::Zero(p.size());
-  for (int i = 0; i < p.size(); ++i) {
-    const ResultParameter* parameter = result.Find(p.names()[static_cast<size_t>(i)]);
-    if (parameter && parameter->std) std_dev[i] = *parameter->std;
-  }
-  return std_dev;
-}
 
 void PrintPoses(const DriftCheckResult& check) {
   std::printf("  pose_id   position mm   rotation deg      d^2  verdict\n");
@@ -52,13 +40,9 @@ void Run(const CheckCommandOptions& o) {
   const IdentificationResult result = ReadIdentificationResult(o.result_path);
   const Assembly assembly =
       o.robot_path.empty() ? Assembly{} : ReadRobotYaml(o.robot_path).assembly;
-  const IdentifiedRobot robot = RebuildFromResult(result, assembly);
-  const ParameterVector p(*robot.model, robot.X_BC, robot.X_TE);
   const std::vector<DatasetRow> rows = ReadDatasetCsv(o.data_path);
-  const DriftCheckResult check = CheckForDrift(
-      *robot.model, p,
-      o.no_parameter_sigmas ? Eigen::VectorXd::Zero(p.size()) : ParameterStd(result, p), rows,
-      o.check);
+  const DriftCheckResult check =
+      CheckResultForDrift(result, assembly, rows, o.check, !o.no_parameter_sigmas);
   std::printf("check of %s against %s (Model %s), %zu poses:\n", o.data_path.c_str(),
               o.result_path.c_str(), ToString(result.model), rows.size());
   if (check.evaluable) PrintPoses(check);
@@ -87,12 +71,13 @@ void AddCheckCommand(CLI::App& app) {
                    "Probability that an unchanged robot fails the chi-square sum")
       ->capture_default_str();
   command->add_flag("--no-parameter-sigmas", options->no_parameter_sigmas,
-                    "Ignore the result's parameter sigmas (they carry no correlations, so they "
-                    "widen what is allowed): judge against the measurement noise alone");
+                    "Ignore the result's parameter uncertainty: judge against the measurement "
+                    "noise alone");
   command->footer(
       "Per pose: d^2 = e^T S^-1 e of the board pose error e in measurement sigmas (the dataset's "
-      "sigma_t / sigma_r, else 0.2 mm / 0.03 deg) with S = I + J D J^T from the result's "
-      "parameter sigmas; chi-square(6) for an unchanged robot.");
+      "sigma_t / sigma_r, else 0.2 mm / 0.03 deg) with S = I + J C J^T, C the result's "
+      "parameter_covariance (its sigmas alone for an older result); chi-square(6) for an "
+      "unchanged robot.");
   command->callback([options] {
     std::string why;
     if (!options->check.IsValid(&why)) throw std::invalid_argument("check: " + why);

@@ -104,6 +104,24 @@ void FillParameterRows(const SolutionToSummarise& s, const Uncertainty& u,
   }
 }
 
+// The covariance of the free parameters spread over every parameter in the result's order
+// (common/formats/README.md `parameter_covariance`): zero rows and columns for fixed ones,
+// symmetrised against the rounding of the inverse.
+void FillParameterCovariance(const SolutionToSummarise& s, const Uncertainty& u,
+                             IdentificationResult* result) {
+  result->parameter_covariance.reset();
+  if (!u.ok) return;
+  const Eigen::Index n = s.p.size();
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n, n);
+  for (size_t a = 0; a < u.free_indices.size(); ++a) {
+    for (size_t b = 0; b < u.free_indices.size(); ++b) {
+      const auto ia = static_cast<Eigen::Index>(a), ib = static_cast<Eigen::Index>(b);
+      C(u.free_indices[a], u.free_indices[b]) = 0.5 * (u.covariance(ia, ib) + u.covariance(ib, ia));
+    }
+  }
+  result->parameter_covariance = C;
+}
+
 // Joint residuals on the calibration and held-out poses, and the held-out board pose error
 // of the identified robot.
 void FillResidualFigures(const SolutionToSummarise& s, IdentificationResult* result) {
@@ -156,6 +174,7 @@ void SummariseSolution(const SolutionToSummarise& s, IdentificationOutcome* out)
       FillCovarianceFigures(s, cost, at_solution->J, out->uncertainty, &result);
   }
   FillParameterRows(s, out->uncertainty, &result);
+  FillParameterCovariance(s, out->uncertainty, &result);
   FillResidualFigures(s, &result);
   FillPoseLists(s, &result);
 }

@@ -7,6 +7,8 @@
 #include <Eigen/Cholesky>
 #include <spdlog/fmt/fmt.h>
 
+#include "host/identification/identified_robot.h"
+
 namespace h4::host {
 
 bool DriftCheckOptions::IsValid(std::string* why) const {
@@ -57,20 +59,26 @@ std::string DriftCheckResult::Summary() const {
   int flagged = 0;
   for (const PoseCheck& pose : poses) flagged += pose.flagged ? 1 : 0;
   return fmt::format(
-      "{}: {} of {} poses flagged (d^2 > {:.1f}); chi-square {:.1f} for {} dof (limit {:.1f})",
-      drift ? "DRIFT: the robot no longer matches the result" : "the robot matches the result",
-      flagged, poses.size(), pose_threshold, chi2, dof, total_threshold);
+             "{}: {} of {} poses flagged (d^2 > {:.1f}); chi-square {:.1f} for {} dof (limit "
+             "{:.1f})",
+             drift ? "DRIFT: the robot no longer matches the result"
+                   : "the robot matches the result",
+             flagged, poses.size(), pose_threshold, chi2, dof, total_threshold) +
+         (with_correlations ? ""
+                            : "\n(the result has no parameter_covariance: its sigmas were used "
+                              "without their correlations, which widens what is allowed)");
 }
 
 DriftCheckResult CheckForDrift(const KinematicModel& model, const ParameterVector& p,
-                               const Eigen::VectorXd& parameter_std,
+                               const Eigen::MatrixXd& parameter_covariance,
                                const std::vector<DatasetRow>& rows,
                                const DriftCheckOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("drift check options: " + why);
   if (rows.empty()) throw std::invalid_argument("drift check: no pose to check");
-  if (parameter_std.size() != p.size()) {
-    throw std::invalid_argument("drift check: one std per parameter expected");
+  if (parameter_covariance.rows() != p.size() || parameter_covariance.cols() != p.size()) {
+    throw std::invalid_argument("drift check: an n x n parameter covariance expected, n = " +
+                                std::to_string(p.size()));
   }
   const int n = static_cast<int>(rows.size());
   DriftCheckResult result;
@@ -87,15 +95,15 @@ DriftCheckResult CheckForDrift(const KinematicModel& model, const ParameterVecto
     result.message = why;
     return result;
   }
-  const Eigen::MatrixXd JD = J * parameter_std.asDiagonal();
   for (int j = 0; j < n; ++j) {
-    const auto r_j = r.segment<6>(6 * j);
-    const Eigen::MatrixXd JD_j = JD.middleRows(6 * j, 6);
-    const Eigen::Matrix<double, 6, 6> S =
-        Eigen::Matrix<double, 6, 6>::Identity() + JD_j * JD_j.transpose();
+    const Eigen::Matrix<double, 6, 1> r_j = r.segment<6>(6 * j);
+    const Eigen::MatrixXd J_j = J.middleRows(6 * j, 6);
     PoseCheck check;
     check.pose_id = rows[static_cast<size_t>(j)].pose_id;
-    check.mahalanobis2 = r_j.dot(S.llt().solve(r_j));
+    check.error = r_j;
+    check.predicted_covariance =
+        Eigen::Matrix<double, 6, 6>::Identity() + J_j * parameter_covariance * J_j.transpose();
+    check.mahalanobis2 = r_j.dot(check.predicted_covariance.ldlt().solve(r_j));
     check.rotation_error = r_j.head<3>().norm() / cost.RotationWeight(rows[static_cast<size_t>(j)]);
     check.position_error =
         r_j.tail<3>().norm() / cost.TranslationWeight(rows[static_cast<size_t>(j)]);
@@ -106,6 +114,50 @@ DriftCheckResult CheckForDrift(const KinematicModel& model, const ParameterVecto
   }
   result.drift = result.drift || result.chi2 > result.total_threshold;
   return result;
+}
+
+Eigen::MatrixXd ResultCovarianceFor(const IdentificationResult& result, const ParameterVector& p,
+                                    bool* with_correlations) {
+  // index_in_result[i]: the row of p's parameter i in the result's list, or -1.
+  std::vector<Eigen::Index> index_in_result(static_cast<size_t>(p.size()), -1);
+  for (size_t k = 0; k < result.parameters.size(); ++k) {
+    for (int i = 0; i < p.size(); ++i) {
+      if (p.names()[static_cast<size_t>(i)] == result.parameters[k].name) {
+        index_in_result[static_cast<size_t>(i)] = static_cast<Eigen::Index>(k);
+      }
+    }
+  }
+  if (with_correlations) *with_correlations = result.parameter_covariance.has_value();
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(p.size(), p.size());
+  for (int a = 0; a < p.size(); ++a) {
+    const Eigen::Index ka = index_in_result[static_cast<size_t>(a)];
+    if (ka < 0) continue;
+    if (!result.parameter_covariance) {
+      const double sigma = result.parameters[static_cast<size_t>(ka)].std.value_or(0.0);
+      C(a, a) = sigma * sigma;
+      continue;
+    }
+    for (int b = 0; b < p.size(); ++b) {
+      const Eigen::Index kb = index_in_result[static_cast<size_t>(b)];
+      if (kb >= 0) C(a, b) = (*result.parameter_covariance)(ka, kb);
+    }
+  }
+  return C;
+}
+
+DriftCheckResult CheckResultForDrift(const IdentificationResult& result, const Assembly& assembly,
+                                     const std::vector<DatasetRow>& rows,
+                                     const DriftCheckOptions& options,
+                                     bool use_parameter_uncertainty) {
+  const IdentifiedRobot robot = RebuildFromResult(result, assembly);
+  const ParameterVector p(*robot.model, robot.X_BC, robot.X_TE);
+  bool with_correlations = true;
+  const Eigen::MatrixXd C = use_parameter_uncertainty
+                                ? ResultCovarianceFor(result, p, &with_correlations)
+                                : Eigen::MatrixXd::Zero(p.size(), p.size());
+  DriftCheckResult check = CheckForDrift(*robot.model, p, C, rows, options);
+  check.with_correlations = with_correlations;
+  return check;
 }
 
 }  // namespace h4::host

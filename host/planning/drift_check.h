@@ -2,12 +2,14 @@
 // verification campaign (a few poses) is compared with what the result predicts. Each
 // pose's board pose error e (the measurement-space residual of the identification,
 // identification_cost.h, in units of the measurement sigmas) is judged against its
-// covariance S = I + J D J^T, where D holds the result's one-sigma parameter uncertainties
-// (the result file keeps no correlations, so D is diagonal: a conservative spread). Under
-// an unchanged robot d^2 = e^T S^-1 e is chi-square with 6 degrees of freedom per pose and
-// their sum chi-square with 6 n; a pose is flagged above the per-pose quantile (Bonferroni
-// over the poses), and the robot has drifted when a pose is flagged or the sum exceeds its
-// quantile.
+// predicted covariance S = I + J C J^T: the measurement's own (I in those units) plus the
+// result's parameter covariance C (`parameter_covariance`, common/formats/README.md)
+// propagated through the pose's Jacobian J. A result written before that key gives only
+// its sigmas: C is then their diagonal, which ignores the correlations and mostly widens
+// what is allowed. Under an unchanged robot d^2 = e^T S^-1 e is chi-square with 6 degrees of
+// freedom per pose and their sum chi-square with 6 n; a pose is flagged above the per-pose quantile
+// (Bonferroni over the poses), and the robot has drifted when a pose is flagged or the sum exceeds
+// its quantile.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +19,8 @@
 #include <Eigen/Core>
 
 #include "common/formats/dataset_csv.h"
+#include "common/formats/identification_result.h"
+#include "common/robot/robot_description.h"
 #include "host/identification/identification_cost.h"
 #include "host/identification/parameter_vector.h"
 
@@ -38,6 +42,10 @@ struct PoseCheck {
   double position_error = 0.0;  ///< |translation error| in C, m
   double rotation_error = 0.0;  ///< |rotation error|, rad
   bool flagged = false;
+  /// e: measured minus predicted board pose (rotation, translation) in measurement sigmas.
+  Eigen::Matrix<double, 6, 1> error = Eigen::Matrix<double, 6, 1>::Zero();
+  /// S = I + J C J^T, e's covariance under an unchanged robot (measurement sigmas squared).
+  Eigen::Matrix<double, 6, 6> predicted_covariance = Eigen::Matrix<double, 6, 6>::Identity();
 };
 
 struct DriftCheckResult {
@@ -49,16 +57,31 @@ struct DriftCheckResult {
   bool evaluable = true;  ///< false: a pose could not be evaluated (why in message)
   bool drift = false;
   std::string message;
+  bool with_correlations = true;  ///< false: C was the diagonal of the sigmas (older result)
   std::string Summary() const;
 };
 
-/// p: the result's parameters (fixed ones marked fixed); parameter_std: one sigma per
-/// parameter of p (0 for fixed ones); `model` gives the model kind. Throws
-/// std::invalid_argument on invalid options, empty rows or a std vector of the wrong size.
+/// p: the result's parameters; parameter_covariance: n x n over p's parameters in p's
+/// order, SI (zero rows for fixed ones; all zero: judge by the measurement noise alone).
+/// Throws std::invalid_argument on invalid options, empty rows or a covariance of the
+/// wrong size.
 DriftCheckResult CheckForDrift(const KinematicModel& model, const ParameterVector& p,
-                               const Eigen::VectorXd& parameter_std,
+                               const Eigen::MatrixXd& parameter_covariance,
                                const std::vector<DatasetRow>& rows,
                                const DriftCheckOptions& options = DriftCheckOptions{});
+
+/// The covariance of a result's parameters in the order of p (matched by name): the
+/// result's `parameter_covariance`, or, for a result without it, the diagonal of its
+/// sigmas (*with_correlations set false). Zero for a parameter the result does not give.
+Eigen::MatrixXd ResultCovarianceFor(const IdentificationResult& result, const ParameterVector& p,
+                                    bool* with_correlations = nullptr);
+
+/// `h4cal check`: rebuilds the result's model with `assembly`, and checks the rows against
+/// it with its covariance (ResultCovarianceFor; zero with use_parameter_uncertainty false).
+DriftCheckResult CheckResultForDrift(const IdentificationResult& result, const Assembly& assembly,
+                                     const std::vector<DatasetRow>& rows,
+                                     const DriftCheckOptions& options = DriftCheckOptions{},
+                                     bool use_parameter_uncertainty = true);
 
 /// Upper tail quantile of chi-square with an even number of degrees of freedom: the x with
 /// P(X > x) = tail_probability.

@@ -19,6 +19,7 @@ bool DesignOptions::IsValid(std::string* why) const {
   };
   if (pose_count < 1) return fail("pose_count must be >= 1");
   if (max_exchanges < 0) return fail("max_exchanges must be >= 0");
+  if (restarts < 1) return fail("restarts must be >= 1");
   if (!(ridge > 0.0 && ridge < 1.0)) return fail("ridge must be in (0, 1)");
   return true;
 }

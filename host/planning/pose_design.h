@@ -23,6 +23,10 @@ struct DesignOptions {
   /// information, so that a start with fewer rows than parameters has a determinant; the
   /// final log det is reported without it.
   double ridge = 1e-9;
+  /// Exchanges run from this many seeded random starts (seed, seed + 1, ...); the planner
+  /// keeps the best design by its criterion (pose_planner.h). The exchange stops at a local
+  /// optimum, which depends on the start.
+  int restarts = 1;
 
   bool IsValid(std::string* why) const;
 };

@@ -26,13 +26,48 @@ PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraM
   return problem;
 }
 
+namespace {
+
+// One exchange from options.seed's start.
+Design DesignFromOneStart(const PlanningProblem& problem, const DesignOptions& options,
+                          PlanCriterion criterion) {
+  return criterion == PlanCriterion::kDOptimal
+             ? PlanDOptimal(problem.info, problem.candidate_count(), options)
+             : PlanForAccuracy(problem.info, problem.candidate_count(), problem.grid_indices,
+                               options);
+}
+
+// Lower is better: minus log det, or the predicted position RMS over the grid.
+double DesignCost(const PlanningProblem& problem, const Design& design, PlanCriterion criterion) {
+  return criterion == PlanCriterion::kDOptimal
+             ? -design.log_det
+             : PredictedPositionRms(problem.info, InformationMatrix(problem.info, design.chosen),
+                                    problem.grid_indices);
+}
+
+// The best design of options.restarts starts (seeds seed, seed + 1, ...).
+Design BestDesign(const PlanningProblem& problem, DesignOptions options, PlanCriterion criterion) {
+  const int restarts = options.restarts;
+  Design best = DesignFromOneStart(problem, options, criterion);
+  double best_cost = DesignCost(problem, best, criterion);
+  for (int r = 1; r < restarts; ++r) {
+    ++options.seed;
+    const Design design = DesignFromOneStart(problem, options, criterion);
+    const double cost = DesignCost(problem, design, criterion);
+    if (cost < best_cost) {
+      best = design;
+      best_cost = cost;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
 PlannedCampaign PlanCampaign(const PlanningProblem& problem, const DesignOptions& options,
                              int64_t first_pose_id, PlanCriterion criterion) {
   PlannedCampaign campaign;
-  campaign.design =
-      criterion == PlanCriterion::kDOptimal
-          ? PlanDOptimal(problem.info, problem.candidate_count(), options)
-          : PlanForAccuracy(problem.info, problem.candidate_count(), problem.grid_indices, options);
+  campaign.design = BestDesign(problem, options, criterion);
   int64_t pose_id = first_pose_id;
   for (int j : campaign.design.chosen) {
     campaign.plan.push_back({pose_id++, problem.candidates.poses[static_cast<size_t>(j)].x_B});

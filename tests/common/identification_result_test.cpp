@@ -158,6 +158,62 @@ TEST(IdentificationResult, OlderResultsWithoutAVerdictStillRead) {
   EXPECT_TRUE(r.rejected_details.empty());
 }
 
+// FullResult with two identified parameters (h, d) whose covariance has correlation rho.
+IdentificationResult ResultWithCovariance(double rho) {
+  IdentificationResult r = FullResult();
+  r.parameters[1].fixed = false;
+  r.parameters[1].std = 3e-3;
+  const double s0 = *r.parameters[0].std, s1 = *r.parameters[1].std;
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(3, 3);
+  C(0, 0) = s0 * s0;
+  C(1, 1) = s1 * s1;
+  C(0, 1) = C(1, 0) = rho * s0 * s1;
+  r.parameter_covariance = C;
+  return r;
+}
+
+TEST(IdentificationResult, ParameterCovarianceRoundTripsExactly) {
+  const IdentificationResult r = ResultWithCovariance(-0.6);
+  const std::string text = FormatIdentificationResult(r);
+  EXPECT_NE(text.find("\n  \"parameter_covariance\": ["), std::string::npos) << text;
+  const IdentificationResult b = ParseIdentificationResult(text, "result.json");
+  ASSERT_TRUE(b.parameter_covariance.has_value());
+  EXPECT_EQ(*b.parameter_covariance, *r.parameter_covariance);
+}
+
+TEST(IdentificationResult, OlderResultsWithoutACovarianceStillRead) {
+  const IdentificationResult r = ParseIdentificationResult(kResult, "old.json");
+  EXPECT_FALSE(r.parameter_covariance.has_value());
+  const std::string text = FormatIdentificationResult(r);
+  EXPECT_NE(text.find("\"parameter_covariance\": null"), std::string::npos) << text;
+  EXPECT_FALSE(ParseIdentificationResult(text, "r.json").parameter_covariance.has_value());
+}
+
+TEST(IdentificationResultErrors, ACovarianceThatDisagreesWithTheSigmasNamesTheField) {
+  const auto fails = [](const IdentificationResult& r, const std::string& field,
+                        const std::string& expected) {
+    return FailsWith([&] { ParseIdentificationResult(FormatIdentificationResult(r), "r.json"); },
+                     "r.json", 0, field, expected);
+  };
+  IdentificationResult r = ResultWithCovariance(0.5);
+  (*r.parameter_covariance)(1, 1) *= 1.01;
+  EXPECT_TRUE(fails(r, "parameter_covariance[1]", "diagonal equal to std^2"));
+  r = ResultWithCovariance(0.5);
+  (*r.parameter_covariance)(2, 0) = 1e-9;
+  EXPECT_TRUE(fails(r, "parameter_covariance[2]", "zeros for a parameter without std"));
+  r = ResultWithCovariance(0.5);
+  (*r.parameter_covariance)(1, 0) *= 0.5;
+  EXPECT_TRUE(fails(r, "parameter_covariance[1][0]", "symmetric"));
+  EXPECT_TRUE(fails(ResultWithCovariance(1.5), "parameter_covariance", "positive semi-definite"));
+  r = ResultWithCovariance(0.5);
+  r.parameter_covariance = Eigen::MatrixXd::Zero(2, 2);
+  EXPECT_THROW(FormatIdentificationResult(r), std::invalid_argument);
+  const std::string short_rows =
+      ResultWith("\"poses\":", "\"parameter_covariance\": [[1, 0, 0]],\n  \"poses\":");
+  EXPECT_TRUE(FailsWith([&] { ParseIdentificationResult(short_rows, "r.json"); }, "r.json", 0,
+                        "parameter_covariance", "array of 3"));
+}
+
 TEST(IdentificationResult, WritesKeysInFormatsMdOrderAndNullStdForFixed) {
   const std::string text = FormatIdentificationResult(FullResult());
   size_t last = 0;

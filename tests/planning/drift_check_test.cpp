@@ -51,9 +51,10 @@ std::vector<DatasetRow> Campaign(const SimulatedRobot& robot, uint64_t seed, boo
 double JointOffsetDriftOf(double sigmas) {
   const SimulatedRobot truth = Truth();
   const double probe = 1e-5;
-  const DriftCheckResult moved = CheckForDrift(
-      *truth.MakeModel(), ResultOf(truth), Eigen::VectorXd::Zero(ResultOf(truth).size()),
-      Campaign(WithJointOffsetMoved(truth, probe), 1, false));
+  const DriftCheckResult moved =
+      CheckForDrift(*truth.MakeModel(), ResultOf(truth),
+                    Eigen::MatrixXd::Zero(ResultOf(truth).size(), ResultOf(truth).size()),
+                    Campaign(WithJointOffsetMoved(truth, probe), 1, false));
   const double rms_sigmas = std::sqrt(moved.chi2 / static_cast<double>(moved.poses.size()));
   return probe * sigmas / rms_sigmas;
 }
@@ -61,7 +62,7 @@ double JointOffsetDriftOf(double sigmas) {
 int DriftVerdicts(double joint_offset_drift) {
   const SimulatedRobot truth = Truth();
   const ParameterVector result = ResultOf(truth);
-  const Eigen::VectorXd no_uncertainty = Eigen::VectorXd::Zero(result.size());
+  const Eigen::MatrixXd no_uncertainty = Eigen::MatrixXd::Zero(result.size(), result.size());
   int drift = 0;
   for (int trial = 1; trial <= kTrials; ++trial) {
     const std::vector<DatasetRow> rows = Campaign(WithJointOffsetMoved(truth, joint_offset_drift),
@@ -85,7 +86,7 @@ TEST(DriftCheck, AGrossDriftFlagsEveryPose) {
   const SimulatedRobot truth = Truth();
   const ParameterVector result = ResultOf(truth);
   const DriftCheckResult check =
-      CheckForDrift(*truth.MakeModel(), result, Eigen::VectorXd::Zero(result.size()),
+      CheckForDrift(*truth.MakeModel(), result, Eigen::MatrixXd::Zero(result.size(), result.size()),
                     Campaign(WithJointOffsetMoved(truth, 0.01), 1, true));
   EXPECT_TRUE(check.drift);
   for (const PoseCheck& pose : check.poses) EXPECT_TRUE(pose.flagged) << pose.pose_id;
@@ -95,12 +96,61 @@ TEST(DriftCheck, ParameterUncertaintyWidensWhatIsAllowed) {
   const SimulatedRobot truth = Truth();
   const ParameterVector result = ResultOf(truth);
   const std::vector<DatasetRow> rows = Campaign(WithJointOffsetMoved(truth, 1e-3), 1, true);
-  const double tight =
-      CheckForDrift(*truth.MakeModel(), result, Eigen::VectorXd::Zero(result.size()), rows).chi2;
-  const double loose = CheckForDrift(*truth.MakeModel(), result,
-                                     Eigen::VectorXd::Constant(result.size(), 1e-3), rows)
+  const double tight = CheckForDrift(*truth.MakeModel(), result,
+                                     Eigen::MatrixXd::Zero(result.size(), result.size()), rows)
                            .chi2;
+  const double loose =
+      CheckForDrift(*truth.MakeModel(), result,
+                    1e-6 * Eigen::MatrixXd::Identity(result.size(), result.size()), rows)
+          .chi2;
   EXPECT_LT(loose, tight);
+}
+
+// The result's camera x and y are uncertain only together (correlation +1, 10 mm): an error
+// along x - y (1 mm each way) is outside what the full covariance allows and is flagged;
+// the diagonal of the sigmas (what an older result without parameter_covariance gives)
+// lets it pass.
+TEST(DriftCheck, CorrelationsOfTheResultNarrowWhatIsAllowed) {
+  const SimulatedRobot truth = Truth();
+  ParameterVector result = ResultOf(truth);
+  const Eigen::Index n = result.size();
+  const int x = result.IndexOf("X_BC.tx"), y = result.IndexOf("X_BC.ty");
+  Eigen::VectorXd values = result.values();
+  values[x] += 1e-3;
+  values[y] -= 1e-3;
+  result.set_values(values);
+  Eigen::MatrixXd correlated = Eigen::MatrixXd::Zero(n, n);
+  correlated(x, x) = correlated(y, y) = correlated(x, y) = correlated(y, x) = 1e-4;
+  const Eigen::MatrixXd diagonal = correlated.diagonal().asDiagonal();
+  const std::vector<DatasetRow> rows = Campaign(truth, 1, true);
+  EXPECT_TRUE(CheckForDrift(*truth.MakeModel(), result, correlated, rows).drift);
+  EXPECT_FALSE(CheckForDrift(*truth.MakeModel(), result, diagonal, rows).drift);
+  EXPECT_THROW(CheckForDrift(*truth.MakeModel(), result, Eigen::MatrixXd::Zero(n, n - 1), rows),
+               std::invalid_argument);
+}
+
+// The result file's covariance is matched to the check's parameters by name, whatever the
+// order; without it, the sigmas' squares on the diagonal.
+TEST(DriftCheck, ResultCovarianceIsMatchedByName) {
+  const ParameterVector p = ResultOf(Truth());
+  IdentificationResult file;
+  file.parameters = {{"X_BC.ty", 0.0, 0.0, 2e-3, false}, {"X_BC.tx", 0.0, 0.0, 1e-3, false}};
+  Eigen::MatrixXd C(2, 2);
+  C << 4e-6, -1e-6, -1e-6, 1e-6;
+  file.parameter_covariance = C;
+  bool with_correlations = false;
+  const Eigen::MatrixXd mapped = ResultCovarianceFor(file, p, &with_correlations);
+  const int x = p.IndexOf("X_BC.tx"), y = p.IndexOf("X_BC.ty");
+  EXPECT_TRUE(with_correlations);
+  EXPECT_EQ(mapped(x, x), 1e-6);
+  EXPECT_EQ(mapped(y, y), 4e-6);
+  EXPECT_EQ(mapped(x, y), -1e-6);
+  EXPECT_DOUBLE_EQ(mapped.cwiseAbs().sum(), 7e-6);
+  file.parameter_covariance.reset();
+  const Eigen::MatrixXd diagonal = ResultCovarianceFor(file, p, &with_correlations);
+  EXPECT_FALSE(with_correlations);
+  EXPECT_EQ(diagonal(x, y), 0.0);
+  EXPECT_DOUBLE_EQ(diagonal(y, y), 4e-6);
 }
 
 TEST(DriftCheck, ChiSquareQuantilesMatchTables) {

@@ -99,6 +99,27 @@ TEST(PoseDesign, TheAccuracyCriterionPredictsNoWorseThanDOptimality) {
   EXPECT_LT(accuracy.predicted_position_rms, GridPredictedPositionRms(problem, 20, 1));
 }
 
+// Restarts keep the best of several starts: the design of restarts = 2 is the better of
+// seeds 1 and 2 alone, so never worse than the first start (here seed 2 ends higher, so
+// a planner that ignored restarts would fail).
+TEST(PoseDesign, RestartsKeepTheBestStart) {
+  const PlanningProblem& problem = CoarseProblem();
+  DesignOptions options;
+  options.pose_count = 12;
+  std::vector<double> single;
+  for (uint64_t seed : {1u, 2u}) {
+    options.seed = seed;
+    single.push_back(PlanCampaign(problem, options, 1, PlanCriterion::kDOptimal).design.log_det);
+  }
+  options.seed = 1;
+  options.restarts = 2;
+  const PlannedCampaign best = PlanCampaign(problem, options, 1, PlanCriterion::kDOptimal);
+  EXPECT_EQ(best.design.log_det, std::max(single[0], single[1]));
+  EXPECT_GE(best.design.log_det, single[0]);
+  options.restarts = 0;
+  EXPECT_THROW(PlanCampaign(problem, options, 1, PlanCriterion::kDOptimal), std::invalid_argument);
+}
+
 TEST(PoseDesign, PlannedPosesAreCandidates) {
   const PlanningProblem& problem = CoarseProblem();
   DesignOptions options;

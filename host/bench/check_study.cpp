@@ -1,0 +1,143 @@
+// The check study (`h4cal check`, host/planning/check_trial.h): over simulated Model 31
+// robots and noise seeds, how often the check is right end to end. Each trial simulates
+// the paper's 81-pose grid on the robot (the noise of `h4cal simulate`), identifies it as
+// `h4cal identify` does (Model 12, then Model 31 from it, every default), reads the result
+// back from its JSON text, then simulates a 5-pose verification campaign on the unchanged
+// robot and on the robot after one joint offset moved by `--drift-sigmas` of the result's
+// predicted error (RMS Mahalanobis over the check poses), and counts the verdicts.
+//
+//   h4_check_study [--robots R] [--seeds S] [--drift-sigmas 3] [--check-poses grid|planned]
+//                  [--without-covariance 1] [--source-dir DIR]
+// --without-covariance 1: check as against results written before parameter_covariance
+// (their sigmas alone); the drift is still sized with the full covariance.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+#include "common/formats/board_yaml.h"
+#include "common/formats/camera_yaml.h"
+#include "host/planning/check_trial.h"
+#include "host/planning/pose_planner.h"
+#include "host/simulation/paper_scenario.h"
+
+namespace h4::host {
+namespace {
+
+struct StudyOptions {
+  int robots = 5;
+  int seeds = 20;
+  double drift_sigmas = 3.0;
+  bool planned_check_poses = false;  ///< 5 poses from the planner (else 5 grid poses)
+  bool without_covariance = false;   ///< results as before parameter_covariance (sigmas)
+  std::string source_dir = H4_SOURCE_DIR;
+};
+
+StudyOptions ParseOptions(int argc, char** argv) {
+  StudyOptions options;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string flag = argv[i];
+    const std::string value = argv[i + 1];
+    if (flag == "--robots") {
+      options.robots = std::stoi(value);
+    } else if (flag == "--seeds") {
+      options.seeds = std::stoi(value);
+    } else if (flag == "--drift-sigmas") {
+      options.drift_sigmas = std::stod(value);
+    } else if (flag == "--check-poses") {
+      if (value != "grid" && value != "planned")
+        throw std::invalid_argument("--check-poses grid|planned");
+      options.planned_check_poses = value == "planned";
+    } else if (flag == "--without-covariance") {  // VALUE: 1 or 0
+      options.without_covariance = value == "1";
+    } else if (flag == "--source-dir") {
+      options.source_dir = value;
+    } else {
+      throw std::invalid_argument("unknown option " + flag);
+    }
+  }
+  return options;
+}
+
+// 5 planned poses (D-optimal: the most informative about the parameters a drift moves).
+PosePlan PlannedCheckPoses(const std::string& source_dir) {
+  const PlanningProblem problem = MakePlanningProblem(
+      PaperAprioriRobot(),
+      CameraModel(ReadCameraYaml(source_dir + "/boards/sim_camera_1024x768.yaml")),
+      BoardModel(ReadBoardYaml(source_dir + "/boards/aprilgrid_6x6_30mm.yaml")),
+      PlanningProblemOptions{});
+  DesignOptions design;
+  design.pose_count = 5;
+  return PlanCampaign(problem, design, 1001, PlanCriterion::kDOptimal).plan;
+}
+
+PosePlan GridCheckPoses() {
+  const PosePlan grid = GridPosePlan();
+  return {grid[4], grid[22], grid[40], grid[58], grid[76]};
+}
+
+int Run(const StudyOptions& study) {
+  const auto start = std::chrono::steady_clock::now();
+  const RobotDescription apriori = PaperAprioriRobot();
+  CheckTrialOptions options;
+  options.calibration_plan = GridPosePlan();
+  options.check_plan =
+      study.planned_check_poses ? PlannedCheckPoses(study.source_dir) : GridCheckPoses();
+  options.drift_sigmas = study.drift_sigmas;
+  options.without_covariance = study.without_covariance;
+  int trials = 0, unusable = 0, unchanged_passed = 0, drifted_flagged = 0;
+  for (int robot = 1; robot <= study.robots; ++robot) {
+    PerturbationOptions perturbation;
+    perturbation.seed = static_cast<uint64_t>(robot);
+    const SimulatedRobot truth =
+        MakeTrueRobot(apriori, TrueGeometry::kPerturbedModel31, perturbation);
+    for (int seed = 1; seed <= study.seeds; ++seed) {
+      // One seed per trial: the calibration noise, the check noise and the drifted joint
+      // differ between robots too.
+      const auto trial_seed = static_cast<uint64_t>((robot - 1) * study.seeds + seed);
+      const CheckTrialOutcome outcome = RunCheckTrial(apriori, truth, trial_seed, options);
+      if (!outcome.identified) {
+        ++unusable;
+        std::printf("robot %d seed %d: %s\n", robot, seed, outcome.message.c_str());
+        continue;
+      }
+      ++trials;
+      unchanged_passed += outcome.unchanged_flagged ? 0 : 1;
+      drifted_flagged += outcome.drifted_flagged ? 1 : 0;
+      std::printf(
+          "robot %d seed %d: joint %d offset %+.4f mrad; unchanged chi2 %.1f %s, drifted chi2 "
+          "%.1f %s (%d dof)\n",
+          robot, seed, outcome.drifted_joint + 1, outcome.joint_offset_change * 1e3,
+          outcome.unchanged_chi2, outcome.unchanged_flagged ? "FLAGGED" : "passed",
+          outcome.drifted_chi2, outcome.drifted_flagged ? "flagged" : "MISSED", outcome.dof);
+      std::fflush(stdout);
+    }
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("\n| trials | unchanged robot passed | %.3g-sigma drift flagged |\n",
+              study.drift_sigmas);
+  std::printf("|---|---|---|\n");
+  std::printf("| %d | %d (%.1f %%) | %d (%.1f %%) |\n", trials, unchanged_passed,
+              100.0 * unchanged_passed / std::max(trials, 1), drifted_flagged,
+              100.0 * drifted_flagged / std::max(trials, 1));
+  std::printf("%d unusable identifications; %d robots x %d seeds, %s check poses, %.0f s\n",
+              unusable, study.robots, study.seeds, study.planned_check_poses ? "planned" : "grid",
+              seconds);
+  return 0;
+}
+
+}  // namespace
+}  // namespace h4::host
+
+int main(int argc, char** argv) {
+  try {
+    return h4::host::Run(h4::host::ParseOptions(argc, argv));
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "h4_check_study: %s\n", e.what());
+    return 1;
+  }
+}

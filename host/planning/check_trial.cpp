@@ -1,0 +1,139 @@
+// One simulated trial of `h4cal check` end to end (check_trial.h).
+#include "host/planning/check_trial.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Cholesky>
+
+#include "common/formats/identification_result.h"
+
+namespace h4::host {
+
+bool CheckTrialOptions::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& text) {
+    if (why) *why = text;
+    return false;
+  };
+  if (calibration_plan.empty()) return fail("calibration_plan is empty");
+  if (check_plan.empty()) return fail("check_plan is empty");
+  if (!(drift_sigmas >= 0.0)) return fail("drift_sigmas must be >= 0");
+  return check.IsValid(why);
+}
+
+namespace {
+
+// A change of one joint's offset (a motor swapped, an encoder slipped after a crash).
+SimulatedRobot WithJointOffsetMoved(SimulatedRobot robot, int joint, double change) {
+  const auto k = static_cast<size_t>(joint);
+  if (robot.model31) {
+    robot.model31->q0[k] += change;
+  } else {
+    robot.model12.q0[k] += change;
+  }
+  return robot;
+}
+
+std::vector<DatasetRow> SimulateRows(const SimulatedRobot& robot, const PosePlan& plan,
+                                     const NoiseOptions& noise, uint64_t seed, int valid_count) {
+  DatasetOptions options;
+  options.noise = noise;
+  options.seed = seed;
+  options.valid_count = valid_count;
+  return SimulateDataset(robot, plan, options).rows;
+}
+
+// The noise-free check rows, with the sigmas the noisy ones carry (the check's weights).
+std::vector<DatasetRow> NoiseFreeRows(const SimulatedRobot& robot, const PosePlan& plan,
+                                      const NoiseOptions& noise) {
+  std::vector<DatasetRow> rows = SimulateRows(robot, plan, NoiseOptions{0.0, 0.0, 0.0}, 1, 0);
+  for (DatasetRow& row : rows) {
+    row.sigma_t = noise.sigma_t;
+    row.sigma_r = noise.sigma_r;
+  }
+  return rows;
+}
+
+// `h4cal identify` twice, as the demo on the grid: Model 12, then Model 31 from it; the
+// result read back from its JSON text, so the check sees what the file keeps.
+std::optional<IdentificationResult> IdentifyAsTheCliDoes(const RobotDescription& apriori,
+                                                         const std::vector<DatasetRow>& rows,
+                                                         const IdentificationOptions& options) {
+  const IdentificationOutcome model12 = IdentifyRobot(apriori, ModelKind::k12, rows, options);
+  if (!model12.summary.usable) return std::nullopt;
+  const IdentificationOutcome model31 =
+      IdentifyModel31FromModel12(apriori, model12.result, rows, options);
+  if (!model31.summary.usable) return std::nullopt;
+  return ParseIdentificationResult(FormatIdentificationResult(model31.result), "trial.json");
+}
+
+// The joint offset change (rad, > 0) that moves the noise-free board by `sigmas` of the
+// check's predicted error (RMS Mahalanobis over the poses), from a small probe change.
+double JointOffsetChangeFor(double sigmas, const IdentificationResult& result,
+                            const Assembly& assembly, const SimulatedRobot& truth, int joint,
+                            const CheckTrialOptions& options) {
+  constexpr double kProbe = 1e-5;  // rad: far below 3 sigma, far above rounding
+  const DriftCheckResult before = CheckResultForDrift(
+      result, assembly, NoiseFreeRows(truth, options.check_plan, options.noise), options.check);
+  const DriftCheckResult after = CheckResultForDrift(
+      result, assembly,
+      NoiseFreeRows(WithJointOffsetMoved(truth, joint, kProbe), options.check_plan, options.noise),
+      options.check);
+  if (!before.evaluable || !after.evaluable || before.poses.size() != after.poses.size()) {
+    return NAN;
+  }
+  double sum = 0.0;
+  for (size_t j = 0; j < before.poses.size(); ++j) {
+    const Eigen::Matrix<double, 6, 1> shift = after.poses[j].error - before.poses[j].error;
+    sum += shift.dot(before.poses[j].predicted_covariance.ldlt().solve(shift));
+  }
+  const double rms_sigmas = std::sqrt(sum / static_cast<double>(before.poses.size()));
+  return rms_sigmas > 0.0 ? kProbe * sigmas / rms_sigmas : NAN;
+}
+
+}  // namespace
+
+CheckTrialOutcome RunCheckTrial(const RobotDescription& apriori, const SimulatedRobot& truth,
+                                uint64_t seed, const CheckTrialOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("check trial: " + why);
+  CheckTrialOutcome outcome;
+  const std::optional<IdentificationResult> result = IdentifyAsTheCliDoes(
+      apriori, SimulateRows(truth, options.calibration_plan, options.noise, seed, 0),
+      options.identification);
+  if (!result) {
+    outcome.message = "identification unusable";
+    return outcome;
+  }
+  outcome.drifted_joint = static_cast<int>(seed % 4);
+  const double sign = (seed / 4) % 2 == 0 ? 1.0 : -1.0;
+  outcome.joint_offset_change =
+      sign * JointOffsetChangeFor(options.drift_sigmas, *result, apriori.assembly, truth,
+                                  outcome.drifted_joint, options);
+  if (!std::isfinite(outcome.joint_offset_change)) {
+    outcome.message = "check poses not evaluable on the result";
+    return outcome;
+  }
+  outcome.identified = true;
+  // Fresh noise for the verification campaigns, independent of the calibration's.
+  const uint64_t check_seed = seed + 1000003;
+  // The drift is sized with the full covariance; the check may see the sigmas alone.
+  IdentificationResult checked = *result;
+  if (options.without_covariance) checked.parameter_covariance.reset();
+  const DriftCheckResult unchanged = CheckResultForDrift(
+      checked, apriori.assembly,
+      SimulateRows(truth, options.check_plan, options.noise, check_seed, 0), options.check);
+  const SimulatedRobot drifted =
+      WithJointOffsetMoved(truth, outcome.drifted_joint, outcome.joint_offset_change);
+  const DriftCheckResult moved = CheckResultForDrift(
+      checked, apriori.assembly,
+      SimulateRows(drifted, options.check_plan, options.noise, check_seed + 1, 0), options.check);
+  outcome.unchanged_flagged = unchanged.drift;
+  outcome.drifted_flagged = moved.drift;
+  outcome.unchanged_chi2 = unchanged.chi2;
+  outcome.drifted_chi2 = moved.chi2;
+  outcome.dof = unchanged.dof;
+  return outcome;
+}
+
+}  // namespace h4::host
