@@ -51,9 +51,9 @@ bool IsAngleParameter(const std::string& name) {
 }
 
 // A parameter's value as people read it: deg for angles, mm for lengths.
-std::string ParameterValue(const std::string& name, double si_value) {
-  return IsAngleParameter(name) ? fmt::format("{:.5g}", DegreesFromRadians(si_value))
-                                : fmt::format("{:.6g}", si_value * 1e3);
+std::string ParameterValue(const std::string& name, double value_si) {
+  return IsAngleParameter(name) ? fmt::format("{:.5g}", DegreesFromRadians(value_si))
+                                : fmt::format("{:.6g}", value_si * 1e3);
 }
 
 std::array<double, 12> Table2Row(const Model12Parameters& p) {
