@@ -4,10 +4,12 @@
 // usable result sets 3 here instead of throwing, so that what it wrote stays written.
 #pragma once
 
+#include "common/cli/command_line.h"
+
 namespace h4::cam {
 
 /// "Ran, but nothing usable": no image showed the board, the board was not in view.
-constexpr int kExitNothingUsable = 3;
+using cli::kExitNothingUsable;
 
 /// The code main returns when no error was thrown: 0 unless a command set one.
 int ExitCode();
