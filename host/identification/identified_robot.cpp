@@ -99,4 +99,33 @@ BoardPoseErrors BoardPoseErrorsOf(const KinematicModel& model, const RigidTransf
   return out;
 }
 
+Eigen::MatrixXd ResultCovarianceFor(const IdentificationResult& result, const ParameterVector& p,
+                                    bool* with_correlations) {
+  // index_in_result[i]: the row of p's parameter i in the result's list, or -1.
+  std::vector<Eigen::Index> index_in_result(static_cast<size_t>(p.size()), -1);
+  for (size_t k = 0; k < result.parameters.size(); ++k) {
+    for (int i = 0; i < p.size(); ++i) {
+      if (p.names()[static_cast<size_t>(i)] == result.parameters[k].name) {
+        index_in_result[static_cast<size_t>(i)] = static_cast<Eigen::Index>(k);
+      }
+    }
+  }
+  if (with_correlations) *with_correlations = result.parameter_covariance.has_value();
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(p.size(), p.size());
+  for (int a = 0; a < p.size(); ++a) {
+    const Eigen::Index ka = index_in_result[static_cast<size_t>(a)];
+    if (ka < 0) continue;
+    if (!result.parameter_covariance) {
+      const double sigma = result.parameters[static_cast<size_t>(ka)].std.value_or(0.0);
+      C(a, a) = sigma * sigma;
+      continue;
+    }
+    for (int b = 0; b < p.size(); ++b) {
+      const Eigen::Index kb = index_in_result[static_cast<size_t>(b)];
+      if (kb >= 0) C(a, b) = (*result.parameter_covariance)(ka, kb);
+    }
+  }
+  return C;
+}
+
 }  // namespace h4::host

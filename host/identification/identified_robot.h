@@ -1,7 +1,8 @@
-// An identified robot as the later programs use it (fk, ik, validate): a KinematicModel
-// with X_BC and X_TE rebuilt from an IdentificationResult, and the figures computed from a
-// model and a dataset: joint residuals (IK of the measured pose minus the reading, wrapped)
-// and board-pose prediction errors (FK of the readings through the chain).
+// An identified robot as the later programs use it (fk, ik, validate, check): a
+// KinematicModel with X_BC and X_TE rebuilt from an IdentificationResult, the covariance of
+// its parameters, and the figures computed from a model and a dataset: joint residuals (IK
+// of the measured pose minus the reading, wrapped) and board-pose prediction errors (FK of
+// the readings through the chain).
 #pragma once
 
 #include <array>
@@ -13,6 +14,7 @@
 #include "common/formats/dataset_csv.h"
 #include "common/formats/identification_result.h"
 #include "common/geometry/rigid_transform.h"
+#include "host/identification/parameter_vector.h"
 #include "host/kinematics/kinematic_model.h"
 
 namespace h4::host {
@@ -34,6 +36,12 @@ IdentifiedRobot RebuildFromResult(const IdentificationResult& result,
 /// 31" (without "SOURCE: " when source is empty).
 void RequireModel12Result(const IdentificationResult& result, const std::string& source,
                           const std::string& use);
+
+/// The covariance of a result's parameters in the order of p (matched by name): the
+/// result's `parameter_covariance`, or, for a result without it, the diagonal of its
+/// sigmas (*with_correlations set false). Zero for a parameter the result does not give.
+Eigen::MatrixXd ResultCovarianceFor(const IdentificationResult& result, const ParameterVector& p,
+                                    bool* with_correlations = nullptr);
 
 /// The board pose X_CT predicted from joint readings: FK (started from the model's
 /// workspace centre or `guess`) through X_CT = inv(X_BC) X_BE inv(X_TE); empty when FK fails.

@@ -70,14 +70,9 @@ DriftCheckResult CheckForDrift(const KinematicModel& model, const ParameterVecto
                                const std::vector<DatasetRow>& rows,
                                const DriftCheckOptions& options = DriftCheckOptions{});
 
-/// The covariance of a result's parameters in the order of p (matched by name): the
-/// result's `parameter_covariance`, or, for a result without it, the diagonal of its
-/// sigmas (*with_correlations set false). Zero for a parameter the result does not give.
-Eigen::MatrixXd ResultCovarianceFor(const IdentificationResult& result, const ParameterVector& p,
-                                    bool* with_correlations = nullptr);
-
 /// `h4cal check`: rebuilds the result's model with `assembly`, and checks the rows against
-/// it with its covariance (ResultCovarianceFor; zero with use_parameter_uncertainty false).
+/// it with its covariance (ResultCovarianceFor, identified_robot.h; zero with
+/// use_parameter_uncertainty false).
 DriftCheckResult CheckResultForDrift(const IdentificationResult& result, const Assembly& assembly,
                                      const std::vector<DatasetRow>& rows,
                                      const DriftCheckOptions& options = DriftCheckOptions{},
