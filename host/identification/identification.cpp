@@ -17,6 +17,7 @@
 #include "common/timing/clock.h"
 #include "common/units.h"
 #include "host/identification/identified_robot.h"
+#include "host/identification/outlier_limit.h"
 #include "host/identification/solution_summary.h"
 #include "host/identification/verdict_inputs.h"
 #include "host/kinematics/model12.h"
@@ -137,45 +138,89 @@ constexpr double kChi2Median6Dof = 5.348;
 // See CheckOutliersHeldOut: gross outliers first, borderline poses in a later round.
 constexpr double kSwampingFactor = 4.0;
 
-// With cross-validation: each pose's held-out chi-square, divided by the median pose's
-// excess (at least 1), against outlier_chi2_limit. A pose the fold's model cannot predict
-// is an outlier too.
-std::optional<OutlierCheck> CheckOutliersHeldOut(const IdentificationOptions& options,
-                                                 const IdentificationState& state) {
-  const std::vector<HeldOutPrediction>& poses = state.cv.poses;
-  if (poses.size() != state.rows.size()) return std::nullopt;
+// Each pose's held-out score: its chi-square over the median pose's excess (at least 1), so
+// that a model's misfit of every pose is not an outlier; 0 for a pose not predicted.
+struct HeldOutScores {
+  std::vector<double> scores;  ///< in the order of the poses
+  double excess = 1.0;
+  double spread = 0.0;  ///< pose-to-pose spread of the covariances (outlier_limit.h)
+  double worst = 0.0;
+  double median_position_error_m = 0.0;  ///< over the poses predicted
+};
+
+HeldOutScores ScoreHeldOut(const std::vector<HeldOutPrediction>& poses) {
+  HeldOutScores s;
   std::vector<double> chi2;
   for (const HeldOutPrediction& pose : poses) {
     if (pose.ok) chi2.push_back(pose.chi2);
   }
-  if (chi2.empty()) return std::nullopt;
+  if (chi2.empty()) return s;
   std::nth_element(chi2.begin(), chi2.begin() + static_cast<long>(chi2.size() / 2), chi2.end());
-  const double excess = std::max(1.0, chi2[chi2.size() / 2] / kChi2Median6Dof);
+  s.excess = std::max(1.0, chi2[chi2.size() / 2] / kChi2Median6Dof);
+  std::vector<double> position_errors;
+  for (const HeldOutPrediction& pose : poses) {
+    s.scores.push_back(pose.ok ? pose.chi2 / s.excess : 0.0);
+    s.worst = std::max(s.worst, s.scores.back());
+    if (pose.ok) position_errors.push_back(pose.position_error_m);
+  }
+  s.spread = ScoreSpread(s.scores);
+  const auto middle = position_errors.begin() + static_cast<long>(position_errors.size() / 2);
+  std::nth_element(position_errors.begin(), middle, position_errors.end());
+  s.median_position_error_m = *middle;
+  return s;
+}
+
+// The limit of one pose: outlier_chi2_limit raised for the spread of the covariances, except
+// for a pose that is also far off in millimetres (outlier_position_factor times the median
+// pose's held-out position error): the allowance is for covariances that are wrong, and a
+// pose's millimetres do not depend on its covariance.
+double PoseLimit(const HeldOutPrediction& pose, const IdentificationOptions& options,
+                 const HeldOutScores& s) {
+  if (pose.position_error_m > options.outlier_position_factor * s.median_position_error_m) {
+    return options.outlier_chi2_limit;
+  }
+  return OverdispersedLimit(options.outlier_chi2_limit, s.spread);
+}
+
+std::string HeldOutReason(const HeldOutPrediction& pose, double score,
+                          const IdentificationOptions& options, const HeldOutScores& s) {
+  if (!pose.ok) {
+    return "the model fitted without it cannot predict it (forward kinematics fails)";
+  }
+  std::string limit = fmt::format("limit {:.3g}", options.outlier_chi2_limit);
+  if (s.excess > 1.0) limit += fmt::format(", after dividing by the median pose's {:.3g}", s.excess);
+  const double pose_limit = PoseLimit(pose, options, s);
+  if (pose_limit > options.outlier_chi2_limit) {
+    limit += fmt::format(", {:.3g} allowing for the spread of the pose covariances (s = {:.2f})",
+                         pose_limit, s.spread);
+  }
+  const double times_median = pose.position_error_m / std::max(s.median_position_error_m, 1e-12);
+  return fmt::format(
+      "held-out chi-square {:.3g} (6 dof; {}): {:.3f} mm from the pose the model fitted "
+      "without it predicts, {:.1f} times the median pose's",
+      score, limit, pose.position_error_m * 1e3, times_median);
+}
+
+// With cross-validation: each pose's held-out score against its PoseLimit. A pose the
+// fold's model cannot predict is an outlier too.
+std::optional<OutlierCheck> CheckOutliersHeldOut(const IdentificationOptions& options,
+                                                 const IdentificationState& state) {
+  const std::vector<HeldOutPrediction>& poses = state.cv.poses;
+  if (poses.size() != state.rows.size()) return std::nullopt;
+  const HeldOutScores s = ScoreHeldOut(poses);
+  if (s.scores.empty()) return std::nullopt;
   // A gross outlier is among the training poses of every other fold and inflates the
   // held-out residuals of the poses near it: a round rejects the poses within a factor
   // kSwampingFactor of the worst score, the others are judged again without them.
-  double worst = 0.0;
-  for (const HeldOutPrediction& pose : poses) {
-    if (pose.ok) worst = std::max(worst, pose.chi2 / excess);
-  }
   OutlierCheck check;
-  check.limit = std::max(options.outlier_chi2_limit, worst / kSwampingFactor);
+  check.limit = std::max(OverdispersedLimit(options.outlier_chi2_limit, s.spread),
+                         s.worst / kSwampingFactor);
   for (size_t j = 0; j < poses.size(); ++j) {
-    const double score = poses[j].chi2 / excess;
-    if (!poses[j].ok || score > check.limit) {
+    const double limit = std::max(PoseLimit(poses[j], options, s), s.worst / kSwampingFactor);
+    if (!poses[j].ok || s.scores[j] > limit) {
       check.outliers.push_back(state.rows[j].pose_id);
       check.details.push_back(
-          {state.rows[j].pose_id, poses[j].ok ? score : 0.0,
-           poses[j].ok ? fmt::format("held-out chi-square {:.3g} (6 dof; limit {:.3g}{}): {:.3f} "
-                                     "mm from the pose the model fitted without it predicts",
-                                     score, options.outlier_chi2_limit,
-                                     excess > 1.0 ? fmt::format(", after dividing by the "
-                                                                "median pose's {:.3g}",
-                                                                excess)
-                                                  : "",
-                                     poses[j].position_error_m * 1e3)
-                       : "the model fitted without it cannot predict it (forward kinematics "
-                         "fails)"});
+          {state.rows[j].pose_id, s.scores[j], HeldOutReason(poses[j], s.scores[j], options, s)});
     } else {
       check.kept.push_back(state.rows[j]);
     }
@@ -309,6 +354,9 @@ bool IdentificationOptions::IsValid(std::string* why) const {
   if (reject_outliers && !(outlier_factor > 1.0)) return fail("outlier_factor must exceed 1");
   if (reject_outliers && !(outlier_chi2_limit > 0.0)) {
     return fail("outlier_chi2_limit must be positive");
+  }
+  if (reject_outliers && !(outlier_position_factor > 1.0)) {
+    return fail("outlier_position_factor must exceed 1");
   }
   if (std::string cv_why; !cross_validation.IsValid(&cv_why)) return fail(cv_why);
   if (!(max_rejected_fraction >= 0 && max_rejected_fraction < 1)) {

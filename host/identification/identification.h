@@ -62,11 +62,17 @@ struct IdentificationOptions {
   /// never more than max_rejected_fraction of the poses. With cross-validation: a pose
   /// whose held-out residual, normalised by its covariance and by the median pose's excess
   /// over the noise (so that a model's misfit of every pose is not an outlier), has a
-  /// chi-square (6 dof) above outlier_chi2_limit; the default is its 1e-4 upper tail, a
-  /// false rejection in about one campaign of 120 at 81 poses. Without: a pose whose
-  /// residual norm exceeds outlier_factor times the median pose's.
+  /// chi-square (6 dof) above outlier_chi2_limit, raised by as much as the campaign's own
+  /// pose-to-pose spread of the covariances calls for (outlier_limit.h: a real camera's
+  /// covariances are right on average, not pose by pose) unless the pose's held-out
+  /// position error is above outlier_position_factor times the median pose's (millimetres
+  /// do not depend on a covariance; 5 is beyond what a clean pose of a 3-D Gaussian error
+  /// reaches, 3 times the median at 1e-4); the default limit is chi-square(6)'s 1e-4
+  /// upper tail, a false rejection in about one campaign of 120 at 81 poses. Without: a
+  /// pose whose residual norm exceeds outlier_factor times the median pose's.
   bool reject_outliers = true;
   double outlier_chi2_limit = 27.86;
+  double outlier_position_factor = 5.0;
   double outlier_factor = 3.0;
   int max_outlier_rounds = 3;
   double max_rejected_fraction = 0.2;
