@@ -9,6 +9,10 @@
 //    parameters the truth defines in the result's own frame: Model 12's kinematic
 //    parameters but d (fixed), and Model 31's lengths (arm_i, forearm_i, h), which do not
 //    depend on the base-frame choices the identifiability analysis fixes;
+//  - the accuracy map's predicted 1-sigma positioning error (host/validation/accuracy_map.h)
+//    with the actual error of the true robot driven through the identified model's inverse
+//    kinematics to each map pose (the pose it reaches by forward kinematics, against the
+//    commanded one), where the result's model is the truth's (the same base frame);
 //  - and counts the verdicts (a campaign the model describes should be "good").
 // Usage: h4_coverage_study [--campaigns N (100)] [--first-seed S (1)]; prints a Markdown
 // table (README, "Uncertainty that holds").
@@ -27,6 +31,8 @@
 #include "host/simulation/paper_scenario.h"
 #include "host/simulation/pose_plan.h"
 #include "host/simulation/true_robot.h"
+#include "host/kinematics/forward_kinematics.h"
+#include "host/validation/accuracy_map.h"
 
 namespace h4::host {
 namespace {
@@ -36,6 +42,9 @@ struct Tally {
   double predicted_sq = 0.0;  ///< sum over campaigns of predicted accuracy^2
   double actual_sq = 0.0;     ///< sum over campaigns of the held-out truth error^2 (RMS)
   int intervals = 0, covered = 0;
+  double map_predicted_sq = 0.0;  ///< sum over map poses of predicted position sigma^2
+  double map_actual_sq = 0.0;     ///< sum over the same poses of the actual error^2
+  int map_poses = 0;
   std::map<std::string, int> verdicts;
 };
 
@@ -101,6 +110,25 @@ double WrappedDifference(const std::string& name, double a, double b) {
   return d;
 }
 
+// The accuracy map of the result against the truth: each map pose commanded through the
+// identified model's IK, reached by the true robot's FK. Only where the result's model is
+// the truth's, so that both poses are in the same base frame.
+void CountAccuracyMap(const IdentificationResult& r, const Campaign& c, Tally* tally) {
+  const std::unique_ptr<KinematicModel> truth = c.truth.MakeModel();
+  if (truth->kind() != r.model) return;
+  const std::optional<AccuracyMap> map = AccuracyMapOfResult(r, c.truth.assembly);
+  if (!map) return;
+  const IdentifiedRobot identified = RebuildFromResult(r, c.truth.assembly);
+  for (const AccuracyMapPoint& point : map->points) {
+    const IkResult ik = identified.model->InverseKinematics(point.x);
+    const FkResult reached = ForwardKinematics(*truth, ik.q, point.x);
+    if (!ik.ok() || !reached.ok()) continue;
+    tally->map_predicted_sq += point.position_sigma_m * point.position_sigma_m;
+    tally->map_actual_sq += (reached.x - point.x).head<3>().squaredNorm();
+    ++tally->map_poses;
+  }
+}
+
 void Count(const IdentificationOutcome& out, const Campaign& c, Tally* tally) {
   const IdentificationResult& r = out.result;
   ++tally->campaigns;
@@ -109,6 +137,7 @@ void Count(const IdentificationOutcome& out, const Campaign& c, Tally* tally) {
   tally->actual_sq += actual * actual;
   const double predicted = r.predicted_position_accuracy_m.value_or(0.0);
   tally->predicted_sq += predicted * predicted;
+  CountAccuracyMap(r, c, tally);
   // A Model 31 robot has no true Model 12 parameters: only the accuracy is compared.
   if (r.model == ModelKind::k12 && c.truth.model31) return;
   for (const auto& [name, value] : TrueParameters(c.truth, r.model)) {
@@ -131,9 +160,16 @@ void PrintRow(const std::string& truth, const std::string& model, const Tally& t
     std::snprintf(coverage, sizeof coverage, "%.1f %% (%d)", 100.0 * t.covered / t.intervals,
                   t.intervals);
   }
-  std::printf("| %s | %s | %d | %.4f | %.4f | %.2f | %s | %s |\n", truth.c_str(), model.c_str(),
-              t.campaigns, predicted * 1e3, actual * 1e3, predicted / actual, coverage,
-              verdicts.c_str());
+  char map[96] = "n/a (other base frame)";
+  if (t.map_poses > 0) {
+    const double map_predicted = std::sqrt(t.map_predicted_sq / t.map_poses);
+    const double map_actual = std::sqrt(t.map_actual_sq / t.map_poses);
+    std::snprintf(map, sizeof map, "%.4f / %.4f = %.2f", map_predicted * 1e3, map_actual * 1e3,
+                  map_predicted / map_actual);
+  }
+  std::printf("| %s | %s | %d | %.4f | %.4f | %.2f | %s | %s | %s |\n", truth.c_str(),
+              model.c_str(), t.campaigns, predicted * 1e3, actual * 1e3, predicted / actual,
+              coverage, map, verdicts.c_str());
 }
 
 int Run(int campaigns, uint64_t first_seed) {
@@ -153,7 +189,8 @@ int Run(int campaigns, uint64_t first_seed) {
   std::printf(
       "| truth | identified with | campaigns | predicted accuracy, RMS (mm) | actual held-out "
       "error, RMS (mm) | predicted / actual | 95 %% intervals holding the truth (intervals) | "
-      "verdicts |\n|---|---|---|---|---|---|---|---|\n");
+      "accuracy map: predicted / actual positioning error, RMS (mm) | verdicts |\n"
+      "|---|---|---|---|---|---|---|---|---|\n");
   PrintRow("Model 12", "Model 12", m12);
   PrintRow("Model 31", "Model 31 --from Model 12", m31_from_12);
   PrintRow("Model 31", "Model 12", m12_on_31);

@@ -58,6 +58,15 @@ void PrintRejectedPoses(const IdentificationResult& r) {
   }
 }
 
+// The accuracy map written with the report, in one line (README "Using h4cal").
+void PrintAccuracyMapLine(const ModelValidation& identified) {
+  if (!identified.accuracy_map) return;
+  const AccuracyMap& map = *identified.accuracy_map;
+  std::printf("  accuracy map: predicted 1-sigma position error median %.4f mm, largest %.4f mm "
+              "over %zu workspace poses\n",
+              map.MedianPositionSigma() * 1e3, map.MaxPositionSigma() * 1e3, map.points.size());
+}
+
 void PrintHeadline(const IdentificationOutcome& outcome) {
   const IdentificationResult& r = outcome.result;
   PrintVerdict(r);
@@ -214,6 +223,7 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
     const ValidationInputs inputs = LoadValidationInputs(files);
     const ValidationReport report = Validate(inputs);
     spdlog::info("wrote {}", WriteHtmlReport(options.report_dir, inputs, report, command_line));
+    PrintAccuracyMapLine(report.models.back());
   }
 }
 

@@ -208,6 +208,14 @@ std::string FormatValidationText(const ValidationReport& report) {
         s.offset[1] * 1e3, s.offset[2] * 1e3, s.reached.size(), m.planned);
     t << (m.missing_ids.empty() ? "\n" : " (missing pose ids " + PoseIdList(m.missing_ids) + ")\n");
   }
+  for (const auto& v : report.models) {
+    if (!v.accuracy_map) continue;
+    t << fmt::format(
+        "Accuracy map, {}: predicted 1-sigma position error median {:.4f} mm, largest {:.4f} "
+        "mm over {} workspace poses\n",
+        v.label, v.accuracy_map->MedianPositionSigma() * 1e3,
+        v.accuracy_map->MaxPositionSigma() * 1e3, v.accuracy_map->points.size());
+  }
   t << (report.prior.ok ? fmt::format("4-DoF check: rotation axis spread {:.3f} deg\n",
                                       report.prior.axis_spread_deg)
                         : "4-DoF check: " + report.prior.message + "\n");

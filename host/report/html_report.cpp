@@ -67,6 +67,8 @@ namespace {
 struct DrawnFigures {
   bool has_straightness = false, has_square = false, has_measured = false;
   std::string residuals, histograms, straightness, square, measured_square;
+  std::string accuracy_map;  ///< of the last identified model that has one
+  std::string accuracy_map_label;
 };
 
 DrawnFigures DrawFigures(const ValidationInputs& in, const ValidationReport& report) {
@@ -79,7 +81,32 @@ DrawnFigures DrawFigures(const ValidationInputs& in, const ValidationReport& rep
   if (f.has_straightness) f.straightness = StraightnessFigure(report);
   if (f.has_square) f.square = SquareFigure(report);
   if (f.has_measured) f.measured_square = MeasuredSquareFigure(*in.square_plan, report);
+  for (const auto& v : report.models) {
+    if (!v.accuracy_map) continue;
+    f.accuracy_map = AccuracyMapFigure(*v.accuracy_map, v.label);
+    f.accuracy_map_label = v.label;
+  }
   return f;
+}
+
+std::string AccuracyMapFileName(ModelKind model) {
+  return fmt::format("accuracy_map_model{}.csv", ToString(model));
+}
+
+// The accuracy map's figure and table, or why there is none.
+std::string AccuracyMapSection(const ValidationReport& report, const DrawnFigures& f) {
+  if (f.accuracy_map.empty()) {
+    return NotComputed("no identified result with a parameter covariance (see the notes)");
+  }
+  return "<p>The predicted one-sigma position error of the calibrated robot commanded "
+         "through the identified model, from the uncertainty of its parameters, over its "
+         "workspace: where it is high, the calibration holds less and more poses there help "
+         "(<code>h4cal plan</code>). Written as CSV beside this page "
+         "(<code>accuracy_map_model12.csv</code>, <code>accuracy_map_model31.csv</code>).</p>\n" +
+         Figure(f.accuracy_map, MarkupEscape(f.accuracy_map_label) +
+                                    ": each square a commanded pose; empty where out of "
+                                    "reach.") +
+         AccuracyMapTable(report);
 }
 
 // Everything after the verdict, in order.
@@ -92,6 +119,7 @@ Sections DetailSections(const ValidationInputs& in, const ValidationReport& repo
   sections.Add("table2", "Table 2: Model 12 parameters", Table2(in, report));
   sections.Add("table3", "Table 3: joint residuals on the held-out poses", Table3(report));
   sections.Add("positioning", "Positioning error", PositioningTable(report));
+  sections.Add("accuracy-map", "Accuracy map", AccuracyMapSection(report, f));
   sections.Add("residuals", "Residuals per pose and joint",
                Figure(f.residuals, "Held-out poses, before and after calibration."));
   sections.Add("histograms", "Residual histograms",
@@ -155,6 +183,12 @@ std::string WriteHtmlReport(const std::string& dir, const ValidationInputs& inpu
   std::filesystem::create_directories(dir);
   const std::string path = (std::filesystem::path(dir) / "report.html").string();
   WriteFileAtomically(path, html);
+  for (const ModelValidation& v : report.models) {
+    if (!v.accuracy_map) continue;
+    WriteFileAtomically((std::filesystem::path(dir) / AccuracyMapFileName(v.accuracy_map->model))
+                            .string(),
+                        AccuracyMapCsv(*v.accuracy_map));
+  }
   return path;
 }
 

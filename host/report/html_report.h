@@ -14,7 +14,7 @@ namespace h4::host {
 /// The ids of the page's sections, in order (tests check that each is present).
 inline constexpr const char* kReportSections[] = {
     "verdict",      "summary",     "parameters",  "identifiability", "table2",
-    "table3",       "positioning", "residuals",   "histograms",      "table4",
+    "table3",       "positioning", "accuracy-map", "residuals",   "histograms",      "table4",
     "straightness", "square",      "square-plot", "four-dof",        "notes"};
 
 /// The section of the square paths measured by the camera: present only when the report
@@ -26,7 +26,9 @@ inline constexpr const char* kMeasuredSquareSection = "square-measured-plot";
 std::string FormatHtmlReport(const ValidationInputs& inputs, const ValidationReport& report,
                              const std::string& command);
 
-/// Writes `dir`/report.html (creating dir) and returns its path.
+/// Writes `dir`/report.html (creating dir), and accuracy_map_model12.csv /
+/// accuracy_map_model31.csv for each identified model with an accuracy map
+/// (common/formats/README.md); returns the page's path.
 std::string WriteHtmlReport(const std::string& dir, const ValidationInputs& inputs,
                             const ValidationReport& report, const std::string& command);
 

@@ -229,4 +229,45 @@ std::string MeasuredSquareFigure(const SquarePlan& plan, const ValidationReport&
   return RenderSvg(gp.str(), 1000, 560);
 }
 
+std::string AccuracyMapFigure(const AccuracyMap& map, const std::string& label) {
+  const size_t levels = map.options.z_offsets_m.size();
+  const size_t thetas = map.options.theta_rad.size();
+  std::ostringstream gp;
+  for (size_t t = 0; t < thetas; ++t) {
+    for (size_t l = 0; l < levels; ++l) {
+      std::ostringstream body;
+      for (const AccuracyMapPoint& point : map.points) {
+        if (point.x[2] != map.centre[2] + map.options.z_offsets_m[l] ||
+            point.x[3] != map.options.theta_rad[t]) {
+          continue;
+        }
+        body << fmt::format("{:.6g} {:.6g} {:.6g}\n", (point.x[0] - map.centre[0]) * 1e3,
+                            (point.x[1] - map.centre[1]) * 1e3, point.position_sigma_m * 1e3);
+      }
+      if (body.str().empty()) body << "NaN NaN NaN\n";  // a panel out of reach stays empty
+      gp << Block(fmt::format("m{}_{}", t, l), body.str());
+    }
+  }
+  const double extent = map.options.half_extent_m * 1e3 + map.options.step_m * 1e3;
+  gp << fmt::format(
+      "set multiplot layout {},{} title '{}: predicted 1-sigma position error (mm)'\n", thetas,
+      levels, GnuplotText(label));
+  gp << fmt::format("set xrange [{0}:{1}]\nset yrange [{0}:{1}]\nset size ratio -1\n",
+                    -extent, extent);
+  gp << fmt::format("set cbrange [0:{:.6g}]\nset palette rgbformulae 22,13,-31\n",
+                    std::max(map.MaxPositionSigma() * 1e3, 1e-9));
+  gp << "unset key\nset tics font ',8'\nset xlabel 'X - centre (mm)' font ',8'\n"
+        "set ylabel 'Y - centre (mm)' font ',8'\n";
+  for (size_t t = 0; t < thetas; ++t) {
+    for (size_t l = 0; l < levels; ++l) {
+      gp << fmt::format("set title 'Z {:+.0f} mm, theta {:+.0f} deg' font ',9'\n",
+                        map.options.z_offsets_m[l] * 1e3,
+                        DegreesFromRadians(map.options.theta_rad[t]));
+      gp << fmt::format("plot $m{}_{} using 1:2:3 with points pt 5 ps 1.3 lc palette\n", t, l);
+    }
+  }
+  gp << "unset multiplot\n";
+  return RenderSvg(gp.str(), 300 * static_cast<int>(levels), 280 * static_cast<int>(thetas));
+}
+
 }  // namespace h4::host

@@ -17,5 +17,8 @@ std::string StraightnessFigure(const ValidationReport& report);
 std::string SquareFigure(const ValidationReport& report);
 /// Precondition: the report has measured square runs of `plan`.
 std::string MeasuredSquareFigure(const SquarePlan& plan, const ValidationReport& report);
+/// The accuracy map of one model: a panel per Z level (columns) and theta (rows), each
+/// grid pose a square coloured by its predicted 1-sigma position error, one colour scale.
+std::string AccuracyMapFigure(const AccuracyMap& map, const std::string& label);
 
 }  // namespace h4::host

@@ -2,8 +2,10 @@
 // units (m, rad) so that its numbers compare by eye; every other figure is in mm and deg.
 #include "host/report/report_tables.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include <spdlog/fmt/fmt.h>
 
@@ -236,6 +238,46 @@ std::string PositioningTable(const ValidationReport& report) {
        "end-effector pose X_BC X_CT X_TE.</p>\n";
   if (report.paper_scenario) {
     t << "<p>Paper: a priori positioning error 26 mm and 0.022 rad (1.26 deg).</p>\n";
+  }
+  return t.str();
+}
+
+namespace {
+
+// Median and largest position sigma of the map's points at one Z level and theta.
+std::pair<double, double> SliceSigmas(const AccuracyMap& map, double z, double theta) {
+  std::vector<double> sigmas;
+  for (const AccuracyMapPoint& point : map.points) {
+    if (point.x[2] == z && point.x[3] == theta) sigmas.push_back(point.position_sigma_m);
+  }
+  if (sigmas.empty()) return {0.0, 0.0};
+  std::sort(sigmas.begin(), sigmas.end());
+  return {sigmas[sigmas.size() / 2], sigmas.back()};
+}
+
+}  // namespace
+
+std::string AccuracyMapTable(const ValidationReport& report) {
+  std::ostringstream t;
+  for (const ModelValidation& v : report.models) {
+    if (!v.accuracy_map) continue;
+    const AccuracyMap& map = *v.accuracy_map;
+    t << "<table>\n"
+      << Header({v.label + ": Z from the centre (mm)", "theta (deg)",
+                 "median 1-sigma position error (mm)", "largest (mm)"});
+    for (double dz : map.options.z_offsets_m) {
+      for (double theta : map.options.theta_rad) {
+        const auto [median, largest] = SliceSigmas(map, map.centre[2] + dz, theta);
+        t << Row(fmt::format("{:+.0f}", dz * 1e3),
+                 {Deg(theta, 0), fmt::format("{:.4f}", median * 1e3),
+                  fmt::format("{:.4f}", largest * 1e3)});
+      }
+    }
+    t << fmt::format(
+        "</table>\n<p>{}: {} poses, median {:.4f} mm, largest {:.4f} mm; {} grid poses out of "
+        "reach or singular left out.</p>\n",
+        v.label, map.points.size(), map.MedianPositionSigma() * 1e3,
+        map.MaxPositionSigma() * 1e3, map.left_out);
   }
   return t.str();
 }

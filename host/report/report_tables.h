@@ -16,6 +16,9 @@ std::string IdentifiabilityTable(const ValidationInputs& in);
 std::string Table2(const ValidationInputs& in, const ValidationReport& report);
 std::string Table3(const ValidationReport& report);
 std::string PositioningTable(const ValidationReport& report);
+/// Per identified model with an accuracy map: per Z level and theta, the median and largest
+/// predicted position sigma, and how many grid poses were left out. Empty when none has one.
+std::string AccuracyMapTable(const ValidationReport& report);
 std::string Table4(const ValidationReport& report);
 std::string SquareTable(const ValidationInputs& in, const ValidationReport& report);
 std::string FourDofTable(const ValidationReport& report);

@@ -120,11 +120,13 @@ double ValidationReport::StraightnessImprovementPercent(size_t m, size_t r) cons
 
 namespace {
 
-// A model to validate: its label, kinematics and camera / board placement.
+// A model to validate: its label, kinematics and camera / board placement, and the result
+// it was rebuilt from (none for the a priori).
 struct Candidate {
   std::string label;
   std::unique_ptr<KinematicModel> model;
   RigidTransform X_BC, X_TE;
+  const IdentificationResult* result = nullptr;
 };
 
 void CheckInputs(const ValidationInputs& in) {
@@ -174,10 +176,20 @@ std::vector<Candidate> CandidatesToValidate(const ValidationInputs& in,
   for (const auto* result : {&in.result12, &in.result31}) {
     if (!*result) continue;
     IdentifiedRobot robot = RebuildFromResult(**result, in.apriori.assembly);
-    candidates.push_back(
-        {ModelLabel((*result)->model), std::move(robot.model), robot.X_BC, robot.X_TE});
+    candidates.push_back({ModelLabel((*result)->model), std::move(robot.model), robot.X_BC,
+                          robot.X_TE, &**result});
   }
   return candidates;
+}
+
+// A note per identified model without an accuracy map: its result has no covariance.
+void NoteMissingAccuracyMaps(const ValidationReport& report, std::vector<std::string>* notes) {
+  for (size_t m = 1; m < report.models.size(); ++m) {
+    if (report.models[m].accuracy_map) continue;
+    notes->push_back(report.models[m].label +
+                     ": no accuracy map (the result has no parameter_covariance: written by an "
+                     "older h4cal, or the covariance could not be computed)");
+  }
 }
 
 // The true robot of a simulation, or null with a note on what is then not computed.
@@ -220,6 +232,7 @@ ModelValidation ValidateCandidate(const ValidationInputs& in, const Candidate& c
   if (true_model != nullptr && c.model->kind() == ModelKind::k12) {
     v.square = RunSquare(*c.model, {true_model, in.truth->robot.X_ModelB()}, in.square);
   }
+  if (c.result != nullptr) v.accuracy_map = AccuracyMapOfResult(*c.result, in.apriori.assembly);
   return v;
 }
 
@@ -240,6 +253,7 @@ ValidationReport Validate(const ValidationInputs& in) {
   for (const Candidate& c : candidates) {
     report.models.push_back(ValidateCandidate(in, c, held, true_model.get()));
   }
+  NoteMissingAccuracyMaps(report, &report.notes);
   const Candidate& apriori = candidates.front();
   report.apriori_all = PositioningErrorOf(*apriori.model, apriori.X_BC, apriori.X_TE, in.rows);
   report.prior = AnalyzeRotationAxis(in.rows, in.apriori.X_BC, in.apriori.X_TE);

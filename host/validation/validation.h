@@ -16,6 +16,7 @@
 #include "common/robot/robot_description.h"
 #include "host/identification/prior_analysis.h"
 #include "host/simulation/truth_file.h"
+#include "host/validation/accuracy_map.h"
 #include "host/validation/joint_residuals.h"
 #include "host/validation/measured_square.h"
 #include "host/validation/square_path.h"
@@ -52,6 +53,8 @@ struct ModelValidation {
   PositioningError positioning;               ///< FK of the readings vs measured pose, held out
   std::vector<StraightnessRun> straightness;  ///< one per ruler run
   std::optional<SquareRun> square;            ///< Model 12 controllers with a truth only
+  /// Identified models whose result has a parameter covariance (accuracy_map.h).
+  std::optional<AccuracyMap> accuracy_map;
 };
 
 struct ValidationReport {

@@ -20,8 +20,8 @@ done
   fail "report: $(cat "$dir/report.log")"
 html=$dir/report/report.html
 [ -s "$html" ] || fail "no report.html"
-sections="verdict summary parameters identifiability table2 table3 positioning residuals histograms
-          table4 straightness square square-plot four-dof notes"
+sections="verdict summary parameters identifiability table2 table3 positioning accuracy-map
+          residuals histograms table4 straightness square square-plot four-dof notes"
 for id in $sections; do
   grep -q "<section id=\"$id\">" "$html" || fail "report.html has no section $id"
   # The table of contents links every section after the verdict.
@@ -38,7 +38,17 @@ grep -q "a priori positioning error, every pose (mean, mm / deg)" "$html" ||
 grep -q "<tr><th>alpha1</th><td>deg</td>" "$html" && grep -q "<tr><th>h</th><td>mm</td>" "$html" ||
   fail "the parameter table is not in mm and deg"
 [ "$(grep -c "residual (deg)" "$html")" -ge 2 ] || fail "the residual plots are not in deg"
-[ "$(grep -o '<svg' "$html" | wc -l)" -eq 4 ] || fail "report.html does not hold 4 figures"
+[ "$(grep -o '<svg' "$html" | wc -l)" -eq 5 ] || fail "report.html does not hold 5 figures"
+# The accuracy map: CSV per identified model beside the page, a row per reachable map pose
+# (13 x 13 X-Y positions, 3 levels, 3 rotations at most), the figure of Model 31.
+for m in 12 31; do
+  csv=$dir/report/accuracy_map_model$m.csv
+  [ "$(head -1 "$csv")" = "X,Y,Z,theta,position_sigma,theta_sigma" ] ||
+    fail "accuracy_map_model$m.csv: no header"
+  rows=$(($(wc -l < "$csv") - 1))
+  [ "$rows" -gt 1000 ] && [ "$rows" -le 1521 ] || fail "accuracy_map_model$m.csv: $rows rows"
+done
+grep -q "<th>Model 31: Z from the centre (mm)</th>" "$html" || fail "no Model 31 accuracy map table"
 grep -q "before calibration (paper)" "$html" || fail "no paper rows on the paper scenario"
 ! grep -q "Not computed" "$html" || fail "a section was not computed"
 
@@ -46,6 +56,8 @@ grep -q "before calibration (paper)" "$html" || fail "no paper rows on the paper
 "$h4cal" validate --sim-dir "$sim" --report "$dir/validate" > "$dir/validate.txt" 2>&1 ||
   fail "validate: $(cat "$dir/validate.txt")"
 grep -q "Table 3" "$dir/validate.txt" || fail "validate printed no Table 3"
+grep -q "Accuracy map, Model 31: predicted 1-sigma position error median" "$dir/validate.txt" ||
+  fail "validate printed no accuracy map line"
 [ -s "$dir/validate/report.html" ] || fail "validate --report wrote no report.html"
 
 # Controller export: Model 12 in robot.yaml keys; Model 31 its own block.
