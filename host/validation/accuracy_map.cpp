@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <Eigen/Cholesky>
+
 #include "common/formats/number_text.h"
 #include "host/identification/identified_robot.h"
 #include "host/identification/parameter_vector.h"
@@ -22,16 +24,41 @@ std::vector<double> GridValues(double centre, double half, double step) {
   return values;
 }
 
-// The covariance of the reached pose x' (4x4: X, Y, Z, theta) at commanded pose x, or empty
-// when x is out of reach or singular.
-std::optional<Eigen::Matrix4d> ReachedPoseCovariance(const KinematicModel& model,
-                                                     const Eigen::MatrixXd& C, const EePose& x) {
+// The sensitivity of the reached pose x' (X, Y, Z, theta) to the kinematic parameters at
+// commanded pose x, J_f_x^-1 J_f_xi up to its sign (which a covariance does not see), or
+// empty when x is out of reach or singular.
+std::optional<Eigen::MatrixXd> ReachedPoseSensitivity(const KinematicModel& model,
+                                                      const EePose& x) {
   const IkResult ik = model.InverseKinematics(x);
-  Eigen::MatrixXd J_x_xi;  // -J_f_x^-1 J_f_xi: the sign does not matter to a covariance
+  Eigen::MatrixXd J_x_xi;
   if (!ik.ok() || !ForwardKinematicsJacobians(model, ik.q, x, nullptr, &J_x_xi)) {
     return std::nullopt;
   }
-  return J_x_xi * C * J_x_xi.transpose();
+  return J_x_xi;
+}
+
+// The grid's poses in Z level, theta, Y, X order.
+std::vector<EePose> GridPoses(const EePose& centre, const AccuracyMapOptions& options) {
+  const std::vector<double> xs = GridValues(centre[0], options.half_extent_m, options.step_m);
+  const std::vector<double> ys = GridValues(centre[1], options.half_extent_m, options.step_m);
+  std::vector<EePose> poses;
+  for (double dz : options.z_offsets_m) {
+    for (double theta : options.theta_rad) {
+      for (double y : ys) {
+        for (double x : xs) poses.emplace_back(x, y, centre[2] + dz, theta);
+      }
+    }
+  }
+  return poses;
+}
+
+// H (4x4) of pose x: how its (X, Y, Z, theta) move under a small rigid motion of the base
+// frame (translation t, rotation a about Z through `centre`): d = H (t, a).
+Eigen::Matrix4d RigidMotionRows(const EePose& x, const EePose& centre) {
+  Eigen::Matrix4d H = Eigen::Matrix4d::Identity();
+  H(0, 3) = -(x[1] - centre[1]);
+  H(1, 3) = x[0] - centre[0];
+  return H;
 }
 
 }  // namespace
@@ -79,25 +106,47 @@ AccuracyMap ComputeAccuracyMap(const KinematicModel& model, const Eigen::MatrixX
   map.model = model.kind();
   map.centre = model.WorkspaceCentre();
   map.options = options;
-  const std::vector<double> xs = GridValues(map.centre[0], options.half_extent_m, options.step_m);
-  const std::vector<double> ys = GridValues(map.centre[1], options.half_extent_m, options.step_m);
-  for (double dz : options.z_offsets_m) {
-    for (double theta : options.theta_rad) {
-      for (double y : ys) {
-        for (double x : xs) {
-          const EePose pose(x, y, map.centre[2] + dz, theta);
-          const std::optional<Eigen::Matrix4d> S = ReachedPoseCovariance(model, C, pose);
-          if (!S) {
-            ++map.left_out;
-            continue;
-          }
-          map.points.push_back({pose, std::sqrt(std::max(0.0, S->topLeftCorner<3, 3>().trace())),
-                                std::sqrt(std::max(0.0, (*S)(3, 3)))});
-        }
-      }
+  std::vector<EePose> reached;
+  std::vector<Eigen::MatrixXd> sensitivity;
+  for (const EePose& pose : GridPoses(map.centre, options)) {
+    std::optional<Eigen::MatrixXd> A = ReachedPoseSensitivity(model, pose);
+    if (!A) {
+      ++map.left_out;
+      continue;
     }
+    reached.push_back(pose);
+    sensitivity.push_back(std::move(*A));
+  }
+  if (options.register_base_frame) {
+    sensitivity = WithoutRigidRegistration(reached, map.centre, sensitivity);
+  }
+  for (size_t k = 0; k < reached.size(); ++k) {
+    const Eigen::Matrix4d S = sensitivity[k] * C * sensitivity[k].transpose();
+    map.points.push_back({reached[k], std::sqrt(std::max(0.0, S.topLeftCorner<3, 3>().trace())),
+                          std::sqrt(std::max(0.0, S(3, 3)))});
   }
   return map;
+}
+
+std::vector<Eigen::MatrixXd> WithoutRigidRegistration(const std::vector<EePose>& poses,
+                                                      const EePose& centre,
+                                                      const std::vector<Eigen::MatrixXd>& errors) {
+  if (poses.empty()) return errors;
+  // The rigid motion (t, a) that best explains the position rows over every pose, least
+  // squares: (sum H3^T H3) g = sum H3^T e3, H3 the position rows of RigidMotionRows.
+  Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(4, errors.front().cols());
+  for (size_t k = 0; k < poses.size(); ++k) {
+    const Eigen::Matrix<double, 3, 4> H3 = RigidMotionRows(poses[k], centre).topRows<3>();
+    normal += H3.transpose() * H3;
+    rhs += H3.transpose() * errors[k].topRows(3);
+  }
+  const Eigen::MatrixXd g = normal.ldlt().solve(rhs);
+  std::vector<Eigen::MatrixXd> left;
+  for (size_t k = 0; k < poses.size(); ++k) {
+    left.push_back(errors[k] - RigidMotionRows(poses[k], centre) * g);
+  }
+  return left;
 }
 
 std::optional<AccuracyMap> AccuracyMapOfResult(const IdentificationResult& result,

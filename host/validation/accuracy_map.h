@@ -11,6 +11,14 @@
 // reports sqrt(trace) of its position block and the sigma of theta, on a grid of X, Y at
 // several Z and theta around the model's workspace centre; poses out of reach (inverse
 // kinematics undefined) or at a singular configuration are left out.
+//
+// By default the map is of the error that remains after the best rigid registration of the
+// base frame (translation, rotation about Z, fitted to the positions over the whole grid):
+// where exactly the identified base frame lies is a convention the identifiability analysis
+// fixes (for Model 31, through the camera's X_BC.rz), and a user registers the robot to the
+// work anyway (touch-up); otherwise the uncertainty of a frame orientation taken from the
+// camera dominates the map (README, "Validation and the report"). With register_base_frame
+// false, the error in the model's own base frame.
 #pragma once
 
 #include <optional>
@@ -34,6 +42,8 @@ struct AccuracyMapOptions {
   /// the paper grid's three levels (150 mm tall) and rotations.
   std::vector<double> z_offsets_m = {-0.075, 0.0, 0.075};
   std::vector<double> theta_rad = {-0.3490658503988659, 0.0, 0.3490658503988659};
+  /// Remove the best rigid registration of the base frame (above).
+  bool register_base_frame = true;
 
   bool IsValid(std::string* why) const;
 };
@@ -60,6 +70,15 @@ struct AccuracyMap {
 /// options or a C of the wrong size.
 AccuracyMap ComputeAccuracyMap(const KinematicModel& model, const Eigen::MatrixXd& C,
                                const AccuracyMapOptions& options = AccuracyMapOptions{});
+
+/// What of per-pose errors (X, Y, Z, theta rows; a column per error, or per parameter for
+/// a sensitivity) no rigid motion of the base frame explains: the motion (translation, a
+/// rotation about Z through `centre`) fitted by least squares to the position rows over
+/// every pose is taken out of every row. The same for a sensitivity (the map) and for actual
+/// errors (the coverage study), so that both are judged alike.
+std::vector<Eigen::MatrixXd> WithoutRigidRegistration(const std::vector<EePose>& poses,
+                                                      const EePose& centre,
+                                                      const std::vector<Eigen::MatrixXd>& errors);
 
 /// The map of a result: its model rebuilt with `assembly`, C from its
 /// `parameter_covariance`. Empty when the result has no covariance (an older result, or

@@ -43,6 +43,7 @@ TEST(AccuracyMapTest, PredictedSpreadMatchesRobotsDrawnFromTheCovariance) {
   const Eigen::VectorXd xi_hat = model->parameters();
   const Eigen::MatrixXd C = RandomCovariance(xi_hat.size(), 2e-5, 7);
   AccuracyMapOptions one_pose;
+  one_pose.register_base_frame = false;  // one pose: its error is all frame motion
   one_pose.half_extent_m = 0.0;
   one_pose.z_offsets_m = {0.05};
   one_pose.theta_rad = {0.25};
@@ -86,6 +87,34 @@ TEST(AccuracyMapTest, GridCoversXYAtEachLevelAndThetaAndScalesWithTheCovariance)
   }
   EXPECT_NEAR(doubled.MedianPositionSigma(), 2.0 * map.MedianPositionSigma(), 1e-12);
   EXPECT_GE(map.MaxPositionSigma(), map.MedianPositionSigma());
+}
+
+// Errors that a rigid motion of the base frame explains vanish; what no rigid motion explains
+// stays whole.
+TEST(AccuracyMapTest, RegistrationTakesOutRigidMotionsOfTheBaseFrameOnly) {
+  const EePose centre(0.0, 0.0, -0.45, 0.0);
+  std::vector<EePose> poses;
+  std::vector<Eigen::MatrixXd> rigid, bend;
+  for (double x : {-0.1, 0.0, 0.1}) {
+    for (double y : {-0.1, 0.1}) {
+      for (double z : {-0.5, -0.4}) {
+        poses.emplace_back(x, y, z, 0.2);
+        // Frame shifted by (1, -2, 3) mm and turned by 0.5 mrad about Z through the centre.
+        Eigen::MatrixXd e(4, 1);
+        e << 1e-3 - 0.5e-3 * y, -2e-3 + 0.5e-3 * x, 3e-3, 0.5e-3;
+        rigid.push_back(e);
+        // A bend: Z error growing with X squared, which no rigid motion makes.
+        Eigen::MatrixXd b = Eigen::MatrixXd::Zero(4, 1);
+        b(2, 0) = 0.1 * (x * x - 0.02 / 3.0);
+        bend.push_back(b);
+      }
+    }
+  }
+  for (const Eigen::MatrixXd& left : WithoutRigidRegistration(poses, centre, rigid)) {
+    EXPECT_LT(left.norm(), 1e-12);
+  }
+  const std::vector<Eigen::MatrixXd> bent = WithoutRigidRegistration(poses, centre, bend);
+  for (size_t k = 0; k < poses.size(); ++k) EXPECT_NEAR(bent[k](2, 0), bend[k](2, 0), 1e-12);
 }
 
 TEST(AccuracyMapTest, PosesOutOfReachAreLeftOut) {
