@@ -28,8 +28,8 @@ TEST(Report, HoldsEverySectionAndFigureAndIsSelfContained) {
   for (const char* id : kReportSections) {
     EXPECT_NE(html.find(std::string("<section id=\"") + id + "\">"), std::string::npos) << id;
   }
-  // Residuals, histograms, straightness, square.
-  EXPECT_EQ(Count(html, "<svg"), 4);
+  // Accuracy map, residuals, histograms, straightness, square.
+  EXPECT_EQ(Count(html, "<svg"), 5);
   EXPECT_EQ(Count(html, "Not computed"), 0);
   EXPECT_EQ(Count(html, "<script"), 0);
   EXPECT_FALSE(std::regex_search(html, std::regex("(src|href)=\"https?:")));
@@ -47,6 +47,23 @@ TEST(Report, PaperScenarioShowsThePublishedNumbersBesideOurs) {
   EXPECT_NE(html.find("9.0e-02"), std::string::npos) << "Table 3 before, joint 1";
 }
 
+// A result written before parameter_covariance has no accuracy map: the section says so,
+// the notes say why, and no map file is written.
+TEST(Report, AResultWithoutCovarianceHasNoAccuracyMapAndSaysWhy) {
+  if (!GnuplotAvailable()) GTEST_SKIP() << "gnuplot missing: run scripts/setup";
+  ValidationInputs in = PaperValidationInputs();
+  in.result12->parameter_covariance.reset();
+  const ValidationReport report = Validate(in);
+  EXPECT_FALSE(report.models.back().accuracy_map.has_value());
+  const std::string html = FormatHtmlReport(in, report, "test");
+  const size_t map = html.find("<section id=\"accuracy-map\">");
+  ASSERT_NE(map, std::string::npos);
+  EXPECT_NE(html.find("Not computed", map), std::string::npos);
+  EXPECT_NE(html.find("Model 12: no accuracy map (the result has no parameter_covariance"),
+            std::string::npos);
+  EXPECT_EQ(Count(html, "<svg"), 4);
+}
+
 TEST(Report, WithoutTruthOrRulerRunsSaysWhatIsMissing) {
   if (!GnuplotAvailable()) GTEST_SKIP() << "gnuplot missing: run scripts/setup";
   ValidationInputs in = PaperValidationInputs();
@@ -55,7 +72,7 @@ TEST(Report, WithoutTruthOrRulerRunsSaysWhatIsMissing) {
   const ValidationReport report = Validate(in);
   EXPECT_FALSE(report.paper_scenario);
   const std::string html = FormatHtmlReport(in, report, "test");
-  EXPECT_EQ(Count(html, "<svg"), 2);
+  EXPECT_EQ(Count(html, "<svg"), 3);
   EXPECT_EQ(Count(html, "Not computed"), 4);
   EXPECT_EQ(html.find("(paper)"), std::string::npos);
 }
@@ -77,7 +94,7 @@ TEST(Report, MeasuredSquareRunsAddTheirRowsAndFigure) {
   EXPECT_NE(html.find(std::string("<section id=\"") + kMeasuredSquareSection + "\">"),
             std::string::npos);
   // Residuals, histograms, straightness, square, measured square.
-  EXPECT_EQ(Count(html, "<svg"), 5);
+  EXPECT_EQ(Count(html, "<svg"), 6);
   EXPECT_EQ(Count(html, "Not computed"), 0);
   EXPECT_NE(html.find("<th>a &lt;priori&gt; (measured)</th>"), std::string::npos);
   EXPECT_NE(html.find("<th>Model 12 (measured)</th>"), std::string::npos);

@@ -29,6 +29,9 @@ IdentificationResult PerfectModel12Result(const SimulatedRobot& truth,
     p.std = 1e-4;
     result.parameters.push_back(p);
   }
+  // The covariance whose diagonal gives each std (common/formats/README.md).
+  const Eigen::Index n = static_cast<Eigen::Index>(result.parameters.size());
+  result.parameter_covariance = Eigen::MatrixXd::Identity(n, n) * 1e-8;
   result.X_BC = truth.X_BC;
   result.X_TE = truth.X_TE;
   result.valid_poses = valid;
