@@ -103,7 +103,7 @@ rm -rf "$profile"
 for id in $sections; do
   grep -q "<section id=\"$id\">" "$dir/dom.html" || fail "the rendered DOM has no section $id"
 done
-[ "$(grep -o '<svg' "$dir/dom.html" | wc -l)" -eq 4 ] || fail "the rendered DOM lacks figures"
+[ "$(grep -o '<svg' "$dir/dom.html" | wc -l)" -eq 5 ] || fail "the rendered DOM lacks figures"
 profile=$(mktemp -d)
 timeout 120 "$browser" "${flags[@]}" --user-data-dir="$profile" \
   --screenshot="$dir/report.png" "file://$html" 2> "$dir/chromium_shot.log" ||
