@@ -126,24 +126,29 @@ void CountAccuracyMap(const IdentificationResult& r, const Campaign& c, Tally* t
   const std::optional<AccuracyMap> map = AccuracyMapOfResult(r, c.truth.assembly, map_options);
   if (!map) return;
   const IdentifiedRobot identified = RebuildFromResult(r, c.truth.assembly);
-  std::vector<EePose> poses;
-  std::vector<Eigen::MatrixXd> errors;
+  std::vector<EePose> commanded, reached;
   double predicted_sq = 0.0;
   for (const AccuracyMapPoint& point : map->points) {
     const IkResult ik = identified.model->InverseKinematics(point.x);
-    const FkResult reached = ForwardKinematics(*truth, ik.q, point.x);
-    if (!ik.ok() || !reached.ok()) continue;
-    poses.push_back(point.x);
-    errors.push_back(Eigen::MatrixXd(reached.x - point.x));
+    const FkResult fk = ForwardKinematics(*truth, ik.q, point.x);
+    if (!ik.ok() || !fk.ok()) continue;
+    commanded.push_back(point.x);
+    reached.push_back(fk.x);
     predicted_sq += point.position_sigma_m * point.position_sigma_m;
   }
-  // The actual errors registered as the map's are (accuracy_map.h).
-  if (g_register_base_frame) errors = WithoutRigidRegistration(poses, map->centre, errors);
-  for (const Eigen::MatrixXd& e : errors) {
-    tally->map_actual_sq += e.topRows(3).squaredNorm();
+  // The actual errors registered as the map's are (accuracy_map.h), with the exact rotation:
+  // the identified frame may be turned by degrees from the truth's.
+  if (g_register_base_frame) {
+    for (const Eigen::Vector4d& e : ResidualAfterRigidRegistration(commanded, reached)) {
+      tally->map_actual_sq += e.head<3>().squaredNorm();
+    }
+  } else {
+    for (size_t k = 0; k < commanded.size(); ++k) {
+      tally->map_actual_sq += (reached[k] - commanded[k]).head<3>().squaredNorm();
+    }
   }
   tally->map_predicted_sq += predicted_sq;
-  tally->map_poses += static_cast<int>(poses.size());
+  tally->map_poses += static_cast<int>(commanded.size());
 }
 
 void Count(const IdentificationOutcome& out, const Campaign& c, Tally* tally) {

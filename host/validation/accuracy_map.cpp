@@ -5,7 +5,10 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <numbers>
+
 #include <Eigen/Cholesky>
+#include <Eigen/Geometry>
 
 #include "common/formats/number_text.h"
 #include "host/identification/identified_robot.h"
@@ -147,6 +150,38 @@ std::vector<Eigen::MatrixXd> WithoutRigidRegistration(const std::vector<EePose>&
     left.push_back(errors[k] - RigidMotionRows(poses[k], centre) * g);
   }
   return left;
+}
+
+std::vector<Eigen::Vector4d> ResidualAfterRigidRegistration(const std::vector<EePose>& commanded,
+                                                            const std::vector<EePose>& reached) {
+  std::vector<Eigen::Vector4d> residuals;
+  if (commanded.empty() || commanded.size() != reached.size()) return residuals;
+  Eigen::Vector3d mean_commanded = Eigen::Vector3d::Zero(), mean_reached = Eigen::Vector3d::Zero();
+  for (size_t k = 0; k < commanded.size(); ++k) {
+    mean_commanded += commanded[k].head<3>();
+    mean_reached += reached[k].head<3>();
+  }
+  mean_commanded /= static_cast<double>(commanded.size());
+  mean_reached /= static_cast<double>(reached.size());
+  // The rotation about Z that best turns the centred commanded X-Y positions onto the
+  // reached ones: atan2 of the summed cross and dot products (2-D Procrustes).
+  double cross = 0.0, dot = 0.0;
+  for (size_t k = 0; k < commanded.size(); ++k) {
+    const Eigen::Vector3d u = commanded[k].head<3>() - mean_commanded;
+    const Eigen::Vector3d v = reached[k].head<3>() - mean_reached;
+    cross += u.x() * v.y() - u.y() * v.x();
+    dot += u.x() * v.x() + u.y() * v.y();
+  }
+  const double angle = std::atan2(cross, dot);
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  for (size_t k = 0; k < commanded.size(); ++k) {
+    const Eigen::Vector3d moved = R * (commanded[k].head<3>() - mean_commanded) + mean_reached;
+    Eigen::Vector4d r;
+    r.head<3>() = reached[k].head<3>() - moved;
+    r[3] = std::remainder(reached[k][3] - commanded[k][3] - angle, 2.0 * std::numbers::pi);
+    residuals.push_back(r);
+  }
+  return residuals;
 }
 
 std::optional<AccuracyMap> AccuracyMapOfResult(const IdentificationResult& result,

@@ -80,6 +80,15 @@ std::vector<Eigen::MatrixXd> WithoutRigidRegistration(const std::vector<EePose>&
                                                       const EePose& centre,
                                                       const std::vector<Eigen::MatrixXd>& errors);
 
+/// What of the difference between reached and commanded poses no rigid motion of the base
+/// frame explains, for motions of any size: the rotation about Z and the translation that
+/// best map the commanded positions onto the reached ones (least squares, closed form) are
+/// taken out; per pose (X, Y, Z, theta) of reached - moved(commanded). For small motions it
+/// is WithoutRigidRegistration of the differences; a frame turned by degrees (the gauge the
+/// identifiability analysis fixes at a value off the truth's) needs the exact rotation.
+std::vector<Eigen::Vector4d> ResidualAfterRigidRegistration(const std::vector<EePose>& commanded,
+                                                            const std::vector<EePose>& reached);
+
 /// The map of a result: its model rebuilt with `assembly`, C from its
 /// `parameter_covariance`. Empty when the result has no covariance (an older result, or
 /// one whose covariance could not be computed).

@@ -7,9 +7,11 @@
 #include <sstream>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "host/identification/identification.h"
+#include "common/units.h"
 #include "host/kinematics/forward_kinematics.h"
 #include "host/simulation/dataset_simulator.h"
 #include "host/simulation/paper_scenario.h"
@@ -115,6 +117,39 @@ TEST(AccuracyMapTest, RegistrationTakesOutRigidMotionsOfTheBaseFrameOnly) {
   }
   const std::vector<Eigen::MatrixXd> bent = WithoutRigidRegistration(poses, centre, bend);
   for (size_t k = 0; k < poses.size(); ++k) EXPECT_NEAR(bent[k](2, 0), bend[k](2, 0), 1e-12);
+}
+
+// A frame turned by 3 deg and shifted: the exact registration leaves nothing, the linear one
+// (right for the map's small errors) would leave the rotation's second order, a / 2 * 3 deg
+// of the poses' distance from the centre (about 0.1 mm at 0.1 m).
+TEST(AccuracyMapTest, ExactRegistrationTakesOutAFrameTurnedByDegrees) {
+  const double angle = RadiansFromDegrees(3.0);
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(angle, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  std::vector<EePose> commanded, reached;
+  std::vector<Eigen::MatrixXd> differences;
+  for (double x : {-0.1, 0.0, 0.1}) {
+    for (double y : {-0.1, 0.1}) {
+      for (double theta : {-0.3, 0.3}) {
+        const EePose c(x, y, -0.45, theta);
+        EePose r;
+        r.head<3>() = R * c.head<3>() + Eigen::Vector3d(0.004, -0.002, 0.001);
+        r[3] = theta + angle;
+        commanded.push_back(c);
+        reached.push_back(r);
+        differences.push_back(Eigen::MatrixXd(r - c));
+      }
+    }
+  }
+  double exact = 0.0, linear = 0.0;
+  for (const Eigen::Vector4d& e : ResidualAfterRigidRegistration(commanded, reached)) {
+    exact = std::max(exact, e.norm());
+  }
+  for (const Eigen::MatrixXd& e :
+       WithoutRigidRegistration(commanded, EePose(0, 0, -0.45, 0), differences)) {
+    linear = std::max(linear, e.topRows(3).norm());
+  }
+  EXPECT_LT(exact, 1e-12);
+  EXPECT_GT(linear, 50e-6);
 }
 
 TEST(AccuracyMapTest, PosesOutOfReachAreLeftOut) {
