@@ -4,7 +4,8 @@
 // the whole board: all its corners, projected with the camera model through the a priori
 // placement X_CT = inv(X_BC) X_BE inv(X_TE) (common/README.md), fall inside the image with a
 // margin, the board is not tilted past a limit from the line of sight, and its centre lies
-// in the camera's depth (focus) range.
+// in the camera's depth (focus) range, and the pose keeps clear of the singularity where the
+// nacelle angle theta stops being held by the joints (see max_theta_gain).
 #pragma once
 
 #include <optional>
@@ -38,6 +39,13 @@ struct CandidateOptions {
   double image_margin_px = 20.0;
   /// Largest angle between the board normal and the line of sight to its centre, rad.
   double max_tilt = RadiansFromDegrees(60.0);
+  /// Largest |d theta / dq| (rad of nacelle angle per rad of joint, the norm of theta's row
+  /// of J_x_q, forward_kinematics.h) of the a priori Model 12. The gain grows without bound
+  /// towards the singularity where J_f_x loses rank in theta (the nacelle turns freely);
+  /// there the true robot, whose singular locus is displaced from the a priori's, may have
+  /// no forward kinematics at its measured joints, and the measurement-space identification
+  /// cannot be evaluated. The default keeps every pose of the default grid.
+  double max_theta_gain = 12.0;
   /// Depth range (z in C of the board centre) the camera is in focus over, m.
   double min_depth = 0.15;
   double max_depth = 2.0;
@@ -46,7 +54,15 @@ struct CandidateOptions {
 };
 
 /// Why a pose is not a candidate (kOk when it is).
-enum class CandidateVerdict { kOk, kUnreachable, kJointRange, kOutOfImage, kTilt, kDepth };
+enum class CandidateVerdict {
+  kOk,
+  kUnreachable,
+  kJointRange,
+  kOutOfImage,
+  kTilt,
+  kDepth,
+  kNearSingular
+};
 const char* ToString(CandidateVerdict verdict);
 
 struct CandidatePose {
@@ -56,6 +72,10 @@ struct CandidatePose {
 
 /// The four outer corners p_TQ of the board (the bounding rectangle of its corners, z = 0), m.
 std::vector<Eigen::Vector3d> OuterBoardCorners(const BoardModel& board);
+
+/// |d theta / dq| at a consistent (q, x) of `model`: the norm of theta's row of J_x_q;
+/// +infinity where J_f_x is singular.
+double ThetaJointGain(const KinematicModel& model, const JointVector& q, const EePose& x);
 
 /// Decides one pose. `joints` receives the a priori joints when reachable.
 class CandidateFilter {
@@ -78,7 +98,7 @@ struct CandidateSet {
   std::vector<CandidatePose> poses;  ///< in grid order: z, y, x, theta slowest to fastest
   int examined = 0;
   /// How many grid poses each verdict rejected, indexed by CandidateVerdict.
-  std::vector<int> rejected = std::vector<int>(6, 0);
+  std::vector<int> rejected = std::vector<int>(7, 0);
   std::string Summary() const;
 };
 
