@@ -26,13 +26,19 @@ struct CandidateOptions {
   /// Centre of the candidate grid in B, m (theta ignored): the paper's workspace centre.
   Eigen::Vector3d centre = Eigen::Vector3d(0.0, 0.0, -0.45);
   /// Half extent of the grid along x, y, z of B, m.
-  Eigen::Vector3d half_extent = Eigen::Vector3d(0.15, 0.15, 0.10);
+  /// (A box wider than the paper's grid: the poses that carry the most information lie at
+  /// its edges; README.md, "Planning the poses".)
+  Eigen::Vector3d half_extent = Eigen::Vector3d(0.25, 0.25, 0.15);
   /// Grid step along x, y, z, m.
-  double position_step = 0.025;
-  /// Nacelle angles, rad (default -30..30 deg by 10 deg).
+  double position_step = 0.05;
+  /// Nacelle angles, rad (default -60..60 deg by 10 deg; max_theta_gain keeps those near
+  /// the theta singularity out).
   std::vector<double> theta = {
-      RadiansFromDegrees(-30.0), RadiansFromDegrees(-20.0), RadiansFromDegrees(-10.0), 0.0,
-      RadiansFromDegrees(10.0),  RadiansFromDegrees(20.0),  RadiansFromDegrees(30.0)};
+      RadiansFromDegrees(-60.0), RadiansFromDegrees(-50.0), RadiansFromDegrees(-40.0),
+      RadiansFromDegrees(-30.0), RadiansFromDegrees(-20.0), RadiansFromDegrees(-10.0),
+      0.0,                       RadiansFromDegrees(10.0),  RadiansFromDegrees(20.0),
+      RadiansFromDegrees(30.0),  RadiansFromDegrees(40.0),  RadiansFromDegrees(50.0),
+      RadiansFromDegrees(60.0)};
   /// Joint range (encoder values, rad) every joint must stay in; unset: any angle.
   std::optional<Eigen::Vector2d> joint_range;
   /// Every outer board corner at least this far inside the image border, px.
@@ -44,7 +50,8 @@ struct CandidateOptions {
   /// towards the singularity where J_f_x loses rank in theta (the nacelle turns freely);
   /// there the true robot, whose singular locus is displaced from the a priori's, may have
   /// no forward kinematics at its measured joints, and the measurement-space identification
-  /// cannot be evaluated. The default keeps every pose of the default grid.
+  /// cannot be evaluated. The limit keeps the paper's grid and every pose of the earlier
+  /// default grid (theta +-30 deg) as candidates (README.md, "Planning the poses").
   double max_theta_gain = 12.0;
   /// Depth range (z in C of the board centre) the camera is in focus over, m.
   double min_depth = 0.15;
