@@ -33,12 +33,19 @@ struct CandidateOptions {
   double position_step = 0.05;
   /// Nacelle angles, rad (default -60..60 deg by 10 deg; max_theta_gain keeps those near
   /// the theta singularity out).
-  std::vector<double> theta = {
-      RadiansFromDegrees(-60.0), RadiansFromDegrees(-50.0), RadiansFromDegrees(-40.0),
-      RadiansFromDegrees(-30.0), RadiansFromDegrees(-20.0), RadiansFromDegrees(-10.0),
-      0.0,                       RadiansFromDegrees(10.0),  RadiansFromDegrees(20.0),
-      RadiansFromDegrees(30.0),  RadiansFromDegrees(40.0),  RadiansFromDegrees(50.0),
-      RadiansFromDegrees(60.0)};
+  std::vector<double> theta = {RadiansFromDegrees(-60.0),
+                               RadiansFromDegrees(-50.0),
+                               RadiansFromDegrees(-40.0),
+                               RadiansFromDegrees(-30.0),
+                               RadiansFromDegrees(-20.0),
+                               RadiansFromDegrees(-10.0),
+                               0.0,
+                               RadiansFromDegrees(10.0),
+                               RadiansFromDegrees(20.0),
+                               RadiansFromDegrees(30.0),
+                               RadiansFromDegrees(40.0),
+                               RadiansFromDegrees(50.0),
+                               RadiansFromDegrees(60.0)};
   /// Joint range (encoder values, rad) every joint must stay in; unset: any angle.
   std::optional<Eigen::Vector2d> joint_range;
   /// Every outer board corner at least this far inside the image border, px.

@@ -113,7 +113,9 @@ TEST(CandidatePoses, PosesNearTheThetaSingularityAreRejected) {
   CandidateOptions options;
   options.position_step = 0.05;
   options.theta.clear();
-  for (double deg = -60.0; deg <= 60.0; deg += 10.0) options.theta.push_back(RadiansFromDegrees(deg));
+  for (double deg = -60.0; deg <= 60.0; deg += 10.0) {
+    options.theta.push_back(RadiansFromDegrees(deg));
+  }
   const CandidateSet set = MakeCandidateSet(robot, camera, board, options);
   EXPECT_GT(set.rejected[static_cast<size_t>(CandidateVerdict::kNearSingular)], 0) << set.Summary();
   const Model12 model(robot.model12, robot.assembly);
