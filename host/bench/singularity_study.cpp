@@ -36,7 +36,12 @@ struct GainBin {
 std::vector<GainBin> MakeBins() {
   const double edges[] = {0, 4, 8, 12, 16, 25, 50, 100, INFINITY};
   std::vector<GainBin> bins;
-  for (size_t k = 0; k + 1 < std::size(edges); ++k) bins.push_back({edges[k], edges[k + 1]});
+  for (size_t k = 0; k + 1 < std::size(edges); ++k) {
+    GainBin bin;
+    bin.low = edges[k];
+    bin.high = edges[k + 1];
+    bins.push_back(bin);
+  }
   return bins;
 }
 
