@@ -9,7 +9,8 @@
 //
 //   h4_planning_study [--robots R] [--seeds S] [--n 15,25,40,71] [--criterion accuracy|d]
 //                     [--restarts K] [--half-extent-mm X,Y,Z] [--step-mm S]
-//                     [--theta-deg MAX,STEP] [--identify 12,31|31] [--source-dir DIR]
+//                     [--theta-deg MAX,STEP] [--max-theta-gain G] [--identify 12,31|31]
+//                     [--source-dir DIR]
 // Every trial (robot, seed) has its own noise seed. --robots 0: the planned designs and
 // their predicted accuracy only. The candidate options are `h4cal plan`'s defaults unless
 // given.
@@ -95,6 +96,8 @@ StudyOptions ParseOptions(int argc, char** argv) {
       const std::vector<int> values = ParseList(value);
       if (values.size() != 2) throw std::invalid_argument("--theta-deg MAX,STEP");
       options.problem.candidates.theta = ThetaGrid(values[0], values[1]);
+    } else if (flag == "--max-theta-gain") {
+      options.problem.candidates.max_theta_gain = std::atof(value);
     } else if (flag == "--identify") {
       if (std::string(value) != "12,31" && std::string(value) != "31") {
         throw std::invalid_argument("--identify 12,31|31");

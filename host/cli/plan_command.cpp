@@ -37,7 +37,8 @@ struct PlanCommandOptions {
   double margin_px = 20.0;
   double max_tilt_deg = 60.0;
   double min_depth = 0.15, max_depth = 2.0;
-  double step = 0.025;
+  double step = CandidateOptions{}.position_step;
+  double max_theta_gain = CandidateOptions{}.max_theta_gain;
   std::string curve_path;  ///< CSV of predicted accuracy against N, empty: none
   std::vector<int> curve_n = {10, 15, 20, 25, 30, 40, 50, 60, 71};
 };
@@ -66,6 +67,7 @@ PlanningProblemOptions ProblemOptions(const PlanCommandOptions& o) {
   options.candidates.min_depth = o.min_depth;
   options.candidates.max_depth = o.max_depth;
   options.candidates.position_step = o.step;
+  options.candidates.max_theta_gain = o.max_theta_gain;
   if (!o.joint_range_deg.empty()) {
     options.candidates.joint_range = ParseJointRange(o.joint_range_deg);
   }
@@ -174,12 +176,19 @@ void AddPlanCommand(CLI::App& app) {
   command->add_option("--max-depth", options->max_depth, "Farthest board depth in focus, m")
       ->capture_default_str();
   command->add_option("--step", options->step, "Candidate grid step, m")->capture_default_str();
+  command
+      ->add_option("--max-theta-gain", options->max_theta_gain,
+                   "Largest |d theta / dq| of a candidate (rad/rad): keeps away from the theta "
+                   "singularity, where the identification cannot be evaluated")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   command->add_option("--curve", options->curve_path,
                       "Also write the predicted accuracy against N (planned and grid) to this CSV");
   command->add_option("--curve-n", options->curve_n, "The N of the curve")->capture_default_str();
   command->footer(
-      "Candidates: a grid of (X, Y, Z, theta) around (0, 0, -0.45) m (+-150, +-150, +-100 mm, "
-      "theta -30..30 deg by 10). The predicted accuracy is the one-sigma board position error "
+      "Candidates: a grid of (X, Y, Z, theta) around (0, 0, -0.45) m (+-250, +-250, +-150 mm "
+      "by 50, theta -60..60 deg by 10), away from the singularity where the joints stop "
+      "holding theta. The predicted accuracy is the one-sigma board position error "
       "the identification's covariance predicts, RMS over the paper's 81 grid poses.");
   command->callback([options] { Run(*options); });
 }

@@ -7,6 +7,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/measurement_chain.h"
 #include "host/kinematics/model12.h"
 
@@ -34,6 +35,7 @@ bool CandidateOptions::IsValid(std::string* why) const {
   }
   if (!(image_margin_px >= 0.0)) return fail("image_margin_px must be >= 0");
   if (!(max_tilt > 0.0 && max_tilt < M_PI / 2)) return fail("max_tilt must be in (0, pi/2)");
+  if (!(max_theta_gain > 0.0)) return fail("max_theta_gain must be > 0");
   if (!(min_depth > 0.0 && max_depth > min_depth)) {
     return fail("depth range must satisfy 0 < min_depth < max_depth");
   }
@@ -54,6 +56,8 @@ const char* ToString(CandidateVerdict verdict) {
       return "board tilted";
     case CandidateVerdict::kDepth:
       return "out of the depth range";
+    case CandidateVerdict::kNearSingular:
+      return "near a singularity";
   }
   return "?";
 }
@@ -69,6 +73,12 @@ std::vector<Eigen::Vector3d> OuterBoardCorners(const BoardModel& board) {
           {high.x(), low.y(), 0.0},
           {high.x(), high.y(), 0.0},
           {low.x(), high.y(), 0.0}};
+}
+
+double ThetaJointGain(const KinematicModel& model, const JointVector& q, const EePose& x) {
+  Eigen::Matrix4d J_x_q;
+  if (!ForwardKinematicsJacobians(model, q, x, &J_x_q, nullptr)) return INFINITY;
+  return J_x_q.row(3).norm();
 }
 
 CandidateFilter::CandidateFilter(const RobotDescription& robot, const CameraModel& camera,
@@ -91,7 +101,12 @@ CandidateVerdict CandidateFilter::Check(const EePose& x_B, JointVector* joints) 
     }
   }
   if (joints) *joints = ik.q;
-  return CheckView(x_B);
+  const CandidateVerdict view = CheckView(x_B);
+  if (view != CandidateVerdict::kOk) return view;
+  if (!(ThetaJointGain(model, ik.q, x_B) <= options_.max_theta_gain)) {
+    return CandidateVerdict::kNearSingular;
+  }
+  return CandidateVerdict::kOk;
 }
 
 CandidateVerdict CandidateFilter::CheckView(const EePose& x_B) const {

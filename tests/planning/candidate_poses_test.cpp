@@ -4,6 +4,8 @@
 // poses that break each rule.
 #include "host/planning/candidate_poses.h"
 
+#include <cmath>
+
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
@@ -101,12 +103,46 @@ TEST(CandidatePoses, JointRangeDepthAndTiltRulesReject) {
             CandidateVerdict::kTilt);
 }
 
+// Nacelle angles to +-60 deg reach the singularity where theta stops being held by the
+// joints (the gain |d theta / dq| grows without bound); the filter keeps only poses whose
+// a priori gain is within the limit, and rejects a pose next to the singularity.
+TEST(CandidatePoses, PosesNearTheThetaSingularityAreRejected) {
+  const RobotDescription robot = PaperAprioriRobot();
+  const CameraModel camera = DemoCamera();
+  const BoardModel board = DemoBoard();
+  CandidateOptions options;
+  options.position_step = 0.05;
+  options.theta.clear();
+  for (double deg = -60.0; deg <= 60.0; deg += 10.0) {
+    options.theta.push_back(RadiansFromDegrees(deg));
+  }
+  const CandidateSet set = MakeCandidateSet(robot, camera, board, options);
+  EXPECT_GT(set.rejected[static_cast<size_t>(CandidateVerdict::kNearSingular)], 0) << set.Summary();
+  const Model12 model(robot.model12, robot.assembly);
+  for (const CandidatePose& pose : set.poses) {
+    EXPECT_LE(ThetaJointGain(model, pose.q, pose.x_B), options.max_theta_gain)
+        << pose.x_B.transpose();
+  }
+  // A planned pose of the wide set at which forward kinematics of a simulated true robot
+  // had no solution at its noisy joints.
+  const EePose near_singular(-0.1, 0.075, -0.475, RadiansFromDegrees(60.0));
+  EXPECT_EQ(CandidateFilter(robot, camera, board, options).Check(near_singular, nullptr),
+            CandidateVerdict::kNearSingular);
+  CandidateOptions no_limit = options;
+  no_limit.max_theta_gain = INFINITY;
+  EXPECT_EQ(CandidateFilter(robot, camera, board, no_limit).Check(near_singular, nullptr),
+            CandidateVerdict::kOk);
+}
+
 TEST(CandidatePoses, InvalidOptionsAreRefusedWithTheField) {
   CandidateOptions options;
   options.position_step = 0.0;
   EXPECT_TRUE(RefusedNaming(options, "position_step"));
   EXPECT_THROW(MakeCandidateSet(PaperAprioriRobot(), DemoCamera(), DemoBoard(), options),
                std::invalid_argument);
+  CandidateOptions no_gain;
+  no_gain.max_theta_gain = 0.0;
+  EXPECT_TRUE(RefusedNaming(no_gain, "max_theta_gain"));
 }
 
 }  // namespace

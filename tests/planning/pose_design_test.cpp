@@ -12,8 +12,11 @@
 
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
+#include "host/identification/identification.h"
 #include "host/planning/pose_planner.h"
+#include "host/simulation/dataset_simulator.h"
 #include "host/simulation/paper_scenario.h"
+#include "host/simulation/true_robot.h"
 
 namespace h4::host {
 namespace {
@@ -135,6 +138,40 @@ TEST(PoseDesign, PlannedPosesAreCandidates) {
   for (const PlannedPose& pose : campaign.plan) {
     EXPECT_EQ(filter.Check(pose.x, nullptr), CandidateVerdict::kOk) << pose.x.transpose();
   }
+}
+
+// Nacelle angles to +-60 deg: without the singularity rule the planner picks poses next to
+// the theta singularity (they look informative there), where the simulated true robot's
+// noisy joints have no forward kinematics in the a priori or fitted model, and the
+// measurement-space identification cannot be evaluated ("unusable"). With the rule, the
+// campaign identifies.
+TEST(PoseDesign, WideThetaCampaignIdentifies) {
+  PlanningProblemOptions options;
+  options.candidates.position_step = 0.05;
+  options.candidates.theta.clear();
+  for (double deg = -60.0; deg <= 60.0; deg += 10.0) {
+    options.candidates.theta.push_back(RadiansFromDegrees(deg));
+  }
+  const RobotDescription apriori = PaperAprioriRobot();
+  const PlanningProblem problem = MakePlanningProblem(
+      apriori, CameraModel(ReadCameraYaml(H4_SOURCE_DIR "/boards/sim_camera_1024x768.yaml")),
+      BoardModel(ReadBoardYaml(H4_SOURCE_DIR "/boards/aprilgrid_6x6_30mm.yaml")), options);
+  DesignOptions design;
+  design.pose_count = 25;
+  const PlannedCampaign campaign = PlanCampaign(problem, design, 1, PlanCriterion::kAccuracy);
+  PerturbationOptions perturbation;
+  perturbation.seed = 1;
+  const SimulatedRobot truth =
+      MakeTrueRobot(apriori, TrueGeometry::kPerturbedModel31, perturbation);
+  DatasetOptions data;
+  data.valid_count = 0;
+  const SimulatedDataset dataset = SimulateDataset(truth, campaign.plan, data);
+  ASSERT_TRUE(dataset.unreachable.empty());
+  IdentificationOptions identification;
+  identification.cross_validation.folds = 0;
+  const IdentificationOutcome outcome =
+      IdentifyRobot(apriori, ModelKind::k31, dataset.rows, identification);
+  EXPECT_TRUE(outcome.summary.usable) << outcome.summary.message;
 }
 
 TEST(PoseDesign, AskingMorePosesThanCandidatesThrows) {
