@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include "host/identification/identified_robot.h"
 #include "host/simulation/dataset_simulator.h"
 #include "host/simulation/paper_scenario.h"
 #include "host/simulation/true_robot.h"
