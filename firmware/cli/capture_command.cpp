@@ -16,6 +16,7 @@
 #include "common/board/board_model.h"
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/geometry/rotation.h"
@@ -253,9 +254,8 @@ void SetCaptureExitCode(const CaptureSummary& summary) {
 }  // namespace
 
 void AddCaptureCommand(CLI::App& app) {
-  auto args = std::make_shared<CaptureArgs>();
-  CLI::App* command = app.add_subcommand(
-      "capture",
+  const auto [command, args] = h4::cli::AddSubcommand<CaptureArgs>(
+      app, "capture",
       "Save camera frames (PNG) for calibrate-intrinsics, printing for each the board's "
       "detection, reprojection RMS, sharpness, exposure and coverage");
   AddCaptureOptions(command, args.get());
@@ -267,20 +267,19 @@ void AddCaptureCommand(CLI::App& app) {
       ->required();
   command->footer(
       "Exit codes: 0 some frame showed the board, 3 none did, 130 interrupted, 1 error.");
-  command->callback([args] {
+  h4::cli::RunWhenParsed(command, args, [](const CaptureArgs& parsed) {
     InstallCaptureStopSignal();
     SetCaptureExitCode(
-        RunCapture(*args, /*save_frames=*/true, std::cout, g_capture_stop_requested));
+        RunCapture(parsed, /*save_frames=*/true, std::cout, g_capture_stop_requested));
   });
 }
 
 void AddPreviewCommand(CLI::App& app) {
-  auto args = std::make_shared<CaptureArgs>();
-  args->count = 0;
-  CLI::App* command = app.add_subcommand(
-      "preview",
+  const auto [command, args] = h4::cli::AddSubcommand<CaptureArgs>(
+      app, "preview",
       "Aim and focus: print for each frame the board's detection, reprojection RMS, "
       "sharpness, exposure and coverage (with --draw, keep OUT/preview.png up to date)");
+  args->count = 0;
   AddCaptureOptions(command, args.get());
   command->add_option("--count", args->count, "Frames to check (0: until Ctrl-C)")
       ->check(CLI::Range(0, 100000))
@@ -289,10 +288,10 @@ void AddPreviewCommand(CLI::App& app) {
   command->footer(
       "Exit codes: 0 some frame showed the board, 3 none did, 130 interrupted before any "
       "frame, 1 error.");
-  command->callback([args] {
+  h4::cli::RunWhenParsed(command, args, [](const CaptureArgs& parsed) {
     InstallCaptureStopSignal();
     SetCaptureExitCode(
-        RunCapture(*args, /*save_frames=*/false, std::cout, g_capture_stop_requested));
+        RunCapture(parsed, /*save_frames=*/false, std::cout, g_capture_stop_requested));
   });
 }
 

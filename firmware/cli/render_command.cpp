@@ -13,6 +13,7 @@
 #include "common/board/board_model.h"
 #include "common/camera/camera_model.h"
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/geometry/rotation.h"
@@ -108,9 +109,8 @@ bool RunRender(const RenderArgs& args, std::ostream& out) {
 }
 
 void AddRenderCommand(CLI::App& app) {
-  auto args = std::make_shared<RenderArgs>();
-  CLI::App* command =
-      app.add_subcommand("render", "Synthetic camera frames of the board at a known pose X_CT");
+  const auto [command, args] = h4::cli::AddSubcommand<RenderArgs>(
+      app, "render", "Synthetic camera frames of the board at a known pose X_CT");
   h4::cli::AddBoardOption(command, &args->board_path)->required();
   h4::cli::AddCameraOption(command, &args->camera_path)->required();
   command->add_option("--pose", args->pose, "X_CT as x,y,z,qw,qx,qy,qz (m, unit quaternion)")
@@ -164,8 +164,8 @@ void AddRenderCommand(CLI::App& app) {
   command->footer(
       "Exit codes: 0 frames written, 3 the board is not in view at --pose (behind the "
       "camera or off the image; nothing written), 1 error.");
-  command->callback([args] {
-    if (!RunRender(*args, std::cout)) SetExitCode(kExitNothingUsable);
+  h4::cli::RunWhenParsed(command, args, [](const RenderArgs& parsed) {
+    if (!RunRender(parsed, std::cout)) SetExitCode(kExitNothingUsable);
   });
 }
 
