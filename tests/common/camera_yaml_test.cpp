@@ -39,10 +39,7 @@ avg_reprojection_error: 2.5000000000000000e-01
 )";
 
 std::string CameraFileWith(const std::string& from, const std::string& to) {
-  std::string text = kOpenCvFile;
-  const size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
+  return ReplacedOnce(kOpenCvFile, from, to);
 }
 
 /// The image size and camera matrix read are those of `expected`, to the last bit.
