@@ -177,13 +177,9 @@ CampaignOptions FastOptions() {
   return o;
 }
 
-class CampaignTest : public ::testing::Test {
+class CampaignTest : public TestWithDatasetFile {
  protected:
-  void SetUp() override {
-    dir_ = FreshTestDir("h4_campaign_");
-    path_ = (dir_ / "dataset.csv").string();
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  CampaignTest() : TestWithDatasetFile("h4_campaign_") {}
 
   /// Runs until the campaign ends (or `max_seconds`); `extra` runs each cycle.
   static void Run(bus::LcmBus& bus, Campaign& campaign, ScriptedCell* cell,
@@ -195,9 +191,6 @@ class CampaignTest : public ::testing::Test {
       bus.Handle(std::chrono::milliseconds(1));
     }
   }
-
-  fs::path dir_;
-  std::string path_;
 };
 
 TEST_F(CampaignTest, RecordsEveryPoseOnceWithTheJointsOfThatPose) {
