@@ -12,6 +12,7 @@
 
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/dataset_csv.h"
 #include "common/formats/file_output.h"
 #include "common/formats/identification_result.h"
@@ -220,9 +221,8 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
 }  // namespace
 
 void AddIdentifyCommand(CLI::App& app) {
-  auto options = std::make_shared<IdentifyCommandOptions>();
-  CLI::App* command = app.add_subcommand(
-      "identify", "Identify the robot's geometry (Model 12 or 31) from a paired dataset");
+  const auto [command, options] = h4::cli::AddSubcommand<IdentifyCommandOptions>(
+      app, "identify", "Identify the robot's geometry (Model 12 or 31) from a paired dataset");
   h4::cli::AddRobotOption(command, &options->robot_path)->required();
   h4::cli::AddDataOption(command, &options->data_path)->required();
   command->add_option("--model", options->model, "Kinematic model")
@@ -269,10 +269,11 @@ void AddIdentifyCommand(CLI::App& app) {
   command->footer(
       "Exit code 3: the result was written but its verdict is not 'good' (printed first, and "
       "in the result's 'verdict' key).");
-  command->callback([options, command] {
-    options->validation_given = command->count("--validation") > 0;
-    Run(*options, "h4cal identify " + ReportCommandLine(*command));
-  });
+  RunWithCommandLineWhenParsed(
+      command, options, [command](IdentifyCommandOptions& parsed, const std::string& command_line) {
+        parsed.validation_given = command->count("--validation") > 0;
+        Run(parsed, command_line);
+      });
 }
 
 }  // namespace h4::host::cli

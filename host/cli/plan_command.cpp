@@ -14,6 +14,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/formats/file_output.h"
@@ -132,9 +133,8 @@ void Run(const PlanCommandOptions& o) {
 }  // namespace
 
 void AddPlanCommand(CLI::App& app) {
-  auto options = std::make_shared<PlanCommandOptions>();
-  CLI::App* command = app.add_subcommand(
-      "plan",
+  const auto [command, options] = h4::cli::AddSubcommand<PlanCommandOptions>(
+      app, "plan",
       "Plan N calibration poses (the most accurate design for the identification) among the poses "
       "the robot "
       "reaches with the whole board in the image; writes a poses CSV for h4cal collect --plan");
@@ -181,7 +181,7 @@ void AddPlanCommand(CLI::App& app) {
       "Candidates: a grid of (X, Y, Z, theta) around (0, 0, -0.45) m (+-150, +-150, +-100 mm, "
       "theta -30..30 deg by 10). The predicted accuracy is the one-sigma board position error "
       "the identification's covariance predicts, RMS over the paper's 81 grid poses.");
-  command->callback([options] { Run(*options); });
+  h4::cli::RunWhenParsed(command, options, Run);
 }
 
 }  // namespace h4::host::cli

@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "host/cli/commands.h"
 #include "host/cli/validation_inputs.h"
 #include "host/report/html_report.h"
@@ -23,21 +24,30 @@ std::string ReportCommandLine(const CLI::App& command) {
   return line;
 }
 
+namespace {
+
+struct ReportOptions {
+  ValidationFileOptions files;
+  std::string out_dir;
+};
+
+void Run(const ReportOptions& options, const std::string& command_line) {
+  const ValidationInputs inputs = LoadValidationInputs(options.files);
+  const ValidationReport report = Validate(inputs);
+  const std::string path = WriteHtmlReport(options.out_dir, inputs, report, command_line);
+  spdlog::info("wrote {}", path);
+}
+
+}  // namespace
+
 void AddReportCommand(CLI::App& app) {
-  auto files = std::make_shared<ValidationFileOptions>();
-  auto out_dir = std::make_shared<std::string>();
-  CLI::App* command = app.add_subcommand(
-      "report", "Write the calibration report (one self-contained HTML file) to DIR/report.html");
-  AddValidationFileOptions(command, files.get());
-  h4::cli::AddOutDirOption(command, out_dir.get(), "Folder of report.html", "--report-dir")
+  const auto [command, options] = h4::cli::AddSubcommand<ReportOptions>(
+      app, "report",
+      "Write the calibration report (one self-contained HTML file) to DIR/report.html");
+  AddValidationFileOptions(command, &options->files);
+  h4::cli::AddOutDirOption(command, &options->out_dir, "Folder of report.html", "--report-dir")
       ->required();
-  command->callback([files, out_dir, command] {
-    const ValidationInputs inputs = LoadValidationInputs(*files);
-    const ValidationReport report = Validate(inputs);
-    const std::string path =
-        WriteHtmlReport(*out_dir, inputs, report, "h4cal report " + ReportCommandLine(*command));
-    spdlog::info("wrote {}", path);
-  });
+  RunWithCommandLineWhenParsed(command, options, Run);
 }
 
 }  // namespace h4::host::cli

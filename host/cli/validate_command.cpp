@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "host/cli/commands.h"
 #include "host/cli/validation_inputs.h"
 #include "host/report/html_report.h"
@@ -32,15 +33,13 @@ void Run(const ValidateOptions& options, const std::string& command_line) {
 }  // namespace
 
 void AddValidateCommand(CLI::App& app) {
-  auto options = std::make_shared<ValidateOptions>();
-  CLI::App* command = app.add_subcommand(
-      "validate",
+  const auto [command, options] = h4::cli::AddSubcommand<ValidateOptions>(
+      app, "validate",
       "Validation experiments (paper IV.D): joint residuals (Table 3), straightness "
       "(Table 4), square path, 4-DoF check");
   AddValidationFileOptions(command, &options->files);
   h4::cli::AddReportDirOption(command, &options->report_dir);
-  command->callback(
-      [options, command] { Run(*options, "h4cal validate " + ReportCommandLine(*command)); });
+  RunWithCommandLineWhenParsed(command, options, Run);
 }
 
 }  // namespace h4::host::cli
