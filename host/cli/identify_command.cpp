@@ -225,9 +225,7 @@ void AddIdentifyCommand(CLI::App& app) {
       app, "identify", "Identify the robot's geometry (Model 12 or 31) from a paired dataset");
   h4::cli::AddRobotOption(command, &options->robot_path)->required();
   h4::cli::AddDataOption(command, &options->data_path)->required();
-  command->add_option("--model", options->model, "Kinematic model")
-      ->check(CLI::IsMember({"12", "31"}))
-      ->capture_default_str();
+  h4::cli::AddModelOption(command, &options->model, "Kinematic model");
   command
       ->add_option("--validation", options->validation,
                    "Poses held out of the fit (the paper's fixed split) when the dataset has no "

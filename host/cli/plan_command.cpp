@@ -147,9 +147,7 @@ void AddPlanCommand(CLI::App& app) {
   command->add_option("--count,--poses", options->pose_count, "Number of poses N")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
-  command->add_option("--model", options->model, "Model the poses are planned for")
-      ->check(CLI::IsMember({"12", "31"}))
-      ->capture_default_str();
+  h4::cli::AddModelOption(command, &options->model, "Model the poses are planned for");
   command
       ->add_option("--criterion", options->criterion,
                    "d: D-optimal (information); accuracy: the predicted accuracy over the grid's "
