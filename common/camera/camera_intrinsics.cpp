@@ -1,43 +1,59 @@
 // Names and coefficient counts of the distortion models; see camera_intrinsics.h.
 #include "common/camera/camera_intrinsics.h"
 
+#include <algorithm>
+#include <vector>
+
 namespace h4 {
 
-const char* ToString(DistortionModel model) {
-  switch (model) {
-    case DistortionModel::kRadTan:
-      return "radtan";
-    case DistortionModel::kEquidistant:
-      return "equidistant";
+namespace {
+
+/// What the camera YAML knows of a distortion model (common/formats/README.md): its name,
+/// the coefficient counts it accepts (0: no distortion) and how an error message names them.
+struct DistortionModelFacts {
+  DistortionModel model;
+  const char* name;
+  std::vector<Eigen::Index> counts;
+  const char* expected_counts;
+};
+
+const std::vector<DistortionModelFacts>& AllDistortionModelFacts() {
+  static const std::vector<DistortionModelFacts> facts = {
+      {DistortionModel::kRadTan, "radtan", {0, 4, 5, 8}, "4, 5 or 8 (k1 k2 p1 p2 [k3 [k4 k5 k6]])"},
+      {DistortionModel::kEquidistant, "equidistant", {0, 4}, "4 (k1 k2 k3 k4)"},
+  };
+  return facts;
+}
+
+const DistortionModelFacts* FactsOfDistortionModel(DistortionModel model) {
+  for (const DistortionModelFacts& facts : AllDistortionModelFacts()) {
+    if (facts.model == model) return &facts;
   }
-  return "unknown";
+  return nullptr;
+}
+
+}  // namespace
+
+const char* ToString(DistortionModel model) {
+  const DistortionModelFacts* facts = FactsOfDistortionModel(model);
+  return facts ? facts->name : "unknown";
 }
 
 std::optional<DistortionModel> DistortionModelFromName(const std::string& name) {
-  for (DistortionModel model : {DistortionModel::kRadTan, DistortionModel::kEquidistant}) {
-    if (name == ToString(model)) return model;
+  for (const DistortionModelFacts& facts : AllDistortionModelFacts()) {
+    if (name == facts.name) return facts.model;
   }
   return std::nullopt;
 }
 
 bool IsSupportedDistortionCount(DistortionModel model, Eigen::Index count) {
-  switch (model) {
-    case DistortionModel::kRadTan:
-      return count == 0 || count == 4 || count == 5 || count == 8;
-    case DistortionModel::kEquidistant:
-      return count == 0 || count == 4;
-  }
-  return false;
+  const DistortionModelFacts* facts = FactsOfDistortionModel(model);
+  return facts && std::ranges::find(facts->counts, count) != facts->counts.end();
 }
 
 std::string ExpectedDistortionCoefficients(DistortionModel model) {
-  switch (model) {
-    case DistortionModel::kRadTan:
-      return "4, 5 or 8 (k1 k2 p1 p2 [k3 [k4 k5 k6]])";
-    case DistortionModel::kEquidistant:
-      return "4 (k1 k2 k3 k4)";
-  }
-  return "";
+  const DistortionModelFacts* facts = FactsOfDistortionModel(model);
+  return facts ? facts->expected_counts : "";
 }
 
 CameraIntrinsics CameraIntrinsics::Pinhole(int width, int height, double fx, double fy, double cx,

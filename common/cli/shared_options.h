@@ -78,6 +78,14 @@ CLI::Option* AddFramesOption(CLI::App* command, Count* frames, const std::string
                              what);
 }
 
+/// --model 12|31: the kinematic model (common/README.md); its default is shown.
+template <typename Model>
+CLI::Option* AddModelOption(CLI::App* command, Model* model, const std::string& what) {
+  return command->add_option("--model", *model, what)
+      ->check(CLI::IsMember({"12", "31"}))
+      ->capture_default_str();
+}
+
 template <typename Seed>
 CLI::Option* AddSeedOption(CLI::App* command, Seed* seed, const std::string& what) {
   return command->add_option("--seed", *seed, what)->capture_default_str();

@@ -116,22 +116,29 @@ int YamlLine(const YAML::Node& node, int fallback) {
   return mark.is_null() || mark.line < 0 ? fallback : mark.line + 1;
 }
 
-double YamlScalarDouble(const YAML::Node& node, const std::string& source, const std::string& field,
-                        int line) {
-  double value = 0.0;
-  if (!node.IsScalar() || !ParseDouble(node.Scalar(), &value)) {
-    throw FormatError(source, line, field, "expected a number, got " + Describe(node));
+namespace {
+
+/// The scalar `node` as `parse` reads it; else a FormatError "expected <what>, got ...".
+template <typename Value>
+Value ParsedYamlScalar(const YAML::Node& node, const std::string& source, const std::string& field,
+                       int line, bool (*parse)(std::string_view, Value*), const std::string& what) {
+  Value value{};
+  if (!node.IsScalar() || !parse(node.Scalar(), &value)) {
+    throw FormatError(source, line, field, "expected " + what + ", got " + Describe(node));
   }
   return value;
 }
 
+}  // namespace
+
+double YamlScalarDouble(const YAML::Node& node, const std::string& source, const std::string& field,
+                        int line) {
+  return ParsedYamlScalar(node, source, field, line, ParseDouble, "a number");
+}
+
 int64_t YamlScalarInt(const YAML::Node& node, const std::string& source, const std::string& field,
                       int line) {
-  int64_t value = 0;
-  if (!node.IsScalar() || !ParseInt64(node.Scalar(), &value)) {
-    throw FormatError(source, line, field, "expected an integer, got " + Describe(node));
-  }
-  return value;
+  return ParsedYamlScalar(node, source, field, line, ParseInt64, "an integer");
 }
 
 YamlMap::YamlMap(const YAML::Node& node, std::string source, std::string path, int line)

@@ -5,6 +5,15 @@
 #include "host/simulation/truth_file.h"
 
 namespace h4::example {
+namespace {
+
+/// The Controller answer to a target: accepted, or refused with the controller's reason.
+bool TargetAccepted(const host::TargetResult& result, std::string* why) {
+  if (!result.ok()) *why = result.reason;
+  return result.ok();
+}
+
+}  // namespace
 
 SimulatedH4Controller::SimulatedH4Controller(const std::string& truth_path,
                                              const std::string& robot_path,
@@ -19,18 +28,14 @@ SimulatedH4Controller::~SimulatedH4Controller() = default;
 
 bool SimulatedH4Controller::MoveToPose(const EePoseTarget& x_B, std::string* why) {
   AdvanceToNow();
-  const host::TargetResult result =
-      robot_->SetPoseTarget(next_id_++, host::EePose(x_B[0], x_B[1], x_B[2], x_B[3]));
-  if (!result.ok()) *why = result.reason;
-  return result.ok();
+  return TargetAccepted(
+      robot_->SetPoseTarget(next_id_++, host::EePose(x_B[0], x_B[1], x_B[2], x_B[3])), why);
 }
 
 bool SimulatedH4Controller::MoveToJoints(const JointPositions& q, std::string* why) {
   AdvanceToNow();
-  const host::TargetResult result =
-      robot_->SetJointTarget(next_id_++, host::JointVector(q[0], q[1], q[2], q[3]));
-  if (!result.ok()) *why = result.reason;
-  return result.ok();
+  return TargetAccepted(
+      robot_->SetJointTarget(next_id_++, host::JointVector(q[0], q[1], q[2], q[3])), why);
 }
 
 JointReading SimulatedH4Controller::Read() {

@@ -10,6 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 
@@ -51,9 +52,8 @@ IntrinsicsCalibrationResult RunCalibrateIntrinsics(const CalibrateIntrinsicsArgs
 }
 
 void AddCalibrateIntrinsicsCommand(CLI::App& app) {
-  auto args = std::make_shared<CalibrateIntrinsicsArgs>();
-  CLI::App* command = app.add_subcommand(
-      "calibrate-intrinsics",
+  const auto [command, args] = h4::cli::AddSubcommand<CalibrateIntrinsicsArgs>(
+      app, "calibrate-intrinsics",
       "Camera intrinsics from images of a board (chessboard or AprilTag grid) -> camera YAML");
   h4::cli::AddBoardOption(command, &args->board_path)->required();
   command->add_option("images", args->images, "Images of the board (at least --min-views)")
@@ -82,7 +82,9 @@ void AddCalibrateIntrinsicsCommand(CLI::App& app) {
       ->default_val(args->options.outlier_factor);
   command->add_flag("--drop-outliers", args->options.drop_outliers,
                     "Drop the outlier views and calibrate again");
-  command->callback([args] { RunCalibrateIntrinsics(*args, std::cout); });
+  h4::cli::RunWhenParsed(command, args, [](const CalibrateIntrinsicsArgs& parsed) {
+    RunCalibrateIntrinsics(parsed, std::cout);
+  });
 }
 
 }  // namespace h4::cam

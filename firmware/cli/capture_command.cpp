@@ -16,6 +16,7 @@
 #include "common/board/board_model.h"
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/geometry/rotation.h"
@@ -250,50 +251,71 @@ void SetCaptureExitCode(const CaptureSummary& summary) {
   }
 }
 
+/// What `h4cam capture` and `h4cam preview` differ in; both take AddCaptureOptions and run
+/// RunCapture.
+struct CaptureCommandText {
+  const char* name;
+  const char* description;
+  bool save_frames;
+  int default_count;
+  int min_count;  ///< preview: 0, until interrupted
+  const char* count_help;
+  const char* out_dir_help;
+  bool out_dir_required;
+  const char* footer;
+};
+
+void AddCaptureOrPreviewCommand(CLI::App& app, const CaptureCommandText& text) {
+  const auto [command, args] =
+      h4::cli::AddSubcommand<CaptureArgs>(app, text.name, text.description);
+  args->count = text.default_count;
+  AddCaptureOptions(command, args.get());
+  command->add_option("--count", args->count, text.count_help)
+      ->check(CLI::Range(text.min_count, 100000))
+      ->capture_default_str();
+  CLI::Option* out_dir =
+      h4::cli::AddOutDirOption(command, &args->out_dir, text.out_dir_help, "--out");
+  if (text.out_dir_required) out_dir->required();
+  command->footer(text.footer);
+  h4::cli::RunWhenParsed(
+      command, args, [save_frames = text.save_frames](const CaptureArgs& parsed) {
+        InstallCaptureStopSignal();
+        SetCaptureExitCode(RunCapture(parsed, save_frames, std::cout, g_capture_stop_requested));
+      });
+}
+
 }  // namespace
 
 void AddCaptureCommand(CLI::App& app) {
-  auto args = std::make_shared<CaptureArgs>();
-  CLI::App* command = app.add_subcommand(
-      "capture",
-      "Save camera frames (PNG) for calibrate-intrinsics, printing for each the board's "
-      "detection, reprojection RMS, sharpness, exposure and coverage");
-  AddCaptureOptions(command, args.get());
-  command->add_option("--count", args->count, "Frames to save")
-      ->check(CLI::Range(1, 100000))
-      ->capture_default_str();
-  h4::cli::AddOutDirOption(command, &args->out_dir,
-                           "Folder of frame_NNNN.png (and overlay_NNNN.png)", "--out")
-      ->required();
-  command->footer(
-      "Exit codes: 0 some frame showed the board, 3 none did, 130 interrupted, 1 error.");
-  command->callback([args] {
-    InstallCaptureStopSignal();
-    SetCaptureExitCode(
-        RunCapture(*args, /*save_frames=*/true, std::cout, g_capture_stop_requested));
-  });
+  AddCaptureOrPreviewCommand(
+      app, {.name = "capture",
+            .description = "Save camera frames (PNG) for calibrate-intrinsics, printing for each "
+                           "the board's detection, reprojection RMS, sharpness, exposure and "
+                           "coverage",
+            .save_frames = true,
+            .default_count = CaptureArgs{}.count,
+            .min_count = 1,
+            .count_help = "Frames to save",
+            .out_dir_help = "Folder of frame_NNNN.png (and overlay_NNNN.png)",
+            .out_dir_required = true,
+            .footer = "Exit codes: 0 some frame showed the board, 3 none did, 130 interrupted, 1 "
+                      "error."});
 }
 
 void AddPreviewCommand(CLI::App& app) {
-  auto args = std::make_shared<CaptureArgs>();
-  args->count = 0;
-  CLI::App* command = app.add_subcommand(
-      "preview",
-      "Aim and focus: print for each frame the board's detection, reprojection RMS, "
-      "sharpness, exposure and coverage (with --draw, keep OUT/preview.png up to date)");
-  AddCaptureOptions(command, args.get());
-  command->add_option("--count", args->count, "Frames to check (0: until Ctrl-C)")
-      ->check(CLI::Range(0, 100000))
-      ->capture_default_str();
-  h4::cli::AddOutDirOption(command, &args->out_dir, "Folder of preview.png (with --draw)", "--out");
-  command->footer(
-      "Exit codes: 0 some frame showed the board, 3 none did, 130 interrupted before any "
-      "frame, 1 error.");
-  command->callback([args] {
-    InstallCaptureStopSignal();
-    SetCaptureExitCode(
-        RunCapture(*args, /*save_frames=*/false, std::cout, g_capture_stop_requested));
-  });
+  AddCaptureOrPreviewCommand(
+      app, {.name = "preview",
+            .description = "Aim and focus: print for each frame the board's detection, "
+                           "reprojection RMS, sharpness, exposure and coverage (with --draw, keep "
+                           "OUT/preview.png up to date)",
+            .save_frames = false,
+            .default_count = 0,
+            .min_count = 0,
+            .count_help = "Frames to check (0: until Ctrl-C)",
+            .out_dir_help = "Folder of preview.png (with --draw)",
+            .out_dir_required = false,
+            .footer = "Exit codes: 0 some frame showed the board, 3 none did, 130 interrupted "
+                      "before any frame, 1 error."});
 }
 
 }  // namespace h4::cam

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/board_yaml.h"
 #include "firmware/board_print/board_print.h"
 
@@ -28,15 +29,15 @@ void RunMakeBoard(const MakeBoardArgs& args, std::ostream& out) {
 }
 
 void AddMakeBoardCommand(CLI::App& app) {
-  auto args = std::make_shared<MakeBoardArgs>();
-  CLI::App* command = app.add_subcommand(
-      "make-board", "Printable board at exact scale (SVG, PDF or PNG by the --out extension)");
+  const auto [command, args] = h4::cli::AddSubcommand<MakeBoardArgs>(
+      app, "make-board", "Printable board at exact scale (SVG, PDF or PNG by the --out extension)");
   h4::cli::AddBoardOption(command, &args->board_path)->required();
   h4::cli::AddOutOption(command, &args->out_path, "Output file: .svg, .pdf or .png");
   command->add_option("--dpi", args->dpi, "PNG resolution, dots per inch")->default_val(args->dpi);
   command->add_option("--margin", args->margin, "White border around the pattern, m")
       ->default_val(args->margin);
-  command->callback([args] { RunMakeBoard(*args, std::cout); });
+  h4::cli::RunWhenParsed(command, args,
+                         [](const MakeBoardArgs& parsed) { RunMakeBoard(parsed, std::cout); });
 }
 
 }  // namespace h4::cam

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/board_poses_csv.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
@@ -87,9 +88,8 @@ int RunMeasure(const MeasureArgs& args, std::ostream& progress) {
 }
 
 void AddMeasureCommand(CLI::App& app) {
-  auto args = std::make_shared<MeasureArgs>();
-  CLI::App* command = app.add_subcommand(
-      "measure", "Board poses X_CT from image files (groups of N images averaged)");
+  const auto [command, args] = h4::cli::AddSubcommand<MeasureArgs>(
+      app, "measure", "Board poses X_CT from image files (groups of N images averaged)");
   h4::cli::AddBoardOption(command, &args->board_path)->required();
   h4::cli::AddCameraOption(command, &args->camera_path)->required();
   h4::cli::AddFramesOption(command, &args->group, "Images averaged per measurement", "--group")
@@ -105,9 +105,9 @@ void AddMeasureCommand(CLI::App& app) {
   command->footer(
       "Exit codes: 0 at least one row has a pose, 3 no image showed the board (the rows are "
       "written, without poses), 1 error.");
-  command->callback([args] {
-    if (RunMeasure(*args, std::cerr) == 0) {
-      std::cerr << "h4cam measure: no image shows the board " << args->board_path
+  h4::cli::RunWhenParsed(command, args, [](const MeasureArgs& parsed) {
+    if (RunMeasure(parsed, std::cerr) == 0) {
+      std::cerr << "h4cam measure: no image shows the board " << parsed.board_path
                 << ": nothing usable measured\n";
       SetExitCode(kExitNothingUsable);
     }

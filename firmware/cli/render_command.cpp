@@ -13,6 +13,7 @@
 #include "common/board/board_model.h"
 #include "common/camera/camera_model.h"
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/geometry/rotation.h"
@@ -20,22 +21,50 @@
 #include "firmware/render/board_renderer.h"
 
 namespace h4::cam {
+namespace {
+
+/// A flag that overrides one number of the preset: its names, where the parsed value is
+/// kept, the RenderOptions field it replaces, its help and its range (render_options.h).
+struct PresetOverride {
+  const char* names;
+  std::optional<double> RenderArgs::*value;
+  double RenderOptions::*field;
+  const char* what;
+  double min, max;
+};
+
+// In the order --help lists them.
+const PresetOverride kPresetOverrides[] = {
+    {"--blur-px,--blur", &RenderArgs::blur_sigma_px, &RenderOptions::blur_sigma_px,
+     "Gaussian PSF sigma, px (0..20)", 0.0, 20.0},
+    {"--focus-distance", &RenderArgs::focus_distance, &RenderOptions::focus_distance,
+     "Defocus: distance the lens is focused at, m (0 = no defocus)", 0.0, 1000.0},
+    {"--aperture", &RenderArgs::aperture_diameter, &RenderOptions::aperture_diameter,
+     "Defocus: entrance pupil diameter, m (3.8 mm f/2: 0.0019)", 0.0, 0.05},
+    {"--gradient", &RenderArgs::illumination_gradient, &RenderOptions::illumination_gradient,
+     "Illumination change across the image, fraction (0..1)", 0.0, 1.0},
+    {"--gradient-direction", &RenderArgs::illumination_gradient_direction_deg,
+     &RenderOptions::illumination_gradient_direction_deg,
+     "Direction the light grows in, deg from +u toward +v", -360.0, 360.0},
+    {"--vignetting", &RenderArgs::vignetting, &RenderOptions::vignetting,
+     "Light lost at the image corners, fraction (0..0.9)", 0.0, 0.9},
+    {"--full-well,--shot-noise", &RenderArgs::full_well_electrons,
+     &RenderOptions::full_well_electrons,
+     "Shot noise: electrons at full scale (0 = none, else 100..1e7)", 0.0, 1e7},
+    {"--read-noise,--noise", &RenderArgs::read_noise, &RenderOptions::noise_sigma,
+     "Read noise sigma, grey levels of the linear signal (0..50)", 0.0, 50.0},
+};
+
+}  // namespace
 
 RenderOptions RenderOptionsFromArgs(const RenderArgs& args) {
   RenderOptions options;
   if (!RenderPresetByName(args.preset, &options)) {
     throw std::runtime_error("--preset '" + args.preset + "': expected clean or processed");
   }
-  if (args.blur_sigma_px) options.blur_sigma_px = *args.blur_sigma_px;
-  if (args.focus_distance) options.focus_distance = *args.focus_distance;
-  if (args.aperture_diameter) options.aperture_diameter = *args.aperture_diameter;
-  if (args.illumination_gradient) options.illumination_gradient = *args.illumination_gradient;
-  if (args.illumination_gradient_direction_deg) {
-    options.illumination_gradient_direction_deg = *args.illumination_gradient_direction_deg;
+  for (const PresetOverride& flag : kPresetOverrides) {
+    if (const std::optional<double>& value = args.*flag.value) options.*flag.field = *value;
   }
-  if (args.vignetting) options.vignetting = *args.vignetting;
-  if (args.full_well_electrons) options.full_well_electrons = *args.full_well_electrons;
-  if (args.read_noise) options.noise_sigma = *args.read_noise;
   std::string why;
   if (args.response && !ParseResponseCurve(*args.response, &options, &why)) {
     throw std::runtime_error("--response: " + why);
@@ -108,9 +137,8 @@ bool RunRender(const RenderArgs& args, std::ostream& out) {
 }
 
 void AddRenderCommand(CLI::App& app) {
-  auto args = std::make_shared<RenderArgs>();
-  CLI::App* command =
-      app.add_subcommand("render", "Synthetic camera frames of the board at a known pose X_CT");
+  const auto [command, args] = h4::cli::AddSubcommand<RenderArgs>(
+      app, "render", "Synthetic camera frames of the board at a known pose X_CT");
   h4::cli::AddBoardOption(command, &args->board_path)->required();
   h4::cli::AddCameraOption(command, &args->camera_path)->required();
   command->add_option("--pose", args->pose, "X_CT as x,y,z,qw,qx,qy,qz (m, unit quaternion)")
@@ -126,36 +154,10 @@ void AddRenderCommand(CLI::App& app) {
                    "(a camera module's sRGB output: defocus, gradient, shot noise)")
       ->default_val(args->preset)
       ->check(CLI::IsMember({"clean", "processed"}));
-  command->add_option("--blur-px,--blur", args->blur_sigma_px, "Gaussian PSF sigma, px (0..20)")
-      ->check(CLI::Range(0.0, 20.0));
-  command
-      ->add_option("--focus-distance", args->focus_distance,
-                   "Defocus: distance the lens is focused at, m (0 = no defocus)")
-      ->check(CLI::Range(0.0, 1000.0));
-  command
-      ->add_option("--aperture", args->aperture_diameter,
-                   "Defocus: entrance pupil diameter, m (3.8 mm f/2: 0.0019)")
-      ->check(CLI::Range(0.0, 0.05));
-  command
-      ->add_option("--gradient", args->illumination_gradient,
-                   "Illumination change across the image, fraction (0..1)")
-      ->check(CLI::Range(0.0, 1.0));
-  command
-      ->add_option("--gradient-direction", args->illumination_gradient_direction_deg,
-                   "Direction the light grows in, deg from +u toward +v")
-      ->check(CLI::Range(-360.0, 360.0));
-  command
-      ->add_option("--vignetting", args->vignetting,
-                   "Light lost at the image corners, fraction (0..0.9)")
-      ->check(CLI::Range(0.0, 0.9));
-  command
-      ->add_option("--full-well,--shot-noise", args->full_well_electrons,
-                   "Shot noise: electrons at full scale (0 = none, else 100..1e7)")
-      ->check(CLI::Range(0.0, 1e7));
-  command
-      ->add_option("--read-noise,--noise", args->read_noise,
-                   "Read noise sigma, grey levels of the linear signal (0..50)")
-      ->check(CLI::Range(0.0, 50.0));
+  for (const PresetOverride& flag : kPresetOverrides) {
+    command->add_option(flag.names, (*args).*flag.value, flag.what)
+        ->check(CLI::Range(flag.min, flag.max));
+  }
   command->add_option("--response", args->response,
                       "Response curve: linear, srgb, gamma:EXPONENT or table:V0,V1,...");
   h4::cli::AddSeedOption(command, &args->seed, "Noise seed");
@@ -164,8 +166,8 @@ void AddRenderCommand(CLI::App& app) {
   command->footer(
       "Exit codes: 0 frames written, 3 the board is not in view at --pose (behind the "
       "camera or off the image; nothing written), 1 error.");
-  command->callback([args] {
-    if (!RunRender(*args, std::cout)) SetExitCode(kExitNothingUsable);
+  h4::cli::RunWhenParsed(command, args, [](const RenderArgs& parsed) {
+    if (!RunRender(parsed, std::cout)) SetExitCode(kExitNothingUsable);
   });
 }
 

@@ -11,6 +11,7 @@
 
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "firmware/service/camera_service.h"
@@ -156,9 +157,9 @@ int RunService(const ServiceConfig& config, std::ostream& err, const std::atomic
 }
 
 void AddRunCommand(CLI::App& app) {
-  auto args = std::make_shared<RunArgs>();
-  CLI::App* command = app.add_subcommand(
-      "run", "Camera service: answer capture requests on LCM with board poses (h4cam.service)");
+  const auto [command, args] = h4::cli::AddSubcommand<RunArgs>(
+      app, "run",
+      "Camera service: answer capture requests on LCM with board poses (h4cam.service)");
   command->add_option("--config", args->config_path, "Service configuration YAML")
       ->check(CLI::ExistingFile);
   command->add_option("--source", args->source, "Frames: libcamera (default), sim or dir:PATH");
@@ -176,8 +177,8 @@ void AddRunCommand(CLI::App& app) {
   command->add_option(
       "--camera-id", args->camera_id,
       "libcamera camera id (also the name in the messages unless camera.name is set)");
-  command->callback([args] {
-    const ServiceConfig config = ResolveRunConfig(*args);
+  h4::cli::RunWhenParsed(command, args, [](const RunArgs& parsed) {
+    const ServiceConfig config = ResolveRunConfig(parsed);
     struct sigaction action {};
     action.sa_handler = OnStopSignal;
     sigemptyset(&action.sa_mask);

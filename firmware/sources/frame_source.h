@@ -46,4 +46,14 @@ class FrameSource {
   std::string error_;
 };
 
+/// A source with no device behind it (image files, the renderer): nothing to configure,
+/// start, stop or close.
+class DevicelessFrameSource : public FrameSource {
+ public:
+  bool Configure() override { return true; }
+  bool Start() override { return true; }
+  void Stop() override {}
+  void Close() override {}
+};
+
 }  // namespace h4::cam

@@ -13,21 +13,17 @@
 
 namespace h4::cam {
 
-class ImageFileSource final : public FrameSource {
+class ImageFileSource final : public DevicelessFrameSource {
  public:
   explicit ImageFileSource(std::vector<std::string> paths);
 
   /// Expands directories and checks that every file exists; false with error() otherwise
   /// (including when no image file is found).
   bool Open() override;
-  bool Configure() override { return true; }
-  bool Start() override { return true; }
   /// The next file as a grey frame (utime = file modification time, origin = path).
   /// nullopt with error() set on an unreadable/unsupported file (the source then moves
   /// on to the next file), nullopt with finished() at the end.
   std::optional<Frame> Next(std::chrono::milliseconds timeout) override;
-  void Stop() override {}
-  void Close() override {}
 
   std::string Describe() const override;
   bool finished() const override { return next_ >= files_.size() && opened_; }

@@ -8,13 +8,14 @@
 #include <time.h>
 
 namespace h4::cam {
-namespace {
 
 int64_t ReadClockNs(clockid_t clock) {
   timespec ts{};
   clock_gettime(clock, &ts);
   return static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
 }
+
+namespace {
 
 // Floor division: a timestamp before the epoch must not round towards zero.
 int64_t FloorDiv(int64_t a, int64_t b) {

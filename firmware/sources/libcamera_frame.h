@@ -8,6 +8,7 @@
 #include <string>
 
 #include <opencv2/core.hpp>
+#include <time.h>
 
 namespace h4::cam {
 
@@ -18,6 +19,9 @@ namespace h4::cam {
 /// stride * (height - 1) + width bytes.
 bool CopyLumaPlane(const uint8_t* plane, size_t plane_bytes, int width, int height,
                    int stride_bytes, cv::Mat* image, std::string* error);
+
+/// The time on kernel clock `clock` (clock_gettime: CLOCK_REALTIME, CLOCK_MONOTONIC, ...), ns.
+int64_t ReadClockNs(clockid_t clock);
 
 /// Which kernel clock a sensor timestamp counts. V4L2 drivers, and so libcamera's
 /// SensorTimestamp, use CLOCK_MONOTONIC; some pipelines report CLOCK_BOOTTIME.

@@ -32,7 +32,7 @@ struct SimSourceOptions {
   bool real_time = false;
 };
 
-class SimSource final : public FrameSource {
+class SimSource final : public DevicelessFrameSource {
  public:
   SimSource(const BoardSpec& board, const CameraIntrinsics& camera, SimSourceOptions options);
 
@@ -42,12 +42,8 @@ class SimSource final : public FrameSource {
   std::optional<RigidTransform> pose() const;
 
   bool Open() override;
-  bool Configure() override { return true; }
-  bool Start() override { return true; }
   /// A new noisy frame of the current scene; waits (up to `timeout`) only in real time.
   std::optional<Frame> Next(std::chrono::milliseconds timeout) override;
-  void Stop() override {}
-  void Close() override {}
   std::string Describe() const override { return "sim"; }
 
  private:

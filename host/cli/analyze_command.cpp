@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/dataset_csv.h"
 #include "common/formats/robot_yaml.h"
 #include "common/units.h"
@@ -47,12 +48,12 @@ void Run(const AnalyzeOptions& options) {
 }  // namespace
 
 void AddAnalyzeCommand(CLI::App& app) {
-  auto options = std::make_shared<AnalyzeOptions>();
-  CLI::App* command = app.add_subcommand(
-      "analyze", "Prior kinematic analysis: rotation axis and 4-DoF check from the measured poses");
+  const auto [command, options] = h4::cli::AddSubcommand<AnalyzeOptions>(
+      app, "analyze",
+      "Prior kinematic analysis: rotation axis and 4-DoF check from the measured poses");
   h4::cli::AddRobotOption(command, &options->robot_path)->required();
   h4::cli::AddDataOption(command, &options->data_path)->required();
-  command->callback([options] { Run(*options); });
+  h4::cli::RunWhenParsed(command, options, Run);
 }
 
 }  // namespace h4::host::cli

@@ -10,6 +10,7 @@
 
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/dataset_csv.h"
 #include "common/formats/identification_result.h"
 #include "common/formats/robot_yaml.h"
@@ -53,9 +54,8 @@ void Run(const CheckCommandOptions& o) {
 }  // namespace
 
 void AddCheckCommand(CLI::App& app) {
-  auto options = std::make_shared<CheckCommandOptions>();
-  CLI::App* command = app.add_subcommand(
-      "check",
+  const auto [command, options] = h4::cli::AddSubcommand<CheckCommandOptions>(
+      app, "check",
       "Check that the robot still matches an identification result, from a short verification "
       "campaign; exit 3 when it has drifted");
   h4::cli::AddResultOption(command, &options->result_path)->required();
@@ -78,10 +78,10 @@ void AddCheckCommand(CLI::App& app) {
       "sigma_t / sigma_r, else 0.2 mm / 0.03 deg) with S = I + J C J^T, C the result's "
       "parameter_covariance (its sigmas alone for an older result); chi-square(6) for an "
       "unchanged robot.");
-  command->callback([options] {
+  h4::cli::RunWhenParsed(command, options, [](const CheckCommandOptions& parsed) {
     std::string why;
-    if (!options->check.IsValid(&why)) throw std::invalid_argument("check: " + why);
-    Run(*options);
+    if (!parsed.check.IsValid(&why)) throw std::invalid_argument("check: " + why);
+    Run(parsed);
   });
 }
 

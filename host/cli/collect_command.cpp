@@ -11,6 +11,7 @@
 
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/identification_result.h"
 #include "common/formats/poses_csv.h"
 #include "common/formats/robot_yaml.h"
@@ -217,9 +218,8 @@ void Run(CollectOptions options, const std::string& command_line) {
 }  // namespace
 
 void AddCollectCommand(CLI::App& app) {
-  auto options = std::make_shared<CollectOptions>();
-  CLI::App* command = app.add_subcommand(
-      "collect",
+  const auto [command, options] = h4::cli::AddSubcommand<CollectOptions>(
+      app, "collect",
       "Calibration campaign over LCM: move the robot through a pose plan, measure the board "
       "at each pose and append the paired rows to a dataset CSV (resumable)");
   h4::cli::AddOutOption(command, &options->out_path,
@@ -274,8 +274,7 @@ void AddCollectCommand(CLI::App& app) {
   command->footer(
       "Exit codes: 0 every pose recorded, 3 some poses skipped (listed), 130 interrupted "
       "(run again to resume), 1 error.");
-  command->callback(
-      [options, command] { Run(*options, "h4cal collect " + ReportCommandLine(*command)); });
+  RunWithCommandLineWhenParsed(command, options, Run);
 }
 
 }  // namespace h4::host::cli

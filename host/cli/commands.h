@@ -3,9 +3,13 @@
 // or, for "ran but the result is not usable", by SetExitCode.
 #pragma once
 
+#include <memory>
 #include <string>
+#include <utility>
 
 #include <CLI/CLI.hpp>
+
+#include "common/cli/subcommand.h"
 
 namespace h4::host::cli {
 
@@ -25,6 +29,15 @@ void AddCheckCommand(CLI::App& app);
 
 /// The options a subcommand was given, as "--name value ..." (shown in the report).
 std::string ReportCommandLine(const CLI::App& command);
+
+/// Has `command` call run(options, "h4cal <command> <its ReportCommandLine>") once the
+/// command line is parsed: the commands whose report shows how it was made.
+template <typename Options, typename Run = void (*)(const Options&, const std::string&)>
+void RunWithCommandLineWhenParsed(CLI::App* command, std::shared_ptr<Options> options, Run run) {
+  h4::cli::RunWhenParsed(command, std::move(options), [command, run](Options& parsed) {
+    run(parsed, "h4cal " + command->get_name() + " " + ReportCommandLine(*command));
+  });
+}
 
 /// Registers every command above.
 void AddAllCommands(CLI::App& app);

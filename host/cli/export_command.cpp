@@ -8,6 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/file_output.h"
 #include "common/formats/identification_result.h"
 #include "common/formats/robot_yaml.h"
@@ -63,15 +64,14 @@ void Run(const ExportOptions& options) {
 }  // namespace
 
 void AddExportCommand(CLI::App& app) {
-  auto options = std::make_shared<ExportOptions>();
-  CLI::App* command = app.add_subcommand(
-      "export", "Export an identification result for the controller (robot.yaml keys)");
+  const auto [command, options] = h4::cli::AddSubcommand<ExportOptions>(
+      app, "export", "Export an identification result for the controller (robot.yaml keys)");
   h4::cli::AddResultOption(command, &options->result_path)->required();
   h4::cli::AddRobotOption(command, &options->robot_path,
                           "A priori robot.yaml: assembly signs (and the model12 block of a Model "
                           "31 export)");
   h4::cli::AddOutOption(command, &options->out_path, "controller.yaml to write");
-  command->callback([options] { Run(*options); });
+  h4::cli::RunWhenParsed(command, options, Run);
 }
 
 }  // namespace h4::host::cli

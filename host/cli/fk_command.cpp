@@ -10,6 +10,7 @@
 
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/file_output.h"
 #include "common/formats/joints_csv.h"
 #include "common/formats/poses_csv.h"
@@ -94,9 +95,8 @@ void Run(const FkCommandOptions& options) {
 }  // namespace
 
 void AddFkCommand(CLI::App& app) {
-  auto options = std::make_shared<FkCommandOptions>();
-  CLI::App* command = app.add_subcommand(
-      "fk", "Forward kinematics: joints CSV -> end-effector poses and board poses X_CT");
+  const auto [command, options] = h4::cli::AddSubcommand<FkCommandOptions>(
+      app, "fk", "Forward kinematics: joints CSV -> end-effector poses and board poses X_CT");
   AddRobotSourceOptions(command, &options->robot);
   h4::cli::AddInputFileOption(command, "--joints", &options->joints_path,
                               "Joints CSV: pose_id,q1,q2,q3,q4 (rad)")
@@ -108,7 +108,7 @@ void AddFkCommand(CLI::App& app) {
                               "heldout_truth.csv): print the RMS position and rotation error");
   command->footer(
       "Rows without a solution are reported and left out (exit code 3), never written as NaN.");
-  command->callback([options] { Run(*options); });
+  h4::cli::RunWhenParsed(command, options, Run);
 }
 
 }  // namespace h4::host::cli

@@ -12,6 +12,7 @@
 
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/dataset_csv.h"
 #include "common/formats/file_output.h"
 #include "common/formats/identification_result.h"
@@ -230,14 +231,11 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
 }  // namespace
 
 void AddIdentifyCommand(CLI::App& app) {
-  auto options = std::make_shared<IdentifyCommandOptions>();
-  CLI::App* command = app.add_subcommand(
-      "identify", "Identify the robot's geometry (Model 12 or 31) from a paired dataset");
+  const auto [command, options] = h4::cli::AddSubcommand<IdentifyCommandOptions>(
+      app, "identify", "Identify the robot's geometry (Model 12 or 31) from a paired dataset");
   h4::cli::AddRobotOption(command, &options->robot_path)->required();
   h4::cli::AddDataOption(command, &options->data_path)->required();
-  command->add_option("--model", options->model, "Kinematic model")
-      ->check(CLI::IsMember({"12", "31"}))
-      ->capture_default_str();
+  h4::cli::AddModelOption(command, &options->model, "Kinematic model");
   command
       ->add_option("--validation", options->validation,
                    "Poses held out of the fit (the paper's fixed split) when the dataset has no "
@@ -279,10 +277,11 @@ void AddIdentifyCommand(CLI::App& app) {
   command->footer(
       "Exit code 3: the result was written but its verdict is not 'good' (printed first, and "
       "in the result's 'verdict' key).");
-  command->callback([options, command] {
-    options->validation_given = command->count("--validation") > 0;
-    Run(*options, "h4cal identify " + ReportCommandLine(*command));
-  });
+  RunWithCommandLineWhenParsed(
+      command, options, [command](IdentifyCommandOptions& parsed, const std::string& command_line) {
+        parsed.validation_given = command->count("--validation") > 0;
+        Run(parsed, command_line);
+      });
 }
 
 }  // namespace h4::host::cli

@@ -4,6 +4,7 @@
 
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/file_output.h"
 #include "common/formats/joints_csv.h"
 #include "common/formats/poses_csv.h"
@@ -56,16 +57,15 @@ void Run(const IkCommandOptions& options) {
 }  // namespace
 
 void AddIkCommand(CLI::App& app) {
-  auto options = std::make_shared<IkCommandOptions>();
-  CLI::App* command =
-      app.add_subcommand("ik", "Inverse kinematics: end-effector poses CSV -> joints CSV");
+  const auto [command, options] = h4::cli::AddSubcommand<IkCommandOptions>(
+      app, "ik", "Inverse kinematics: end-effector poses CSV -> joints CSV");
   AddRobotSourceOptions(command, &options->robot);
   h4::cli::AddInputFileOption(command, "--poses", &options->poses_path,
                               "Poses CSV: pose_id,X,Y,Z,theta (m, rad)")
       ->required();
   h4::cli::AddOutOption(command, &options->out_path, "Output joints CSV: pose_id,q1,q2,q3,q4");
   command->footer("Unreachable rows are reported and left out (exit code 3).");
-  command->callback([options] { Run(*options); });
+  h4::cli::RunWhenParsed(command, options, Run);
 }
 
 }  // namespace h4::host::cli

@@ -14,6 +14,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/formats/file_output.h"
@@ -134,9 +135,8 @@ void Run(const PlanCommandOptions& o) {
 }  // namespace
 
 void AddPlanCommand(CLI::App& app) {
-  auto options = std::make_shared<PlanCommandOptions>();
-  CLI::App* command = app.add_subcommand(
-      "plan",
+  const auto [command, options] = h4::cli::AddSubcommand<PlanCommandOptions>(
+      app, "plan",
       "Plan N calibration poses (the most accurate design for the identification) among the poses "
       "the robot "
       "reaches with the whole board in the image; writes a poses CSV for h4cal collect --plan");
@@ -149,9 +149,7 @@ void AddPlanCommand(CLI::App& app) {
   command->add_option("--count,--poses", options->pose_count, "Number of poses N")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
-  command->add_option("--model", options->model, "Model the poses are planned for")
-      ->check(CLI::IsMember({"12", "31"}))
-      ->capture_default_str();
+  h4::cli::AddModelOption(command, &options->model, "Model the poses are planned for");
   command
       ->add_option("--criterion", options->criterion,
                    "d: D-optimal (information); accuracy: the predicted accuracy over the grid's "
@@ -190,7 +188,7 @@ void AddPlanCommand(CLI::App& app) {
       "by 50, theta -60..60 deg by 10), away from the singularity where the joints stop "
       "holding theta. The predicted accuracy is the one-sigma board position error "
       "the identification's covariance predicts, RMS over the paper's 81 grid poses.");
-  command->callback([options] { Run(*options); });
+  h4::cli::RunWhenParsed(command, options, Run);
 }
 
 }  // namespace h4::host::cli

@@ -13,6 +13,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/robot_yaml.h"
 #include "host/campaign/sim_robot_node.h"
 #include "host/campaign/simulated_controller.h"
@@ -103,9 +104,8 @@ void Run(const SimRobotArgs& args) {
 }  // namespace
 
 void AddSimRobotCommand(CLI::App& app) {
-  auto args = std::make_shared<SimRobotArgs>();
-  CLI::App* command = app.add_subcommand(
-      "sim-robot",
+  const auto [command, args] = h4::cli::AddSubcommand<SimRobotArgs>(
+      app, "sim-robot",
       "Simulated H4 controller on LCM: takes H4_ROBOT_TARGET, publishes H4_JOINT_STATE and "
       "the true board pose on H4_SIM_BOARD_TRUTH (for h4cam run --source sim)");
   CLI::Option* truth =
@@ -160,7 +160,7 @@ void AddSimRobotCommand(CLI::App& app) {
                    "Run this many seconds (0: until SIGINT or SIGTERM)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  command->callback([args] { Run(*args); });
+  h4::cli::RunWhenParsed(command, args, Run);
 }
 
 }  // namespace h4::host::cli

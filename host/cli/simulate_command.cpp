@@ -8,6 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/dataset_csv.h"
 #include "common/formats/joints_csv.h"
 #include "common/formats/poses_csv.h"
@@ -118,9 +119,8 @@ void Run(const SimulateOptions& options) {
 }  // namespace
 
 void AddSimulateCommand(CLI::App& app) {
-  auto options = std::make_shared<SimulateOptions>();
-  CLI::App* command = app.add_subcommand(
-      "simulate", "Simulate a calibration campaign: dataset, a priori robot.yaml and truth");
+  const auto [command, options] = h4::cli::AddSubcommand<SimulateOptions>(
+      app, "simulate", "Simulate a calibration campaign: dataset, a priori robot.yaml and truth");
   command->add_flag("--paper", options->paper,
                     "The paper's scenario: Table 2 'Identified' as the true robot, Table 2 a "
                     "priori in robot.yaml (same as --truth-model paper)");
@@ -153,7 +153,7 @@ void AddSimulateCommand(CLI::App& app) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   h4::cli::AddOutDirOption(command, &options->out_dir, "Output folder")->required();
-  command->callback([options] { Run(*options); });
+  h4::cli::RunWhenParsed(command, options, Run);
 }
 
 }  // namespace h4::host::cli

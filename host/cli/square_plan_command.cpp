@@ -12,6 +12,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/poses_csv.h"
 #include "common/units.h"
 #include "host/cli/commands.h"
@@ -69,11 +70,10 @@ void Run(const SquarePlanCommandOptions& o) {
 }  // namespace
 
 void AddSquarePlanCommand(CLI::App& app) {
-  auto options = std::make_shared<SquarePlanCommandOptions>();
-  CLI::App* command =
-      app.add_subcommand("square-plan",
-                         "Write the commanded points of the square-path validation as a poses CSV "
-                         "(pose_id,X,Y,Z,theta in B), for h4cal collect --plan --controller");
+  const auto [command, options] = h4::cli::AddSubcommand<SquarePlanCommandOptions>(
+      app, "square-plan",
+      "Write the commanded points of the square-path validation as a poses CSV "
+      "(pose_id,X,Y,Z,theta in B), for h4cal collect --plan --controller");
   h4::cli::AddOutOption(command, &options->out_path, "Output poses CSV");
   // The same name as validate's side of the square.
   command->add_option("--square-mm,--side-mm", options->side_mm, "Side of the square, mm")
@@ -93,7 +93,7 @@ void AddSquarePlanCommand(CLI::App& app) {
       "(+,+) to (-,+), (-,+) to (-,-) in the X-Y plane of B. Measure it with h4cal collect "
       "--plan OUT --controller result12.json|robot.yaml, then h4cal validate --square-plan OUT "
       "--square-measured LABEL=DATASET.");
-  command->callback([options] { Run(*options); });
+  h4::cli::RunWhenParsed(command, options, Run);
 }
 
 }  // namespace h4::host::cli

@@ -1,12 +1,14 @@
-// `h4cal validate`: the paper's validation experiments (IV.D) on identification results and
-// data: Table 3 on the held-out poses, Table 4 straightness, the square path under the
-// Model 12 control law (simulation), the 4-DoF check; printed, and with --report DIR the
-// HTML report too.
+// `h4cal validate` and `h4cal report`: the paper's validation experiments (IV.D) on
+// identification results and data: Table 3 on the held-out poses, Table 4 straightness, the
+// square path under the Model 12 control law (simulation), the 4-DoF check. validate prints
+// them, and with --report DIR writes the HTML report too; report writes the report only (one
+// self-contained HTML file with the validation tables and figures, host/report).
 #include <memory>
 
 #include <spdlog/spdlog.h>
 
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "host/cli/commands.h"
 #include "host/cli/validation_inputs.h"
 #include "host/report/html_report.h"
@@ -16,13 +18,14 @@ namespace {
 
 struct ValidateOptions {
   ValidationFileOptions files;
-  std::string report_dir;
+  std::string report_dir;    ///< where report.html goes; "": no report
+  bool print_tables = true;  ///< validate prints the tables, report does not
 };
 
 void Run(const ValidateOptions& options, const std::string& command_line) {
   const ValidationInputs inputs = LoadValidationInputs(options.files);
   const ValidationReport report = Validate(inputs);
-  std::fputs(FormatValidationText(report).c_str(), stdout);
+  if (options.print_tables) std::fputs(FormatValidationText(report).c_str(), stdout);
   if (!options.report_dir.empty()) {
     const std::string path = WriteHtmlReport(options.report_dir, inputs, report, command_line);
     spdlog::info("wrote {}", path);
@@ -32,15 +35,24 @@ void Run(const ValidateOptions& options, const std::string& command_line) {
 }  // namespace
 
 void AddValidateCommand(CLI::App& app) {
-  auto options = std::make_shared<ValidateOptions>();
-  CLI::App* command = app.add_subcommand(
-      "validate",
+  const auto [command, options] = h4::cli::AddSubcommand<ValidateOptions>(
+      app, "validate",
       "Validation experiments (paper IV.D): joint residuals (Table 3), straightness "
       "(Table 4), square path, 4-DoF check");
   AddValidationFileOptions(command, &options->files);
   h4::cli::AddReportDirOption(command, &options->report_dir);
-  command->callback(
-      [options, command] { Run(*options, "h4cal validate " + ReportCommandLine(*command)); });
+  RunWithCommandLineWhenParsed(command, options, Run);
+}
+
+void AddReportCommand(CLI::App& app) {
+  const auto [command, options] = h4::cli::AddSubcommand<ValidateOptions>(
+      app, "report",
+      "Write the calibration report (one self-contained HTML file) to DIR/report.html");
+  options->print_tables = false;
+  AddValidationFileOptions(command, &options->files);
+  h4::cli::AddOutDirOption(command, &options->report_dir, "Folder of report.html", "--report-dir")
+      ->required();
+  RunWithCommandLineWhenParsed(command, options, Run);
 }
 
 }  // namespace h4::host::cli

@@ -5,6 +5,9 @@
 // .lcm file and not here fails the tests.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "h4msgs/board_pose_t.hpp"
 #include "h4msgs/camera_status_t.hpp"
 #include "h4msgs/capture_request_t.hpp"
@@ -16,9 +19,19 @@
 
 namespace h4::bus {
 
-/// Specialised below for every type of messages/; deliberately not defined otherwise.
+/// The fields of Msg on the wire, in the .lcm file's order. Specialised below for every type
+/// of messages/; deliberately not defined otherwise.
 template <class Msg>
-const WireLayout& LayoutOf();
+std::vector<WireField> WireFieldsOf();
+
+/// Msg's layout: its lcm type name ("h4msgs.board_pose_t"), the fingerprint lcm-gen
+/// computed from the .lcm file, and WireFieldsOf<Msg>.
+template <class Msg>
+const WireLayout& LayoutOf() {
+  static const std::string type_name = std::string("h4msgs.") + Msg::getTypeName();
+  static const WireLayout layout{type_name.c_str(), Msg::getHash(), WireFieldsOf<Msg>()};
+  return layout;
+}
 
 namespace wire {
 inline WireField Int8(const char* name) { return {name, WireKind::kInt8, 1, -1}; }
@@ -35,67 +48,49 @@ inline WireField CountedDoubles(const char* name, int count_field) {
 }  // namespace wire
 
 template <>
-inline const WireLayout& LayoutOf<h4msgs::board_pose_t>() {
+inline std::vector<WireField> WireFieldsOf<h4msgs::board_pose_t>() {
   using namespace wire;
-  static const WireLayout layout{
-      "h4msgs.board_pose_t",
-      h4msgs::board_pose_t::getHash(),
+  return std::vector<WireField>(
       {Int64("utime"), Int64("pose_id"), String("camera_id"), String("board_id"),
        Doubles("translation", 3), Doubles("quaternion", 4), Doubles("covariance", 36),
        Int32("frames_averaged"), Int32("corners_used"), Doubles("reprojection_rms_px", 1),
-       Doubles("frame_spread_px", 1), Int8("status")}};
-  return layout;
+       Doubles("frame_spread_px", 1), Int8("status")});
 }
 
 template <>
-inline const WireLayout& LayoutOf<h4msgs::camera_status_t>() {
+inline std::vector<WireField> WireFieldsOf<h4msgs::camera_status_t>() {
   using namespace wire;
-  static const WireLayout layout{
-      "h4msgs.camera_status_t",
-      h4msgs::camera_status_t::getHash(),
-      {Int64("utime"), String("camera_id"), Int8("state"), Doubles("frame_rate_hz", 1),
-       Doubles("exposure_us", 1), Doubles("analogue_gain", 1), Int64("frames_total"),
-       Int64("measurements_total"), String("last_error")}};
-  return layout;
+  return std::vector<WireField>({Int64("utime"), String("camera_id"), Int8("state"),
+                                 Doubles("frame_rate_hz", 1), Doubles("exposure_us", 1),
+                                 Doubles("analogue_gain", 1), Int64("frames_total"),
+                                 Int64("measurements_total"), String("last_error")});
 }
 
 template <>
-inline const WireLayout& LayoutOf<h4msgs::capture_request_t>() {
+inline std::vector<WireField> WireFieldsOf<h4msgs::capture_request_t>() {
   using namespace wire;
-  static const WireLayout layout{"h4msgs.capture_request_t",
-                                 h4msgs::capture_request_t::getHash(),
-                                 {Int64("utime"), Int64("pose_id"), Int32("frame_count")}};
-  return layout;
+  return std::vector<WireField>({Int64("utime"), Int64("pose_id"), Int32("frame_count")});
 }
 
 template <>
-inline const WireLayout& LayoutOf<h4msgs::joint_state_t>() {
+inline std::vector<WireField> WireFieldsOf<h4msgs::joint_state_t>() {
   using namespace wire;
-  static const WireLayout layout{"h4msgs.joint_state_t",
-                                 h4msgs::joint_state_t::getHash(),
-                                 {Int64("utime"), Int64("pose_id"), Int32("joint_count"),
-                                  CountedDoubles("position", 2), Int8("settled")}};
-  return layout;
+  return std::vector<WireField>({Int64("utime"), Int64("pose_id"), Int32("joint_count"),
+                                 CountedDoubles("position", 2), Int8("settled")});
 }
 
 template <>
-inline const WireLayout& LayoutOf<h4msgs::robot_target_t>() {
+inline std::vector<WireField> WireFieldsOf<h4msgs::robot_target_t>() {
   using namespace wire;
-  static const WireLayout layout{"h4msgs.robot_target_t",
-                                 h4msgs::robot_target_t::getHash(),
-                                 {Int64("utime"), Int64("pose_id"), Int8("target_type"),
-                                  Doubles("pose", 4), Doubles("joints", 4)}};
-  return layout;
+  return std::vector<WireField>({Int64("utime"), Int64("pose_id"), Int8("target_type"),
+                                 Doubles("pose", 4), Doubles("joints", 4)});
 }
 
 template <>
-inline const WireLayout& LayoutOf<h4msgs::sim_board_truth_t>() {
+inline std::vector<WireField> WireFieldsOf<h4msgs::sim_board_truth_t>() {
   using namespace wire;
-  static const WireLayout layout{"h4msgs.sim_board_truth_t",
-                                 h4msgs::sim_board_truth_t::getHash(),
-                                 {Int64("utime"), Int64("pose_id"), Doubles("translation", 3),
-                                  Doubles("quaternion", 4), Int8("settled")}};
-  return layout;
+  return std::vector<WireField>({Int64("utime"), Int64("pose_id"), Doubles("translation", 3),
+                                 Doubles("quaternion", 4), Int8("settled")});
 }
 
 }  // namespace h4::bus

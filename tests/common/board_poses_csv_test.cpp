@@ -68,34 +68,18 @@ TEST(BoardPosesCsv, RoundTripIsExact) {
 }
 
 TEST(BoardPosesCsvErrors, NameLineAndField) {
-  EXPECT_TRUE(FailsWith(
-      [] { ParseBoardPosesCsv("image,x,y,z,qw,qx,qy,qz,corners,rms_px,sigma_t\n", "b.csv"); },
-      "b.csv", 1, "sigma_r", "missing column"));
-  // A pose with one field left empty is neither a pose nor "no board".
-  EXPECT_TRUE(
-      FailsWith([] { ParseBoardPosesCsv(kPosesHeader + "a.png,0,0,1,1,0,,0,4,0.1,,\n", "b.csv"); },
-                "b.csv", 2, "qy", "all empty"));
-  EXPECT_TRUE(
-      FailsWith([] { ParseBoardPosesCsv(kPosesHeader + ",0,0,1,1,0,0,0,4,0.1,,\n", "b.csv"); },
-                "b.csv", 2, "image", "expected a value"));
-  EXPECT_TRUE(
-      FailsWith([] { ParseBoardPosesCsv(kPosesHeader + "a.png,0,0,1,2,0,0,0,4,0.1,,\n", "b.csv"); },
-                "b.csv", 2, "qw,qx,qy,qz", "unit quaternion"));
-  EXPECT_TRUE(FailsWith(
-      [] { ParseBoardPosesCsv(kPosesHeader + "a.png,0,0,1,1,0,0,0,-4,0.1,,\n", "b.csv"); }, "b.csv",
-      2, "corners", "non-negative"));
-  EXPECT_TRUE(FailsWith(
-      [] { ParseBoardPosesCsv(kPosesHeader + "a.png,0,0,1,1,0,0,0,4.5,0.1,,\n", "b.csv"); },
-      "b.csv", 2, "corners", "expected an integer"));
-  EXPECT_TRUE(
-      FailsWith([] { ParseBoardPosesCsv(kPosesHeader + "a.png,0,0,1,1,0,0,0,4,,,\n", "b.csv"); },
-                "b.csv", 2, "rms_px", "reprojection RMS"));
-  EXPECT_TRUE(FailsWith(
-      [] { ParseBoardPosesCsv(kPosesHeader + "a.png,0,0,1,1,0,0,0,4,-0.1,,\n", "b.csv"); }, "b.csv",
-      2, "rms_px", "non-negative"));
-  EXPECT_TRUE(FailsWith(
-      [] { ParseBoardPosesCsv(kPosesHeader + "a.png,0,0,1,1,0,0,0,4,0.1,0,0.1\n", "b.csv"); },
-      "b.csv", 2, "sigma_t", "positive"));
+  ExpectEachFailsWith(
+      ParseBoardPosesCsv, "b.csv",
+      {{"image,x,y,z,qw,qx,qy,qz,corners,rms_px,sigma_t\n", 1, "sigma_r", "missing column"},
+       // A pose with one field left empty is neither a pose nor "no board".
+       {kPosesHeader + "a.png,0,0,1,1,0,,0,4,0.1,,\n", 2, "qy", "all empty"},
+       {kPosesHeader + ",0,0,1,1,0,0,0,4,0.1,,\n", 2, "image", "expected a value"},
+       {kPosesHeader + "a.png,0,0,1,2,0,0,0,4,0.1,,\n", 2, "qw,qx,qy,qz", "unit quaternion"},
+       {kPosesHeader + "a.png,0,0,1,1,0,0,0,-4,0.1,,\n", 2, "corners", "non-negative"},
+       {kPosesHeader + "a.png,0,0,1,1,0,0,0,4.5,0.1,,\n", 2, "corners", "expected an integer"},
+       {kPosesHeader + "a.png,0,0,1,1,0,0,0,4,,,\n", 2, "rms_px", "reprojection RMS"},
+       {kPosesHeader + "a.png,0,0,1,1,0,0,0,4,-0.1,,\n", 2, "rms_px", "non-negative"},
+       {kPosesHeader + "a.png,0,0,1,1,0,0,0,4,0.1,0,0.1\n", 2, "sigma_t", "positive"}});
 }
 
 }  // namespace

@@ -147,8 +147,7 @@ TEST(BoardYamlErrors, UnknownTargetTypeNamesTheAcceptedOnes) {
 }
 
 TEST(BoardYamlErrors, KnownKeyInOtherCaseIsNotIgnored) {
-  std::string text = kAprilGrid;
-  text.replace(text.find("firstId: 0"), 10, "firstID: 5");
+  const std::string text = ReplacedOnce(kAprilGrid, "firstId: 0", "firstID: 5");
   EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(text, "b.yaml"); }, "b.yaml", 7, "firstID",
                         "case-sensitive: 'firstId'"));
 }
@@ -162,17 +161,14 @@ TEST(BoardYamlErrors, UnknownLayoutNamesTheAcceptedOnes) {
 }
 
 TEST(BoardYamlErrors, UnknownTagFamily) {
-  std::string text = kAprilGrid;
-  text.replace(text.find("tag36h11"), 8, "tag36h12");
+  const std::string text = ReplacedOnce(kAprilGrid, "tag36h11", "tag36h12");
   EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(text, "b.yaml"); }, "b.yaml", 2, "tagFamily",
                         "unknown tag family 'tag36h12', expected one of: tag36h11"));
 }
 
 TEST(BoardYamlErrors, NonPositiveCountsAndSizes) {
   const auto with = [](const std::string& from, const std::string& to) {
-    std::string text = kAprilGrid;
-    text.replace(text.find(from), from.size(), to);
-    return text;
+    return ReplacedOnce(kAprilGrid, from, to);
   };
   EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(with("tagCols: 6", "tagCols: 0"), "b.yaml"); },
                         "b.yaml", 3, "tagCols", "expected an integer in [1, 200], got 0"));
@@ -188,8 +184,7 @@ TEST(BoardYamlErrors, NonPositiveCountsAndSizes) {
                         "b.yaml", 7, "firstId", "in [0, 100000], got -1"));
   EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(with("tagSize: 0.024", "tagSize: 24mm"), "b.yaml"); },
                         "b.yaml", 5, "tagSize", "expected a number, got '24mm'"));
-  std::string chess = kCheckerboard;
-  chess.replace(chess.find("targetRows: 6"), 13, "targetRows: 1");
+  std::string chess = ReplacedOnce(kCheckerboard, "targetRows: 6", "targetRows: 1");
   EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(chess, "c.yaml"); }, "c.yaml", 3, "targetRows",
                         "in [2, 200], got 1"));
   chess = kCheckerboard;
@@ -201,27 +196,31 @@ TEST(BoardYamlErrors, NonPositiveCountsAndSizes) {
 // Regression: tagRows: 2147483647 ended in bad_alloc after 36 s. Counts and sizes are
 // bounded when read, before anything is allocated from them.
 TEST(BoardYamlErrors, CountsAndSizesAboveTheLimitsNameTheField) {
-  const auto with = [](const std::string& base, const std::string& from, const std::string& to) {
-    std::string text = base;
-    text.replace(text.find(from), from.size(), to);
-    return text;
-  };
   EXPECT_TRUE(FailsWith(
-      [&] { ParseBoardYaml(with(kAprilGrid, "tagRows: 6", "tagRows: 2147483647"), "b.yaml"); },
+      [&] {
+        ParseBoardYaml(ReplacedOnce(kAprilGrid, "tagRows: 6", "tagRows: 2147483647"), "b.yaml");
+      },
       "b.yaml", 4, "tagRows", "expected an integer in [1, 200], got 2147483647"));
-  EXPECT_TRUE(
-      FailsWith([&] { ParseBoardYaml(with(kAprilGrid, "tagCols: 6", "tagCols: 201"), "b.yaml"); },
-                "b.yaml", 3, "tagCols", "[1, 200]"));
   EXPECT_TRUE(FailsWith(
-      [&] { ParseBoardYaml(with(kAprilGrid, "firstId: 0", "firstId: 4000000000"), "b.yaml"); },
+      [&] { ParseBoardYaml(ReplacedOnce(kAprilGrid, "tagCols: 6", "tagCols: 201"), "b.yaml"); },
+      "b.yaml", 3, "tagCols", "[1, 200]"));
+  EXPECT_TRUE(FailsWith(
+      [&] {
+        ParseBoardYaml(ReplacedOnce(kAprilGrid, "firstId: 0", "firstId: 4000000000"), "b.yaml");
+      },
       "b.yaml", 7, "firstId", "[0, 100000]"));
   EXPECT_TRUE(FailsWith(
-      [&] { ParseBoardYaml(with(kAprilGrid, "tagSize: 0.024", "tagSize: 1e300"), "b.yaml"); },
+      [&] {
+        ParseBoardYaml(ReplacedOnce(kAprilGrid, "tagSize: 0.024", "tagSize: 1e300"), "b.yaml");
+      },
       "b.yaml", 5, "tagSize", "at most 10"));
   EXPECT_TRUE(FailsWith(
-      [&] { ParseBoardYaml(with(kCheckerboard, "targetRows: 6", "targetRows: 100000"), "b.yaml"); },
+      [&] {
+        ParseBoardYaml(ReplacedOnce(kCheckerboard, "targetRows: 6", "targetRows: 100000"),
+                       "b.yaml");
+      },
       "b.yaml", 3, "targetRows", "[2, 200]"));
-  EXPECT_NO_THROW(ParseBoardYaml(with(kAprilGrid, "tagRows: 6", "tagRows: 200"), "b.yaml"));
+  EXPECT_NO_THROW(ParseBoardYaml(ReplacedOnce(kAprilGrid, "tagRows: 6", "tagRows: 200"), "b.yaml"));
 }
 
 }  // namespace

@@ -39,19 +39,20 @@ avg_reprojection_error: 2.5000000000000000e-01
 )";
 
 std::string CameraFileWith(const std::string& from, const std::string& to) {
-  std::string text = kOpenCvFile;
-  const size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
+  return ReplacedOnce(kOpenCvFile, from, to);
+}
+
+/// The image size and camera matrix read are those of `expected`, to the last bit.
+void ExpectSizeAndMatrix(const CameraIntrinsics& camera, const CameraIntrinsics& expected) {
+  EXPECT_EQ(camera.width, expected.width);
+  EXPECT_EQ(camera.height, expected.height);
+  EXPECT_EQ(camera.K, expected.K);
 }
 
 TEST(CameraYaml, ReadsAFileWrittenByOpenCv) {
   const CameraIntrinsics camera = ParseCameraYaml(kOpenCvFile, "cam.yaml");
-  EXPECT_EQ(camera.width, 1456);
-  EXPECT_EQ(camera.height, 1088);
-  Eigen::Matrix3d K;
-  K << 1234.5678901234567, 0, 728.1, 0, 1235.25, 544.0, 0, 0, 1;
-  EXPECT_EQ(camera.K, K);
+  ExpectSizeAndMatrix(
+      camera, CameraIntrinsics::Pinhole(1456, 1088, 1234.5678901234567, 1235.25, 728.1, 544.0));
   ASSERT_EQ(camera.distortion.size(), 5);
   EXPECT_EQ(camera.distortion[0], -0.1);
   EXPECT_EQ(camera.distortion[2], 1e-5);
@@ -245,11 +246,8 @@ const std::string kKalibrFisheye = R"(cam1:
 
 TEST(CameraYaml, ReadsAKalibrCamchain) {
   const CameraIntrinsics camera = ParseCameraYaml(kKalibrCamchain, "camchain.yaml");
-  EXPECT_EQ(camera.width, 752);
-  EXPECT_EQ(camera.height, 480);
-  Eigen::Matrix3d K;
-  K << 458.654, 0, 367.215, 0, 457.296, 248.375, 0, 0, 1;
-  EXPECT_EQ(camera.K, K);
+  ExpectSizeAndMatrix(camera,
+                      CameraIntrinsics::Pinhole(752, 480, 458.654, 457.296, 367.215, 248.375));
   EXPECT_EQ(camera.distortion_model, DistortionModel::kRadTan);
   ASSERT_EQ(camera.distortion.size(), 4);
   EXPECT_EQ(camera.distortion[0], -0.28340811);

@@ -140,47 +140,26 @@ TEST(DatasetCsvErrors, MissingColumn) {
                         "missing column"));
 }
 
-TEST(DatasetCsvErrors, MissingField) {
-  EXPECT_TRUE(FailsWith([] { ParseDatasetCsv(WithRow("1,100,0,0,0,0,0,0,1,1,0,0"), "d.csv"); },
-                        "d.csv", 3, "qz", "missing field"));
-}
-
-TEST(DatasetCsvErrors, EmptyField) {
-  EXPECT_TRUE(FailsWith([] { ParseDatasetCsv(WithRow("1,100,0,0,0,0,,0,1,1,0,0,0"), "d.csv"); },
-                        "d.csv", 3, "x", "expected a number, got ''"));
-}
-
-TEST(DatasetCsvErrors, NonNumber) {
-  EXPECT_TRUE(
-      FailsWith([] { ParseDatasetCsv(WithRow("1,100,0,0,1.0abc,0,0,0,1,1,0,0,0"), "d.csv"); },
-                "d.csv", 3, "q3", "got '1.0abc'"));
-  EXPECT_TRUE(FailsWith([] { ParseDatasetCsv(WithRow("1,100,0,0,0,nan,0,0,1,1,0,0,0"), "d.csv"); },
-                        "d.csv", 3, "q4", "got 'nan'"));
-  EXPECT_TRUE(FailsWith([] { ParseDatasetCsv(WithRow("1,100,0,0,0,0,0,inf,1,1,0,0,0"), "d.csv"); },
-                        "d.csv", 3, "y", "got 'inf'"));
-}
-
-TEST(DatasetCsvErrors, NonIntegerIdOrTime) {
-  EXPECT_TRUE(FailsWith([] { ParseDatasetCsv(WithRow("1.5,100,0,0,0,0,0,0,1,1,0,0,0"), "d.csv"); },
-                        "d.csv", 3, "pose_id", "expected an integer"));
-  EXPECT_TRUE(FailsWith([] { ParseDatasetCsv(WithRow("1,1e6,0,0,0,0,0,0,1,1,0,0,0"), "d.csv"); },
-                        "d.csv", 3, "utime", "expected an integer"));
-}
-
-TEST(DatasetCsvErrors, NonUnitQuaternion) {
-  EXPECT_TRUE(
-      FailsWith([] { ParseDatasetCsv(WithRow("1,100,0,0,0,0,0,0,1,0.998,0,0,0"), "d.csv"); },
-                "d.csv", 3, "qw,qx,qy,qz", "unit quaternion"));
-  EXPECT_TRUE(FailsWith([] { ParseDatasetCsv(WithRow("1,100,0,0,0,0,0,0,1,0,0,0,0"), "d.csv"); },
-                        "d.csv", 3, "qw,qx,qy,qz", "norm 0"));
-  EXPECT_TRUE(
-      FailsWith([] { ParseDatasetCsv(WithRow("1,100,0,0,0,0,0,0,1,1e200,1e200,0,0"), "d.csv"); },
-                "d.csv", 3, "qw,qx,qy,qz", "unit quaternion"));
-}
-
-TEST(DatasetCsvErrors, DuplicatePoseId) {
-  EXPECT_TRUE(FailsWith([] { ParseDatasetCsv(WithRow("0,200,0,0,0,0,0,0,1,1,0,0,0"), "d.csv"); },
-                        "d.csv", 3, "pose_id", "duplicate pose_id 0 (first on line 2)"));
+// A malformed third line: the error names line 3 and the field at fault.
+TEST(DatasetCsvErrors, MalformedRowIsNamedByLineAndField) {
+  const std::vector<MalformedInput> rows = {
+      {WithRow("1,100,0,0,0,0,0,0,1,1,0,0"), 3, "qz", "missing field"},
+      {WithRow("1,100,0,0,0,0,,0,1,1,0,0,0"), 3, "x", "expected a number, got ''"},
+      // not a number
+      {WithRow("1,100,0,0,1.0abc,0,0,0,1,1,0,0,0"), 3, "q3", "got '1.0abc'"},
+      {WithRow("1,100,0,0,0,nan,0,0,1,1,0,0,0"), 3, "q4", "got 'nan'"},
+      {WithRow("1,100,0,0,0,0,0,inf,1,1,0,0,0"), 3, "y", "got 'inf'"},
+      // pose_id and utime are integers
+      {WithRow("1.5,100,0,0,0,0,0,0,1,1,0,0,0"), 3, "pose_id", "expected an integer"},
+      {WithRow("1,1e6,0,0,0,0,0,0,1,1,0,0,0"), 3, "utime", "expected an integer"},
+      // not a unit quaternion
+      {WithRow("1,100,0,0,0,0,0,0,1,0.998,0,0,0"), 3, "qw,qx,qy,qz", "unit quaternion"},
+      {WithRow("1,100,0,0,0,0,0,0,1,0,0,0,0"), 3, "qw,qx,qy,qz", "norm 0"},
+      {WithRow("1,100,0,0,0,0,0,0,1,1e200,1e200,0,0"), 3, "qw,qx,qy,qz", "unit quaternion"},
+      {WithRow("0,200,0,0,0,0,0,0,1,1,0,0,0"), 3, "pose_id",
+       "duplicate pose_id 0 (first on line 2)"},
+  };
+  ExpectEachFailsWith(ParseDatasetCsv, "d.csv", rows);
 }
 
 TEST(DatasetCsvErrors, UnknownSet) {

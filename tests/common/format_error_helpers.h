@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -42,6 +43,36 @@ template <typename Call>
     return ::testing::AssertionFailure() << "not a FormatError: " << e.what();
   }
   return ::testing::AssertionFailure() << "no exception";
+}
+
+/// `text` with its first `from` replaced by `to` (a test failure when there is none): a
+/// known-good file made malformed in one place.
+inline std::string ReplacedOnce(std::string text, const std::string& from,
+                                const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return at == std::string::npos ? text : text.replace(at, from.size(), to);
+}
+
+/// A malformed input and what its FormatError must name: the line, the field and a part of
+/// the message ("" for any).
+struct MalformedInput {
+  std::string text;
+  int line = 0;
+  std::string field;
+  std::string expected_text;
+};
+
+/// For each input: parse(input.text, source) fails with a FormatError as FailsWith checks.
+template <typename Parse>
+void ExpectEachFailsWith(Parse&& parse, const std::string& source,
+                         const std::vector<MalformedInput>& inputs) {
+  for (const MalformedInput& input : inputs) {
+    EXPECT_TRUE(FailsWith([&] { parse(input.text, source); }, source, input.line, input.field,
+                          input.expected_text))
+        << "input:\n"
+        << input.text;
+  }
 }
 
 /// A path in the temporary directory unique to this process and test.

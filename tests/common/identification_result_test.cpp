@@ -32,10 +32,7 @@ const std::string kResult = R"({
 
 // kResult with `from` replaced by `to`.
 std::string ResultWith(const std::string& from, const std::string& to) {
-  std::string text = kResult;
-  const size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
+  return ReplacedOnce(kResult, from, to);
 }
 
 TEST(IdentificationResult, ReadsFormatsMdKeys) {

@@ -257,14 +257,10 @@ TEST_F(FreeRunFixture, FreeRunningMeasurementsCarryPoseIdMinusOne) {
 
 TEST(CameraServiceTest, AnExhaustedFileSourceAnswersWithACameraError) {
   // A source that has no frames at all: the request ends with STATUS_CAMERA_ERROR.
-  class EmptySource final : public FrameSource {
+  class EmptySource final : public DevicelessFrameSource {
    public:
     bool Open() override { return true; }
-    bool Configure() override { return true; }
-    bool Start() override { return true; }
     std::optional<Frame> Next(std::chrono::milliseconds) override { return std::nullopt; }
-    void Stop() override {}
-    void Close() override {}
     std::string Describe() const override { return "empty"; }
     bool finished() const override { return true; }
   } source;

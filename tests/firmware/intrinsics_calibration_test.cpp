@@ -74,6 +74,18 @@ std::vector<CalibrationView> SyntheticViews(int count, Lens lens = Lens::kRadTan
   return views;
 }
 
+/// Calibrates lens model `model` from `count` exact views through `lens` (640 x 480), and
+/// checks that it succeeded with the camera file's `distortion` model.
+IntrinsicsCalibrationResult CalibratedModel(IntrinsicsModel model, int count, Lens lens,
+                                            DistortionModel distortion) {
+  IntrinsicsCalibrationOptions options;
+  options.model = model;
+  const auto result = CalibrateIntrinsics(SyntheticViews(count, lens), {640, 480}, options);
+  EXPECT_TRUE(result.ok()) << result.message;
+  EXPECT_EQ(result.camera.distortion_model, distortion);
+  return result;
+}
+
 TEST(IntrinsicsCalibration, RecoversTheCameraFromExactCorrespondences) {
   const auto result = CalibrateIntrinsics(SyntheticViews(10), cv::Size(640, 480), {});
   ASSERT_TRUE(result.ok()) << result.message;
@@ -91,11 +103,8 @@ TEST(IntrinsicsCalibration, RecoversTheCameraFromExactCorrespondences) {
 }
 
 TEST(IntrinsicsCalibration, RationalModelRecoversEightCoefficients) {
-  IntrinsicsCalibrationOptions options;
-  options.model = IntrinsicsModel::kRational;
-  const auto result = CalibrateIntrinsics(SyntheticViews(12, Lens::kRational), {640, 480}, options);
-  ASSERT_TRUE(result.ok()) << result.message;
-  EXPECT_EQ(result.camera.distortion_model, DistortionModel::kRadTan);
+  const auto result =
+      CalibratedModel(IntrinsicsModel::kRational, 12, Lens::kRational, DistortionModel::kRadTan);
   ASSERT_EQ(result.camera.distortion.size(), 8);
   EXPECT_NEAR(result.camera.K(0, 0), 800.0, 1e-2);
   EXPECT_NEAR(result.camera.K(1, 2), 245.0, 1e-2);
@@ -120,11 +129,8 @@ TEST(IntrinsicsCalibration, RationalModelRecoversEightCoefficients) {
 }
 
 TEST(IntrinsicsCalibration, EquidistantModelRecoversAFisheyeFromExactCorrespondences) {
-  IntrinsicsCalibrationOptions options;
-  options.model = IntrinsicsModel::kEquidistant;
-  const auto result = CalibrateIntrinsics(SyntheticViews(10, Lens::kFisheye), {640, 480}, options);
-  ASSERT_TRUE(result.ok()) << result.message;
-  EXPECT_EQ(result.camera.distortion_model, DistortionModel::kEquidistant);
+  const auto result = CalibratedModel(IntrinsicsModel::kEquidistant, 10, Lens::kFisheye,
+                                      DistortionModel::kEquidistant);
   ASSERT_EQ(result.camera.distortion.size(), 4);
   EXPECT_NEAR(result.camera.K(0, 0), 300.0, 1e-2) << result.Report();
   EXPECT_NEAR(result.camera.K(1, 1), 301.0, 1e-2);

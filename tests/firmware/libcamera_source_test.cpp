@@ -17,12 +17,6 @@
 namespace h4::cam {
 namespace {
 
-int64_t NowNs(clockid_t clock) {
-  timespec ts{};
-  clock_gettime(clock, &ts);
-  return static_cast<int64_t>(ts.tv_sec) * 1'000'000'000 + ts.tv_nsec;
-}
-
 bool HaveCamera() {
   std::vector<CameraInfo> cameras;
   std::string error;
@@ -91,8 +85,8 @@ TEST(SensorTimestamp, MonotonicNowMapsToRealtimeNow) {
                                             std::pair{SensorClock::kBoottime, CLOCK_BOOTTIME}}) {
     const ClockOffset offset = MeasureClockOffset(sensor_clock);
     EXPECT_LT(offset.uncertainty_ns, 1'000'000);
-    const int64_t sensor_ns = NowNs(clock);
-    const int64_t realtime_us = NowNs(CLOCK_REALTIME) / 1000;
+    const int64_t sensor_ns = ReadClockNs(clock);
+    const int64_t realtime_us = ReadClockNs(CLOCK_REALTIME) / 1000;
     // Both reads happen within a few microseconds; 2 ms leaves room for a busy machine.
     EXPECT_NEAR(static_cast<double>(SensorNsToUtime(sensor_ns, offset)),
                 static_cast<double>(realtime_us), 2000.0);
@@ -189,7 +183,7 @@ TEST(LibcameraSourceHardware, DeliversTimestampedFramesAndRestartsCleanly) {
       EXPECT_EQ(frame->image.cols, source.width());
       EXPECT_GT(frame->utime, last_utime);
       EXPECT_NEAR(static_cast<double>(frame->utime),
-                  static_cast<double>(NowNs(CLOCK_REALTIME) / 1000), 1e6);
+                  static_cast<double>(ReadClockNs(CLOCK_REALTIME) / 1000), 1e6);
       last_utime = frame->utime;
     }
     source.Stop();

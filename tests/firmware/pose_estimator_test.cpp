@@ -140,6 +140,14 @@ struct CovarianceCheck {
   Vector6 OtherRatio() const { return mean_sq_error.cwiseQuotient(stated_other).cwiseSqrt(); }
 };
 
+/// Each axis's actual-to-stated sigma ratio lies in (low, high).
+void ExpectRatiosWithin(const Vector6& ratio, double low, double high) {
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_GT(ratio[k], low) << k;
+    EXPECT_LT(ratio[k], high) << k;
+  }
+}
+
 // Estimates X_CT from `trials` noisy corner sets (`noisy_corners`) with the `tested` and
 // the `other` options, and sums what CovarianceCheck holds.
 CovarianceCheck CheckCovariance(
@@ -180,11 +188,7 @@ TEST(PoseEstimatorTest, CovarianceMatchesMonteCarloErrors) {
   }
   // E[e^T S^-1 e] = 6 for a correct covariance; 300 trials: standard error ~0.2.
   EXPECT_NEAR(mahalanobis, 6.0, 0.8);
-  for (int k = 0; k < 6; ++k) {
-    const double ratio = std::sqrt(sum_sq[k] / predicted[k]);
-    EXPECT_GT(ratio, 0.8) << k;
-    EXPECT_LT(ratio, 1.25) << k;
-  }
+  ExpectRatiosWithin(sum_sq.cwiseQuotient(predicted).cwiseSqrt(), 0.8, 1.25);
 }
 
 TEST(PoseEstimatorTest, UniformErosionIsFittedAndLeavesThePoseExact) {
@@ -263,10 +267,7 @@ TEST(PoseEstimatorTest, CovarianceCountsTheErrorATagSharesOnce) {
   };
   const CovarianceCheck check =
       CheckCovariance(camera, X_CT, noisy_corners, edge_group, residual, 29, 200);
-  for (int k = 0; k < 6; ++k) {
-    EXPECT_GT(check.Ratio()[k], 0.75) << k;
-    EXPECT_LT(check.Ratio()[k], 1.33) << k;
-  }
+  ExpectRatiosWithin(check.Ratio(), 0.75, 1.33);
   EXPECT_GT(check.OtherRatio()[2], 1.5);  // depth, the worst understated
 }
 
@@ -328,10 +329,7 @@ TEST(PoseEstimatorTest, CovarianceFollowsTheNoiseATagsSidesShare) {
   };
   const CovarianceCheck check =
       CheckCovariance(camera, X_CT, noisy_corners, options, residual, 41, 200);
-  for (int k = 0; k < 6; ++k) {
-    EXPECT_GT(check.Ratio()[k], 0.8) << k;
-    EXPECT_LT(check.Ratio()[k], 1.25) << k;
-  }
+  ExpectRatiosWithin(check.Ratio(), 0.8, 1.25);
   EXPECT_LT(check.OtherRatio()[2], 0.7);  // depth: independent overstates
 }
 

@@ -4,6 +4,8 @@
 // published raw on that type's channel of an in-process bus (memq://) subscribed to every
 // type, whose Handle() must return without throwing. A message that decodes must encode
 // back to the same bytes.
+#include <iterator>
+
 #include <spdlog/spdlog.h>
 
 #include "messages/bus/lcm_bus.h"
@@ -36,17 +38,34 @@ void SubscribeIgnoring(LcmBus& bus, const char* channel) {
   bus.Subscribe<Msg>(channel, [](const Msg&) {});
 }
 
+/// One LCM type of messages/, on its channel.
+struct FuzzedType {
+  void (*subscribe_ignoring)(LcmBus&, const char*);
+  void (*decode_and_encode_back)(const uint8_t*, size_t);
+  const char* channel;
+};
+
+template <class Msg>
+FuzzedType TypeOn(const char* channel) {
+  return {SubscribeIgnoring<Msg>, DecodeAndEncodeBack<Msg>, channel};
+}
+
+// An input's first byte picks one, modulo their count.
+const FuzzedType kFuzzedTypes[] = {
+    TypeOn<h4msgs::board_pose_t>(h4::channels::kBoardPose),
+    TypeOn<h4msgs::camera_status_t>(h4::channels::kCameraStatus),
+    TypeOn<h4msgs::capture_request_t>(h4::channels::kCaptureRequest),
+    TypeOn<h4msgs::joint_state_t>(h4::channels::kJointState),
+    TypeOn<h4msgs::robot_target_t>(h4::channels::kRobotTarget),
+    TypeOn<h4msgs::sim_board_truth_t>(h4::channels::kSimBoardTruth),
+};
+
 // One bus for the whole run: LCM's set-up is far slower than one message.
 LcmBus& Bus() {
   static LcmBus* bus = [] {
     spdlog::set_level(spdlog::level::off);  // the adapter logs each refused message
     auto* b = new LcmBus("memq://");
-    SubscribeIgnoring<h4msgs::board_pose_t>(*b, h4::channels::kBoardPose);
-    SubscribeIgnoring<h4msgs::camera_status_t>(*b, h4::channels::kCameraStatus);
-    SubscribeIgnoring<h4msgs::capture_request_t>(*b, h4::channels::kCaptureRequest);
-    SubscribeIgnoring<h4msgs::joint_state_t>(*b, h4::channels::kJointState);
-    SubscribeIgnoring<h4msgs::robot_target_t>(*b, h4::channels::kRobotTarget);
-    SubscribeIgnoring<h4msgs::sim_board_truth_t>(*b, h4::channels::kSimBoardTruth);
+    for (const FuzzedType& type : kFuzzedTypes) type.subscribe_ignoring(*b, type.channel);
     return b;
   }();
   return *bus;
@@ -58,35 +77,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
   const uint8_t* message = data + 1;
   const size_t message_size = size - 1;
-  const char* channel = nullptr;
-  switch (data[0] % 6) {
-    case 0:
-      DecodeAndEncodeBack<h4msgs::board_pose_t>(message, message_size);
-      channel = h4::channels::kBoardPose;
-      break;
-    case 1:
-      DecodeAndEncodeBack<h4msgs::camera_status_t>(message, message_size);
-      channel = h4::channels::kCameraStatus;
-      break;
-    case 2:
-      DecodeAndEncodeBack<h4msgs::capture_request_t>(message, message_size);
-      channel = h4::channels::kCaptureRequest;
-      break;
-    case 3:
-      DecodeAndEncodeBack<h4msgs::joint_state_t>(message, message_size);
-      channel = h4::channels::kJointState;
-      break;
-    case 4:
-      DecodeAndEncodeBack<h4msgs::robot_target_t>(message, message_size);
-      channel = h4::channels::kRobotTarget;
-      break;
-    default:
-      DecodeAndEncodeBack<h4msgs::sim_board_truth_t>(message, message_size);
-      channel = h4::channels::kSimBoardTruth;
-      break;
-  }
+  const FuzzedType& type = kFuzzedTypes[data[0] % std::size(kFuzzedTypes)];
+  type.decode_and_encode_back(message, message_size);
   LcmBus& bus = Bus();
-  bus.lcm().publish(channel, message, static_cast<unsigned int>(message_size));
+  bus.lcm().publish(type.channel, message, static_cast<unsigned int>(message_size));
   const int handled = bus.Handle(std::chrono::milliseconds(0));
   h4::fuzz::Require(handled == 1, "the bus dispatches the message it was given");
   return 0;

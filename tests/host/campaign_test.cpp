@@ -177,13 +177,9 @@ CampaignOptions FastOptions() {
   return o;
 }
 
-class CampaignTest : public ::testing::Test {
+class CampaignTest : public TestWithDatasetFile {
  protected:
-  void SetUp() override {
-    dir_ = FreshTestDir("h4_campaign_");
-    path_ = (dir_ / "dataset.csv").string();
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  CampaignTest() : TestWithDatasetFile("h4_campaign_") {}
 
   /// Runs until the campaign ends (or `max_seconds`); `extra` runs each cycle.
   static void Run(bus::LcmBus& bus, Campaign& campaign, ScriptedCell* cell,
@@ -196,8 +192,38 @@ class CampaignTest : public ::testing::Test {
     }
   }
 
-  fs::path dir_;
-  std::string path_;
+  /// What a campaign of Plan(`poses`) left when the robot never settles at the poses
+  /// `never_settles` (no retries, at most `max_unsettled_in_a_row`).
+  struct UnsettledRun {
+    std::string error;  ///< what stopped the campaign; "" when it ended by itself
+    bool finished = false;
+    std::vector<SkippedPose> skipped;
+    size_t rows = 0;  ///< in the journal
+    std::vector<int64_t> targets;
+  };
+
+  UnsettledRun RunWithUnsettledPoses(const std::set<int64_t>& never_settles, int poses,
+                                     int max_unsettled_in_a_row) {
+    bus::LcmBus bus("memq://");
+    ScriptedCell cell(bus);
+    cell.never_settles = never_settles;
+    DatasetJournal journal(path_);
+    CampaignOptions options = FastOptions();
+    options.retries = 0;
+    options.max_unsettled_in_a_row = max_unsettled_in_a_row;
+    Campaign campaign(bus, Plan(poses), journal, options);
+    UnsettledRun run;
+    try {
+      Run(bus, campaign, &cell);
+    } catch (const std::runtime_error& e) {
+      run.error = e.what();
+    }
+    run.finished = campaign.finished();
+    run.skipped = campaign.skipped();
+    run.rows = journal.rows().size();
+    run.targets = cell.targets;
+    return run;
+  }
 };
 
 TEST_F(CampaignTest, RecordsEveryPoseOnceWithTheJointsOfThatPose) {
@@ -273,62 +299,34 @@ TEST_F(CampaignTest, SkipsAPoseWhereTheRobotNeverSettlesAndResendsItsTarget) {
 // each pose is skipped with the reason, and after max_unsettled_in_a_row of them the
 // campaign stops with a message naming them instead of waiting out every pose left.
 TEST_F(CampaignTest, ARobotThatNeverSettlesStopsTheCampaignWithTheReason) {
-  bus::LcmBus bus("memq://");
-  ScriptedCell cell(bus);
-  cell.never_settles = {1, 2, 3, 4, 5, 6};
-  DatasetJournal journal(path_);
-  CampaignOptions options = FastOptions();
-  options.retries = 0;
-  options.max_unsettled_in_a_row = 3;
-  Campaign campaign(bus, Plan(6), journal, options);
-  std::string error;
-  try {
-    Run(bus, campaign, &cell);
-  } catch (const std::runtime_error& e) {
-    error = e.what();
-  }
-  ASSERT_FALSE(error.empty()) << "the campaign ran out its deadline instead of stopping";
-  EXPECT_NE(error.find("never settled at 3 poses in a row (1, 2, 3;"), std::string::npos) << error;
-  EXPECT_NE(error.find("run the same command again to resume"), std::string::npos) << error;
-  ASSERT_EQ(campaign.skipped().size(), 3u);
-  for (const SkippedPose& s : campaign.skipped()) {
+  const UnsettledRun run = RunWithUnsettledPoses({1, 2, 3, 4, 5, 6}, 6, 3);
+  ASSERT_FALSE(run.error.empty()) << "the campaign ran out its deadline instead of stopping";
+  EXPECT_NE(run.error.find("never settled at 3 poses in a row (1, 2, 3;"), std::string::npos)
+      << run.error;
+  EXPECT_NE(run.error.find("run the same command again to resume"), std::string::npos) << run.error;
+  ASSERT_EQ(run.skipped.size(), 3u);
+  for (const SkippedPose& s : run.skipped) {
     EXPECT_NE(s.reason.find("robot not settled after 0.3 s"), std::string::npos) << s.reason;
   }
-  EXPECT_TRUE(journal.rows().empty());
-  EXPECT_EQ(std::count(cell.targets.begin(), cell.targets.end(), 4), 0) << "stopped at pose 3";
+  EXPECT_EQ(run.rows, 0u);
+  EXPECT_EQ(std::count(run.targets.begin(), run.targets.end(), 4), 0) << "stopped at pose 3";
 }
 
 // Without the limit every pose is skipped with the reason and the campaign ends (no hang);
 // a pose that settles between unsettled ones resets the count.
 TEST_F(CampaignTest, UnsettledPosesAreSkippedToTheEndWithoutTheLimitOrWhenOthersSettle) {
-  {
-    bus::LcmBus bus("memq://");
-    ScriptedCell cell(bus);
-    cell.never_settles = {1, 2, 3, 4};
-    DatasetJournal journal(path_);
-    CampaignOptions options = FastOptions();
-    options.retries = 0;
-    options.max_unsettled_in_a_row = 0;
-    Campaign campaign(bus, Plan(4), journal, options);
-    Run(bus, campaign, &cell);
-    EXPECT_TRUE(campaign.finished());
-    ASSERT_EQ(campaign.skipped().size(), 4u);
-    for (const SkippedPose& s : campaign.skipped()) {
-      EXPECT_NE(s.reason.find("not settled"), std::string::npos) << s.reason;
-    }
+  const UnsettledRun without_limit = RunWithUnsettledPoses({1, 2, 3, 4}, 4, 0);
+  EXPECT_EQ(without_limit.error, "");
+  EXPECT_TRUE(without_limit.finished);
+  ASSERT_EQ(without_limit.skipped.size(), 4u);
+  for (const SkippedPose& s : without_limit.skipped) {
+    EXPECT_NE(s.reason.find("not settled"), std::string::npos) << s.reason;
   }
   fs::remove(path_);
-  bus::LcmBus bus("memq://");
-  ScriptedCell cell(bus);
-  cell.never_settles = {1, 2, 4, 5};
-  DatasetJournal journal(path_);
-  CampaignOptions options = FastOptions();
-  options.retries = 0;
-  options.max_unsettled_in_a_row = 3;
-  Campaign campaign(bus, Plan(5), journal, options);
-  Run(bus, campaign, &cell);
-  EXPECT_TRUE(campaign.finished());
-  EXPECT_EQ(campaign.skipped().size(), 4u);
+  const UnsettledRun with_a_settled_pose = RunWithUnsettledPoses({1, 2, 4, 5}, 5, 3);
+  EXPECT_EQ(with_a_settled_pose.error, "");
+  EXPECT_TRUE(with_a_settled_pose.finished);
+  EXPECT_EQ(with_a_settled_pose.skipped.size(), 4u);
   EXPECT_EQ(ReadDatasetCsv(path_).size(), 1u);
 }
 

@@ -42,15 +42,9 @@ std::string Slurp(const std::string& path) {
   return s.str();
 }
 
-class DatasetJournalTest : public ::testing::Test {
+class DatasetJournalTest : public TestWithDatasetFile {
  protected:
-  void SetUp() override {
-    dir_ = FreshTestDir("h4_journal_");
-    path_ = (dir_ / "dataset.csv").string();
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-  std::string path_;
+  DatasetJournalTest() : TestWithDatasetFile("h4_journal_") {}
 };
 
 TEST_F(DatasetJournalTest, WritesRowsThatReadBackAsADataset) {

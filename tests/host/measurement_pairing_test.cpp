@@ -2,7 +2,11 @@
 #include "host/campaign/measurement_pairing.h"
 
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -39,26 +43,20 @@ TEST(CheckBoardPoseTest, AcceptsAPlausibleMeasurement) {
 }
 
 TEST(CheckBoardPoseTest, RejectsEachImpossibleValueWithAReason) {
-  std::string why;
-  h4msgs::board_pose_t m = GoodBoardPose();
-  m.translation[1] = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(CheckBoardPose(m, &why), MessageProblem::kImpossibleValues);
-  EXPECT_NE(why.find("non-finite"), std::string::npos) << why;
-
-  m = GoodBoardPose();
-  m.quaternion[0] = 2.0;
-  EXPECT_EQ(CheckBoardPose(m, &why), MessageProblem::kImpossibleValues);
-  EXPECT_NE(why.find("not unit"), std::string::npos) << why;
-
-  m = GoodBoardPose();
-  m.translation[2] = -0.5;  // behind the camera
-  EXPECT_EQ(CheckBoardPose(m, &why), MessageProblem::kImpossibleValues);
-  EXPECT_NE(why.find("in front"), std::string::npos) << why;
-
-  m = GoodBoardPose();
-  m.covariance[35] = 0.0;
-  EXPECT_EQ(CheckBoardPose(m, &why), MessageProblem::kImpossibleValues);
-  EXPECT_NE(why.find("element 5"), std::string::npos) << why;
+  // A good measurement spoilt in one value, and what the reason must say.
+  const std::vector<std::pair<std::function<void(h4msgs::board_pose_t&)>, std::string>> cases = {
+      {[](auto& m) { m.translation[1] = std::numeric_limits<double>::quiet_NaN(); }, "non-finite"},
+      {[](auto& m) { m.quaternion[0] = 2.0; }, "not unit"},
+      {[](auto& m) { m.translation[2] = -0.5; }, "in front"},  // behind the camera
+      {[](auto& m) { m.covariance[35] = 0.0; }, "element 5"},
+  };
+  for (const auto& [spoil, reason] : cases) {
+    h4msgs::board_pose_t m = GoodBoardPose();
+    spoil(m);
+    std::string why;
+    EXPECT_EQ(CheckBoardPose(m, &why), MessageProblem::kImpossibleValues) << reason;
+    EXPECT_NE(why.find(reason), std::string::npos) << why;
+  }
 }
 
 TEST(CheckJointStateTest, RejectsAWrongJointCountAndNonFinitePositions) {

@@ -16,17 +16,12 @@
 #include "host/kinematics/model12.h"
 #include "host/simulation/paper_scenario.h"
 #include "messages/channels.h"
+#include "tests/host/joint_test_helpers.h"
 
 namespace h4::host {
 namespace {
 
 using Seconds = std::chrono::duration<double>;
-
-double MaxAbsWrapped(const JointVector& a, const JointVector& b) {
-  double worst = 0.0;
-  for (int i = 0; i < 4; ++i) worst = std::max(worst, std::abs(WrapAngle(a[i] - b[i])));
-  return worst;
-}
 
 class SimRobotNodeTest : public ::testing::Test {
  protected:
@@ -169,7 +164,7 @@ TEST_F(SimRobotNodeTest, UnreachableTargetIsHeldUnsettledUnderItsPoseId) {
     EXPECT_FALSE(states_[k].settled);
   }
   EXPECT_EQ(states_.back().pose_id, 20);
-  EXPECT_LT(MaxAbsWrapped(controller_.true_joints(), controller_.home_joints()), 1e-15);
+  EXPECT_LT(MaxWrappedJointDifference(controller_.true_joints(), controller_.home_joints()), 1e-15);
 }
 
 TEST_F(SimRobotNodeTest, GarbageOnTheTargetChannelIsCountedNotFatal) {

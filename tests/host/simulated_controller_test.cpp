@@ -14,6 +14,7 @@
 #include "host/kinematics/model31.h"
 #include "host/simulation/paper_scenario.h"
 #include "host/simulation/true_robot.h"
+#include "tests/host/joint_test_helpers.h"
 #include "tests/support/options_check.h"
 
 namespace h4::host {
@@ -25,12 +26,6 @@ SimulatedRobot PaperTruthWithPlacement() {
   PerturbationOptions placement;
   placement.seed = 1;
   return MakeTrueRobot(PaperAprioriRobot(), TrueGeometry::kPaperTable2, placement);
-}
-
-double MaxWrappedDifference(const JointVector& a, const JointVector& b) {
-  double worst = 0.0;
-  for (int i = 0; i < 4; ++i) worst = std::max(worst, std::abs(WrapAngle(a[i] - b[i])));
-  return worst;
 }
 
 class SimulatedControllerTest : public ::testing::Test {
@@ -59,7 +54,7 @@ TEST_F(SimulatedControllerTest, StartsSettledAtTheTrueHomeJointsWithNoPoseId) {
   const IkResult home =
       Model12(truth_.model12, truth_.assembly).InverseKinematics(EePose(0.0, 0.0, -0.45, 0.0));
   ASSERT_TRUE(home.ok());
-  EXPECT_LT(MaxWrappedDifference(controller_.true_joints(), home.q), 1e-12);
+  EXPECT_LT(MaxWrappedJointDifference(controller_.true_joints(), home.q), 1e-12);
   EXPECT_EQ(controller_.pose_id(), -1);
   EXPECT_TRUE(controller_.settled());
   EXPECT_FALSE(controller_.moving());
@@ -69,7 +64,7 @@ TEST_F(SimulatedControllerTest, MovesNoFasterThanTheJointSpeed) {
   const EePose target(0.10, -0.10, -0.375, 0.349);
   const TargetResult result = controller_.SetPoseTarget(3, target);
   ASSERT_TRUE(result.ok()) << result.reason;
-  const double distance = MaxWrappedDifference(result.q_target, controller_.true_joints());
+  const double distance = MaxWrappedJointDifference(result.q_target, controller_.true_joints());
   ASSERT_GT(distance, 0.1);  // a real move, many steps long
   const double speed = controller_.options().joint_speed;
   double t = 0.0;
@@ -77,11 +72,11 @@ TEST_F(SimulatedControllerTest, MovesNoFasterThanTheJointSpeed) {
     const JointVector before = controller_.true_joints();
     controller_.Step(kDt);
     t += kDt;
-    EXPECT_LE(MaxWrappedDifference(controller_.true_joints(), before), speed * kDt + 1e-12);
+    EXPECT_LE(MaxWrappedJointDifference(controller_.true_joints(), before), speed * kDt + 1e-12);
   }
   // The farthest joint moves at full speed the whole way: arrival at distance / speed.
   EXPECT_NEAR(t, distance / speed, kDt + 1e-9);
-  EXPECT_LT(MaxWrappedDifference(controller_.true_joints(), result.q_target), 1e-15);
+  EXPECT_LT(MaxWrappedJointDifference(controller_.true_joints(), result.q_target), 1e-15);
 }
 
 TEST_F(SimulatedControllerTest, SettlesOnlyAfterTheSettleTimeAtTheTarget) {
@@ -113,9 +108,9 @@ TEST_F(SimulatedControllerTest, PoseTargetEndsAtTheAprioriModelsJointsNotTheTrue
       Model12(apriori_.model12, apriori_.assembly).InverseKinematics(target);
   const IkResult true_ik = Model12(truth_.model12, truth_.assembly).InverseKinematics(target);
   ASSERT_TRUE(apriori_ik.ok() && true_ik.ok());
-  EXPECT_LT(MaxWrappedDifference(controller_.true_joints(), apriori_ik.q), 1e-12);
+  EXPECT_LT(MaxWrappedJointDifference(controller_.true_joints(), apriori_ik.q), 1e-12);
   // Table 2's a priori misses the truth by several centiradians (common/README.md).
-  EXPECT_GT(MaxWrappedDifference(controller_.true_joints(), true_ik.q), 0.02);
+  EXPECT_GT(MaxWrappedJointDifference(controller_.true_joints(), true_ik.q), 0.02);
   // So the true end-effector is not where the campaign asked (about 26 mm on average).
   EXPECT_GT((controller_.true_X_BE().translation() - target.head<3>()).norm(), 0.005);
 }
@@ -142,8 +137,8 @@ void ExpectTrueChainAtTarget(const SimulatedRobot& truth, const RobotDescription
   const IkResult ik = truth.MakeModel()->InverseKinematics(
       EePoseFromTransform(X_ModelB * TransformFromEePose(measured.x)));
   ASSERT_TRUE(ik.ok());
-  EXPECT_LT(MaxWrappedDifference(ik.q, controller.true_joints()), 1e-9);
-  EXPECT_LT(MaxWrappedDifference(ik.q, q_target), 1e-9);
+  EXPECT_LT(MaxWrappedJointDifference(ik.q, controller.true_joints()), 1e-9);
+  EXPECT_LT(MaxWrappedJointDifference(ik.q, q_target), 1e-9);
 }
 
 TEST_F(SimulatedControllerTest, BoardPoseAtAJointTargetFollowsTheTrueChainModel12) {

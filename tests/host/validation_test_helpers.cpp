@@ -100,4 +100,17 @@ ValidationInputs WithMeasuredSquares(ValidationInputs in) {
   return in;
 }
 
+::testing::AssertionResult ValidateRefuses(const ValidationInputs& in,
+                                           const std::string& expected) {
+  try {
+    Validate(in);
+  } catch (const std::invalid_argument& e) {
+    if (std::string(e.what()).find(expected) != std::string::npos) {
+      return ::testing::AssertionSuccess();
+    }
+    return ::testing::AssertionFailure() << "refused without '" << expected << "': " << e.what();
+  }
+  return ::testing::AssertionFailure() << "accepted";
+}
+
 }  // namespace h4::host

@@ -4,6 +4,10 @@
 // as a noise-free camera would measure them.
 #pragma once
 
+#include <string>
+
+#include <gtest/gtest.h>
+
 #include "common/formats/identification_result.h"
 #include "host/simulation/dataset_simulator.h"
 #include "host/simulation/true_robot.h"
@@ -34,5 +38,9 @@ std::vector<DatasetRow> CameraSeesSquare(const KinematicModel& controller,
 /// `in` (with a truth) plus the default plan and two measured runs: "a priori" (in.apriori's
 /// Model 12 as controller) and "Model 12" (the truth's Model 12 as controller).
 ValidationInputs WithMeasuredSquares(ValidationInputs in);
+
+/// Success when Validate(in) refuses the inputs with std::invalid_argument whose message
+/// contains `expected`.
+::testing::AssertionResult ValidateRefuses(const ValidationInputs& in, const std::string& expected);
 
 }  // namespace h4::host

@@ -23,13 +23,7 @@ int64_t WallUtime() {
 }
 
 h4msgs::board_pose_t TestBoardPose(int64_t pose_id) {
-  h4msgs::board_pose_t m{};
-  m.utime = WallUtime();
-  m.pose_id = pose_id;
-  m.camera_id = "sim";
-  m.board_id = "board";
-  m.quaternion[0] = 1.0;
-  return m;
+  return wire_bytes::SampleBoardPose(pose_id, WallUtime());
 }
 
 void PublishBytes(LcmBus& bus, const char* channel, const std::vector<uint8_t>& bytes) {

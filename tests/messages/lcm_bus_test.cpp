@@ -24,16 +24,7 @@ namespace {
 
 using wire_bytes::Encode;
 using wire_bytes::PutBigEndian32;
-
-h4msgs::board_pose_t GoodBoardPose(int64_t pose_id) {
-  h4msgs::board_pose_t m{};
-  m.utime = 1700000000000000;
-  m.pose_id = pose_id;
-  m.camera_id = "sim";
-  m.board_id = "board";
-  m.quaternion[0] = 1.0;
-  return m;
-}
+using wire_bytes::SampleBoardPose;
 
 h4msgs::joint_state_t GoodJointState() {
   h4msgs::joint_state_t m{};
@@ -52,7 +43,7 @@ struct HostileSet {
 HostileSet MakeHostileSet(int random_count) {
   HostileSet set;
   for (int32_t length : {0, -1, INT_MIN, INT_MAX}) {
-    std::vector<uint8_t> pose = Encode(GoodBoardPose(1));
+    std::vector<uint8_t> pose = Encode(SampleBoardPose(1));
     PutBigEndian32(&pose, 8 + 16, length);  // camera_id's length
     set.board_poses.push_back(pose);
     h4msgs::camera_status_t status{};
@@ -113,7 +104,7 @@ TEST(LcmBus, HostileMessagesAreCountedPerChannelAndTheLoopGoesOn) {
   for (const auto& bytes : hostile.camera_statuses) {
     PublishRaw(bus.lcm(), channels::kCameraStatus, bytes);
   }
-  bus.Publish(channels::kBoardPose, GoodBoardPose(7));
+  bus.Publish(channels::kBoardPose, SampleBoardPose(7));
   bus.Publish(channels::kJointState, GoodJointState());
   while (bus.Handle(std::chrono::milliseconds(0)) > 0) {
   }
@@ -137,7 +128,7 @@ TEST(LcmBus, AHandlersExceptionComesOutOfHandleAndTheBusKeepsWorking) {
     ++calls;
     if (m.pose_id == 1) throw std::runtime_error("disk full");
   });
-  bus.Publish(channels::kBoardPose, GoodBoardPose(1));
+  bus.Publish(channels::kBoardPose, SampleBoardPose(1));
   try {
     bus.Handle(std::chrono::milliseconds(0));
     FAIL() << "the handler's exception must come out of Handle()";
@@ -145,7 +136,7 @@ TEST(LcmBus, AHandlersExceptionComesOutOfHandleAndTheBusKeepsWorking) {
     EXPECT_STREQ(e.what(), "disk full");
   }
   // LCM returned normally, so the next handle() does not trip LCM's assertions.
-  bus.Publish(channels::kBoardPose, GoodBoardPose(2));
+  bus.Publish(channels::kBoardPose, SampleBoardPose(2));
   EXPECT_EQ(bus.Handle(std::chrono::milliseconds(0)), 1);
   EXPECT_EQ(calls, 2);
 }
@@ -186,7 +177,7 @@ TEST(LcmBusUdpm, ChildInNamespace) {
     while (bus.Handle(std::chrono::milliseconds(20)) > 0) {
     }
   }
-  const h4msgs::board_pose_t valid = GoodBoardPose(9);
+  const h4msgs::board_pose_t valid = SampleBoardPose(9);
   sender.publish(channels::kBoardPose, &valid);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
   while (received.board_pose_ids.empty() && std::chrono::steady_clock::now() < deadline) {

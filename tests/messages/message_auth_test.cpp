@@ -34,12 +34,17 @@ Opened Open(MessageAuthenticator& receiver, const std::vector<uint8_t>& sealed,
   return {verdict, size};
 }
 
+/// Message() as `sender` seals it on kChannel at `utime`.
+std::vector<uint8_t> Sealed(MessageAuthenticator& sender, int64_t utime = kAuthNowUtime) {
+  const std::vector<uint8_t> message = Message();
+  return sender.Seal(kChannel, message.data(), message.size(), utime);
+}
+
 TEST(MessageAuthTest, ASealedMessageOpensToItsBytesAndTheTrailerHasItsSize) {
   MessageAuthenticator sender(FilledKey(1), {});
   MessageAuthenticator receiver(FilledKey(1), {});
   const std::vector<uint8_t> message = Message();
-  const std::vector<uint8_t> sealed =
-      sender.Seal(kChannel, message.data(), message.size(), kAuthNowUtime);
+  const std::vector<uint8_t> sealed = Sealed(sender);
   ASSERT_EQ(sealed.size(), message.size() + kAuthTrailerBytes);
   EXPECT_TRUE(std::equal(message.begin(), message.end(), sealed.begin()));
   const Opened opened = Open(receiver, sealed);
@@ -50,8 +55,7 @@ TEST(MessageAuthTest, ASealedMessageOpensToItsBytesAndTheTrailerHasItsSize) {
 TEST(MessageAuthTest, EveryAlteredByteIsRefused) {
   MessageAuthenticator sender(FilledKey(1), {});
   const std::vector<uint8_t> message = Message();
-  const std::vector<uint8_t> sealed =
-      sender.Seal(kChannel, message.data(), message.size(), kAuthNowUtime);
+  const std::vector<uint8_t> sealed = Sealed(sender);
   for (size_t i = 0; i < sealed.size(); ++i) {
     MessageAuthenticator receiver(FilledKey(1), {});
     std::vector<uint8_t> altered = sealed;
@@ -69,13 +73,11 @@ TEST(MessageAuthTest, AnotherKeyIsAForeignKeyAndAForgedKeyIdIsForged) {
   MessageAuthenticator sender(FilledKey(1), {});
   MessageAuthenticator receiver(FilledKey(2), {});
   const std::vector<uint8_t> message = Message();
-  std::vector<uint8_t> sealed =
-      sender.Seal(kChannel, message.data(), message.size(), kAuthNowUtime);
+  std::vector<uint8_t> sealed = Sealed(sender);
   EXPECT_EQ(Open(receiver, sealed).verdict, AuthVerdict::kForeignKey);
   // The attacker copies the receiver's key id from one of its genuine messages.
   MessageAuthenticator genuine(FilledKey(2), {});
-  const std::vector<uint8_t> real =
-      genuine.Seal(kChannel, message.data(), message.size(), kAuthNowUtime);
+  const std::vector<uint8_t> real = Sealed(genuine);
   std::copy_n(real.begin() + static_cast<long>(message.size()) + 4, 8,
               sealed.begin() + static_cast<long>(message.size()) + 4);
   EXPECT_EQ(Open(receiver, sealed).verdict, AuthVerdict::kForged);
@@ -84,9 +86,7 @@ TEST(MessageAuthTest, AnotherKeyIsAForeignKeyAndAForgedKeyIdIsForged) {
 TEST(MessageAuthTest, AMessageReplayedOntoAnotherChannelIsRefused) {
   MessageAuthenticator sender(FilledKey(1), {});
   MessageAuthenticator receiver(FilledKey(1), {});
-  const std::vector<uint8_t> message = Message();
-  const std::vector<uint8_t> sealed =
-      sender.Seal(kChannel, message.data(), message.size(), kAuthNowUtime);
+  const std::vector<uint8_t> sealed = Sealed(sender);
   EXPECT_EQ(Open(receiver, sealed, "H4_CAPTURE_REQUEST").verdict, AuthVerdict::kForged);
   EXPECT_EQ(Open(receiver, sealed, kChannel).verdict, AuthVerdict::kAccepted);
 }
@@ -94,9 +94,8 @@ TEST(MessageAuthTest, AMessageReplayedOntoAnotherChannelIsRefused) {
 TEST(MessageAuthTest, AReplayedMessageIsRefusedAndAnOvertakenOneAcceptedOnce) {
   MessageAuthenticator sender(FilledKey(1), {});
   MessageAuthenticator receiver(FilledKey(1), {});
-  const std::vector<uint8_t> message = Message();
-  const auto first = sender.Seal(kChannel, message.data(), message.size(), kAuthNowUtime);
-  const auto second = sender.Seal(kChannel, message.data(), message.size(), kAuthNowUtime);
+  const auto first = Sealed(sender);
+  const auto second = Sealed(sender);
   EXPECT_EQ(Open(receiver, second).verdict, AuthVerdict::kAccepted);
   EXPECT_EQ(Open(receiver, first).verdict, AuthVerdict::kAccepted) << "overtaken, within window";
   EXPECT_EQ(Open(receiver, first).verdict, AuthVerdict::kReplayed);
@@ -105,18 +104,16 @@ TEST(MessageAuthTest, AReplayedMessageIsRefusedAndAnOvertakenOneAcceptedOnce) {
 
 TEST(MessageAuthTest, ARestartedSenderIsAcceptedAndItsOldMessagesStayRefused) {
   MessageAuthenticator receiver(FilledKey(1), {});
-  const std::vector<uint8_t> message = Message();
   std::vector<std::vector<uint8_t>> before;
   {
     MessageAuthenticator sender(FilledKey(1), {});
     for (int i = 0; i < 5; ++i) {
-      before.push_back(sender.Seal(kChannel, message.data(), message.size(), kAuthNowUtime));
+      before.push_back(Sealed(sender));
       EXPECT_EQ(Open(receiver, before.back()).verdict, AuthVerdict::kAccepted);
     }
   }
   MessageAuthenticator restarted(FilledKey(1), {});  // a new process: a new sender id, sequence 1
-  const auto after =
-      restarted.Seal(kChannel, message.data(), message.size(), kAuthNowUtime + kAuthSecondUs);
+  const auto after = Sealed(restarted, kAuthNowUtime + kAuthSecondUs);
   EXPECT_EQ(Open(receiver, after, kChannel, kAuthNowUtime + kAuthSecondUs).verdict,
             AuthVerdict::kAccepted);
   for (const auto& old : before) {
@@ -129,8 +126,7 @@ TEST(MessageAuthTest, ARecordedMessageIsStaleOutsideTheClockWindowEvenForANewRec
   AuthOptions options;
   options.max_clock_offset_s = 30;
   MessageAuthenticator sender(FilledKey(1), options);
-  const std::vector<uint8_t> message = Message();
-  const auto sealed = sender.Seal(kChannel, message.data(), message.size(), kAuthNowUtime);
+  const auto sealed = Sealed(sender);
   MessageAuthenticator later(FilledKey(1), options);
   EXPECT_EQ(Open(later, sealed, kChannel, kAuthNowUtime + 31 * kAuthSecondUs).verdict,
             AuthVerdict::kStale);
@@ -153,8 +149,7 @@ TEST(MessageAuthTest, AnUnsignedOrTruncatedMessageIsUnauthenticated) {
   EXPECT_EQ(Open(receiver, std::vector<uint8_t>(kAuthTrailerBytes + 5, 0)).verdict,
             AuthVerdict::kUnauthenticated);
   MessageAuthenticator sender(FilledKey(1), {});
-  const std::vector<uint8_t> message = Message();
-  auto sealed = sender.Seal(kChannel, message.data(), message.size(), kAuthNowUtime);
+  auto sealed = Sealed(sender);
   sealed.pop_back();
   EXPECT_NE(Open(receiver, sealed).verdict, AuthVerdict::kAccepted);
 }
@@ -162,9 +157,7 @@ TEST(MessageAuthTest, AnUnsignedOrTruncatedMessageIsUnauthenticated) {
 TEST(MessageAuthTest, RandomTrailersWithTheRightMagicAndKeyIdAreNeverAccepted) {
   MessageAuthenticator sender(FilledKey(1), {});
   MessageAuthenticator receiver(FilledKey(1), {});
-  const std::vector<uint8_t> message = Message();
-  const std::vector<uint8_t> genuine =
-      sender.Seal(kChannel, message.data(), message.size(), kAuthNowUtime);
+  const std::vector<uint8_t> genuine = Sealed(sender);
   std::mt19937 rng(13);
   for (int i = 0; i < 5000; ++i) {
     std::vector<uint8_t> bytes(kAuthTrailerBytes + rng() % 200);

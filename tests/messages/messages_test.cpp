@@ -10,6 +10,7 @@
 #include "h4msgs/joint_state_t.hpp"
 #include "h4msgs/robot_target_t.hpp"
 #include "h4msgs/sim_board_truth_t.hpp"
+#include "tests/messages/wire_bytes.h"
 
 namespace {
 
@@ -31,29 +32,16 @@ Msg RoundTrip(const Msg& in) {
 }
 
 TEST(Messages, BoardPoseRoundTrips) {
-  h4msgs::board_pose_t m{};
-  m.utime = 1700000000123456;
-  m.pose_id = 42;
-  m.camera_id = "/base/soc/i2c0mux/i2c@1/imx477@1a";
-  m.board_id = "aprilgrid_6x6_30mm";
-  m.translation[0] = 0.01;
-  m.translation[2] = 0.55;
-  m.quaternion[0] = 1.0;
-  for (int i = 0; i < 36; ++i) m.covariance[i] = i * 1e-9;
-  m.frames_averaged = 10;
-  m.corners_used = 144;
-  m.reprojection_rms_px = 0.05;
-  m.frame_spread_px = 0.2;
-  m.status = h4msgs::board_pose_t::STATUS_MOVED;
+  const h4msgs::board_pose_t m = h4::bus::wire_bytes::FullBoardPose();
   const auto out = RoundTrip(m);
   EXPECT_EQ(out.utime, m.utime);
-  EXPECT_EQ(out.pose_id, 42);
+  EXPECT_EQ(out.pose_id, m.pose_id);
   EXPECT_EQ(out.camera_id, m.camera_id);
   EXPECT_EQ(out.board_id, m.board_id);
-  EXPECT_DOUBLE_EQ(out.translation[2], 0.55);
-  EXPECT_DOUBLE_EQ(out.covariance[35], 35e-9);
-  EXPECT_EQ(out.corners_used, 144);
-  EXPECT_DOUBLE_EQ(out.frame_spread_px, 0.2);
+  EXPECT_DOUBLE_EQ(out.translation[2], m.translation[2]);
+  EXPECT_DOUBLE_EQ(out.covariance[35], m.covariance[35]);
+  EXPECT_EQ(out.corners_used, m.corners_used);
+  EXPECT_DOUBLE_EQ(out.frame_spread_px, m.frame_spread_px);
   EXPECT_EQ(int{out.status}, int{h4msgs::board_pose_t::STATUS_MOVED});
 }
 

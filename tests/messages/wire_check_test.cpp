@@ -19,6 +19,7 @@ namespace h4::bus {
 namespace {
 
 using wire_bytes::Encode;
+using wire_bytes::FullBoardPose;
 using wire_bytes::PutBigEndian32;
 
 template <class Msg>
@@ -28,19 +29,6 @@ bool Accepted(const std::vector<uint8_t>& bytes, std::string* why = nullptr) {
       CheckEncodedMessage(bytes.data(), bytes.size(), LayoutOf<Msg>(), WireLimits{}, &reason);
   if (why) *why = reason;
   return ok;
-}
-
-h4msgs::board_pose_t SampleBoardPose() {
-  h4msgs::board_pose_t m{};
-  m.utime = 1700000000000000;
-  m.pose_id = 3;
-  m.camera_id = "/base/soc/i2c0mux/i2c@1/imx477@1a";
-  m.board_id = "aprilgrid_6x6_30mm";
-  m.translation[2] = 0.5;
-  m.quaternion[0] = 1.0;
-  for (int i = 0; i < 6; ++i) m.covariance[i * 7] = 1e-8;
-  m.status = h4msgs::board_pose_t::STATUS_OK;
-  return m;
 }
 
 h4msgs::joint_state_t SampleJointState(int joints) {
@@ -61,15 +49,16 @@ h4msgs::camera_status_t SampleCameraStatus() {
   return m;
 }
 
-// Byte offsets of the length fields in the samples above (after the 8-byte fingerprint).
+// Byte offsets of the length fields in FullBoardPose (wire_bytes.h) and the samples above
+// (after the 8-byte fingerprint).
 constexpr size_t kBoardPoseCameraIdLength = 8 + 8 + 8;
 constexpr size_t kJointStateCount = 8 + 8 + 8;
 constexpr size_t kCameraStatusCameraIdLength = 8 + 8;
 
 TEST(WireCheck, EveryLayoutAcceptsWhatTheGeneratedEncoderWrites) {
   std::string why;
-  EXPECT_TRUE(Accepted<h4msgs::board_pose_t>(Encode(SampleBoardPose()), &why)) << why;
-  h4msgs::board_pose_t empty_strings = SampleBoardPose();
+  EXPECT_TRUE(Accepted<h4msgs::board_pose_t>(Encode(FullBoardPose()), &why)) << why;
+  h4msgs::board_pose_t empty_strings = FullBoardPose();
   empty_strings.camera_id.clear();
   empty_strings.board_id.clear();
   EXPECT_TRUE(Accepted<h4msgs::board_pose_t>(Encode(empty_strings), &why)) << why;
@@ -86,7 +75,7 @@ TEST(WireCheck, EveryLayoutAcceptsWhatTheGeneratedEncoderWrites) {
 }
 
 TEST(WireCheck, RefusesAnotherTypesFingerprintAndTrailingOrMissingBytes) {
-  std::vector<uint8_t> bytes = Encode(SampleBoardPose());
+  std::vector<uint8_t> bytes = Encode(FullBoardPose());
   EXPECT_FALSE(Accepted<h4msgs::camera_status_t>(bytes));
   for (size_t size = 0; size < bytes.size(); ++size) {
     const std::vector<uint8_t> cut(bytes.begin(), bytes.begin() + static_cast<long>(size));
@@ -100,7 +89,7 @@ TEST(WireCheck, RefusesAnotherTypesFingerprintAndTrailingOrMissingBytes) {
 
 TEST(WireCheck, RefusesStringLengthsThatMakeDecodeThrowOrOverflow) {
   for (int32_t length : {0, -1, -100, INT_MIN, INT_MAX, 5000}) {
-    std::vector<uint8_t> pose = Encode(SampleBoardPose());
+    std::vector<uint8_t> pose = Encode(FullBoardPose());
     PutBigEndian32(&pose, kBoardPoseCameraIdLength, length);
     std::string why;
     EXPECT_FALSE(Accepted<h4msgs::board_pose_t>(pose, &why)) << length;
@@ -123,8 +112,8 @@ TEST(WireCheck, RefusesJointCountsThatMakeDecodeThrowOrAllocate) {
 }
 
 TEST(WireCheck, RefusesAStringWithoutItsNul) {
-  std::vector<uint8_t> bytes = Encode(SampleBoardPose());
-  const size_t length = SampleBoardPose().camera_id.size() + 1;
+  std::vector<uint8_t> bytes = Encode(FullBoardPose());
+  const size_t length = FullBoardPose().camera_id.size() + 1;
   bytes[kBoardPoseCameraIdLength + 4 + length - 1] = 'x';
   std::string why;
   EXPECT_FALSE(Accepted<h4msgs::board_pose_t>(bytes, &why));
@@ -142,7 +131,7 @@ TEST(WireCheck, LimitsAreValidatedAndApplied) {
 
   WireLimits small;
   small.max_message_bytes = 100;
-  const std::vector<uint8_t> bytes = Encode(SampleBoardPose());
+  const std::vector<uint8_t> bytes = Encode(FullBoardPose());
   EXPECT_FALSE(CheckEncodedMessage(bytes.data(), bytes.size(), LayoutOf<h4msgs::board_pose_t>(),
                                    small, &why));
   EXPECT_NE(why.find("more than the 100"), std::string::npos) << why;
@@ -187,7 +176,7 @@ void FuzzDecode(const std::vector<uint8_t>& valid, uint32_t seed, int* accepted,
 
 TEST(WireCheck, RandomMutationsNeverThrowAndWhatIsAcceptedIsExact) {
   int accepted = 0, refused = 0;
-  FuzzDecode<h4msgs::board_pose_t>(Encode(SampleBoardPose()), 1, &accepted, &refused);
+  FuzzDecode<h4msgs::board_pose_t>(Encode(FullBoardPose()), 1, &accepted, &refused);
   FuzzDecode<h4msgs::joint_state_t>(Encode(SampleJointState(4)), 2, &accepted, &refused);
   FuzzDecode<h4msgs::camera_status_t>(Encode(SampleCameraStatus()), 3, &accepted, &refused);
   // Both branches exercised: the mutations are not all fatal nor all harmless.

@@ -1,9 +1,11 @@
-// Test helper: a fresh, empty directory for the running test, named after it so that tests
-// run in parallel (one process each under ctest) never share files.
+// Test helpers: a fresh, empty directory for the running test, named after it so that tests
+// run in parallel (one process each under ctest) never share files; a fixture writing a
+// dataset CSV in one.
 #pragma once
 
 #include <filesystem>
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -20,5 +22,24 @@ inline std::filesystem::path FreshTestDir(
   std::filesystem::create_directories(dir);
   return dir;
 }
+
+/// A test writing a dataset CSV: `path_` in its own fresh directory `dir_` (FreshTestDir with
+/// `prefix`), removed after the test.
+class TestWithDatasetFile : public ::testing::Test {
+ protected:
+  explicit TestWithDatasetFile(std::string prefix) : prefix_(std::move(prefix)) {}
+
+  void SetUp() override {
+    dir_ = FreshTestDir(prefix_);
+    path_ = (dir_ / "dataset.csv").string();
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  std::filesystem::path dir_;
+  std::string path_;
+
+ private:
+  std::string prefix_;
+};
 
 }  // namespace h4
