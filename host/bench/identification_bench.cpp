@@ -125,39 +125,15 @@ void BM_IdentifyModel31LmOnly(benchmark::State& state) {
   RunPipeline(state, ModelKind::k31, "none");
 }
 
-// The measurement-space stage alone, from the same start: residual function on the free
-// values, with the same reused buffers as the pipeline's stages.
-class StageFunction {
- public:
-  StageFunction(const Problem& p, IdentificationCost& cost)
-      : cost_(cost), work_(p.stage_start), free_(p.stage_start.FreeIndices()) {}
-  bool operator()(const Eigen::VectorXd& v, Eigen::VectorXd* r, Eigen::MatrixXd* J_free) {
-    Eigen::VectorXd values = work_.values();
-    for (size_t k = 0; k < free_.size(); ++k) values[free_[k]] = v[static_cast<Eigen::Index>(k)];
-    work_.set_values(values);
-    if (J_free == nullptr) return cost_.Evaluate(work_, r, nullptr);
-    if (!cost_.Evaluate(work_, r, &J_all_)) return false;
-    J_free->resize(J_all_.rows(), static_cast<Eigen::Index>(free_.size()));
-    for (size_t k = 0; k < free_.size(); ++k) {
-      J_free->col(static_cast<Eigen::Index>(k)) = J_all_.col(free_[k]);
-    }
-    return true;
-  }
-
- private:
-  IdentificationCost& cost_;
-  ParameterVector work_;
-  std::vector<int> free_;
-  Eigen::MatrixXd J_all_;
-};
-
+// The measurement-space stage alone, from the same start: the residual function on the free
+// values the pipeline's stages use (FreeParameterResiduals).
 void StageWithLm(benchmark::State& state, ModelKind model_kind) {
   const Problem& p = GetProblem(model_kind);
   MinimizerReport report;
   for (auto _ : state) {
     // A fresh cost per run: no forward kinematics warm start carried between runs.
     IdentificationCost cost(CostKind::kMeasurement, *p.model, p.rows);
-    const ResidualFunction f = StageFunction(p, cost);
+    const ResidualFunction f = FreeParameterResiduals(&cost, p.stage_start);
     Eigen::VectorXd v = p.stage_start.FreeValues();
     report = MinimizeWithLevenbergMarquardt(f, LmOptions{}, &v);
   }
@@ -179,7 +155,7 @@ void StageWithNlopt(benchmark::State& state, ModelKind model_kind, bool to_the_e
   }
   for (auto _ : state) {
     IdentificationCost cost(CostKind::kMeasurement, *p.model, p.rows);
-    const ResidualFunction f = StageFunction(p, cost);
+    const ResidualFunction f = FreeParameterResiduals(&cost, p.stage_start);
     Eigen::VectorXd v = p.stage_start.FreeValues();
     report = MinimizeWithNlopt(f, options, &v);
   }
@@ -252,7 +228,7 @@ void StageWithCeres(benchmark::State& state, ModelKind model_kind) {
   ceres::Solver::Summary summary;
   for (auto _ : state) {
     IdentificationCost cost(CostKind::kMeasurement, *p.model, p.rows);
-    const ResidualFunction f = StageFunction(p, cost);
+    const ResidualFunction f = FreeParameterResiduals(&cost, p.stage_start);
     Eigen::VectorXd v = p.stage_start.FreeValues();
     ceres::Problem problem;
     problem.AddResidualBlock(

@@ -274,7 +274,11 @@ void AddCollectCommand(CLI::App& app) {
   command->footer(
       "Exit codes: 0 every pose recorded, 3 some poses skipped (listed), 130 interrupted "
       "(run again to resume), 1 error.");
-  RunWithCommandLineWhenParsed(command, options, Run);
+  // Run takes its options by value (it fills the campaign's control law and mode): named
+  // through a lambda, since in a unity batch other files' Run overloads are in scope too.
+  RunWithCommandLineWhenParsed(
+      command, options,
+      [](const CollectOptions& parsed, const std::string& line) { Run(parsed, line); });
 }
 
 }  // namespace h4::host::cli

@@ -37,21 +37,7 @@ std::vector<int> DealIntoFolds(size_t rows, int folds, uint64_t seed) {
 bool RefitWithout(const CrossValidationInputs& in, const std::vector<DatasetRow>& train,
                   ParameterVector* p) {
   IdentificationCost cost(in.estimator, in.model, train, in.cost);
-  const std::vector<int> free = p->FreeIndices();
-  ParameterVector work = *p;
-  Eigen::VectorXd values = p->values();
-  Eigen::MatrixXd J_all;
-  const ResidualFunction f = [&](const Eigen::VectorXd& v, Eigen::VectorXd* r, Eigen::MatrixXd* J) {
-    for (size_t k = 0; k < free.size(); ++k) values[free[k]] = v[static_cast<Eigen::Index>(k)];
-    work.set_values(values);
-    if (J == nullptr) return cost.Evaluate(work, r, nullptr);
-    if (!cost.Evaluate(work, r, &J_all)) return false;
-    J->resize(J_all.rows(), static_cast<Eigen::Index>(free.size()));
-    for (size_t k = 0; k < free.size(); ++k) {
-      J->col(static_cast<Eigen::Index>(k)) = J_all.col(free[k]);
-    }
-    return true;
-  };
+  const ResidualFunction f = FreeParameterResiduals(&cost, *p);
   Eigen::VectorXd v = p->FreeValues();
   const MinimizerReport report = MinimizeWithLevenbergMarquardt(f, in.lm, &v);
   p->SetFreeValues(v);

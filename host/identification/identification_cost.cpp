@@ -236,4 +236,20 @@ bool IdentificationCost::EvaluateMeasurement(const ParameterVector& p,
   return true;
 }
 
+FreeParameterResiduals::FreeParameterResiduals(IdentificationCost* cost, const ParameterVector& p)
+    : cost_(cost), free_(p.FreeIndices()), work_(p), values_(p.values()) {}
+
+bool FreeParameterResiduals::operator()(const Eigen::VectorXd& v, Eigen::VectorXd* r,
+                                        Eigen::MatrixXd* J_free) {
+  for (size_t k = 0; k < free_.size(); ++k) values_[free_[k]] = v[static_cast<Eigen::Index>(k)];
+  work_.set_values(values_);
+  if (J_free == nullptr) return cost_->Evaluate(work_, r, nullptr);
+  if (!cost_->Evaluate(work_, r, &J_all_)) return false;
+  J_free->resize(J_all_.rows(), static_cast<Eigen::Index>(free_.size()));
+  for (size_t k = 0; k < free_.size(); ++k) {
+    J_free->col(static_cast<Eigen::Index>(k)) = J_all_.col(free_[k]);
+  }
+  return true;
+}
+
 }  // namespace h4::host

@@ -93,4 +93,22 @@ class IdentificationCost {
   Eigen::MatrixXd J_f_xi_;
 };
 
+/// The cost as a function of the free values alone (ParameterVector::FreeIndices order), the
+/// form the minimisers take (least_squares.h ResidualFunction). The parameter vector and the
+/// full Jacobian are buffers reused across evaluations (a ParameterVector copy per call costs
+/// about 90 string allocations). `cost` must outlive it.
+class FreeParameterResiduals {
+ public:
+  FreeParameterResiduals(IdentificationCost* cost, const ParameterVector& p);
+
+  bool operator()(const Eigen::VectorXd& v, Eigen::VectorXd* r, Eigen::MatrixXd* J_free);
+
+ private:
+  IdentificationCost* cost_;
+  std::vector<int> free_;
+  ParameterVector work_;
+  Eigen::VectorXd values_;
+  Eigen::MatrixXd J_all_;
+};
+
 }  // namespace h4::host

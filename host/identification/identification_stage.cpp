@@ -97,34 +97,6 @@ IdentifiabilityReport FixUnidentifiable(const StageContext& context, const Plann
   return report;
 }
 
-// The cost as a function of the free values alone, for the minimisers. The parameter
-// vector and the full Jacobian are buffers reused across evaluations (a ParameterVector
-// copy per call costs ~90 string allocations).
-class FreeParameterResiduals {
- public:
-  FreeParameterResiduals(IdentificationCost* cost, const ParameterVector& p)
-      : cost_(cost), free_(p.FreeIndices()), work_(p), values_(p.values()) {}
-
-  bool operator()(const Eigen::VectorXd& v, Eigen::VectorXd* r, Eigen::MatrixXd* J_free) {
-    for (size_t k = 0; k < free_.size(); ++k) values_[free_[k]] = v[static_cast<Eigen::Index>(k)];
-    work_.set_values(values_);
-    if (J_free == nullptr) return cost_->Evaluate(work_, r, nullptr);
-    if (!cost_->Evaluate(work_, r, &J_all_)) return false;
-    J_free->resize(J_all_.rows(), static_cast<Eigen::Index>(free_.size()));
-    for (size_t k = 0; k < free_.size(); ++k) {
-      J_free->col(static_cast<Eigen::Index>(k)) = J_all_.col(free_[k]);
-    }
-    return true;
-  }
-
- private:
-  IdentificationCost* cost_;
-  std::vector<int> free_;
-  ParameterVector work_;
-  Eigen::VectorXd values_;
-  Eigen::MatrixXd J_all_;
-};
-
 // NLopt to tight tolerances: alone (no polish), or as the fallback when LM fails.
 NloptOptions TightNloptOptions(const NloptOptions& loose) {
   NloptOptions tight = loose;
