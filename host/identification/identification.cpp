@@ -144,11 +144,12 @@ struct HeldOutScores {
   std::vector<double> scores;  ///< in the order of the poses
   double excess = 1.0;
   double spread = 0.0;  ///< pose-to-pose spread of the covariances (outlier_limit.h)
+  double spread_limit = 0.0;  ///< outlier_chi2_limit raised for that spread
   double worst = 0.0;
   double median_position_error_m = 0.0;  ///< over the poses predicted
 };
 
-HeldOutScores ScoreHeldOut(const std::vector<HeldOutPrediction>& poses) {
+HeldOutScores ScoreHeldOut(const std::vector<HeldOutPrediction>& poses, double chi2_limit) {
   HeldOutScores s;
   std::vector<double> chi2;
   for (const HeldOutPrediction& pose : poses) {
@@ -164,6 +165,7 @@ HeldOutScores ScoreHeldOut(const std::vector<HeldOutPrediction>& poses) {
     if (pose.ok) position_errors.push_back(pose.position_error_m);
   }
   s.spread = ScoreSpread(s.scores);
+  s.spread_limit = OverdispersedLimit(chi2_limit, s.spread);
   const auto middle = position_errors.begin() + static_cast<long>(position_errors.size() / 2);
   std::nth_element(position_errors.begin(), middle, position_errors.end());
   s.median_position_error_m = *middle;
@@ -179,7 +181,7 @@ double PoseLimit(const HeldOutPrediction& pose, const IdentificationOptions& opt
   if (pose.position_error_m > options.outlier_position_factor * s.median_position_error_m) {
     return options.outlier_chi2_limit;
   }
-  return OverdispersedLimit(options.outlier_chi2_limit, s.spread);
+  return s.spread_limit;
 }
 
 std::string HeldOutReason(const HeldOutPrediction& pose, double score,
@@ -207,14 +209,13 @@ std::optional<OutlierCheck> CheckOutliersHeldOut(const IdentificationOptions& op
                                                  const IdentificationState& state) {
   const std::vector<HeldOutPrediction>& poses = state.cv.poses;
   if (poses.size() != state.rows.size()) return std::nullopt;
-  const HeldOutScores s = ScoreHeldOut(poses);
+  const HeldOutScores s = ScoreHeldOut(poses, options.outlier_chi2_limit);
   if (s.scores.empty()) return std::nullopt;
   // A gross outlier is among the training poses of every other fold and inflates the
   // held-out residuals of the poses near it: a round rejects the poses within a factor
   // kSwampingFactor of the worst score, the others are judged again without them.
   OutlierCheck check;
-  check.limit = std::max(OverdispersedLimit(options.outlier_chi2_limit, s.spread),
-                         s.worst / kSwampingFactor);
+  check.limit = std::max(s.spread_limit, s.worst / kSwampingFactor);
   for (size_t j = 0; j < poses.size(); ++j) {
     const double limit = std::max(PoseLimit(poses[j], options, s), s.worst / kSwampingFactor);
     if (!poses[j].ok || s.scores[j] > limit) {
