@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "common/formats/format_error.h"
+#include "common/text/enum_names.h"
 
 namespace h4 {
 namespace {
@@ -37,20 +38,11 @@ FileKind GuessFileKind(const std::string& text) {
   return FileKind::kUnknown;
 }
 
+constexpr EnumNames<FileKind, FileKind::kJson> kFileKindDescriptions = {
+    "an unknown file", "a dataset CSV", "a CSV file", "a YAML file", "a JSON file"};
+
 const char* DescribeFileKind(FileKind kind) {
-  switch (kind) {
-    case FileKind::kDatasetCsv:
-      return "a dataset CSV";
-    case FileKind::kOtherCsv:
-      return "a CSV file";
-    case FileKind::kYaml:
-      return "a YAML file";
-    case FileKind::kJson:
-      return "a JSON file";
-    case FileKind::kUnknown:
-      break;
-  }
-  return "an unknown file";
+  return kFileKindDescriptions.NameOf(kind, "an unknown file");
 }
 
 void RejectFileKind(const std::string& text, const std::string& source_name,

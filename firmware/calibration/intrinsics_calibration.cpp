@@ -8,6 +8,7 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include "common/text/enum_names.h"
 #include "common/units.h"
 
 namespace h4::cam {
@@ -212,16 +213,11 @@ const char* CoefficientNames(IntrinsicsModel model) {
 
 }  // namespace
 
+constexpr EnumNames<IntrinsicsModel, IntrinsicsModel::kEquidistant> kIntrinsicsModelNames = {
+    "radtan", "rational", "equidistant"};
+
 const char* ToString(IntrinsicsModel model) {
-  switch (model) {
-    case IntrinsicsModel::kRadTan:
-      return "radtan";
-    case IntrinsicsModel::kRational:
-      return "rational";
-    case IntrinsicsModel::kEquidistant:
-      return "equidistant";
-  }
-  return "unknown";
+  return kIntrinsicsModelNames.NameOf(model, "unknown");
 }
 
 bool IntrinsicsCalibrationOptions::IsValid(std::string* why) const {

@@ -7,20 +7,16 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/camera/camera_model.h"
+#include "common/text/enum_names.h"
 #include "firmware/detection/chessboard_corners.h"
 
 namespace h4::cam {
 
+constexpr EnumNames<BoardDetection::Status, BoardDetection::Status::kNoBoard>
+    kBoardDetectionStatusNames = {"ok", "partial", "no board"};
+
 const char* ToString(BoardDetection::Status status) {
-  switch (status) {
-    case BoardDetection::Status::kOk:
-      return "ok";
-    case BoardDetection::Status::kPartial:
-      return "partial";
-    case BoardDetection::Status::kNoBoard:
-      return "no board";
-  }
-  return "?";
+  return kBoardDetectionStatusNames.NameOf(status);
 }
 
 BoardDetector::BoardDetector(const BoardSpec& board, const CameraIntrinsics& camera,

@@ -3,22 +3,6 @@
 
 namespace h4::cam {
 
-const char* ToString(Measurement::Status status) {
-  switch (status) {
-    case Measurement::Status::kOk:
-      return "ok";
-    case Measurement::Status::kNoBoard:
-      return "no board";
-    case Measurement::Status::kMoved:
-      return "moved";
-    case Measurement::Status::kPartial:
-      return "partial";
-    case Measurement::Status::kCameraError:
-      return "camera error";
-  }
-  return "?";
-}
-
 bool PipelineOptions::IsValid(std::string* why) const {
   if (frames < 1) {
     if (why != nullptr) *why = "frames per measurement must be >= 1";

@@ -8,13 +8,14 @@
 
 #include <Eigen/Core>
 
+#include "common/board/board_pose_status.h"
 #include "common/geometry/rigid_transform.h"
 
 namespace h4::cam {
 
 struct Measurement {
-  /// Same meanings as board_pose_t's STATUS_ constants.
-  enum class Status { kOk, kNoBoard, kMoved, kPartial, kCameraError };
+  /// The values of board_pose_t's STATUS_ constants.
+  using Status = BoardPoseStatus;
   Status status = Status::kNoBoard;
   std::string message;  ///< why, when not kOk
 
@@ -33,7 +34,5 @@ struct Measurement {
 
   bool ok() const { return status == Status::kOk; }
 };
-
-const char* ToString(Measurement::Status status);
 
 }  // namespace h4::cam

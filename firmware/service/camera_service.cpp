@@ -5,6 +5,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/text/enum_names.h"
+#include "messages/board_pose_status.h"
+
 namespace h4::cam {
 namespace {
 
@@ -19,37 +22,10 @@ PipelineOptions MakePipelineOptions(const CameraServiceOptions& options) {
 
 }  // namespace
 
-const char* ToString(CameraService::State state) {
-  switch (state) {
-    case CameraService::State::kStarting:
-      return "starting";
-    case CameraService::State::kIdle:
-      return "idle";
-    case CameraService::State::kCapturing:
-      return "capturing";
-    case CameraService::State::kError:
-      return "error";
-    case CameraService::State::kStopping:
-      return "stopping";
-  }
-  return "?";
-}
+constexpr EnumNames<CameraService::State, CameraService::State::kStopping>
+    kCameraServiceStateNames = {"starting", "idle", "capturing", "error", "stopping"};
 
-int8_t BoardPoseStatus(Measurement::Status status) {
-  switch (status) {
-    case Measurement::Status::kOk:
-      return h4msgs::board_pose_t::STATUS_OK;
-    case Measurement::Status::kNoBoard:
-      return h4msgs::board_pose_t::STATUS_NO_BOARD;
-    case Measurement::Status::kMoved:
-      return h4msgs::board_pose_t::STATUS_MOVED;
-    case Measurement::Status::kPartial:
-      return h4msgs::board_pose_t::STATUS_PARTIAL;
-    case Measurement::Status::kCameraError:
-      return h4msgs::board_pose_t::STATUS_CAMERA_ERROR;
-  }
-  return h4msgs::board_pose_t::STATUS_CAMERA_ERROR;
-}
+const char* ToString(CameraService::State state) { return kCameraServiceStateNames.NameOf(state); }
 
 CameraService::CameraService(CameraServiceOptions options, FrameSource& source,
                              const BoardSpec& board, const CameraIntrinsics& camera)
@@ -185,7 +161,7 @@ h4msgs::board_pose_t CameraService::Finish(const Measurement& m, int64_t pose_id
   msg.pose_id = pose_id;
   msg.camera_id = options_.camera_id;
   msg.board_id = options_.board_id;
-  msg.status = BoardPoseStatus(m.status);
+  msg.status = ToWire(m.status);
   msg.frames_averaged = m.frames_averaged;
   msg.corners_used = m.corners_used;
   // Only a pose that exists is sent; the others keep zero pose fields (board_pose_t.lcm).

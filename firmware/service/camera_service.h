@@ -109,7 +109,4 @@ class CameraService {
 
 const char* ToString(CameraService::State state);
 
-/// board_pose_t.status for a measurement status (the codes are the same by design).
-int8_t BoardPoseStatus(Measurement::Status status);
-
 }  // namespace h4::cam

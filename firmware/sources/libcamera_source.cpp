@@ -16,6 +16,7 @@
 #include <spdlog/spdlog.h>
 #include <sys/mman.h>
 
+#include "common/text/enum_names.h"
 #include "firmware/sources/libcamera_compat.h"
 #include "firmware/sources/libcamera_dma_buf_sync.h"
 #include "firmware/sources/libcamera_manager.h"
@@ -47,18 +48,11 @@ std::string Join(const std::vector<std::string>& items) {
 
 }  // namespace
 
+constexpr EnumNames<LibcameraSource::State, LibcameraSource::State::kRunning>
+    kLibcameraSourceStateNames = {"closed", "open", "configured", "running"};
+
 const char* ToString(LibcameraSource::State state) {
-  switch (state) {
-    case LibcameraSource::State::kClosed:
-      return "closed";
-    case LibcameraSource::State::kOpen:
-      return "open";
-    case LibcameraSource::State::kConfigured:
-      return "configured";
-    case LibcameraSource::State::kRunning:
-      return "running";
-  }
-  return "?";
+  return kLibcameraSourceStateNames.NameOf(state);
 }
 
 bool LibcameraSourceOptions::IsValid(std::string* why) const {

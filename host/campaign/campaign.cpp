@@ -9,6 +9,7 @@
 #include <h4msgs/robot_target_t.hpp>
 #include <spdlog/spdlog.h>
 
+#include "common/text/enum_names.h"
 #include "common/timing/clock.h"
 #include "common/units.h"
 #include "messages/channels.h"
@@ -16,17 +17,10 @@
 namespace h4::host {
 namespace {
 
-const char* ModeName(CampaignMode mode) {
-  switch (mode) {
-    case CampaignMode::kActive:
-      return "active";
-    case CampaignMode::kManual:
-      return "manual";
-    case CampaignMode::kPassive:
-      return "passive";
-  }
-  return "?";
-}
+constexpr EnumNames<CampaignMode, CampaignMode::kPassive> kCampaignModeNames = {"active", "manual",
+                                                                                "passive"};
+
+const char* ModeName(CampaignMode mode) { return kCampaignModeNames.NameOf(mode); }
 
 }  // namespace
 

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "common/geometry/rotation.h"
+#include "messages/board_pose_status.h"
 
 namespace h4::host {
 namespace {
@@ -88,20 +89,8 @@ MessageProblem CheckBoardPose(const h4msgs::board_pose_t& msg, std::string* why)
 }
 
 std::string BoardPoseStatusName(int8_t status) {
-  switch (status) {
-    case h4msgs::board_pose_t::STATUS_OK:
-      return "ok";
-    case h4msgs::board_pose_t::STATUS_NO_BOARD:
-      return "no board";
-    case h4msgs::board_pose_t::STATUS_MOVED:
-      return "moved";
-    case h4msgs::board_pose_t::STATUS_PARTIAL:
-      return "partial";
-    case h4msgs::board_pose_t::STATUS_CAMERA_ERROR:
-      return "camera error";
-    default:
-      return fmt::format("unknown status {}", static_cast<int>(status));
-  }
+  const std::optional<BoardPoseStatus> known = BoardPoseStatusFromWire(status);
+  return known ? ToString(*known) : fmt::format("unknown status {}", static_cast<int>(status));
 }
 
 namespace {

@@ -7,6 +7,7 @@
 #include <spdlog/fmt/fmt.h>
 
 #include "common/geometry/rotation.h"
+#include "common/text/enum_names.h"
 #include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/measurement_chain.h"
 #include "host/kinematics/model12.h"
@@ -51,19 +52,10 @@ bool SimulatedControllerOptions::IsValid(std::string* why) const {
   return true;
 }
 
-const char* ToString(TargetStatus status) {
-  switch (status) {
-    case TargetStatus::kAccepted:
-      return "accepted";
-    case TargetStatus::kUnreachable:
-      return "unreachable";
-    case TargetStatus::kOutsideLimits:
-      return "outside joint limits";
-    case TargetStatus::kInvalid:
-      return "invalid";
-  }
-  return "invalid";
-}
+constexpr EnumNames<TargetStatus, TargetStatus::kInvalid> kTargetStatusNames = {
+    "accepted", "unreachable", "outside joint limits", "invalid"};
+
+const char* ToString(TargetStatus status) { return kTargetStatusNames.NameOf(status, "invalid"); }
 
 SimulatedController::SimulatedController(const SimulatedRobot& truth,
                                          const Model12Parameters& apriori,

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <ctime>
 #include <numbers>
+#include <optional>
 
 #include <spdlog/spdlog.h>
 
@@ -63,9 +64,10 @@ void PrintRejectedPoses(const IdentificationResult& r) {
 void PrintAccuracyMapLine(const ModelValidation& identified) {
   if (!identified.accuracy_map) return;
   const AccuracyMap& map = *identified.accuracy_map;
-  std::printf("  accuracy map: predicted 1-sigma position error median %.4f mm, largest %.4f mm "
-              "over %zu workspace poses\n",
-              map.MedianPositionSigma() * 1e3, map.MaxPositionSigma() * 1e3, map.points.size());
+  std::printf(
+      "  accuracy map: predicted 1-sigma position error median %.4f mm, largest %.4f mm "
+      "over %zu workspace poses\n",
+      map.MedianPositionSigma() * 1e3, map.MaxPositionSigma() * 1e3, map.points.size());
 }
 
 void PrintHeadline(const IdentificationOutcome& outcome) {
@@ -165,10 +167,12 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
   const std::vector<DatasetRow> rows = ReadDatasetCsv(options.data_path);
   RequireUsableSplit(options, rows);
   IdentificationOptions id_options;
-  if (!ParseCostKind(options.estimator, &id_options.estimator)) {
+  const std::optional<CostKind> estimator = ParseCostKind(options.estimator);
+  if (!estimator) {
     throw std::invalid_argument("--estimator: expected measurement, joint or implicit, got '" +
                                 options.estimator + "'");
   }
+  id_options.estimator = *estimator;
   id_options.nlopt.algorithm = options.algorithm;
   id_options.fixed_parameters = options.fix;
   id_options.reject_outliers = !options.no_outliers;

@@ -9,6 +9,7 @@
 #include <Eigen/LU>
 
 #include "common/geometry/rotation.h"
+#include "common/text/enum_names.h"
 #include "host/identification/pose_chain.h"
 #include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/measurement_chain.h"
@@ -20,26 +21,13 @@ std::string PoseName(const DatasetRow& row) { return "pose " + std::to_string(ro
 
 }  // namespace
 
-const char* ToString(CostKind kind) {
-  switch (kind) {
-    case CostKind::kJointSpace:
-      return "joint";
-    case CostKind::kImplicit:
-      return "implicit";
-    case CostKind::kMeasurement:
-      return "measurement";
-  }
-  return "unknown";
-}
+constexpr EnumNames<CostKind, CostKind::kMeasurement> kCostKindNames = {"joint", "implicit",
+                                                                        "measurement"};
 
-bool ParseCostKind(const std::string& text, CostKind* kind) {
-  for (CostKind k : {CostKind::kJointSpace, CostKind::kImplicit, CostKind::kMeasurement}) {
-    if (text == ToString(k)) {
-      *kind = k;
-      return true;
-    }
-  }
-  return false;
+const char* ToString(CostKind kind) { return kCostKindNames.NameOf(kind, "unknown"); }
+
+std::optional<CostKind> ParseCostKind(const std::string& text) {
+  return kCostKindNames.ValueNamed(text);
 }
 
 IdentificationCost::IdentificationCost(CostKind kind, const KinematicModel& model,

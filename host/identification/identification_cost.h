@@ -10,6 +10,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,8 +28,8 @@ enum class CostKind { kJointSpace, kImplicit, kMeasurement };
 
 /// "joint", "implicit", "measurement" (the estimator names of IdentificationResult).
 const char* ToString(CostKind kind);
-/// Parses those names; false when unknown.
-bool ParseCostKind(const std::string& text, CostKind* kind);
+/// Parses those names; nullopt when unknown.
+std::optional<CostKind> ParseCostKind(const std::string& text);
 
 struct CostOptions {
   /// Translation std of a measured X_CT when the dataset has no sigma_t, m (paper: 0.2 mm).

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "common/text/enum_names.h"
 #include "common/units.h"
 
 namespace h4::host {
@@ -186,32 +187,16 @@ std::vector<std::pair<std::string, double>> Figures(const VerdictInputs& in) {
 
 }  // namespace
 
+constexpr EnumNames<Verdict, Verdict::kTooFewPoses> kVerdictCodes = {
+    "good", "model_cannot_describe", "inconsistent_with_apriori", "not_identifiable",
+    "too_few_poses"};
+
 const char* VerdictCode(Verdict verdict) {
-  switch (verdict) {
-    case Verdict::kGood:
-      return "good";
-    case Verdict::kModelCannotDescribe:
-      return "model_cannot_describe";
-    case Verdict::kInconsistentWithApriori:
-      return "inconsistent_with_apriori";
-    case Verdict::kNotIdentifiable:
-      return "not_identifiable";
-    case Verdict::kTooFewPoses:
-      return "too_few_poses";
-  }
-  return "not_identifiable";
+  return kVerdictCodes.NameOf(verdict, "not_identifiable");
 }
 
-bool ParseVerdictCode(const std::string& code, Verdict* verdict) {
-  for (Verdict v :
-       {Verdict::kGood, Verdict::kModelCannotDescribe, Verdict::kInconsistentWithApriori,
-        Verdict::kNotIdentifiable, Verdict::kTooFewPoses}) {
-    if (code == VerdictCode(v)) {
-      *verdict = v;
-      return true;
-    }
-  }
-  return false;
+std::optional<Verdict> ParseVerdictCode(const std::string& code) {
+  return kVerdictCodes.ValueNamed(code);
 }
 
 bool VerdictOptions::IsValid(std::string* why) const {

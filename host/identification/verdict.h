@@ -6,6 +6,7 @@
 // to move the kinematic parameters from the a priori robot (common/README.md names).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -97,7 +98,7 @@ double ChiSquareUpperTail(double chi2, double dof);
 ResultVerdict DecideVerdict(const VerdictInputs& inputs, const VerdictOptions& options,
                             Verdict* verdict = nullptr);
 
-/// The code parsed back ("good" ...); false when unknown.
-bool ParseVerdictCode(const std::string& code, Verdict* verdict);
+/// The code parsed back ("good" ...); nullopt when unknown.
+std::optional<Verdict> ParseVerdictCode(const std::string& code);
 
 }  // namespace h4::host

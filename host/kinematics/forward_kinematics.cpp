@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 
 #include "common/geometry/rotation.h"
+#include "common/text/enum_names.h"
 
 namespace h4::host {
 namespace {
@@ -89,21 +90,10 @@ bool SameBranch(const KinematicModel& model, const JointVector& q, const EePose&
 
 }  // namespace
 
-const char* ToString(FkStatus status) {
-  switch (status) {
-    case FkStatus::kConverged:
-      return "converged";
-    case FkStatus::kNotConverged:
-      return "not converged";
-    case FkStatus::kSingular:
-      return "singular";
-    case FkStatus::kWrongBranch:
-      return "wrong branch";
-    case FkStatus::kInvalidInput:
-      return "invalid input";
-  }
-  return "unknown";
-}
+constexpr EnumNames<FkStatus, FkStatus::kInvalidInput> kFkStatusNames = {
+    "converged", "not converged", "singular", "wrong branch", "invalid input"};
+
+const char* ToString(FkStatus status) { return kFkStatusNames.NameOf(status, "unknown"); }
 
 FkResult ForwardKinematics(const KinematicModel& model, const JointVector& q,
                            const std::optional<EePose>& initial_guess, const FkOptions& options) {

@@ -42,25 +42,7 @@ bool CandidateOptions::IsValid(std::string* why) const {
   return true;
 }
 
-const char* ToString(CandidateVerdict verdict) {
-  switch (verdict) {
-    case CandidateVerdict::kOk:
-      return "ok";
-    case CandidateVerdict::kUnreachable:
-      return "unreachable";
-    case CandidateVerdict::kJointRange:
-      return "joint range";
-    case CandidateVerdict::kOutOfImage:
-      return "board not whole in the image";
-    case CandidateVerdict::kTilt:
-      return "board tilted";
-    case CandidateVerdict::kDepth:
-      return "out of the depth range";
-    case CandidateVerdict::kNearSingular:
-      return "near a singularity";
-  }
-  return "?";
-}
+const char* ToString(CandidateVerdict verdict) { return kCandidateVerdictNames.NameOf(verdict); }
 
 std::vector<Eigen::Vector3d> OuterBoardCorners(const BoardModel& board) {
   Eigen::Vector2d low = Eigen::Vector2d::Constant(INFINITY);

@@ -17,6 +17,7 @@
 #include "common/board/board_model.h"
 #include "common/camera/camera_model.h"
 #include "common/robot/robot_description.h"
+#include "common/text/enum_names.h"
 #include "common/units.h"
 #include "host/kinematics/kinematic_model.h"
 
@@ -77,6 +78,14 @@ enum class CandidateVerdict {
   kDepth,
   kNearSingular
 };
+inline constexpr EnumNames<CandidateVerdict, CandidateVerdict::kNearSingular>
+    kCandidateVerdictNames = {"ok",
+                              "unreachable",
+                              "joint range",
+                              "board not whole in the image",
+                              "board tilted",
+                              "out of the depth range",
+                              "near a singularity"};
 const char* ToString(CandidateVerdict verdict);
 
 struct CandidatePose {
@@ -112,7 +121,7 @@ struct CandidateSet {
   std::vector<CandidatePose> poses;  ///< in grid order: z, y, x, theta slowest to fastest
   int examined = 0;
   /// How many grid poses each verdict rejected, indexed by CandidateVerdict.
-  std::vector<int> rejected = std::vector<int>(7, 0);
+  std::vector<int> rejected = std::vector<int>(kCandidateVerdictNames.kCount, 0);
   std::string Summary() const;
 };
 

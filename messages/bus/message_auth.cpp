@@ -6,6 +6,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "common/text/enum_names.h"
+
 namespace h4::bus {
 namespace {
 
@@ -72,23 +74,15 @@ bool AuthOptions::IsValid(std::string* why) const {
   return true;
 }
 
-const char* ToString(AuthVerdict verdict) {
-  switch (verdict) {
-    case AuthVerdict::kAccepted:
-      return "accepted";
-    case AuthVerdict::kUnauthenticated:
-      return "not authenticated";
-    case AuthVerdict::kForeignKey:
-      return "signed with another key";
-    case AuthVerdict::kForged:
-      return "MAC does not verify (altered or forged)";
-    case AuthVerdict::kStale:
-      return "utime outside the clock window (stale or replayed)";
-    case AuthVerdict::kReplayed:
-      return "sequence already seen (replayed)";
-  }
-  return "?";
-}
+constexpr EnumNames<AuthVerdict, AuthVerdict::kReplayed> kAuthVerdictNames = {
+    "accepted",
+    "not authenticated",
+    "signed with another key",
+    "MAC does not verify (altered or forged)",
+    "utime outside the clock window (stale or replayed)",
+    "sequence already seen (replayed)"};
+
+const char* ToString(AuthVerdict verdict) { return kAuthVerdictNames.NameOf(verdict); }
 
 MessageAuthenticator::MessageAuthenticator(const AuthKey& key, AuthOptions options)
     : MessageAuthenticator(key, std::move(options), RandomSenderId()) {}

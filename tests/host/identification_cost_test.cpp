@@ -153,12 +153,13 @@ INSTANTIATE_TEST_SUITE_P(AllCosts, CostTest,
                          });
 
 TEST(CostKindTest, NamesRoundTripAndUnknownIsRejected) {
-  CostKind kind = CostKind::kImplicit;
-  ASSERT_TRUE(ParseCostKind("measurement", &kind));
-  EXPECT_EQ(kind, CostKind::kMeasurement);
-  ASSERT_TRUE(ParseCostKind("joint", &kind));
-  EXPECT_EQ(kind, CostKind::kJointSpace);
-  EXPECT_FALSE(ParseCostKind("ceres", &kind));
+  EXPECT_EQ(ParseCostKind("measurement"), CostKind::kMeasurement);
+  EXPECT_EQ(ParseCostKind("joint"), CostKind::kJointSpace);
+  EXPECT_EQ(ParseCostKind("implicit"), CostKind::kImplicit);
+  for (CostKind kind : {CostKind::kJointSpace, CostKind::kImplicit, CostKind::kMeasurement}) {
+    EXPECT_EQ(ParseCostKind(ToString(kind)), kind);
+  }
+  EXPECT_FALSE(ParseCostKind("ceres"));
 }
 
 }  // namespace

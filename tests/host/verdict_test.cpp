@@ -118,12 +118,9 @@ TEST(VerdictTest, CodesParseBack) {
   for (Verdict v :
        {Verdict::kGood, Verdict::kModelCannotDescribe, Verdict::kInconsistentWithApriori,
         Verdict::kNotIdentifiable, Verdict::kTooFewPoses}) {
-    Verdict parsed = Verdict::kGood;
-    ASSERT_TRUE(ParseVerdictCode(VerdictCode(v), &parsed));
-    EXPECT_EQ(parsed, v);
+    EXPECT_EQ(ParseVerdictCode(VerdictCode(v)), v);
   }
-  Verdict unused;
-  EXPECT_FALSE(ParseVerdictCode("usable", &unused));
+  EXPECT_FALSE(ParseVerdictCode("usable"));
 }
 
 TEST(VerdictTest, InvalidOptionsAreRefusedWithAReason) {
