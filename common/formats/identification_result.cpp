@@ -14,6 +14,7 @@
 #include "common/formats/csv_table.h"
 #include "common/formats/json_fields.h"
 #include "common/formats/number_text.h"
+#include "common/robot/parameter_names.h"
 
 namespace h4 {
 namespace {
@@ -22,36 +23,18 @@ constexpr double kPi = std::numbers::pi;
 
 using Ordered = nlohmann::ordered_json;
 
-// The lengths of Models 12 and 31 (common/README.md): an arm, forearm, nacelle or base
-// radius is positive, like their robot.yaml keys.
-bool IsLength(const std::string& name) {
-  static const std::set<std::string> lengths = {"h",        "arm",      "forearm",  "R",
-                                                "arm1",     "arm2",     "arm3",     "arm4",
-                                                "forearm1", "forearm2", "forearm3", "forearm4"};
-  return lengths.count(name) > 0;
-}
-
-// Angles of the models (alpha, q0, psi, beta, rpy) are radians; a wrapped angle is within
-// one turn.
-bool IsAngle(const std::string& name) {
-  for (const char* prefix : {"alpha", "q0", "psi", "beta"}) {
-    if (name.rfind(prefix, 0) == 0) return true;
-  }
-  return false;
-}
-
 // A value the kinematics can use: lengths positive, every position within kMaxRobotSize_m
 // of the base, every angle within a turn. A result edited or damaged by hand is refused
 // here, naming the field, instead of driving ik or the controller export.
 void RequireSensibleValue(const JsonValue& field, const std::string& name, double value) {
-  if (IsLength(name) && !(value > 0.0)) {
+  if (IsPositiveLengthParameter(name) && !(value > 0.0)) {
     field.Fail("expected a positive length for " + name + ", got " + FormatDouble(value, name));
   }
-  if (IsAngle(name) && std::abs(value) > 2.0 * kPi) {
+  if (IsModelAngleParameter(name) && std::abs(value) > 2.0 * kPi) {
     field.Fail("expected an angle within one turn (|" + name + "| <= 2 pi rad), got " +
                FormatDouble(value, name));
   }
-  if (!IsAngle(name) && std::abs(value) > kMaxRobotSize_m) {
+  if (!IsModelAngleParameter(name) && std::abs(value) > kMaxRobotSize_m) {
     field.Fail("expected |" + name + "| <= " + FormatDouble(kMaxRobotSize_m, name) + " m, got " +
                FormatDouble(value, name));
   }

@@ -4,27 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <set>
 #include <string>
 
+#include "common/robot/parameter_names.h"
 #include "host/identification/identified_robot.h"
 
 namespace h4::host {
 namespace {
-
-bool IsLengthParameter(const std::string& name) {
-  static const std::set<std::string> lengths = {"h",        "arm",      "forearm",  "R",
-                                                "arm1",     "arm2",     "arm3",     "arm4",
-                                                "forearm1", "forearm2", "forearm3", "forearm4"};
-  return lengths.count(name) > 0;
-}
-
-bool IsAngleParameter(const std::string& name) {
-  for (const char* prefix : {"alpha", "q0", "psi", "beta"}) {
-    if (name.rfind(prefix, 0) == 0) return true;
-  }
-  return false;
-}
 
 // The largest relative length change and angle change of the kinematic parameters.
 void FillDepartures(const SolutionToJudge& s, VerdictInputs* in) {
@@ -32,10 +18,10 @@ void FillDepartures(const SolutionToJudge& s, VerdictInputs* in) {
     const std::string& name = s.p.names()[static_cast<size_t>(k)];
     const double before = s.apriori.values()[k];
     const double change = std::abs(s.p.values()[k] - before);
-    if (IsLengthParameter(name) && before > 0 && change / before > in->largest_length_change) {
+    if (IsPositiveLengthParameter(name) && before > 0 && change / before > in->largest_length_change) {
       in->largest_length_change = change / before;
       in->largest_length_parameter = name;
-    } else if (IsAngleParameter(name) && change > in->largest_angle_change) {
+    } else if (IsModelAngleParameter(name) && change > in->largest_angle_change) {
       in->largest_angle_change = change;
       in->largest_angle_parameter = name;
     }

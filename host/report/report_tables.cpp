@@ -9,6 +9,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "common/robot/parameter_names.h"
 #include "common/text/markup_escape.h"
 #include "common/units.h"
 #include "host/report/paper_numbers.h"
@@ -40,16 +41,6 @@ std::string Header(const std::vector<std::string>& cells) {
 
 std::vector<std::string> Sci4(const std::array<double, 4>& v) {
   return {Sci(v[0]), Sci(v[1]), Sci(v[2]), Sci(v[3])};
-}
-
-// Whether a result parameter is an angle (common/README.md names them: alpha_i, q0_i,
-// psi_i, beta_i, and the angles rx, ry, rz of X_BC, X_TE) or a length (the rest).
-bool IsAngleParameter(const std::string& name) {
-  for (const char* prefix : {"alpha", "q0", "psi", "beta"}) {
-    if (name.rfind(prefix, 0) == 0) return true;
-  }
-  const size_t dot = name.find('.');
-  return dot != std::string::npos && name.compare(dot, 2, ".r") == 0;
 }
 
 // A parameter's value as people read it: deg for angles, mm for lengths.
