@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "common/geometry/rotation.h"
+#include "common/timing/clock.h"
 #include "common/units.h"
 #include "firmware/bench/degraded_scene.h"
 #include "firmware/pose/measure_pipeline.h"
@@ -143,8 +144,7 @@ int main(int argc, char** argv) {
                 sums.erosion_px / n);
     std::fflush(stdout);
   }
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = SecondsSince(start);
   std::printf("total %.1f s\n", seconds);
   return 0;
 }

@@ -20,6 +20,8 @@
 
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
+#include "common/timing/clock.h"
+#include "host/bench/study_main.h"
 #include "host/planning/check_trial.h"
 #include "host/planning/pose_planner.h"
 #include "host/simulation/paper_scenario.h"
@@ -79,7 +81,37 @@ PosePlan GridCheckPoses() {
   return {grid[4], grid[22], grid[40], grid[58], grid[76]};
 }
 
-int Run(const StudyOptions& study) {
+// What the trials came to.
+struct Tally {
+  int trials = 0;  ///< identified campaigns, each checked unchanged and drifted
+  int unusable = 0;
+  int unchanged_passed = 0;
+  int drifted_flagged = 0;
+};
+
+void PrintTrial(int robot, int seed, const CheckTrialOutcome& outcome) {
+  std::printf(
+      "robot %d seed %d: joint %d offset %+.4f mrad; unchanged chi2 %.1f %s, drifted chi2 "
+      "%.1f %s (%d dof)\n",
+      robot, seed, outcome.drifted_joint + 1, outcome.joint_offset_change * 1e3,
+      outcome.unchanged.chi2, outcome.unchanged.drift ? "FLAGGED" : "passed", outcome.drifted.chi2,
+      outcome.drifted.drift ? "flagged" : "MISSED", outcome.unchanged.dof);
+  std::fflush(stdout);
+}
+
+void PrintTally(const StudyOptions& study, const Tally& tally, double seconds) {
+  std::printf("\n| trials | unchanged robot passed | %.3g-sigma drift flagged |\n",
+              study.drift_sigmas);
+  std::printf("|---|---|---|\n");
+  std::printf("| %d | %d (%.1f %%) | %d (%.1f %%) |\n", tally.trials, tally.unchanged_passed,
+              100.0 * tally.unchanged_passed / std::max(tally.trials, 1), tally.drifted_flagged,
+              100.0 * tally.drifted_flagged / std::max(tally.trials, 1));
+  std::printf("%d unusable identifications; %d robots x %d seeds, %s check poses, %.0f s\n",
+              tally.unusable, study.robots, study.seeds,
+              study.planned_check_poses ? "planned" : "grid", seconds);
+}
+
+void Run(const StudyOptions& study) {
   const auto start = std::chrono::steady_clock::now();
   const RobotDescription apriori = PaperAprioriRobot();
   CheckTrialOptions options;
@@ -88,56 +120,32 @@ int Run(const StudyOptions& study) {
       study.planned_check_poses ? PlannedCheckPoses(study.source_dir) : GridCheckPoses();
   options.drift_sigmas = study.drift_sigmas;
   options.without_covariance = study.without_covariance;
-  int trials = 0, unusable = 0, unchanged_passed = 0, drifted_flagged = 0;
+  Tally tally;
   for (int robot = 1; robot <= study.robots; ++robot) {
-    PerturbationOptions perturbation;
-    perturbation.seed = static_cast<uint64_t>(robot);
-    const SimulatedRobot truth =
-        MakeTrueRobot(apriori, TrueGeometry::kPerturbedModel31, perturbation);
+    const SimulatedRobot truth = MakeTrueRobot(apriori, TrueGeometry::kPerturbedModel31,
+                                               {.seed = static_cast<uint64_t>(robot)});
     for (int seed = 1; seed <= study.seeds; ++seed) {
       // One seed per trial: the calibration noise, the check noise and the drifted joint
       // differ between robots too.
       const auto trial_seed = static_cast<uint64_t>((robot - 1) * study.seeds + seed);
       const CheckTrialOutcome outcome = RunCheckTrial(apriori, truth, trial_seed, options);
       if (!outcome.identified) {
-        ++unusable;
+        ++tally.unusable;
         std::printf("robot %d seed %d: %s\n", robot, seed, outcome.message.c_str());
         continue;
       }
-      ++trials;
-      unchanged_passed += outcome.unchanged_flagged ? 0 : 1;
-      drifted_flagged += outcome.drifted_flagged ? 1 : 0;
-      std::printf(
-          "robot %d seed %d: joint %d offset %+.4f mrad; unchanged chi2 %.1f %s, drifted chi2 "
-          "%.1f %s (%d dof)\n",
-          robot, seed, outcome.drifted_joint + 1, outcome.joint_offset_change * 1e3,
-          outcome.unchanged_chi2, outcome.unchanged_flagged ? "FLAGGED" : "passed",
-          outcome.drifted_chi2, outcome.drifted_flagged ? "flagged" : "MISSED", outcome.dof);
-      std::fflush(stdout);
+      ++tally.trials;
+      tally.unchanged_passed += outcome.unchanged.drift ? 0 : 1;
+      tally.drifted_flagged += outcome.drifted.drift ? 1 : 0;
+      PrintTrial(robot, seed, outcome);
     }
   }
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  std::printf("\n| trials | unchanged robot passed | %.3g-sigma drift flagged |\n",
-              study.drift_sigmas);
-  std::printf("|---|---|---|\n");
-  std::printf("| %d | %d (%.1f %%) | %d (%.1f %%) |\n", trials, unchanged_passed,
-              100.0 * unchanged_passed / std::max(trials, 1), drifted_flagged,
-              100.0 * drifted_flagged / std::max(trials, 1));
-  std::printf("%d unusable identifications; %d robots x %d seeds, %s check poses, %.0f s\n",
-              unusable, study.robots, study.seeds, study.planned_check_poses ? "planned" : "grid",
-              seconds);
-  return 0;
+  PrintTally(study, tally, SecondsSince(start));
 }
 
 }  // namespace
 }  // namespace h4::host
 
 int main(int argc, char** argv) {
-  try {
-    return h4::host::Run(h4::host::ParseOptions(argc, argv));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "h4_check_study: %s\n", e.what());
-    return 1;
-  }
+  return h4::host::StudyMain("h4_check_study", argc, argv, h4::host::ParseOptions, h4::host::Run);
 }

@@ -27,6 +27,8 @@
 
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
+#include "common/timing/clock.h"
+#include "host/bench/study_main.h"
 #include "host/identification/identification.h"
 #include "host/planning/pose_planner.h"
 #include "host/simulation/dataset_simulator.h"
@@ -174,7 +176,7 @@ double Median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-int Run(const StudyOptions& options) {
+void Run(const StudyOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const RobotDescription apriori = PaperAprioriRobot();
   const PlanningProblem problem = MakePlanningProblem(
@@ -195,10 +197,8 @@ int Run(const StudyOptions& options) {
   // errors[0]: the grid; errors[n]: planned N. Ratios planned / grid per trial.
   std::map<int, std::vector<double>> errors, ratios;
   for (int robot = 1; robot <= options.robots; ++robot) {
-    PerturbationOptions perturbation;
-    perturbation.seed = static_cast<uint64_t>(robot);
-    const SimulatedRobot truth =
-        MakeTrueRobot(apriori, TrueGeometry::kPerturbedModel31, perturbation);
+    const SimulatedRobot truth = MakeTrueRobot(apriori, TrueGeometry::kPerturbedModel31,
+                                               {.seed = static_cast<uint64_t>(robot)});
     for (int seed = 1; seed <= options.seeds; ++seed) {
       DatasetOptions data;
       // One noise seed per trial: with the same seed on every robot the noise draws are the
@@ -233,20 +233,14 @@ int Run(const StudyOptions& options) {
     std::printf("| planned, %d poses | %.4f | %.3f |\n", n, Median(errors[n]) * 1e3,
                 Median(ratios[n]));
   }
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double seconds = SecondsSince(start);
   std::printf("%d robots x %d seeds, %.0f s\n", options.robots, options.seeds, seconds);
-  return 0;
 }
 
 }  // namespace
 }  // namespace h4::host
 
 int main(int argc, char** argv) {
-  try {
-    return h4::host::Run(h4::host::ParseOptions(argc, argv));
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "h4_planning_study: %s\n", e.what());
-    return 1;
-  }
+  return h4::host::StudyMain("h4_planning_study", argc, argv, h4::host::ParseOptions,
+                             h4::host::Run);
 }

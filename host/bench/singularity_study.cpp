@@ -79,10 +79,8 @@ int Run(int robots, int draws, const std::string& source_dir) {
   std::vector<GainBin> bins = MakeBins();
   std::mt19937_64 rng(1);
   for (int robot = 1; robot <= robots; ++robot) {
-    PerturbationOptions perturbation;
-    perturbation.seed = static_cast<uint64_t>(robot);
-    const SimulatedRobot truth =
-        MakeTrueRobot(apriori, TrueGeometry::kPerturbedModel31, perturbation);
+    const SimulatedRobot truth = MakeTrueRobot(apriori, TrueGeometry::kPerturbedModel31,
+                                               {.seed = static_cast<uint64_t>(robot)});
     const std::unique_ptr<KinematicModel> true_model = truth.MakeModel();
     for (const CandidatePose& pose : set.poses) {
       const double gain = ThetaJointGain(model, pose.q, pose.x_B);

@@ -6,6 +6,8 @@
 
 #include <unistd.h>
 
+#include "common/timing/clock.h"
+
 namespace h4::host::cli {
 
 Progress::Progress(std::string what, int total)
@@ -19,8 +21,7 @@ Progress::~Progress() {
 }
 
 void Progress::Update(int done, const std::string& status) {
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double seconds = SecondsSince(start_);
   const int percent = total_ > 0 ? std::clamp(100 * done / total_, 0, 100) : 0;
   if (tty_) {
     constexpr int kWidth = 30;
@@ -44,8 +45,7 @@ void Progress::Update(int done, const std::string& status) {
 }
 
 void Progress::Finish(const std::string& message) {
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  const double seconds = SecondsSince(start_);
   if (tty_) std::fputc('\n', stderr);
   std::fprintf(stderr, "%s: %s (%.1fs)\n", what_.c_str(), message.c_str(), seconds);
   finished_ = true;

@@ -120,19 +120,14 @@ CheckTrialOutcome RunCheckTrial(const RobotDescription& apriori, const Simulated
   // The drift is sized with the full covariance; the check may see the sigmas alone.
   IdentificationResult checked = *result;
   if (options.without_covariance) checked.parameter_covariance.reset();
-  const DriftCheckResult unchanged = CheckResultForDrift(
+  outcome.unchanged = CheckResultForDrift(
       checked, apriori.assembly,
       SimulateRows(truth, options.check_plan, options.noise, check_seed, 0), options.check);
   const SimulatedRobot drifted =
       WithJointOffsetMoved(truth, outcome.drifted_joint, outcome.joint_offset_change);
-  const DriftCheckResult moved = CheckResultForDrift(
+  outcome.drifted = CheckResultForDrift(
       checked, apriori.assembly,
       SimulateRows(drifted, options.check_plan, options.noise, check_seed + 1, 0), options.check);
-  outcome.unchanged_flagged = unchanged.drift;
-  outcome.drifted_flagged = moved.drift;
-  outcome.unchanged_chi2 = unchanged.chi2;
-  outcome.drifted_chi2 = moved.chi2;
-  outcome.dof = unchanged.dof;
   return outcome;
 }
 

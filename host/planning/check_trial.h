@@ -35,12 +35,11 @@ struct CheckTrialOptions {
 
 struct CheckTrialOutcome {
   bool identified = false;           ///< false: the identification was unusable (no verdicts)
-  bool unchanged_flagged = false;    ///< check said "drift" on the unchanged robot (wrong)
-  bool drifted_flagged = false;      ///< check said "drift" on the drifted robot (right)
   int drifted_joint = 0;             ///< 0..3: the joint whose offset moved
   double joint_offset_change = 0.0;  ///< rad, signed
-  double unchanged_chi2 = 0.0, drifted_chi2 = 0.0;
-  int dof = 0;
+  /// The check on the unchanged robot (`drift` there is a false alarm) and on the drifted
+  /// robot (`drift` there is right).
+  DriftCheckResult unchanged, drifted;
   std::string message;  ///< why a trial could not be run
 };
 

@@ -14,18 +14,6 @@
 namespace h4::host {
 namespace {
 
-// The a priori robot as a noise-free "truth", so that the simulated rows are exactly what
-// the a priori model predicts (residuals zero, Jacobian at the a priori).
-SimulatedRobot AprioriAsTruth(const RobotDescription& robot) {
-  SimulatedRobot truth;
-  truth.model12 = robot.model12;
-  truth.model31 = robot.model31;
-  truth.assembly = robot.assembly;
-  truth.X_BC = robot.X_BC;
-  truth.X_TE = robot.X_TE;
-  return truth;
-}
-
 std::vector<DatasetRow> NoiseFreeRows(const RobotDescription& robot,
                                       const std::vector<EePose>& poses_B) {
   PosePlan plan;
@@ -36,7 +24,9 @@ std::vector<DatasetRow> NoiseFreeRows(const RobotDescription& robot,
   options.noise = NoiseOptions{0.0, 0.0, 0.0};
   options.valid_count = 0;
   options.fill_sigma = false;  // the cost's default sigmas weight the rows
-  SimulatedDataset data = SimulateDataset(AprioriAsTruth(robot), plan, options);
+  // The a priori robot as a noise-free truth: the rows are exactly what the a priori model
+  // predicts (residuals zero, Jacobian at the a priori).
+  SimulatedDataset data = SimulateDataset(SimulatedRobot::FromDescription(robot), plan, options);
   if (!data.unreachable.empty()) {
     throw std::runtime_error("pose planning: pose " + std::to_string(data.unreachable.front()) +
                              " of the " + std::to_string(poses_B.size()) +

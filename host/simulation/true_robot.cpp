@@ -53,6 +53,14 @@ RobotDescription SimulatedRobot::Description() const {
   return robot;
 }
 
+SimulatedRobot SimulatedRobot::FromDescription(const RobotDescription& robot) {
+  return {.model12 = robot.model12,
+          .model31 = robot.model31,
+          .assembly = robot.assembly,
+          .X_BC = robot.X_BC,
+          .X_TE = robot.X_TE};
+}
+
 SimulatedRobot MakeTrueRobot(const RobotDescription& apriori, TrueGeometry geometry,
                              const PerturbationOptions& o) {
   Perturber draw(o.seed);

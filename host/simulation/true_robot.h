@@ -38,6 +38,8 @@ struct SimulatedRobot {
   RigidTransform X_B31C() const;
   /// As a robot description (robot.yaml layout): model12, model31 when set, X_BC, X_TE.
   RobotDescription Description() const;
+  /// The robot a description describes, exactly: the inverse of Description().
+  static SimulatedRobot FromDescription(const RobotDescription& robot);
 };
 
 enum class TrueGeometry {

@@ -43,12 +43,7 @@ void WriteTruthYaml(const std::string& path, const SimulationTruth& truth) {
 
 SimulationTruth ParseTruthYaml(const std::string& text, const std::string& source_name) {
   SimulationTruth truth;
-  const RobotDescription robot = ParseRobotYaml(text, source_name);
-  truth.robot.model12 = robot.model12;
-  truth.robot.model31 = robot.model31;
-  truth.robot.assembly = robot.assembly;
-  truth.robot.X_BC = robot.X_BC;
-  truth.robot.X_TE = robot.X_TE;
+  truth.robot = SimulatedRobot::FromDescription(ParseRobotYaml(text, source_name));
   const YamlMap root(LoadYaml(text, source_name), source_name, "", 0);
   const YamlMap simulation = root.Map("simulation");
   const std::string model = simulation.String("truth_model");

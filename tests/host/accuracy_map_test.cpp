@@ -10,8 +10,8 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
-#include "host/identification/identification.h"
 #include "common/units.h"
+#include "host/identification/identification.h"
 #include "host/kinematics/forward_kinematics.h"
 #include "host/simulation/dataset_simulator.h"
 #include "host/simulation/paper_scenario.h"
@@ -21,9 +21,7 @@ namespace h4::host {
 namespace {
 
 SimulatedRobot Model31Robot() {
-  PerturbationOptions perturbation;
-  perturbation.seed = 3;
-  return MakeTrueRobot(PaperAprioriRobot(), TrueGeometry::kPerturbedModel31, perturbation);
+  return MakeTrueRobot(PaperAprioriRobot(), TrueGeometry::kPerturbedModel31, {.seed = 3});
 }
 
 // A full-rank covariance with correlations: L L^T, L lower triangular with entries of

@@ -31,10 +31,8 @@ Tally RunTrials(const CheckTrialOptions& options) {
   const RobotDescription apriori = PaperAprioriRobot();
   Tally tally;
   for (int trial = 1; trial <= kTrials; ++trial) {
-    PerturbationOptions perturbation;
-    perturbation.seed = static_cast<uint64_t>(1 + trial % 5);
-    const SimulatedRobot truth =
-        MakeTrueRobot(apriori, TrueGeometry::kPerturbedModel31, perturbation);
+    const SimulatedRobot truth = MakeTrueRobot(apriori, TrueGeometry::kPerturbedModel31,
+                                               {.seed = static_cast<uint64_t>(1 + trial % 5)});
     const CheckTrialOutcome outcome =
         RunCheckTrial(apriori, truth, static_cast<uint64_t>(trial), options);
     EXPECT_TRUE(outcome.identified) << "trial " << trial << ": " << outcome.message;
@@ -42,8 +40,8 @@ Tally RunTrials(const CheckTrialOptions& options) {
       EXPECT_GT(std::abs(outcome.joint_offset_change), 0.0);
     }
     tally.trials += outcome.identified ? 1 : 0;
-    tally.unchanged_flagged += outcome.unchanged_flagged ? 1 : 0;
-    tally.drifted_flagged += outcome.drifted_flagged ? 1 : 0;
+    tally.unchanged_flagged += outcome.unchanged.drift ? 1 : 0;
+    tally.drifted_flagged += outcome.drifted.drift ? 1 : 0;
   }
   return tally;
 }

@@ -159,10 +159,7 @@ TEST(PoseDesign, WideThetaCampaignIdentifies) {
   DesignOptions design;
   design.pose_count = 25;
   const PlannedCampaign campaign = PlanCampaign(problem, design, 1, PlanCriterion::kAccuracy);
-  PerturbationOptions perturbation;
-  perturbation.seed = 1;
-  const SimulatedRobot truth =
-      MakeTrueRobot(apriori, TrueGeometry::kPerturbedModel31, perturbation);
+  const SimulatedRobot truth = MakeTrueRobot(apriori, TrueGeometry::kPerturbedModel31, {.seed = 1});
   DatasetOptions data;
   data.valid_count = 0;
   const SimulatedDataset dataset = SimulateDataset(truth, campaign.plan, data);
