@@ -16,23 +16,30 @@ namespace {
 
 // A camera without distortion, 1 px per mm at 1 m.
 CameraIntrinsics UnitCamera() {
-  CameraIntrinsics camera = CameraIntrinsics::Pinhole(320, 240, 1000.0, 1000.0, 160.0, 120.0);
-  return camera;
+  return CameraIntrinsics::Pinhole(320, 240, 1000.0, 1000.0, 160.0, 120.0);
 }
 
-TEST(BoardRendererTest, PixelHalfCoveredByAnEdgeIsMidGrey) {
-  AprilGridSpec board;
-  board.cols = 1;
-  board.rows = 1;
-  board.tag_size = 0.08;  // 80 px tag, 10 px cells
-  RenderOptions options;
+// One 80 mm tag: 10 px cells on UnitCamera at 1 m.
+AprilGridSpec OneTagBoard() { return {.cols = 1, .rows = 1, .tag_size = 0.08}; }
+
+// `board` facing UnitCamera at 1 m, its tag's left edge (x = 0 in T) at u = 100.0 (a pixel
+// centre) and its top edge at v = `top_v`, rendered without blur or noise.
+void RenderFacingCamera(const AprilGridSpec& board, RenderOptions options, double top_v,
+                        cv::Mat* image) {
   options.blur_sigma_px = 0;
   options.noise_sigma = 0;
   const BoardRenderer renderer(board, UnitCamera(), options);
   ASSERT_TRUE(renderer.ok()) << renderer.error();
-  // Tag's left edge (x = 0 in T) at u = 100.0, a pixel centre; top edge at v = 80.25.
-  const RigidTransform X_CT(Eigen::Matrix3d::Identity(), Eigen::Vector3d(-0.06, -0.03975, 1.0));
-  const cv::Mat image = renderer.RenderClean(X_CT);
+  const CameraIntrinsics camera = UnitCamera();
+  const double x = (100.0 - camera.K(0, 2)) / camera.K(0, 0);
+  const double y = (top_v - camera.K(1, 2)) / camera.K(1, 1);
+  *image = renderer.RenderClean(RigidTransform(Eigen::Matrix3d::Identity(), {x, y, 1.0}));
+}
+
+TEST(BoardRendererTest, PixelHalfCoveredByAnEdgeIsMidGrey) {
+  const RenderOptions options;
+  cv::Mat image;
+  ASSERT_NO_FATAL_FAILURE(RenderFacingCamera(OneTagBoard(), options, 80.25, &image));
   const float mid = static_cast<float>(0.5 * (options.black_level + options.white_level));
   EXPECT_NEAR(image.at<float>(120, 100), mid, 0.5);
   EXPECT_NEAR(image.at<float>(120, 99), options.white_level, 1e-3);
@@ -113,21 +120,14 @@ TEST(BoardRendererTest, CleanPresetReproducesThePreviousImagesExactly) {
 // Light and dark levels on a fronto-parallel board with only a gradient along +u: both
 // scale by the light, which changes by the requested fraction per image width.
 TEST(BoardRendererTest, GradientScalesBlackAndWhiteLevelsByTheRequestedFraction) {
-  AprilGridSpec board;
-  board.cols = 1;
-  board.rows = 1;
-  board.tag_size = 0.08;  // 80 px tag, 10 px cells; white margin of 80 px around it
+  AprilGridSpec board = OneTagBoard();        // white margin of 80 px around the tag
   board.layout = AprilGridLayout::kH4Legacy;  // 1-cell border, no corner squares
   RenderOptions options = RenderOptions::Clean();
-  options.blur_sigma_px = 0;
-  options.noise_sigma = 0;
   options.illumination_gradient = 0.3;
-  const BoardRenderer renderer(board, UnitCamera(), options);
-  ASSERT_TRUE(renderer.ok()) << renderer.error();
-  // Tag's left edge at u = 100, top at v = 80: the white margin spans u 20..260, the
-  // tag's black border cells u 100..110 and 170..180 (and its top row, v 80..90).
-  const RigidTransform X_CT(Eigen::Matrix3d::Identity(), Eigen::Vector3d(-0.06, -0.04, 1.0));
-  const cv::Mat image = renderer.RenderClean(X_CT);
+  // Tag's top at v = 80: the white margin spans u 20..260, the tag's black border cells
+  // u 100..110 and 170..180 (and its top row, v 80..90).
+  cv::Mat image;
+  ASSERT_NO_FATAL_FAILURE(RenderFacingCamera(board, options, 80.0, &image));
   const double width = UnitCamera().width, cx = 0.5 * (width - 1);
   auto light = [&](double u) { return 1.0 + 0.3 * (u - cx) / width; };
   const double white_left = image.at<float>(120, 30), white_right = image.at<float>(120, 250);

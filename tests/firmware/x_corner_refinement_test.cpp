@@ -16,17 +16,13 @@ namespace h4::cam {
 namespace {
 
 CameraIntrinsics FaceOnCamera() {
-  CameraIntrinsics camera = CameraIntrinsics::Pinhole(200, 160, 1000.0, 1000.0, 100.0, 80.0);
-  return camera;
+  return CameraIntrinsics::Pinhole(200, 160, 1000.0, 1000.0, 100.0, 80.0);
 }
 
 AprilGridSpec OneKalibrTag() {
-  AprilGridSpec tag;  // Kalibr's layout: 2-cell border, corner squares
-  tag.cols = 1;
-  tag.rows = 1;
-  tag.tag_size = 0.06;  // 60 px: cells of 6 px, corner squares of 18 px
-  tag.tag_spacing = 0.3;
-  return tag;
+  // Kalibr's layout: 2-cell border, corner squares. 60 px: cells of 6 px, corner squares of
+  // 18 px.
+  return {.cols = 1, .rows = 1, .tag_size = 0.06, .tag_spacing = 0.3};
 }
 
 // The camera's response curve: observed = 255 (clean / 255)^gamma.

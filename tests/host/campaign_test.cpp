@@ -43,7 +43,9 @@ using Clock = Campaign::Clock;
 /// status per (pose id, attempt).
 class ScriptedCell {
  public:
-  explicit ScriptedCell(bus::LcmBus& bus) : bus_(bus) {
+  /// `averaging`: the camera's answer_delay, from a request to its answer.
+  explicit ScriptedCell(bus::LcmBus& bus, std::chrono::milliseconds averaging = {})
+      : answer_delay(averaging), bus_(bus) {
     bus_.Subscribe<h4msgs::robot_target_t>(channels::kRobotTarget,
                                            [this](const h4msgs::robot_target_t& t) {
                                              targets.push_back(t.pose_id);
@@ -167,15 +169,24 @@ PosePlan Plan(int count) {
   return plan;
 }
 
-CampaignOptions FastOptions() {
+CampaignOptions FastOptions(int retries = 2) {
   CampaignOptions o;
   o.settle_timeout_s = 0.3;
   o.capture_timeout_s = 0.2;
-  o.retries = 2;
+  o.retries = retries;
   o.pair_tolerance_s = 0.2;
   o.target_resend_s = 0.05;
   return o;
 }
+
+// The loss tests' cell: one message in five lost and one in five reordered, either way.
+void LoseAndReorderOneInFive(ScriptedCell* cell) {
+  cell->loss = 0.2;
+  cell->reorder = 0.2;
+}
+
+// Retries enough to carry every pose of Plan(12) through that loss.
+CampaignOptions LossTolerantOptions() { return FastOptions(6); }
 
 class CampaignTest : public TestWithDatasetFile {
  protected:
@@ -403,9 +414,7 @@ TEST_F(CampaignTest, SkipsAPoseWhoseMeasurementNeverComes) {
   bus::LcmBus bus("memq://");
   ScriptedCell cell(bus);
   DatasetJournal journal(path_);
-  CampaignOptions options = FastOptions();
-  options.retries = 1;
-  Campaign campaign(bus, Plan(2), journal, options);
+  Campaign campaign(bus, Plan(2), journal, FastOptions(1));
   bool muted = false;
   Run(bus, campaign, &cell, 20.0, [&] {
     // The camera keeps its heartbeat but stops answering once the campaign has started.
@@ -592,8 +601,7 @@ h4msgs::board_pose_t ForeignBoardPose(int64_t pose_id) {
 
 TEST_F(CampaignTest, ImpossibleMeasurementsOfTheAwaitedPoseDoNotUseUpItsAttempts) {
   bus::LcmBus bus("memq://");
-  ScriptedCell cell(bus);
-  cell.answer_delay = std::chrono::milliseconds(50);  // the real answer comes last
+  ScriptedCell cell(bus, std::chrono::milliseconds(50));  // the real answer comes last
   DatasetJournal journal(path_);
   Campaign campaign(bus, Plan(2), journal, FastOptions());
   int injected = 0;
@@ -618,8 +626,7 @@ TEST_F(CampaignTest, ImpossibleMeasurementsOfTheAwaitedPoseDoNotUseUpItsAttempts
 
 TEST_F(CampaignTest, ANonPhysicalCovarianceIsCountedAndNeverBecomesARowSigma) {
   bus::LcmBus bus("memq://");
-  ScriptedCell cell(bus);
-  cell.answer_delay = std::chrono::milliseconds(50);
+  ScriptedCell cell(bus, std::chrono::milliseconds(50));
   DatasetJournal journal(path_);
   Campaign campaign(bus, Plan(1), journal, FastOptions());
   bool injected = false;
@@ -829,12 +836,9 @@ void ExpectNoRowLostOrCorrupted(const std::string& path, const Campaign& campaig
 TEST_F(CampaignTest, LossAndReorderingEitherWayNeverLoseNorCorruptARow) {
   bus::LcmBus bus("memq://");
   ScriptedCell cell(bus);
-  cell.loss = 0.2;
-  cell.reorder = 0.2;
+  LoseAndReorderOneInFive(&cell);
   DatasetJournal journal(path_);
-  CampaignOptions options = FastOptions();
-  options.retries = 6;
-  Campaign campaign(bus, Plan(12), journal, options);
+  Campaign campaign(bus, Plan(12), journal, LossTolerantOptions());
   Run(bus, campaign, &cell, 60.0);
   ExpectNoRowLostOrCorrupted(path_, campaign, 12);
   EXPECT_GT(journal.rows().size(), 0u);
@@ -844,9 +848,7 @@ TEST_F(CampaignTest, ACameraThatRestartsMidCampaignCostsRetriesNotPoses) {
   bus::LcmBus bus("memq://");
   ScriptedCell cell(bus);
   DatasetJournal journal(path_);
-  CampaignOptions options = FastOptions();
-  options.retries = 10;
-  Campaign campaign(bus, Plan(5), journal, options);
+  Campaign campaign(bus, Plan(5), journal, FastOptions(10));
   std::optional<Clock::time_point> down_since;
   Run(bus, campaign, &cell, 30.0, [&] {
     // Pose 3's request reaches a camera that goes down (requests lost, no heartbeat) and
@@ -869,9 +871,7 @@ TEST_F(CampaignTest, ARobotClockJumpSkipsThePosesWithTheReasonAndRecordsNoWrongP
   bus::LcmBus bus("memq://");
   ScriptedCell cell(bus);
   DatasetJournal journal(path_);
-  CampaignOptions options = FastOptions();
-  options.retries = 1;
-  Campaign campaign(bus, Plan(4), journal, options);
+  Campaign campaign(bus, Plan(4), journal, FastOptions(1));
   Run(bus, campaign, &cell, 30.0, [&] {
     // From pose 3 on, the robot's clock is an hour ahead of the camera's.
     if (std::count(cell.targets.begin(), cell.targets.end(), 3) > 0) {
@@ -901,12 +901,9 @@ TEST(CampaignUdpm, ChildInNamespace) {
     bus::LcmBus cell_bus(url);
     ASSERT_TRUE(campaign_bus.good() && cell_bus.good()) << campaign_bus.error();
     ScriptedCell cell(cell_bus);
-    cell.loss = 0.2;
-    cell.reorder = 0.2;
+    LoseAndReorderOneInFive(&cell);
     DatasetJournal journal(path);
-    CampaignOptions options = FastOptions();
-    options.retries = 6;
-    Campaign campaign(campaign_bus, Plan(12), journal, options);
+    Campaign campaign(campaign_bus, Plan(12), journal, LossTolerantOptions());
     const auto deadline = Clock::now() + std::chrono::seconds(60);
     while (campaign.Step(Clock::now()) && Clock::now() < deadline) {
       cell.Step();
@@ -955,8 +952,7 @@ bus::BusAuth CampaignKey() {
 TEST_F(CampaignTest, WithAuthenticationAnAttackerWithoutTheKeyInjectsNothing) {
   // The campaign and the scripted cell share the bus, so the cell's messages carry the key.
   bus::LcmBus bus("memq://", bus::WireLimits{}, CampaignKey());
-  ScriptedCell cell(bus);
-  cell.answer_delay = std::chrono::milliseconds(20);  // the attacker answers first
+  ScriptedCell cell(bus, std::chrono::milliseconds(20));  // the attacker answers first
   DatasetJournal journal(path_);
   Campaign campaign(bus, Plan(3), journal, FastOptions());
   Attacker attacker{bus, 3};
@@ -980,8 +976,7 @@ TEST_F(CampaignTest, WithAuthenticationAnAttackerWithoutTheKeyInjectsNothing) {
 TEST_F(CampaignTest, WithoutAuthenticationTheSameAttackerGetsItsPosesRecorded) {
   // The control of the test above: the attack is real when authentication is off.
   bus::LcmBus bus("memq://");
-  ScriptedCell cell(bus);
-  cell.answer_delay = std::chrono::milliseconds(20);
+  ScriptedCell cell(bus, std::chrono::milliseconds(20));
   DatasetJournal journal(path_);
   Campaign campaign(bus, Plan(3), journal, FastOptions());
   Attacker attacker{bus, 3};
