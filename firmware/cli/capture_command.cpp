@@ -252,30 +252,28 @@ void SetCaptureExitCode(const CaptureSummary& summary) {
 }
 
 /// What `h4cam capture` and `h4cam preview` differ in; both take AddCaptureOptions and run
-/// RunCapture.
+/// RunCapture. Saving frames is what needs a folder and at least one frame: preview keeps
+/// no frame, and without --count checks frames until it is interrupted.
 struct CaptureCommandText {
   const char* name;
   const char* description;
   bool save_frames;
-  int default_count;
-  int min_count;  ///< preview: 0, until interrupted
   const char* count_help;
   const char* out_dir_help;
-  bool out_dir_required;
   const char* footer;
 };
 
 void AddCaptureOrPreviewCommand(CLI::App& app, const CaptureCommandText& text) {
   const auto [command, args] =
       h4::cli::AddSubcommand<CaptureArgs>(app, text.name, text.description);
-  args->count = text.default_count;
+  args->count = text.save_frames ? CaptureArgs{}.count : 0;
   AddCaptureOptions(command, args.get());
   command->add_option("--count", args->count, text.count_help)
-      ->check(CLI::Range(text.min_count, 100000))
+      ->check(CLI::Range(text.save_frames ? 1 : 0, 100000))
       ->capture_default_str();
   CLI::Option* out_dir =
       h4::cli::AddOutDirOption(command, &args->out_dir, text.out_dir_help, "--out");
-  if (text.out_dir_required) out_dir->required();
+  if (text.save_frames) out_dir->required();
   command->footer(text.footer);
   h4::cli::RunWhenParsed(
       command, args, [save_frames = text.save_frames](const CaptureArgs& parsed) {
@@ -284,38 +282,33 @@ void AddCaptureOrPreviewCommand(CLI::App& app, const CaptureCommandText& text) {
       });
 }
 
+const CaptureCommandText kCaptureText = {
+    .name = "capture",
+    .description =
+        "Save camera frames (PNG) for calibrate-intrinsics, printing for each the "
+        "board's detection, reprojection RMS, sharpness, exposure and coverage",
+    .save_frames = true,
+    .count_help = "Frames to save",
+    .out_dir_help = "Folder of frame_NNNN.png (and overlay_NNNN.png)",
+    .footer = "Exit codes: 0 some frame showed the board, 3 none did, 130 interrupted, 1 error."};
+
+const CaptureCommandText kPreviewText = {
+    .name = "preview",
+    .description =
+        "Aim and focus: print for each frame the board's detection, reprojection RMS, "
+        "sharpness, exposure and coverage (with --draw, keep OUT/preview.png up to "
+        "date)",
+    .save_frames = false,
+    .count_help = "Frames to check (0: until Ctrl-C)",
+    .out_dir_help = "Folder of preview.png (with --draw)",
+    .footer =
+        "Exit codes: 0 some frame showed the board, 3 none did, 130 interrupted before any "
+        "frame, 1 error."};
+
 }  // namespace
 
-void AddCaptureCommand(CLI::App& app) {
-  AddCaptureOrPreviewCommand(
-      app, {.name = "capture",
-            .description = "Save camera frames (PNG) for calibrate-intrinsics, printing for each "
-                           "the board's detection, reprojection RMS, sharpness, exposure and "
-                           "coverage",
-            .save_frames = true,
-            .default_count = CaptureArgs{}.count,
-            .min_count = 1,
-            .count_help = "Frames to save",
-            .out_dir_help = "Folder of frame_NNNN.png (and overlay_NNNN.png)",
-            .out_dir_required = true,
-            .footer = "Exit codes: 0 some frame showed the board, 3 none did, 130 interrupted, 1 "
-                      "error."});
-}
+void AddCaptureCommand(CLI::App& app) { AddCaptureOrPreviewCommand(app, kCaptureText); }
 
-void AddPreviewCommand(CLI::App& app) {
-  AddCaptureOrPreviewCommand(
-      app, {.name = "preview",
-            .description = "Aim and focus: print for each frame the board's detection, "
-                           "reprojection RMS, sharpness, exposure and coverage (with --draw, keep "
-                           "OUT/preview.png up to date)",
-            .save_frames = false,
-            .default_count = 0,
-            .min_count = 0,
-            .count_help = "Frames to check (0: until Ctrl-C)",
-            .out_dir_help = "Folder of preview.png (with --draw)",
-            .out_dir_required = false,
-            .footer = "Exit codes: 0 some frame showed the board, 3 none did, 130 interrupted "
-                      "before any frame, 1 error."});
-}
+void AddPreviewCommand(CLI::App& app) { AddCaptureOrPreviewCommand(app, kPreviewText); }
 
 }  // namespace h4::cam

@@ -132,33 +132,8 @@ void Run(const PlanCommandOptions& o) {
   if (!o.curve_path.empty()) WriteCurve(o, problem);
 }
 
-}  // namespace
-
-void AddPlanCommand(CLI::App& app) {
-  const auto [command, options] = h4::cli::AddSubcommand<PlanCommandOptions>(
-      app, "plan",
-      "Plan N calibration poses (the most accurate design for the identification) among the poses "
-      "the robot "
-      "reaches with the whole board in the image; writes a poses CSV for h4cal collect --plan");
-  h4::cli::AddRobotOption(command, &options->robot_path, "A priori robot.yaml (with X_BC, X_TE)")
-      ->required();
-  h4::cli::AddCameraOption(command, &options->camera_path)->required();
-  h4::cli::AddBoardOption(command, &options->board_path)->required();
-  h4::cli::AddOutOption(command, &options->out_path, "Output poses CSV");
-  // --poses is ik's poses CSV; here it was the count, still accepted.
-  command->add_option("--count,--poses", options->pose_count, "Number of poses N")
-      ->check(CLI::Range(1, 10000))
-      ->capture_default_str();
-  h4::cli::AddModelOption(command, &options->model, "Model the poses are planned for");
-  command
-      ->add_option("--criterion", options->criterion,
-                   "d: D-optimal (information); accuracy: the predicted accuracy over the grid's "
-                   "poses (I-optimal, from the D-optimal design)")
-      ->check(CLI::IsMember({"d", "accuracy"}))
-      ->capture_default_str();
-  h4::cli::AddSeedOption(command, &options->seed, "Seed of the exchange's start");
-  command->add_option("--first-id", options->first_id, "pose_id of the first pose")
-      ->capture_default_str();
+// The options of the candidate poses (CandidateOptions): which poses the plan may use.
+void AddCandidateOptions(CLI::App* command, PlanCommandOptions* options) {
   command->add_option("--joint-range-deg", options->joint_range_deg,
                       "MIN,MAX joint range (encoder values, deg) every joint must stay in");
   command
@@ -180,14 +155,54 @@ void AddPlanCommand(CLI::App& app) {
                    "singularity, where the identification cannot be evaluated")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+}
+
+// The candidate grid as --help describes it, from CandidateOptions' defaults.
+std::string CandidateGridHelp() {
+  const CandidateOptions grid;
+  return fmt::format(
+      "Candidates: a grid of (X, Y, Z, theta) around ({:g}, {:g}, {:g}) m (+-{:g}, +-{:g}, "
+      "+-{:g} mm by {:g}, theta {:g}..{:g} deg by {:g}), away from the singularity where the "
+      "joints stop holding theta. The predicted accuracy is the one-sigma board position error "
+      "the identification's covariance predicts, RMS over the paper's 81 grid poses.",
+      grid.centre.x(), grid.centre.y(), grid.centre.z(), grid.half_extent.x() * 1e3,
+      grid.half_extent.y() * 1e3, grid.half_extent.z() * 1e3, grid.position_step * 1e3,
+      DegreesFromRadians(grid.theta.front()), DegreesFromRadians(grid.theta.back()),
+      DegreesFromRadians(grid.theta[1] - grid.theta[0]));
+}
+
+}  // namespace
+
+void AddPlanCommand(CLI::App& app) {
+  const auto [command, options] = h4::cli::AddSubcommand<PlanCommandOptions>(
+      app, "plan",
+      "Plan N calibration poses (the most accurate design for the identification) among the poses "
+      "the robot reaches with the whole board in the image; writes a poses CSV for h4cal collect "
+      "--plan");
+  h4::cli::AddRobotOption(command, &options->robot_path, "A priori robot.yaml (with X_BC, X_TE)")
+      ->required();
+  h4::cli::AddCameraOption(command, &options->camera_path)->required();
+  h4::cli::AddBoardOption(command, &options->board_path)->required();
+  h4::cli::AddOutOption(command, &options->out_path, "Output poses CSV");
+  // --poses is ik's poses CSV; here it was the count, still accepted.
+  command->add_option("--count,--poses", options->pose_count, "Number of poses N")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  h4::cli::AddModelOption(command, &options->model, "Model the poses are planned for");
+  command
+      ->add_option("--criterion", options->criterion,
+                   "d: D-optimal (information); accuracy: the predicted accuracy over the grid's "
+                   "poses (I-optimal, from the D-optimal design)")
+      ->check(CLI::IsMember({"d", "accuracy"}))
+      ->capture_default_str();
+  h4::cli::AddSeedOption(command, &options->seed, "Seed of the exchange's start");
+  command->add_option("--first-id", options->first_id, "pose_id of the first pose")
+      ->capture_default_str();
+  AddCandidateOptions(command, options.get());
   command->add_option("--curve", options->curve_path,
                       "Also write the predicted accuracy against N (planned and grid) to this CSV");
   command->add_option("--curve-n", options->curve_n, "The N of the curve")->capture_default_str();
-  command->footer(
-      "Candidates: a grid of (X, Y, Z, theta) around (0, 0, -0.45) m (+-250, +-250, +-150 mm "
-      "by 50, theta -60..60 deg by 10), away from the singularity where the joints stop "
-      "holding theta. The predicted accuracy is the one-sigma board position error "
-      "the identification's covariance predicts, RMS over the paper's 81 grid poses.");
+  command->footer(CandidateGridHelp());
   h4::cli::RunWhenParsed(command, options, Run);
 }
 
