@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -33,7 +34,7 @@ struct SigmaBounds {
   double max;
 };
 inline constexpr SigmaBounds kSigmaTBounds{1e-9, 1.0};                     // m
-inline constexpr SigmaBounds kSigmaRBounds{1e-9, 3.14159265358979323846};  // rad
+inline constexpr SigmaBounds kSigmaRBounds{1e-9, std::numbers::pi};  // rad
 
 /// Reads a dataset CSV; throws FormatError naming file, line and field on any
 /// malformed input (missing column or field, non-number, non-unit quaternion,

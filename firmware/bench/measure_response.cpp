@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -129,7 +130,7 @@ int main(int argc, char** argv) {
       bench::DegradeOptions degrade;
       degrade.gamma = rng.uniform(condition.gamma_min, condition.gamma_max + 1e-12);
       degrade.gradient = condition.gradient;
-      degrade.gradient_angle = rng.uniform(0.0, 2 * M_PI);
+      degrade.gradient_angle = rng.uniform(0.0, 2 * std::numbers::pi);
       degrade.read_noise = condition.read_noise;
       degrade.shot_noise = condition.shot_noise;
       const cv::Mat mean =

@@ -2,6 +2,7 @@
 #include "firmware/render/paper_scenes.h"
 
 #include <cmath>
+#include <numbers>
 
 #include "common/board/board_model.h"
 #include "common/geometry/rotation.h"
@@ -45,8 +46,8 @@ std::vector<RigidTransform> RandomPoses(int count, uint64_t seed, double min_dep
   for (int i = 0; i < count; ++i) {
     const double depth = rng.uniform(min_depth, max_depth);
     const double tilt = RadiansFromDegrees(rng.uniform(0.0, 25.0));
-    poses.push_back(BoardPose(board, depth, tilt, rng.uniform(-M_PI, M_PI),
-                              rng.uniform(-M_PI, M_PI), rng.uniform(-0.04, 0.04),
+    poses.push_back(BoardPose(board, depth, tilt, rng.uniform(-std::numbers::pi, std::numbers::pi),
+                              rng.uniform(-std::numbers::pi, std::numbers::pi), rng.uniform(-0.04, 0.04),
                               rng.uniform(-0.03, 0.03)));
   }
   return poses;

@@ -23,6 +23,7 @@
 #include <cstdlib>
 #include <map>
 #include <memory>
+#include <numbers>
 #include <set>
 #include <string>
 #include <vector>
@@ -107,7 +108,7 @@ std::map<std::string, double> TrueParameters(const SimulatedRobot& truth, ModelK
 double WrappedDifference(const std::string& name, double a, double b) {
   double d = a - b;
   if (name.rfind("alpha", 0) == 0 || name.rfind("q0", 0) == 0) {
-    d = std::remainder(d, 2.0 * M_PI);
+    d = std::remainder(d, 2.0 * std::numbers::pi);
   }
   return d;
 }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include <spdlog/fmt/fmt.h>
@@ -28,13 +29,13 @@ bool CandidateOptions::IsValid(std::string* why) const {
   }
   if (theta.empty()) return fail("theta must hold at least one angle");
   for (double t : theta) {
-    if (!std::isfinite(t) || std::abs(t) > M_PI) return fail("theta must be within +-pi rad");
+    if (!std::isfinite(t) || std::abs(t) > std::numbers::pi) return fail("theta must be within +-pi rad");
   }
   if (joint_range && (!joint_range->allFinite() || (*joint_range)[0] >= (*joint_range)[1])) {
     return fail("joint_range must be finite with min < max");
   }
   if (!(image_margin_px >= 0.0)) return fail("image_margin_px must be >= 0");
-  if (!(max_tilt > 0.0 && max_tilt < M_PI / 2)) return fail("max_tilt must be in (0, pi/2)");
+  if (!(max_tilt > 0.0 && max_tilt < std::numbers::pi / 2)) return fail("max_tilt must be in (0, pi/2)");
   if (!(max_theta_gain > 0.0)) return fail("max_theta_gain must be > 0");
   if (!(min_depth > 0.0 && max_depth > min_depth)) {
     return fail("depth range must satisfy 0 < min_depth < max_depth");

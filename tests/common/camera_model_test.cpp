@@ -6,6 +6,7 @@
 #include "common/camera/camera_model.h"
 
 #include <cmath>
+#include <numbers>
 
 #include <gtest/gtest.h>
 
@@ -128,7 +129,7 @@ TEST(CameraModelTest, EquidistantJacobianMatchesFiniteDifferencesFromAxisTo85Deg
 // NormalizedFromPixel says it cannot.
 TEST(CameraModelTest, EquidistantUndistortionInvertsOverTheImageUpTo90Degrees) {
   const CameraModel camera(Fisheye());
-  EXPECT_DOUBLE_EQ(camera.max_field_angle(), M_PI / 2);  // this lens does not fold
+  EXPECT_DOUBLE_EQ(camera.max_field_angle(), std::numbers::pi / 2);  // this lens does not fold
   int inverted = 0, refused = 0;
   double widest_deg = 0;
   for (double u = 0; u <= 1023; u += 31) {
