@@ -9,6 +9,7 @@
 
 namespace h4 {
 
+/// Described by DescribeFileKind, in this order (file_kind.cpp).
 enum class FileKind {
   kUnknown,
   kDatasetCsv,  ///< header starting pose_id,utime,q1 (dataset_csv.h)

@@ -16,6 +16,7 @@
 namespace h4::cam {
 
 /// The lens model to calibrate (camera_intrinsics.h).
+/// Named by ToString, in this order (intrinsics_calibration.cpp).
 enum class IntrinsicsModel {
   kRadTan,       ///< radtan, k1 k2 p1 p2 k3 (cv::calibrateCamera)
   kRational,     ///< radtan, k1 k2 p1 p2 k3 k4 k5 k6 (cv::CALIB_RATIONAL_MODEL)

@@ -46,6 +46,7 @@ struct DetectorOptions {
 };
 
 struct BoardDetection {
+  /// Named by ToString, in this order (board_detector.cpp).
   enum class Status { kOk, kPartial, kNoBoard };
   Status status = Status::kNoBoard;
   std::vector<CornerObservation> corners;

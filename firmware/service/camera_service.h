@@ -45,6 +45,7 @@ inline constexpr int kMaxFramesPerRequest = 1000;
 
 class CameraService {
  public:
+  /// Named by ToString, in this order (camera_service.cpp).
   enum class State { kStarting, kIdle, kCapturing, kError, kStopping };
   using Clock = std::chrono::steady_clock;
 

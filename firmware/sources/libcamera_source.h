@@ -59,6 +59,7 @@ struct LibcameraSourceOptions {
 
 class LibcameraSource final : public FrameSource {
  public:
+  /// Named by ToString, in this order (libcamera_source.cpp).
   enum class State { kClosed, kOpen, kConfigured, kRunning };
 
   explicit LibcameraSource(LibcameraSourceOptions options);

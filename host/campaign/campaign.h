@@ -30,6 +30,7 @@
 
 namespace h4::host {
 
+/// Named by ModeName, in this order (campaign.cpp).
 enum class CampaignMode { kActive, kManual, kPassive };
 
 struct CampaignOptions {

@@ -30,6 +30,7 @@ struct SimulatedControllerOptions {
   bool IsValid(std::string* why) const;
 };
 
+/// Named by ToString, in this order (simulated_controller.cpp).
 enum class TargetStatus {
   kAccepted,       ///< moving to it (or already there: a repeated target changes nothing)
   kUnreachable,    ///< the a priori IK has no solution, or the true robot cannot assemble

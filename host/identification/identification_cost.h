@@ -24,6 +24,7 @@
 
 namespace h4::host {
 
+/// Named by ToString, in this order (identification_cost.cpp).
 enum class CostKind { kJointSpace, kImplicit, kMeasurement };
 
 /// "joint", "implicit", "measurement" (the estimator names of IdentificationResult).

@@ -16,6 +16,7 @@
 
 namespace h4::host {
 
+/// Coded by VerdictCode, in this order (verdict.cpp).
 enum class Verdict {
   kGood,                     ///< accurate: the misfit is what the camera noise predicts
   kModelCannotDescribe,      ///< consistent data the model cannot fit (Model 12 on a 31 robot)

@@ -13,6 +13,7 @@
 
 namespace h4::host {
 
+/// Named by ToString, in this order (forward_kinematics.cpp).
 enum class FkStatus {
   kConverged,     ///< f(q, x) = 0 within tolerance and IK(x) reproduces q (same branch)
   kNotConverged,  ///< iteration limit or stalled line search: likely no pose for these joints

@@ -54,6 +54,7 @@ struct AuthOptions {
 bool HasAuthTrailer(const void* data, size_t size);
 
 /// Why a message was accepted or dropped.
+/// Named by ToString, in this order (message_auth.cpp).
 enum class AuthVerdict {
   kAccepted,
   kUnauthenticated,  ///< no trailer (shorter than one, or no magic)
