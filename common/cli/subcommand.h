@@ -1,10 +1,13 @@
-// How every subcommand of h4cal and h4cam is set up: CLI11 writes what it parses into the
-// command's options struct, and the command runs on that struct once the whole line is
-// parsed (README.md, "Using h4cal"). The struct outlives the Add*Command call that
-// declares the options, so the command and its callback share it.
+// How every subcommand of h4cal and h4cam is set up. Each program lists its subcommands in
+// one table of CommandEntry (host/cli/commands.cpp, firmware/main.cpp): the name, the line
+// --help shows, and the Declare*Command function of the command's own file. That function
+// makes the command's options struct, declares the options CLI11 writes into it, and has
+// the command run on it once the whole line is parsed (README.md, "Using h4cal"). The
+// struct is shared: it outlives the declaring call, held by the run callback.
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
 #include <utility>
 
@@ -12,18 +15,18 @@
 
 namespace h4::cli {
 
-/// A subcommand and the options struct its options write into.
-template <typename Options>
-struct Subcommand {
-  CLI::App* command;
-  std::shared_ptr<Options> options;
+/// One subcommand of a program's command table.
+struct CommandEntry {
+  const char* name;
+  const char* description;  ///< the line --help shows for it
+  void (*declare)(CLI::App* command);
 };
 
-/// Adds subcommand `name` to `app`, with a default-constructed options struct.
-template <typename Options>
-Subcommand<Options> AddSubcommand(CLI::App& app, const std::string& name,
-                                  const std::string& description) {
-  return {app.add_subcommand(name, description), std::make_shared<Options>()};
+/// Adds `commands` to `app` in their order (the order --help lists them).
+inline void AddCommands(CLI::App& app, std::span<const CommandEntry> commands) {
+  for (const CommandEntry& entry : commands) {
+    entry.declare(app.add_subcommand(entry.name, entry.description));
+  }
 }
 
 /// Has `command` call run(options) once the command line is parsed. `run` may name an

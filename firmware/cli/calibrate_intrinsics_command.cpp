@@ -51,10 +51,8 @@ IntrinsicsCalibrationResult RunCalibrateIntrinsics(const CalibrateIntrinsicsArgs
   return result;
 }
 
-void AddCalibrateIntrinsicsCommand(CLI::App& app) {
-  const auto [command, args] = h4::cli::AddSubcommand<CalibrateIntrinsicsArgs>(
-      app, "calibrate-intrinsics",
-      "Camera intrinsics from images of a board (chessboard or AprilTag grid) -> camera YAML");
+void DeclareCalibrateIntrinsicsCommand(CLI::App* command) {
+  const auto args = std::make_shared<CalibrateIntrinsicsArgs>();
   h4::cli::AddBoardOption(command, &args->board_path)->required();
   command->add_option("images", args->images, "Images of the board (at least --min-views)")
       ->required()

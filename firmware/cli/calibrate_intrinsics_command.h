@@ -25,7 +25,7 @@ struct CalibrateIntrinsicsArgs {
   IntrinsicsCalibrationOptions options;
 };
 
-void AddCalibrateIntrinsicsCommand(CLI::App& app);
+void DeclareCalibrateIntrinsicsCommand(CLI::App* command);
 
 /// Runs the calibration, reporting to `out`; returns the result (the YAML is written only
 /// when it is ok()). Throws std::runtime_error (or h4::FormatError) naming the file when an

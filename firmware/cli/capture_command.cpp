@@ -255,17 +255,14 @@ void SetCaptureExitCode(const CaptureSummary& summary) {
 /// RunCapture. Saving frames is what needs a folder and at least one frame: preview keeps
 /// no frame, and without --count checks frames until it is interrupted.
 struct CaptureCommandText {
-  const char* name;
-  const char* description;
   bool save_frames;
   const char* count_help;
   const char* out_dir_help;
   const char* footer;
 };
 
-void AddCaptureOrPreviewCommand(CLI::App& app, const CaptureCommandText& text) {
-  const auto [command, args] =
-      h4::cli::AddSubcommand<CaptureArgs>(app, text.name, text.description);
+void DeclareCaptureOrPreviewCommand(CLI::App* command, const CaptureCommandText& text) {
+  const auto args = std::make_shared<CaptureArgs>();
   args->count = text.save_frames ? CaptureArgs{}.count : 0;
   AddCaptureOptions(command, args.get());
   command->add_option("--count", args->count, text.count_help)
@@ -283,21 +280,12 @@ void AddCaptureOrPreviewCommand(CLI::App& app, const CaptureCommandText& text) {
 }
 
 const CaptureCommandText kCaptureText = {
-    .name = "capture",
-    .description =
-        "Save camera frames (PNG) for calibrate-intrinsics, printing for each the "
-        "board's detection, reprojection RMS, sharpness, exposure and coverage",
     .save_frames = true,
     .count_help = "Frames to save",
     .out_dir_help = "Folder of frame_NNNN.png (and overlay_NNNN.png)",
     .footer = "Exit codes: 0 some frame showed the board, 3 none did, 130 interrupted, 1 error."};
 
 const CaptureCommandText kPreviewText = {
-    .name = "preview",
-    .description =
-        "Aim and focus: print for each frame the board's detection, reprojection RMS, "
-        "sharpness, exposure and coverage (with --draw, keep OUT/preview.png up to "
-        "date)",
     .save_frames = false,
     .count_help = "Frames to check (0: until Ctrl-C)",
     .out_dir_help = "Folder of preview.png (with --draw)",
@@ -307,8 +295,12 @@ const CaptureCommandText kPreviewText = {
 
 }  // namespace
 
-void AddCaptureCommand(CLI::App& app) { AddCaptureOrPreviewCommand(app, kCaptureText); }
+void DeclareCaptureCommand(CLI::App* command) {
+  DeclareCaptureOrPreviewCommand(command, kCaptureText);
+}
 
-void AddPreviewCommand(CLI::App& app) { AddCaptureOrPreviewCommand(app, kPreviewText); }
+void DeclarePreviewCommand(CLI::App* command) {
+  DeclareCaptureOrPreviewCommand(command, kPreviewText);
+}
 
 }  // namespace h4::cam

@@ -53,7 +53,7 @@ struct CaptureSummary {
 CaptureSummary RunCapture(const CaptureArgs& args, bool save_frames, std::ostream& out,
                           const std::atomic<bool>& stop);
 
-void AddCaptureCommand(CLI::App& app);
-void AddPreviewCommand(CLI::App& app);
+void DeclareCaptureCommand(CLI::App* command);
+void DeclarePreviewCommand(CLI::App* command);
 
 }  // namespace h4::cam

@@ -26,11 +26,7 @@ int RunListCameras(std::ostream& out) {
   return 0;
 }
 
-void AddListCamerasCommand(CLI::App& app) {
-  CLI::App* command =
-      app.add_subcommand("list-cameras",
-                         "List the cameras libcamera sees (id and model); exit code 0 also when "
-                         "there is none (\"no cameras found\")");
+void DeclareListCamerasCommand(CLI::App* command) {
   command->callback([] {
     if (const int code = RunListCameras(std::cout); code != 0) throw CLI::RuntimeError(code);
   });

@@ -11,7 +11,7 @@ class App;
 
 namespace h4::cam {
 
-void AddListCamerasCommand(CLI::App& app);
+void DeclareListCamerasCommand(CLI::App* command);
 
 /// Writes the listing to `out`; returns the exit code (0, also with no camera). Throws
 /// std::runtime_error when the camera stack cannot start.

@@ -28,9 +28,8 @@ void RunMakeBoard(const MakeBoardArgs& args, std::ostream& out) {
       << layout.width * 1000 << " x " << layout.height * 1000 << " mm\n";
 }
 
-void AddMakeBoardCommand(CLI::App& app) {
-  const auto [command, args] = h4::cli::AddSubcommand<MakeBoardArgs>(
-      app, "make-board", "Printable board at exact scale (SVG, PDF or PNG by the --out extension)");
+void DeclareMakeBoardCommand(CLI::App* command) {
+  const auto args = std::make_shared<MakeBoardArgs>();
   h4::cli::AddBoardOption(command, &args->board_path)->required();
   h4::cli::AddOutOption(command, &args->out_path, "Output file: .svg, .pdf or .png");
   command->add_option("--dpi", args->dpi, "PNG resolution, dots per inch")->default_val(args->dpi);

@@ -18,7 +18,7 @@ struct MakeBoardArgs {
   double margin = 0.01;    ///< white border around the pattern, m
 };
 
-void AddMakeBoardCommand(CLI::App& app);
+void DeclareMakeBoardCommand(CLI::App* command);
 
 /// Writes the board file, reporting to `out`. Throws std::runtime_error (or
 /// h4::FormatError for the board file) naming the file on failure.

@@ -87,9 +87,8 @@ int RunMeasure(const MeasureArgs& args, std::ostream& progress) {
   return with_pose;
 }
 
-void AddMeasureCommand(CLI::App& app) {
-  const auto [command, args] = h4::cli::AddSubcommand<MeasureArgs>(
-      app, "measure", "Board poses X_CT from image files (groups of N images averaged)");
+void DeclareMeasureCommand(CLI::App* command) {
+  const auto args = std::make_shared<MeasureArgs>();
   h4::cli::AddBoardOption(command, &args->board_path)->required();
   h4::cli::AddCameraOption(command, &args->camera_path)->required();
   h4::cli::AddFramesOption(command, &args->group, "Images averaged per measurement", "--group")

@@ -23,7 +23,7 @@ struct MeasureArgs {
   std::string out_path;
 };
 
-void AddMeasureCommand(CLI::App& app);
+void DeclareMeasureCommand(CLI::App* command);
 
 /// Runs the measurement; returns the number of rows with a pose. Throws (std::runtime_error
 /// or h4::FormatError) naming the file at fault: an unreadable or 16-bit image, an image

@@ -136,9 +136,8 @@ bool RunRender(const RenderArgs& args, std::ostream& out) {
   return true;
 }
 
-void AddRenderCommand(CLI::App& app) {
-  const auto [command, args] = h4::cli::AddSubcommand<RenderArgs>(
-      app, "render", "Synthetic camera frames of the board at a known pose X_CT");
+void DeclareRenderCommand(CLI::App* command) {
+  const auto args = std::make_shared<RenderArgs>();
   h4::cli::AddBoardOption(command, &args->board_path)->required();
   h4::cli::AddCameraOption(command, &args->camera_path)->required();
   command->add_option("--pose", args->pose, "X_CT as x,y,z,qw,qx,qy,qz (m, unit quaternion)")

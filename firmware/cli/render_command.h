@@ -41,7 +41,7 @@ struct RenderArgs {
 /// Most frames one call writes.
 constexpr int kMaxRenderFrames = 1000;
 
-void AddRenderCommand(CLI::App& app);
+void DeclareRenderCommand(CLI::App* command);
 
 /// The preset with the flags applied; throws std::runtime_error naming the option at
 /// fault (unknown preset, malformed response, or values out of range).

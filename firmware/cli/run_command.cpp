@@ -156,10 +156,8 @@ int RunService(const ServiceConfig& config, std::ostream& err, const std::atomic
   return 0;
 }
 
-void AddRunCommand(CLI::App& app) {
-  const auto [command, args] = h4::cli::AddSubcommand<RunArgs>(
-      app, "run",
-      "Camera service: answer capture requests on LCM with board poses (h4cam.service)");
+void DeclareRunCommand(CLI::App* command) {
+  const auto args = std::make_shared<RunArgs>();
   command->add_option("--config", args->config_path, "Service configuration YAML")
       ->check(CLI::ExistingFile);
   command->add_option("--source", args->source, "Frames: libcamera (default), sim or dir:PATH");

@@ -38,6 +38,6 @@ ServiceConfig ResolveRunConfig(const RunArgs& args);
 /// the bus is up, into a STATE_ERROR camera status).
 int RunService(const ServiceConfig& config, std::ostream& err, const std::atomic<bool>& stop);
 
-void AddRunCommand(CLI::App& app);
+void DeclareRunCommand(CLI::App* command);
 
 }  // namespace h4::cam

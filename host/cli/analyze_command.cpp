@@ -47,10 +47,8 @@ void Run(const AnalyzeOptions& options) {
 
 }  // namespace
 
-void AddAnalyzeCommand(CLI::App& app) {
-  const auto [command, options] = h4::cli::AddSubcommand<AnalyzeOptions>(
-      app, "analyze",
-      "Prior kinematic analysis: rotation axis and 4-DoF check from the measured poses");
+void DeclareAnalyzeCommand(CLI::App* command) {
+  const auto options = std::make_shared<AnalyzeOptions>();
   h4::cli::AddRobotOption(command, &options->robot_path)->required();
   h4::cli::AddDataOption(command, &options->data_path)->required();
   h4::cli::RunWhenParsed(command, options, Run);

@@ -53,11 +53,8 @@ void Run(const CheckCommandOptions& o) {
 
 }  // namespace
 
-void AddCheckCommand(CLI::App& app) {
-  const auto [command, options] = h4::cli::AddSubcommand<CheckCommandOptions>(
-      app, "check",
-      "Check that the robot still matches an identification result, from a short verification "
-      "campaign; exit 3 when it has drifted");
+void DeclareCheckCommand(CLI::App* command) {
+  const auto options = std::make_shared<CheckCommandOptions>();
   h4::cli::AddResultOption(command, &options->result_path)->required();
   h4::cli::AddDataOption(command, &options->data_path, "Verification dataset CSV")->required();
   h4::cli::AddRobotOption(command, &options->robot_path,

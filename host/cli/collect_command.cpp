@@ -217,11 +217,8 @@ void Run(CollectOptions options, const std::string& command_line) {
 
 }  // namespace
 
-void AddCollectCommand(CLI::App& app) {
-  const auto [command, options] = h4::cli::AddSubcommand<CollectOptions>(
-      app, "collect",
-      "Calibration campaign over LCM: move the robot through a pose plan, measure the board "
-      "at each pose and append the paired rows to a dataset CSV (resumable)");
+void DeclareCollectCommand(CLI::App* command) {
+  const auto options = std::make_shared<CollectOptions>();
   h4::cli::AddOutOption(command, &options->out_path,
                         "Dataset CSV; an existing one is resumed (its poses are not measured "
                         "again)");

@@ -1,6 +1,7 @@
-// The h4cal subcommands. Each lives in its own <name>_command.cpp and registers
-// itself on the app; a command reports a failure by throwing (main prints it once)
-// or, for "ran but the result is not usable", by SetExitCode.
+// The h4cal subcommands. Each lives in its own <name>_command.cpp, which declares its
+// options and what it runs (Declare*Command); commands.cpp lists them with their names in
+// the program's command table. A command reports a failure by throwing (main prints it
+// once) or, for "ran but the result is not usable", by SetExitCode.
 #pragma once
 
 #include <memory>
@@ -13,19 +14,19 @@
 
 namespace h4::host::cli {
 
-void AddSimulateCommand(CLI::App& app);
-void AddIdentifyCommand(CLI::App& app);
-void AddAnalyzeCommand(CLI::App& app);
-void AddFkCommand(CLI::App& app);
-void AddIkCommand(CLI::App& app);
-void AddValidateCommand(CLI::App& app);
-void AddReportCommand(CLI::App& app);
-void AddExportCommand(CLI::App& app);
-void AddCollectCommand(CLI::App& app);
-void AddSimRobotCommand(CLI::App& app);
-void AddSquarePlanCommand(CLI::App& app);
-void AddPlanCommand(CLI::App& app);
-void AddCheckCommand(CLI::App& app);
+void DeclareSimulateCommand(CLI::App* command);
+void DeclareIdentifyCommand(CLI::App* command);
+void DeclareAnalyzeCommand(CLI::App* command);
+void DeclareFkCommand(CLI::App* command);
+void DeclareIkCommand(CLI::App* command);
+void DeclareValidateCommand(CLI::App* command);
+void DeclareReportCommand(CLI::App* command);
+void DeclareExportCommand(CLI::App* command);
+void DeclareCollectCommand(CLI::App* command);
+void DeclareSimRobotCommand(CLI::App* command);
+void DeclareSquarePlanCommand(CLI::App* command);
+void DeclarePlanCommand(CLI::App* command);
+void DeclareCheckCommand(CLI::App* command);
 
 /// The options a subcommand was given, as "--name value ..." (shown in the report).
 std::string ReportCommandLine(const CLI::App& command);

@@ -63,9 +63,8 @@ void Run(const ExportOptions& options) {
 
 }  // namespace
 
-void AddExportCommand(CLI::App& app) {
-  const auto [command, options] = h4::cli::AddSubcommand<ExportOptions>(
-      app, "export", "Export an identification result for the controller (robot.yaml keys)");
+void DeclareExportCommand(CLI::App* command) {
+  const auto options = std::make_shared<ExportOptions>();
   h4::cli::AddResultOption(command, &options->result_path)->required();
   h4::cli::AddRobotOption(command, &options->robot_path,
                           "A priori robot.yaml: assembly signs (and the model12 block of a Model "

@@ -94,9 +94,8 @@ void Run(const FkCommandOptions& options) {
 
 }  // namespace
 
-void AddFkCommand(CLI::App& app) {
-  const auto [command, options] = h4::cli::AddSubcommand<FkCommandOptions>(
-      app, "fk", "Forward kinematics: joints CSV -> end-effector poses and board poses X_CT");
+void DeclareFkCommand(CLI::App* command) {
+  const auto options = std::make_shared<FkCommandOptions>();
   AddRobotSourceOptions(command, &options->robot);
   h4::cli::AddInputFileOption(command, "--joints", &options->joints_path,
                               "Joints CSV: pose_id,q1,q2,q3,q4 (rad)")

@@ -234,9 +234,8 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
 
 }  // namespace
 
-void AddIdentifyCommand(CLI::App& app) {
-  const auto [command, options] = h4::cli::AddSubcommand<IdentifyCommandOptions>(
-      app, "identify", "Identify the robot's geometry (Model 12 or 31) from a paired dataset");
+void DeclareIdentifyCommand(CLI::App* command) {
+  const auto options = std::make_shared<IdentifyCommandOptions>();
   h4::cli::AddRobotOption(command, &options->robot_path)->required();
   h4::cli::AddDataOption(command, &options->data_path)->required();
   h4::cli::AddModelOption(command, &options->model, "Kinematic model");

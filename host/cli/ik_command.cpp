@@ -56,9 +56,8 @@ void Run(const IkCommandOptions& options) {
 
 }  // namespace
 
-void AddIkCommand(CLI::App& app) {
-  const auto [command, options] = h4::cli::AddSubcommand<IkCommandOptions>(
-      app, "ik", "Inverse kinematics: end-effector poses CSV -> joints CSV");
+void DeclareIkCommand(CLI::App* command) {
+  const auto options = std::make_shared<IkCommandOptions>();
   AddRobotSourceOptions(command, &options->robot);
   h4::cli::AddInputFileOption(command, "--poses", &options->poses_path,
                               "Poses CSV: pose_id,X,Y,Z,theta (m, rad)")

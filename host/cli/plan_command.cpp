@@ -173,12 +173,8 @@ std::string CandidateGridHelp() {
 
 }  // namespace
 
-void AddPlanCommand(CLI::App& app) {
-  const auto [command, options] = h4::cli::AddSubcommand<PlanCommandOptions>(
-      app, "plan",
-      "Plan N calibration poses (the most accurate design for the identification) among the poses "
-      "the robot reaches with the whole board in the image; writes a poses CSV for h4cal collect "
-      "--plan");
+void DeclarePlanCommand(CLI::App* command) {
+  const auto options = std::make_shared<PlanCommandOptions>();
   h4::cli::AddRobotOption(command, &options->robot_path, "A priori robot.yaml (with X_BC, X_TE)")
       ->required();
   h4::cli::AddCameraOption(command, &options->camera_path)->required();

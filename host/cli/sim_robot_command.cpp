@@ -103,11 +103,8 @@ void Run(const SimRobotArgs& args) {
 
 }  // namespace
 
-void AddSimRobotCommand(CLI::App& app) {
-  const auto [command, args] = h4::cli::AddSubcommand<SimRobotArgs>(
-      app, "sim-robot",
-      "Simulated H4 controller on LCM: takes H4_ROBOT_TARGET, publishes H4_JOINT_STATE and "
-      "the true board pose on H4_SIM_BOARD_TRUTH (for h4cam run --source sim)");
+void DeclareSimRobotCommand(CLI::App* command) {
+  const auto args = std::make_shared<SimRobotArgs>();
   CLI::Option* truth =
       h4::cli::AddInputFileOption(command, "--truth", &args->truth_path,
                                   "True robot: truth.yaml written by `h4cal simulate --out-dir "

@@ -118,9 +118,8 @@ void Run(const SimulateOptions& options) {
 
 }  // namespace
 
-void AddSimulateCommand(CLI::App& app) {
-  const auto [command, options] = h4::cli::AddSubcommand<SimulateOptions>(
-      app, "simulate", "Simulate a calibration campaign: dataset, a priori robot.yaml and truth");
+void DeclareSimulateCommand(CLI::App* command) {
+  const auto options = std::make_shared<SimulateOptions>();
   command->add_flag("--paper", options->paper,
                     "The paper's scenario: Table 2 'Identified' as the true robot, Table 2 a "
                     "priori in robot.yaml (same as --truth-model paper)");

@@ -69,11 +69,8 @@ void Run(const SquarePlanCommandOptions& o) {
 
 }  // namespace
 
-void AddSquarePlanCommand(CLI::App& app) {
-  const auto [command, options] = h4::cli::AddSubcommand<SquarePlanCommandOptions>(
-      app, "square-plan",
-      "Write the commanded points of the square-path validation as a poses CSV "
-      "(pose_id,X,Y,Z,theta in B), for h4cal collect --plan --controller");
+void DeclareSquarePlanCommand(CLI::App* command) {
+  const auto options = std::make_shared<SquarePlanCommandOptions>();
   h4::cli::AddOutOption(command, &options->out_path, "Output poses CSV");
   // The same name as validate's side of the square.
   command->add_option("--square-mm,--side-mm", options->side_mm, "Side of the square, mm")

@@ -34,20 +34,15 @@ void Run(const ValidateOptions& options, const std::string& command_line) {
 
 }  // namespace
 
-void AddValidateCommand(CLI::App& app) {
-  const auto [command, options] = h4::cli::AddSubcommand<ValidateOptions>(
-      app, "validate",
-      "Validation experiments (paper IV.D): joint residuals (Table 3), straightness "
-      "(Table 4), square path, 4-DoF check");
+void DeclareValidateCommand(CLI::App* command) {
+  const auto options = std::make_shared<ValidateOptions>();
   AddValidationFileOptions(command, &options->files);
   h4::cli::AddReportDirOption(command, &options->report_dir);
   RunWithCommandLineWhenParsed(command, options, Run);
 }
 
-void AddReportCommand(CLI::App& app) {
-  const auto [command, options] = h4::cli::AddSubcommand<ValidateOptions>(
-      app, "report",
-      "Write the calibration report (one self-contained HTML file) to DIR/report.html");
+void DeclareReportCommand(CLI::App* command) {
+  const auto options = std::make_shared<ValidateOptions>();
   options->print_tables = false;
   AddValidationFileOptions(command, &options->files);
   h4::cli::AddOutDirOption(command, &options->report_dir, "Folder of report.html", "--report-dir")

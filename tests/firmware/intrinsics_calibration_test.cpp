@@ -396,7 +396,7 @@ TEST(CalibrateIntrinsicsCommand, ModelOptionTakesTheThreeModelNamesOnly) {
   cv::imwrite(image, cv::Mat(48, 64, CV_8UC1, cv::Scalar(128)));
   const auto parse = [&](const std::string& model) {
     CLI::App app;
-    AddCalibrateIntrinsicsCommand(app);
+    DeclareCalibrateIntrinsicsCommand(app.add_subcommand("calibrate-intrinsics"));
     app.parse("calibrate-intrinsics --board " + std::string(H4_SOURCE_DIR) +
                   "/boards/aprilgrid_6x6_30mm.yaml --model " + model + " --out " +
                   (dir.path / "c.yaml").string() + " " + image,

@@ -77,7 +77,7 @@ TEST(RenderCommandTest, CommandLineRejectsAbsurdValues) {
                                               {"--preset", "vivid"},
                                               {"--full-well", "5e8"}}) {
     CLI::App app;
-    AddRenderCommand(app);
+    DeclareRenderCommand(app.add_subcommand("render"));
     std::vector<std::string> argv = {
         "--out",   "/nonexistent/never-written",    "--pose",   "0,0,0.5,1,0,0,0",
         "--board", H4_SOURCE_DIR "/CMakeLists.txt", "--camera", H4_SOURCE_DIR "/CMakeLists.txt"};
