@@ -8,10 +8,22 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "common/text/enum_names.h"
+
 namespace h4::cli {
+
+/// An option taking one of the names of `choices` (CLI11 checks it; --help lists the names
+/// as {a,b}); the command turns the text into the enum with choices.ValueNamed.
+template <typename Enum, Enum kLast>
+CLI::Option* AddChoiceOption(CLI::App* command, const std::string& names, std::string* text,
+                             const EnumNames<Enum, kLast>& choices, const std::string& what) {
+  const std::vector<std::string> allowed(choices.names().begin(), choices.names().end());
+  return command->add_option(names, *text, what)->check(CLI::IsMember(allowed));
+}
 
 /// An input file option (checked to exist); `names` as CLI11 takes them ("--new,--old").
 template <typename Path>

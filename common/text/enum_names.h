@@ -32,6 +32,9 @@ class EnumNames {
     return index < kCount ? names_[index] : unknown;
   }
 
+  /// Every name, in the enum's order.
+  constexpr const std::array<const char*, kCount>& names() const { return names_; }
+
   /// The value named `text`; nullopt for any other text.
   constexpr std::optional<Enum> ValueNamed(std::string_view text) const {
     for (std::size_t i = 0; i < kCount; ++i) {

@@ -27,6 +27,10 @@
 namespace h4::host::cli {
 namespace {
 
+// --criterion's words, in PlanCriterion's order.
+constexpr EnumNames<PlanCriterion, PlanCriterion::kAccuracy> kPlanCriterionNames = {"d",
+                                                                                    "accuracy"};
+
 struct PlanCommandOptions {
   std::string robot_path, camera_path, board_path, out_path;
   std::string model = "31";
@@ -76,7 +80,7 @@ PlanningProblemOptions ProblemOptions(const PlanCommandOptions& o) {
 }
 
 PlanCriterion Criterion(const PlanCommandOptions& o) {
-  return o.criterion == "accuracy" ? PlanCriterion::kAccuracy : PlanCriterion::kDOptimal;
+  return *kPlanCriterionNames.ValueNamed(o.criterion);  // CLI11 checked the text
 }
 
 void PrintPlan(const PlannedCampaign& campaign, const PlanningProblem& problem, uint64_t seed) {
@@ -185,11 +189,9 @@ void DeclarePlanCommand(CLI::App* command) {
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
   h4::cli::AddModelOption(command, &options->model, "Model the poses are planned for");
-  command
-      ->add_option("--criterion", options->criterion,
-                   "d: D-optimal (information); accuracy: the predicted accuracy over the grid's "
-                   "poses (I-optimal, from the D-optimal design)")
-      ->check(CLI::IsMember({"d", "accuracy"}))
+  h4::cli::AddChoiceOption(command, "--criterion", &options->criterion, kPlanCriterionNames,
+                           "d: D-optimal (information); accuracy: the predicted accuracy over "
+                           "the grid's poses (I-optimal, from the D-optimal design)")
       ->capture_default_str();
   h4::cli::AddSeedOption(command, &options->seed, "Seed of the exchange's start");
   command->add_option("--first-id", options->first_id, "pose_id of the first pose")

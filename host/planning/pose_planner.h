@@ -39,7 +39,8 @@ PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraM
                                     const BoardModel& board, const PlanningProblemOptions& options);
 
 /// What the exchange maximises: the information (D-optimality, log det M) or the predicted
-/// accuracy over the grid's poses (I-optimality, from the D-optimal design).
+/// accuracy over the grid's poses (I-optimality, from the D-optimal design). Named by
+/// `h4cal plan --criterion`, in this order (host/cli/plan_command.cpp).
 enum class PlanCriterion { kDOptimal, kAccuracy };
 
 struct PlannedCampaign {
