@@ -1,5 +1,5 @@
-// The paired dataset CSV (common/formats/README.md): one row per robot pose, encoder readings q1..q4
-// and the camera's measurement X_CT of the board.
+// The paired dataset CSV (common/formats/README.md): one row per robot pose, encoder readings
+// q1..q4 and the camera's measurement X_CT of the board.
 //   pose_id,utime,q1,q2,q3,q4,x,y,z,qw,qx,qy,qz[,set][,sigma_t,sigma_r]
 #pragma once
 
@@ -33,7 +33,7 @@ struct SigmaBounds {
   double min;
   double max;
 };
-inline constexpr SigmaBounds kSigmaTBounds{1e-9, 1.0};                     // m
+inline constexpr SigmaBounds kSigmaTBounds{1e-9, 1.0};               // m
 inline constexpr SigmaBounds kSigmaRBounds{1e-9, std::numbers::pi};  // rad
 
 /// Reads a dataset CSV; throws FormatError naming file, line and field on any
