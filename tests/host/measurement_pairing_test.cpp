@@ -157,5 +157,17 @@ TEST(MakeDatasetRowTest, TakesTimeAndPoseFromTheCameraAndJointsFromTheEncoders) 
   EXPECT_NEAR(*row.sigma_r, std::sqrt(2.7e-7), 1e-12);
 }
 
+// The host names a received status with the camera's words; a number no camera sends is
+// named as such, not mistaken for one.
+TEST(BoardPoseStatusName, NamesEachWireStatusAndAnUnknownNumber) {
+  EXPECT_EQ(BoardPoseStatusName(h4msgs::board_pose_t::STATUS_OK), "ok");
+  EXPECT_EQ(BoardPoseStatusName(h4msgs::board_pose_t::STATUS_NO_BOARD), "no board");
+  EXPECT_EQ(BoardPoseStatusName(h4msgs::board_pose_t::STATUS_MOVED), "moved");
+  EXPECT_EQ(BoardPoseStatusName(h4msgs::board_pose_t::STATUS_PARTIAL), "partial");
+  EXPECT_EQ(BoardPoseStatusName(h4msgs::board_pose_t::STATUS_CAMERA_ERROR), "camera error");
+  EXPECT_EQ(BoardPoseStatusName(5), "unknown status 5");
+  EXPECT_EQ(BoardPoseStatusName(-1), "unknown status -1");
+}
+
 }  // namespace
 }  // namespace h4::host
