@@ -20,7 +20,8 @@ std::string ReportCommandLine(const CLI::App& command) {
 }
 
 // Every h4cal subcommand, in the order --help lists them: its name, the line --help shows
-// for it, and the function that declares its options (host/cli/<name>_command.cpp).
+// for it, and the function that declares its options (host/cli/<name>_command.cpp; report
+// shares validate's file and options).
 constexpr h4::cli::CommandEntry kCommands[] = {
     {"simulate", "Simulate a calibration campaign: dataset, a priori robot.yaml and truth",
      DeclareSimulateCommand},
