@@ -129,6 +129,53 @@ Eigen::Vector2d CameraModel::PixelFromNormalized(const Eigen::Vector2d& xn,
   return J_uv_xd * xd + Eigen::Vector2d(cx_, cy_);
 }
 
+// u = fx xd + s yd + cx, v = fy yd + cy: the focal lengths scale xd, yd; the principal point
+// shifts; a distortion coefficient moves (xd, yd) by d xd / d k (the formulas at the top)
+// mapped through [fx s; 0 fy].
+bool CameraModel::IntrinsicJacobian(const Eigen::Vector3d& p_CQ,
+                                    Eigen::MatrixXd* J_uv_intrinsics) const {
+  const double z = p_CQ.z();
+  if (!(z > 0)) return false;
+  const Eigen::Vector2d xn(p_CQ.x() / z, p_CQ.y() / z);
+  const Eigen::Vector2d xd = Distort(xn);
+  const int n = intrinsic_count();
+  Eigen::MatrixXd& J = *J_uv_intrinsics;
+  J.setZero(2, n);
+  J(0, 0) = xd.x();
+  J(1, 1) = xd.y();
+  J(0, 2) = 1;
+  J(1, 3) = 1;
+  if (n == 4) return true;
+  Eigen::Matrix<double, 2, 8> J_xd_d = Eigen::Matrix<double, 2, 8>::Zero();
+  const double x = xn.x(), y = xn.y();
+  if (intrinsics_.distortion_model == DistortionModel::kEquidistant) {
+    const double r = xn.norm();
+    if (r > 1e-12) {
+      const double theta = std::atan(r);
+      double power = theta * theta * theta;  // theta^3, theta^5, ...
+      for (int i = 0; i < 4; ++i, power *= theta * theta) J_xd_d.col(i) = (power / r) * xn;
+    }
+  } else {
+    const double r2 = x * x + y * y, r4 = r2 * r2, r6 = r4 * r2;
+    const double a = 1 + d_[0] * r2 + d_[1] * r4 + d_[4] * r6;
+    const double b = 1 + d_[5] * r2 + d_[6] * r4 + d_[7] * r6;
+    const Eigen::Vector2d dg_x = xn / b;  // d(xd, yd) / d a
+    J_xd_d.col(0) = r2 * dg_x;
+    J_xd_d.col(1) = r4 * dg_x;
+    J_xd_d.col(2) = Eigen::Vector2d(2 * x * y, r2 + 2 * y * y);
+    J_xd_d.col(3) = Eigen::Vector2d(r2 + 2 * x * x, 2 * x * y);
+    J_xd_d.col(4) = r6 * dg_x;
+    const Eigen::Vector2d dg_b = -xn * a / (b * b);  // d(xd, yd) / d b
+    J_xd_d.col(5) = r2 * dg_b;
+    J_xd_d.col(6) = r4 * dg_b;
+    J_xd_d.col(7) = r6 * dg_b;
+  }
+  Eigen::Matrix2d J_uv_xd;
+  J_uv_xd << fx_, skew_, 0, fy_;
+  J.rightCols(n - 4) = J_uv_xd * J_xd_d.leftCols(n - 4);
+  return true;
+}
+
 bool CameraModel::Project(const Eigen::Vector3d& p_CQ, Eigen::Vector2d* uv,
                           Eigen::Matrix<double, 2, 3>* J_uv_pCQ) const {
   const double z = p_CQ.z();

@@ -45,6 +45,13 @@ class CameraModel {
   bool Project(const Eigen::Vector3d& p_CQ, Eigen::Vector2d* uv,
                Eigen::Matrix<double, 2, 3>* J_uv_pCQ = nullptr) const;
 
+  /// The intrinsics a calibration refines, in this order: fx, fy, cx, cy, then the
+  /// distortion coefficients in the file's order (the skew is held).
+  int intrinsic_count() const { return 4 + static_cast<int>(intrinsics_.distortion.size()); }
+  /// d uv / d(fx, fy, cx, cy, distortion...) at a point in front of the camera
+  /// (2 x intrinsic_count()); false (J untouched) when z <= 0.
+  bool IntrinsicJacobian(const Eigen::Vector3d& p_CQ, Eigen::MatrixXd* J_uv_intrinsics) const;
+
   /// Undistorted normalised coordinates of a pixel: the inverse of PixelFromNormalized to
   /// 1e-10 in distorted normalised units. Radtan: Gauss-Newton from the distorted point;
   /// returns false when it does not converge (far outside the calibrated field), *xn then

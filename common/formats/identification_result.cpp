@@ -228,6 +228,7 @@ void ReadExtras(const JsonValue& root, IdentificationResult* result) {
   }
   ReadJudgement(root, result);
   ReadCovariance(root, result);
+  if (root.HasNonNull("camera")) result->camera = ReadResultCamera(root["camera"]);
 }
 
 Ordered Numbers(const double* values, size_t n, const std::string& field) {
@@ -388,6 +389,7 @@ std::string FormatIdentificationResult(const IdentificationResult& result) {
   root["log"] = result.log;
   WriteJudgement(result, &root);
   root["parameter_covariance"] = Covariance(result);
+  root["camera"] = result.camera ? ResultCameraJson(*result.camera) : Ordered(nullptr);
   return root.dump(2) + "\n";
 }
 

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "common/formats/result_camera.h"
 #include "common/geometry/rigid_transform.h"
 #include "common/robot/model_kind.h"
 
@@ -95,6 +96,9 @@ struct IdentificationResult {
   /// chi-square when it exceeds 1); a fixed parameter's row and column are zero. Absent in
   /// results written before it, or when the covariance could not be computed.
   std::optional<Eigen::MatrixXd> parameter_covariance;
+  /// `camera`: the intrinsics the corner path refined with the robot (result_camera.h);
+  /// absent on the pose path and in older results.
+  std::optional<ResultCamera> camera;
 
   /// The parameter by name, or nullptr.
   const ResultParameter* Find(const std::string& name) const;

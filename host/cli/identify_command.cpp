@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <ctime>
 #include <numbers>
 #include <optional>
@@ -14,6 +15,10 @@
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
 #include "common/cli/subcommand.h"
+#include "common/board/board_model.h"
+#include "common/formats/board_yaml.h"
+#include "common/formats/camera_yaml.h"
+#include "common/formats/corners_csv.h"
 #include "common/formats/dataset_csv.h"
 #include "common/formats/file_output.h"
 #include "common/formats/identification_result.h"
@@ -22,6 +27,7 @@
 #include "host/cli/commands.h"
 #include "host/cli/progress.h"
 #include "host/cli/validation_inputs.h"
+#include "host/identification/corner_identification.h"
 #include "host/identification/identification.h"
 #include "host/identification/identified_robot.h"
 #include "host/report/html_report.h"
@@ -45,6 +51,13 @@ struct IdentifyCommandOptions {
   bool no_outliers = false;
   bool no_polish = false;
   std::string report_dir;
+  // The corner path (common/README.md "Identification from corners").
+  std::string corners_path;
+  std::string board_path;
+  std::string camera_path;
+  bool camera_fixed = false;
+  double default_sigma_px = 0.1;
+  std::string camera_out_path;
 };
 
 // The verdict heads the output: what the technician acts on comes first.
@@ -155,11 +168,50 @@ ResultProvenance ProvenanceOf(const IdentifyCommandOptions& options) {
   return provenance;
 }
 
+// The corner path's account: what the camera became, beside the file's values.
+void PrintCornerFit(const CornerPathOutcome& path) {
+  const CornerFitOutcome& fit = path.fit;
+  std::printf("corner path: %s\n", fit.message.c_str());
+  if (!path.outcome.result.camera) return;
+  for (const ResultCameraParameter& p : path.outcome.result.camera->parameters) {
+    if (p.std) {
+      std::printf("  %-10s %14.8g (file %.8g, change %+.3g = %.1f sigma), sigma %.3g\n",
+                  p.name.c_str(), p.value, p.file_value, p.value - p.file_value,
+                  *p.std > 0 ? (p.value - p.file_value) / *p.std : 0.0, *p.std);
+    } else {
+      std::printf("  %-10s %14.8g kept: %s\n", p.name.c_str(), p.value, p.fixed_reason.c_str());
+    }
+  }
+  if (!path.dropped.empty()) {
+    std::printf("  %zu pose(s) without enough corners left out\n", path.dropped.size());
+  }
+}
+
+// Why the corner path needs its three files together, said before any work.
+void RequireCornerPathFiles(const IdentifyCommandOptions& options) {
+  const bool any = !options.corners_path.empty() || !options.board_path.empty() ||
+                   !options.camera_path.empty() || options.camera_fixed ||
+                   !options.camera_out_path.empty();
+  if (!any) return;
+  if (options.corners_path.empty() || options.board_path.empty() || options.camera_path.empty()) {
+    throw std::invalid_argument(
+        "the corner path needs --corners, --board and --camera together (the corners CSV "
+        "h4cal collect or h4cam measure --corners-out wrote, the board and the camera file "
+        "h4cam used)");
+  }
+}
+
+void RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription& robot,
+                   ModelKind model, const std::vector<DatasetRow>& rows,
+                   const IdentificationOutcome& pose_path, const IdentificationOptions& id_options,
+                   const std::string& command_line);
+
 void Run(const IdentifyCommandOptions& options, const std::string& command_line) {
   std::string algorithm_why;
   if (!IsValidNloptAlgorithm(options.algorithm, &algorithm_why)) {
     throw std::invalid_argument("--algorithm: " + algorithm_why);
   }
+  RequireCornerPathFiles(options);
   RequireOutputIsNotAnInput({"--out", options.out_path}, {{"--robot", options.robot_path},
                                                           {"--data", options.data_path},
                                                           {"--from", options.from_path}});
@@ -204,6 +256,10 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
     return IdentifyRobot(robot, model, rows, id_options, options.validation, options.seed);
   }();
   progress.Finish(outcome.summary.message);
+  if (!options.corners_path.empty()) {
+    RunCornerPath(options, robot, model, rows, outcome, id_options, command_line);
+    return;
+  }
   IdentificationResult result = outcome.result;
   result.provenance = ProvenanceOf(options);
   WriteIdentificationResult(options.out_path, result);
@@ -230,6 +286,60 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
     spdlog::info("wrote {}", WriteHtmlReport(options.report_dir, inputs, report, command_line));
     PrintAccuracyMapLine(report.models.back());
   }
+}
+
+void RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription& robot,
+                   ModelKind model, const std::vector<DatasetRow>& rows,
+                   const IdentificationOutcome& pose_path, const IdentificationOptions& id_options,
+                   const std::string& command_line) {
+  if (!pose_path.summary.usable) {
+    PrintHeadline(pose_path);
+    throw std::runtime_error("the pose path, the corner path's start, is not usable: " +
+                             pose_path.summary.message);
+  }
+  const BoardModel board(ReadBoardYaml(options.board_path));
+  const CameraIntrinsics camera = ReadCameraYaml(options.camera_path);
+  const std::vector<CornerObservation> observed = ReadCornersCsv(options.corners_path);
+  const std::vector<PoseCorners> corners =
+      GroupCornersByRow(rows, observed, board, options.default_sigma_px);
+  CornerFitOptions corner_options;
+  corner_options.camera_fixed = options.camera_fixed;
+  const CornerPathOutcome path = IdentifyOnCorners(AprioriModelOf(robot, model), model, pose_path,
+                                                   rows, corners, camera, id_options,
+                                                   corner_options);
+  PrintCornerFit(path);
+  if (!path.fit.ok) {
+    SetExitCode(h4::cli::kExitNothingUsable);
+    throw std::runtime_error("the corner fit failed: " + path.fit.message);
+  }
+  IdentificationResult result = path.outcome.result;
+  result.provenance = ProvenanceOf(options);
+  result.provenance->inputs.insert(result.provenance->inputs.end(),
+                                   {options.corners_path, options.board_path, options.camera_path});
+  WriteIdentificationResult(options.out_path, result);
+  if (!options.camera_out_path.empty()) {
+    WriteCameraYaml(options.camera_out_path, path.fit.camera);
+    spdlog::info("refined camera written to {}", options.camera_out_path);
+  }
+  PrintHeadline(path.outcome);
+  spdlog::info("result written to {}", options.out_path);
+  if (path.outcome.verdict != Verdict::kGood || !path.outcome.summary.usable) {
+    SetExitCode(h4::cli::kExitNothingUsable);
+  }
+  if (options.report_dir.empty() || !path.outcome.summary.usable) return;
+  // The report validates against the poses measured again with the refined camera, the
+  // ones the result was fitted to; they are kept beside the report.
+  std::filesystem::create_directories(options.report_dir);
+  const std::string refit_path = options.report_dir + "/dataset_from_corners.csv";
+  WriteDatasetCsv(refit_path, path.rows);
+  ValidationFileOptions files;
+  files.robot_path = options.robot_path;
+  files.data_path = refit_path;
+  (model == ModelKind::k12 ? files.result12_path : files.result31_path) = options.out_path;
+  const ValidationInputs inputs = LoadValidationInputs(files);
+  const ValidationReport report = Validate(inputs);
+  spdlog::info("wrote {}", WriteHtmlReport(options.report_dir, inputs, report, command_line));
+  PrintAccuracyMapLine(report.models.back());
 }
 
 }  // namespace
@@ -274,6 +384,22 @@ void DeclareIdentifyCommand(CLI::App* command) {
   command->add_flag("--no-outlier-rejection", options->no_outliers, "Keep every pose");
   command->add_flag("--no-polish", options->no_polish,
                     "Skip the Levenberg-Marquardt polish: NLopt alone, run to tight tolerances");
+  h4::cli::AddInputFileOption(command, "--corners", &options->corners_path,
+                              "Corner path: the board corners of every pose (CSV, "
+                              "common/formats/README.md); fits in pixels with the camera's "
+                              "intrinsics refined with the robot (needs --board, --camera)");
+  h4::cli::AddBoardOption(command, &options->board_path)
+      ->description("Corner path: the board YAML the corners were measured on");
+  h4::cli::AddCameraOption(command, &options->camera_path, "Corner path: the camera file h4cam used");
+  command->add_flag("--camera-fixed", options->camera_fixed,
+                    "Corner path: keep every intrinsic at the camera file's value");
+  command
+      ->add_option("--corner-sigma", options->default_sigma_px,
+                   "Corner path: per-axis corner sigma (px) of corners without a sigma_px column")
+      ->check(CLI::Range(1e-6, 100.0))
+      ->capture_default_str();
+  command->add_option("--camera-out", options->camera_out_path,
+                      "Corner path: write the refined camera as a camera YAML");
   h4::cli::AddOutOption(command, &options->out_path, "Result JSON");
   h4::cli::AddReportDirOption(command, &options->report_dir)
       ->description("Also validate on the held-out poses and write DIR/report.html");

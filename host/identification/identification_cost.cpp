@@ -36,8 +36,7 @@ IdentificationCost::IdentificationCost(CostKind kind, const KinematicModel& mode
       model_(model.Clone()),
       rows_(std::move(rows)),
       options_(options),
-      fk_cache_(rows_.size(), EePose::Zero()),
-      fk_cached_(rows_.size(), false) {
+      fk_(rows_.size()) {
   const std::vector<std::string>& names = model_->parameter_names();
   for (int leg = 0; leg < 4; ++leg) {
     int index = -1;
@@ -57,8 +56,7 @@ IdentificationCost::IdentificationCost(const IdentificationCost& other)
       rows_(other.rows_),
       options_(other.options_),
       forearm_index_(other.forearm_index_),
-      fk_cache_(other.fk_cache_),
-      fk_cached_(other.fk_cached_) {}
+      fk_(other.fk_) {}
 
 double IdentificationCost::RotationWeight(const DatasetRow& row) const {
   const double s = options_.use_dataset_sigmas && row.sigma_r && *row.sigma_r > 0
@@ -178,26 +176,11 @@ bool IdentificationCost::EvaluateMeasurement(const ParameterVector& p,
                                              Eigen::Index row0, std::string* why) {
   const DatasetRow& row = rows_[j];
   const JointVector q(row.q[0], row.q[1], row.q[2], row.q[3]);
-  const RigidTransform& X_BC = chain_transforms.X_BC;
-  const RigidTransform& X_TE = chain_transforms.X_TE;
-  FkResult fk;
-  if (fk_cached_[j]) {
-    FkOptions warm;
-    warm.retry_from_centre = false;  // the cold start below is the fallback
-    fk = ForwardKinematics(*model_, q, fk_cache_[j], warm);
-  }
+  const FkResult fk = fk_.Solve(*model_, j, row, chain_transforms.X_BC, chain_transforms.X_TE);
   if (!fk.ok()) {
-    // The measured pose through the chain is the natural start of Newton's method.
-    const EePose guess = EePoseFromMeasurement(X_BC, row.X_CT, X_TE).x;
-    fk = ForwardKinematics(*model_, q, guess);
-  }
-  if (!fk.ok()) {
-    fk_cached_[j] = false;
     if (why != nullptr) *why = PoseName(row) + ": forward kinematics " + ToString(fk.status);
     return false;
   }
-  fk_cache_[j] = fk.x;
-  fk_cached_[j] = true;
   const BoardPoseError err = BoardPoseErrorOf(chain_transforms, fk.x, row.X_CT, J != nullptr);
   const double w_r = RotationWeight(row);
   const double w_t = TranslationWeight(row);
@@ -225,14 +208,21 @@ bool IdentificationCost::EvaluateMeasurement(const ParameterVector& p,
 }
 
 FreeParameterResiduals::FreeParameterResiduals(IdentificationCost* cost, const ParameterVector& p)
-    : cost_(cost), free_(p.FreeIndices()), work_(p), values_(p.values()) {}
+    : FreeParameterResiduals(
+          [cost](const ParameterVector& q, Eigen::VectorXd* r, Eigen::MatrixXd* J) {
+            return cost->Evaluate(q, r, J);
+          },
+          p) {}
+
+FreeParameterResiduals::FreeParameterResiduals(ParameterCost cost, const ParameterVector& p)
+    : cost_(std::move(cost)), free_(p.FreeIndices()), work_(p), values_(p.values()) {}
 
 bool FreeParameterResiduals::operator()(const Eigen::VectorXd& v, Eigen::VectorXd* r,
                                         Eigen::MatrixXd* J_free) {
   for (size_t k = 0; k < free_.size(); ++k) values_[free_[k]] = v[static_cast<Eigen::Index>(k)];
   work_.set_values(values_);
-  if (J_free == nullptr) return cost_->Evaluate(work_, r, nullptr);
-  if (!cost_->Evaluate(work_, r, &J_all_)) return false;
+  if (J_free == nullptr) return cost_(work_, r, nullptr);
+  if (!cost_(work_, r, &J_all_)) return false;
   J_free->resize(J_all_.rows(), static_cast<Eigen::Index>(free_.size()));
   for (size_t k = 0; k < free_.size(); ++k) {
     J_free->col(static_cast<Eigen::Index>(k)) = J_all_.col(free_[k]);

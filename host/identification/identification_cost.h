@@ -9,6 +9,7 @@
 // equations f(q, x, xi) = 0 of KinematicModel.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -20,6 +21,7 @@
 #include "common/units.h"
 #include "host/identification/parameter_vector.h"
 #include "host/identification/pose_chain.h"
+#include "host/identification/warm_forward_kinematics.h"
 #include "host/kinematics/kinematic_model.h"
 
 namespace h4::host {
@@ -90,10 +92,14 @@ class IdentificationCost {
   std::vector<int> forearm_index_;  // per leg, index of its forearm length in xi
   // Measurement cost: the last forward kinematic solution per pose (warm start), and
   // Jacobian buffers reused across poses and calls.
-  std::vector<EePose> fk_cache_;
-  std::vector<bool> fk_cached_;
+  WarmForwardKinematics fk_;
   Eigen::MatrixXd J_f_xi_;
 };
+
+/// A cost by the whole parameter vector: residuals and, when J is non-null, their Jacobian
+/// by every parameter (IdentificationCost::Evaluate's contract).
+using ParameterCost =
+    std::function<bool(const ParameterVector& p, Eigen::VectorXd* r, Eigen::MatrixXd* J)>;
 
 /// The cost as a function of the free values alone (ParameterVector::FreeIndices order), the
 /// form the minimisers take (least_squares.h ResidualFunction). The parameter vector and the
@@ -102,11 +108,12 @@ class IdentificationCost {
 class FreeParameterResiduals {
  public:
   FreeParameterResiduals(IdentificationCost* cost, const ParameterVector& p);
+  FreeParameterResiduals(ParameterCost cost, const ParameterVector& p);
 
   bool operator()(const Eigen::VectorXd& v, Eigen::VectorXd* r, Eigen::MatrixXd* J_free);
 
  private:
-  IdentificationCost* cost_;
+  ParameterCost cost_;
   std::vector<int> free_;
   ParameterVector work_;
   Eigen::VectorXd values_;

@@ -55,6 +55,18 @@ void ParameterVector::set_X_TE(const RigidTransform& X) {
   values_.segment<6>(te_offset()) = TransformToParameters(X);
 }
 
+void ParameterVector::AppendCameraBlock(const std::vector<std::string>& names,
+                                        const Eigen::VectorXd& values) {
+  if (camera_count() != 0 || static_cast<Eigen::Index>(names.size()) != values.size()) {
+    throw std::invalid_argument("AppendCameraBlock: a camera block exists or sizes differ");
+  }
+  const Eigen::Index old_size = values_.size();
+  values_.conservativeResize(old_size + values.size());
+  values_.tail(values.size()) = values;
+  names_.insert(names_.end(), names.begin(), names.end());
+  fixed_reason_.resize(names_.size());
+}
+
 void ParameterVector::Fix(int i, const std::string& reason) {
   fixed_reason_[static_cast<size_t>(i)] = reason.empty() ? std::string("fixed") : reason;
 }

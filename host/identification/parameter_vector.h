@@ -49,6 +49,14 @@ class ParameterVector {
   RigidTransform X_TE() const { return TransformFromParameters(values_.segment<6>(te_offset())); }
   void set_X_BC(const RigidTransform& X);
   void set_X_TE(const RigidTransform& X);
+  /// Index of the first parameter after X_TE: the camera block of the corner path
+  /// (camera_parameters.h), absent (== size()) on the pose path.
+  int camera_offset() const { return kinematic_count_ + 12; }
+  int camera_count() const { return size() - camera_offset(); }
+  /// Appends named free parameters after X_TE (the camera block). Precondition: no camera
+  /// block yet, names.size() == values.size().
+  void AppendCameraBlock(const std::vector<std::string>& names, const Eigen::VectorXd& values);
+  Eigen::VectorXd camera_values() const { return values_.tail(camera_count()); }
   /// Copies the kinematic values into a model of the same kind.
   void ApplyTo(KinematicModel* model) const { model->set_parameters(kinematic_values()); }
 

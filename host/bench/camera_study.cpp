@@ -1,0 +1,171 @@
+// The camera study (issue 25; README "Results"): how wrong a camera file may be before the
+// robot pays for it, and what the corner path recovers. For each simulated Model 31 robot
+// and each camera-file error, the campaign is simulated with the TRUE camera of
+// boards/sim_camera_1024x768.yaml (the legacy 6x6 board's 144 corners, per-axis pixel
+// noise, encoder noise), board poses solved with the FILE's intrinsics; then the pose path
+// (Model 12, then Model 31 --from) and the corner path (from that Model 31) are identified
+// and each result's TRUE registered accuracy measured where the true robot goes over the
+// paper's 81 grid poses (host/validation/true_accuracy.h).
+//   h4_camera_study [--robots N] [--first-seed S] [--prior simulate|wide] [--sigma-px P]
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "common/board/board_model.h"
+#include "common/formats/board_yaml.h"
+#include "common/formats/camera_yaml.h"
+#include "host/bench/study_main.h"
+#include "host/identification/corner_identification.h"
+#include "host/identification/identification.h"
+#include "host/simulation/corner_campaign.h"
+#include "host/simulation/paper_scenario.h"
+#include "host/simulation/pose_plan.h"
+#include "host/validation/true_accuracy.h"
+
+namespace h4::host {
+namespace {
+
+struct StudyOptions {
+  int robots = 3;
+  uint64_t first_seed = 1;
+  bool wide_prior = false;
+  double sigma_px = 0.05;
+};
+
+struct CameraError {
+  const char* name;
+  double fx = 0, fy = 0;  // relative
+  double cx = 0, cy = 0;  // px
+  double k1 = 0;          // relative
+};
+
+const std::vector<CameraError>& CameraErrors() {
+  static const std::vector<CameraError> kErrors = {
+      {"exact"},
+      {"focal +0.1 %", 1e-3, 1e-3},
+      {"focal +0.3 %", 3e-3, 3e-3},
+      {"cx +1 px, cy -1 px", 0, 0, 1.0, -1.0},
+      {"k1 +2 %", 0, 0, 0, 0, 0.02},
+      {"typical mix", 1.5e-3, 1.2e-3, 0.7, -0.5, 0.01},
+  };
+  return kErrors;
+}
+
+CameraIntrinsics WithError(CameraIntrinsics c, const CameraError& e) {
+  c.K(0, 0) *= 1 + e.fx;
+  c.K(1, 1) *= 1 + e.fy;
+  c.K(0, 2) += e.cx;
+  c.K(1, 2) += e.cy;
+  c.distortion[0] *= 1 + e.k1;
+  return c;
+}
+
+// --prior wide: deviations several times simulate's (centimetres and degrees of camera
+// set-up, millimetres of geometry), a robot the project's generator would rarely draw.
+PerturbationOptions Prior(const StudyOptions& options, uint64_t seed) {
+  PerturbationOptions p{.seed = seed};
+  if (options.wide_prior) {
+    p.length_std = 0.005;
+    p.angle_std = 0.04;
+    p.base_joint_std = 0.006;
+    p.camera_translation_std = 0.05;
+    p.camera_rotation_std = 0.08;
+  }
+  return p;
+}
+
+double CpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed,
+            const StudyOptions& options) {
+  const std::string dir = std::string(H4_SOURCE_DIR) + "/boards/";
+  const CameraIntrinsics true_camera = ReadCameraYaml(dir + "sim_camera_1024x768.yaml");
+  const CameraIntrinsics file_camera = WithError(true_camera, error);
+  const BoardModel board(ReadBoardYaml(dir + "aprilgrid_6x6_30mm.yaml"));
+  const CornerCampaign campaign =
+      SimulateCornerCampaign(truth, GridPosePlan(), board, true_camera, file_camera,
+                             {.sigma_px = options.sigma_px, .seed = seed});
+  const RobotDescription apriori = PaperAprioriRobot();
+  std::vector<EePose> grid;
+  for (const PlannedPose& p : GridPosePlan()) grid.push_back(p.x);
+  const IdentificationOptions id_options;
+  const IdentificationOutcome m12 = IdentifyRobot(apriori, ModelKind::k12, campaign.rows, id_options);
+  const IdentificationOutcome m31 =
+      IdentifyModel31FromModel12(apriori, m12.result, campaign.rows, id_options);
+  const TrueAccuracy pose = TrueAccuracyOfResult(m31.result, truth, grid);
+  const double start = CpuSeconds();
+  const CornerPathOutcome path = IdentifyOnCorners(
+      AprioriModelOf(apriori, ModelKind::k31), ModelKind::k31, m31, campaign.rows,
+      GroupCornersByRow(campaign.rows, campaign.corners, board, options.sigma_px), file_camera,
+      id_options, {});
+  const double cpu = CpuSeconds() - start;
+  const TrueAccuracy corner = TrueAccuracyOfResult(path.outcome.result, truth, grid);
+  const auto sigma = [&](size_t k) {
+    const ResultCamera& c = *path.outcome.result.camera;
+    return k < c.parameters.size() && c.parameters[k].std ? *c.parameters[k].std : NAN;
+  };
+  const double pose_pred = m31.result.predicted_position_accuracy_m.value_or(NAN);
+  const double corner_pred = path.outcome.result.predicted_position_accuracy_m.value_or(NAN);
+  std::printf(
+      "| %-20s | %s | %.4f (%+6.0f ppm) | %.4f | %.4f (%+6.0f ppm) | %.4f | %.0f ppm | %.3f px | "
+      "%.3f %% | %.2f s |\n",
+      error.name, m31.result.verdict ? m31.result.verdict->code.c_str() : "-",
+      1e3 * pose.position_rms_m, pose.z_scale_ppm, 1e3 * pose_pred, 1e3 * corner.position_rms_m,
+      corner.z_scale_ppm, 1e3 * corner_pred, 1e6 * sigma(0) / true_camera.K(0, 0), sigma(2),
+      100 * sigma(4) / std::abs(true_camera.distortion[0]), cpu);
+  std::fflush(stdout);
+}
+
+void Run(const StudyOptions& options) {
+  std::printf(
+      "prior %s, corner noise %.3g px, paper grid (81 poses), legacy 6x6 board\n\n"
+      "| camera file error | pose-path verdict | pose path TRUE RMS mm (Z scale) | pose path "
+      "predicted mm | corner path TRUE RMS mm (Z scale) | corner path predicted mm | sigma fx | "
+      "sigma cx | sigma k1 | corner path CPU |\n|---|---|---|---|---|---|---|---|---|---|\n",
+      options.wide_prior ? "wide" : "simulate", options.sigma_px);
+  for (int r = 0; r < options.robots; ++r) {
+    const uint64_t seed = options.first_seed + static_cast<uint64_t>(r);
+    const SimulatedRobot truth =
+        MakeTrueRobot(PaperAprioriRobot(), TrueGeometry::kPerturbedModel31, Prior(options, seed));
+    std::printf("| **robot %llu** | | | | | | | | | |\n", static_cast<unsigned long long>(seed));
+    for (const CameraError& error : CameraErrors()) RunOne(truth, error, seed, options);
+  }
+}
+
+StudyOptions Parse(int argc, char** argv) {
+  StudyOptions options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "--robots") {
+      options.robots = std::stoi(value());
+    } else if (arg == "--first-seed") {
+      options.first_seed = std::stoull(value());
+    } else if (arg == "--prior") {
+      const std::string prior = value();
+      if (prior != "simulate" && prior != "wide") throw std::invalid_argument("--prior simulate|wide");
+      options.wide_prior = prior == "wide";
+    } else if (arg == "--sigma-px") {
+      options.sigma_px = std::stod(value());
+    } else {
+      throw std::invalid_argument("unknown option " + arg +
+                                  " (--robots N --first-seed S --prior simulate|wide --sigma-px P)");
+    }
+  }
+  if (options.robots < 1 || !(options.sigma_px > 0)) throw std::invalid_argument("bad option value");
+  return options;
+}
+
+}  // namespace
+}  // namespace h4::host
+
+int main(int argc, char** argv) {
+  return h4::host::StudyMain("h4_camera_study", argc, argv, h4::host::Parse, h4::host::Run);
+}

@@ -1,0 +1,58 @@
+// The corner cost (common/README.md "Identification from corners"): the measurement model
+// of the paper's eq. (6) carried down to the pixels the camera measured. For pose j and
+// board corner Q, with X_CT_predicted = inv(X_BC) X_BE(FK(q~_j)) inv(X_TE),
+//   r_jQ = (project(intrinsics, X_CT_predicted p_TQ) - uv~_jQ) / sigma_jQ      (2 per corner)
+// by the kinematic parameters, X_BC, X_TE and the camera block (camera_parameters.h), so the
+// intrinsics are estimated with the robot instead of being trusted. The Jacobian chains the
+// measurement cost's board-pose Jacobian (pose_chain.h) with the projection's.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "common/camera/board_pose_fit.h"
+#include "common/camera/camera_intrinsics.h"
+#include "common/formats/dataset_csv.h"
+#include "host/identification/parameter_vector.h"
+#include "host/identification/warm_forward_kinematics.h"
+#include "host/kinematics/kinematic_model.h"
+
+namespace h4::host {
+
+class CornerCost {
+ public:
+  /// rows[j] pairs with corners[j]; `camera` gives the model, size and skew (its values are
+  /// taken from the parameter vector's camera block at each evaluation).
+  CornerCost(const KinematicModel& model, std::vector<DatasetRow> rows,
+             std::vector<PoseCorners> corners, CameraIntrinsics camera);
+  CornerCost(const CornerCost& other);
+  CornerCost& operator=(const CornerCost&) = delete;
+
+  const std::vector<DatasetRow>& rows() const { return rows_; }
+  const std::vector<PoseCorners>& corners() const { return corners_; }
+  std::vector<PoseCorners>* mutable_corners() { return &corners_; }
+  int residual_count() const { return residual_count_; }
+  /// First residual of pose j; pose j has 2 * corners[j].uv.size() residuals.
+  Eigen::Index pose_offset(size_t j) const { return pose_offset_[j]; }
+
+  /// Residuals at p (which must carry the camera block) and, when J is non-null, their
+  /// Jacobian by every parameter. False when a pose's forward kinematics fails or a corner
+  /// falls behind the camera (`why` names it). Not thread-safe (warm FK starts).
+  bool Evaluate(const ParameterVector& p, Eigen::VectorXd* r, Eigen::MatrixXd* J,
+                std::string* why = nullptr);
+
+ private:
+  std::unique_ptr<KinematicModel> model_;
+  std::vector<DatasetRow> rows_;
+  std::vector<PoseCorners> corners_;
+  CameraIntrinsics camera_;
+  std::vector<Eigen::Index> pose_offset_;
+  int residual_count_ = 0;
+  WarmForwardKinematics fk_;
+  Eigen::MatrixXd J_f_xi_;
+};
+
+}  // namespace h4::host

@@ -1,0 +1,289 @@
+// The corner path; see corner_identification.h.
+#include "host/identification/corner_identification.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <stdexcept>
+
+#include <Eigen/Cholesky>
+#include <fmt/format.h>
+
+#include "common/camera/camera_model.h"
+#include "common/geometry/rotation.h"
+#include "host/identification/camera_parameters.h"
+#include "host/identification/identification_cost.h"
+
+namespace h4::host {
+namespace {
+
+// Weighted residual RMS per axis in px: the weights are 1/sigma, so divide them out.
+double PixelRms(const CornerCost& cost, const Eigen::VectorXd& r) {
+  double sum = 0;
+  int n = 0;
+  for (size_t j = 0; j < cost.corners().size(); ++j) {
+    const PoseCorners& c = cost.corners()[j];
+    for (size_t k = 0; k < c.uv.size(); ++k) {
+      if (c.weight[k] == 0) continue;
+      sum += r.segment<2>(cost.pose_offset(j) + 2 * static_cast<Eigen::Index>(k)).squaredNorm() /
+             (c.weight[k] * c.weight[k]);
+      n += 2;
+    }
+  }
+  return n > 0 ? std::sqrt(sum / n) : 0.0;
+}
+
+// Per-corner outliers: squared normalised residual over the campaign's robust scale (the
+// median of chi-square(2) is 2 ln 2). Returns how many were newly given weight 0.
+int RejectCornerOutliers(CornerCost* cost, const Eigen::VectorXd& r, double limit) {
+  std::vector<double> d2;
+  for (size_t j = 0; j < cost->corners().size(); ++j) {
+    const PoseCorners& c = cost->corners()[j];
+    for (size_t k = 0; k < c.uv.size(); ++k) {
+      if (c.weight[k] == 0) continue;
+      d2.push_back(r.segment<2>(cost->pose_offset(j) + 2 * static_cast<Eigen::Index>(k))
+                       .squaredNorm());
+    }
+  }
+  if (d2.empty()) return 0;
+  std::vector<double> sorted = d2;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2),
+                   sorted.end());
+  const double scale = std::max(sorted[sorted.size() / 2] / (2 * std::log(2.0)), 1e-12);
+  int rejected = 0;
+  std::vector<PoseCorners>& all = *cost->mutable_corners();
+  for (size_t j = 0; j < all.size(); ++j) {
+    PoseCorners& c = all[j];
+    for (size_t k = 0; k < c.uv.size(); ++k) {
+      if (c.weight[k] == 0) continue;
+      const double e2 =
+          r.segment<2>(cost->pose_offset(j) + 2 * static_cast<Eigen::Index>(k)).squaredNorm();
+      if (e2 > limit * scale) {
+        c.weight[k] = 0;
+        ++rejected;
+      }
+    }
+  }
+  return rejected;
+}
+
+ParameterVector WithCameraBlock(const ParameterVector& start, const CameraIntrinsics& camera,
+                                bool camera_fixed) {
+  ParameterVector p = start;
+  p.AppendCameraBlock(CameraParameterNames(camera), CameraParameterValues(camera));
+  if (camera_fixed) {
+    for (int i = p.camera_offset(); i < p.size(); ++i) p.Fix(i, "kept from the camera file (--camera-fixed)");
+  }
+  return p;
+}
+
+}  // namespace
+
+std::vector<PoseCorners> GroupCornersByRow(const std::vector<DatasetRow>& rows,
+                                           const std::vector<CornerObservation>& corners,
+                                           const BoardModel& board, double default_sigma_px) {
+  std::map<int64_t, size_t> row_of;
+  for (size_t j = 0; j < rows.size(); ++j) row_of[rows[j].pose_id] = j;
+  std::vector<PoseCorners> grouped(rows.size());
+  for (const CornerObservation& c : corners) {
+    const auto it = row_of.find(c.pose_id);
+    if (it == row_of.end()) continue;
+    const std::optional<Eigen::Vector3d> p_TQ = board.Corner(c.corner);
+    if (!p_TQ) {
+      throw std::invalid_argument(fmt::format("pose {}: corner {} is not on the board ({} corners)",
+                                              c.pose_id, c.corner, board.corner_count()));
+    }
+    PoseCorners& g = grouped[it->second];
+    g.p_TQ.push_back(*p_TQ);
+    g.uv.emplace_back(c.u, c.v);
+    g.weight.push_back(1.0 / c.sigma_px.value_or(default_sigma_px));
+  }
+  return grouped;
+}
+
+ParameterVector WithoutCameraBlock(const ParameterVector& p, const KinematicModel& model) {
+  std::unique_ptr<KinematicModel> m = model.Clone();
+  p.ApplyTo(m.get());
+  ParameterVector out(*m, p.X_BC(), p.X_TE());
+  for (int i = 0; i < out.size(); ++i) {
+    if (!p.is_free(i)) out.Fix(i, p.fixed_reason(i));
+  }
+  return out;
+}
+
+CornerFitOutcome FitCorners(const KinematicModel& model, ModelKind kind,
+                            const ParameterVector& start, const std::vector<DatasetRow>& rows,
+                            const std::vector<PoseCorners>& corners,
+                            const CameraIntrinsics& camera, const CornerFitOptions& options) {
+  CornerFitOutcome out{WithCameraBlock(start, camera, options.camera_fixed), camera};
+  std::vector<DatasetRow> fit_rows;
+  std::vector<PoseCorners> fit_corners;
+  for (size_t j = 0; j < rows.size(); ++j) {
+    if (static_cast<int>(corners[j].uv.size()) < options.min_corners_per_pose) continue;
+    fit_rows.push_back(rows[j]);
+    fit_corners.push_back(corners[j]);
+    out.corners += static_cast<int>(corners[j].uv.size());
+  }
+  out.poses = static_cast<int>(fit_rows.size());
+  if (out.poses < 3) {
+    out.message = fmt::format("{} poses have at least {} corners; the corner path needs 3",
+                              out.poses, options.min_corners_per_pose);
+    return out;
+  }
+  CornerCost cost(model, fit_rows, fit_corners, camera);
+  Eigen::VectorXd r;
+  Eigen::MatrixXd J;
+  std::string why;
+  if (!cost.Evaluate(out.parameters, &r, &J, &why)) {
+    out.message = "the corner cost cannot be evaluated at the start: " + why;
+    return out;
+  }
+  out.rms_px_before = PixelRms(cost, r);
+  IdentifiabilityOptions id_options = options.identifiability;
+  if (id_options.preferences.empty()) id_options.preferences = DefaultFixPreferences(kind);
+  for (const std::string& name : CameraFixPreferences(camera)) id_options.preferences.push_back(name);
+  out.identifiability = AnalyzeIdentifiability(J, kind, id_options, &out.parameters);
+  const ParameterCost evaluate = [&cost](const ParameterVector& p, Eigen::VectorXd* res,
+                                         Eigen::MatrixXd* jac) {
+    return cost.Evaluate(p, res, jac);
+  };
+  // Two rounds: a fit, then the corner outliers out and a refit.
+  for (int round = 0; round < 2; ++round) {
+    FreeParameterResiduals f(evaluate, out.parameters);
+    Eigen::VectorXd v = out.parameters.FreeValues();
+    out.minimizer = MinimizeWithLevenbergMarquardt(f, options.lm, &v);
+    out.parameters.SetFreeValues(v);
+    if (!cost.Evaluate(out.parameters, &r, &J, &why)) {
+      out.message = "the corner cost cannot be evaluated at the solution: " + why;
+      return out;
+    }
+    if (round == 1) break;
+    const int rejected = RejectCornerOutliers(&cost, r, options.corner_outlier_chi2);
+    out.rejected_corners += rejected;
+    if (rejected == 0) break;
+    if (!cost.Evaluate(out.parameters, &r, &J, &why)) return out;
+  }
+  out.rms_px_after = PixelRms(cost, r);
+  out.uncertainty = ComputeUncertainty(out.parameters, r, J, /*weighted=*/true);
+  out.camera = WithCameraParameters(camera, out.parameters.camera_values());
+  out.ok = out.minimizer.converged && out.uncertainty.ok;
+  out.message = fmt::format(
+      "{} poses, {} corners ({} rejected): corner RMS {:.4f} -> {:.4f} px, chi2/dof {:.3g}",
+      out.poses, out.corners, out.rejected_corners, out.rms_px_before, out.rms_px_after,
+      out.uncertainty.chi2_per_dof);
+  return out;
+}
+
+std::vector<DatasetRow> RefitBoardPoses(const std::vector<DatasetRow>& rows,
+                                        const std::vector<PoseCorners>& corners,
+                                        const CameraIntrinsics& camera, int min_corners,
+                                        std::vector<int64_t>* dropped) {
+  std::vector<DatasetRow> out;
+  for (size_t j = 0; j < rows.size(); ++j) {
+    DatasetRow row = rows[j];
+    Eigen::Matrix<double, 6, 6> C;
+    if (static_cast<int>(corners[j].uv.size()) < min_corners ||
+        !FitBoardPose(corners[j], camera, rows[j].X_CT, &row.X_CT, &C)) {
+      if (dropped != nullptr) dropped->push_back(row.pose_id);
+      continue;
+    }
+    row.sigma_r = std::sqrt(C.topLeftCorner<3, 3>().trace() / 3);
+    row.sigma_t = std::sqrt(C.bottomRightCorner<3, 3>().trace() / 3);
+    out.push_back(row);
+  }
+  return out;
+}
+
+}  // namespace h4::host
+
+namespace h4::host {
+namespace {
+
+std::vector<DatasetRow> RowsWithIds(const std::vector<DatasetRow>& rows,
+                                    const std::vector<int64_t>& ids) {
+  std::vector<DatasetRow> out;
+  for (const DatasetRow& row : rows) {
+    if (std::find(ids.begin(), ids.end(), row.pose_id) != ids.end()) out.push_back(row);
+  }
+  return out;
+}
+
+std::vector<PoseCorners> CornersOfRows(const std::vector<DatasetRow>& all,
+                                       const std::vector<PoseCorners>& corners,
+                                       const std::vector<DatasetRow>& subset) {
+  std::vector<PoseCorners> out;
+  for (const DatasetRow& row : subset) {
+    for (size_t j = 0; j < all.size(); ++j) {
+      if (all[j].pose_id == row.pose_id) out.push_back(corners[j]);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+ResultCamera ResultCameraOf(const CornerFitOutcome& fit, const CameraIntrinsics& file_camera) {
+  ResultCamera out;
+  out.distortion_model = ToString(fit.camera.distortion_model);
+  out.width = fit.camera.width;
+  out.height = fit.camera.height;
+  out.skew = fit.camera.K(0, 1);
+  const ParameterVector& p = fit.parameters;
+  const Eigen::VectorXd file_values = CameraParameterValues(file_camera);
+  const int n = p.camera_count();
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n, n);
+  const std::vector<int>& free = fit.uncertainty.free_indices;
+  for (int a = 0; a < n; ++a) {
+    const int i = p.camera_offset() + a;
+    ResultCameraParameter entry;
+    entry.name = p.names()[static_cast<size_t>(i)];
+    entry.value = p.values()[i];
+    entry.file_value = file_values[a];
+    entry.fixed_reason = p.fixed_reason(i);
+    const auto k = std::find(free.begin(), free.end(), i);
+    if (k != free.end() && fit.uncertainty.ok) {
+      const Eigen::Index ka = k - free.begin();
+      entry.std = fit.uncertainty.std[ka];
+      for (int b = 0; b < n; ++b) {
+        const auto l = std::find(free.begin(), free.end(), p.camera_offset() + b);
+        if (l != free.end()) C(a, b) = fit.uncertainty.covariance(ka, l - free.begin());
+      }
+    }
+    out.parameters.push_back(entry);
+  }
+  if (fit.uncertainty.ok) out.covariance = C;
+  out.corners = fit.corners;
+  out.rejected_corners = fit.rejected_corners;
+  out.corner_rms_px = fit.rms_px_after;
+  return out;
+}
+
+CornerPathOutcome IdentifyOnCorners(const AprioriModel& apriori, ModelKind kind,
+                                    const IdentificationOutcome& pose_path,
+                                    const std::vector<DatasetRow>& rows,
+                                    const std::vector<PoseCorners>& corners,
+                                    const CameraIntrinsics& camera,
+                                    const IdentificationOptions& options,
+                                    const CornerFitOptions& corner_options) {
+  const IdentificationResult& first = pose_path.result;
+  const std::vector<DatasetRow> calib = RowsWithIds(rows, first.calib_poses);
+  CornerPathOutcome out{FitCorners(*apriori.model, kind, pose_path.parameters, calib,
+                                   CornersOfRows(rows, corners, calib), camera, corner_options),
+                        {}, {}, pose_path};
+  if (!out.fit.ok) return out;
+  out.rows = RefitBoardPoses(rows, corners, out.fit.camera, corner_options.min_corners_per_pose,
+                             &out.dropped);
+  // Model 31 judges the poses the pose path rejected again, as --from does (identification.h).
+  std::vector<int64_t> calib_ids = first.calib_poses;
+  calib_ids.insert(calib_ids.end(), first.rejected_poses.begin(), first.rejected_poses.end());
+  const ParameterVector start = WithoutCameraBlock(out.fit.parameters, *apriori.model);
+  out.outcome = IdentifyFromStart(*apriori.model, apriori.parameters, start,
+                                  RowsWithIds(out.rows, calib_ids),
+                                  RowsWithIds(out.rows, first.valid_poses), options);
+  out.outcome.result.camera = ResultCameraOf(out.fit, camera);
+  out.outcome.result.log.insert(out.outcome.result.log.begin(),
+                                "corner path: " + out.fit.message);
+  return out;
+}
+
+}  // namespace h4::host

@@ -1,0 +1,108 @@
+// Identification from corners (common/README.md "Identification from corners"): the pose
+// path's result refined in pixel space with the camera's intrinsics as parameters
+// (corner_cost.h), then every board pose measured again from its corners with the refined
+// camera, so that the pose path's machinery (cross-validation, outliers, verdict, accuracy
+// map) runs on poses the camera file no longer biases.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "common/board/board_model.h"
+#include "common/camera/board_pose_fit.h"
+#include "common/camera/camera_intrinsics.h"
+#include "common/formats/corners_csv.h"
+#include "common/formats/dataset_csv.h"
+#include "common/robot/model_kind.h"
+#include "host/identification/corner_cost.h"
+#include "host/identification/identifiability.h"
+#include "host/identification/identification.h"
+#include "host/identification/least_squares.h"
+#include "host/identification/parameter_vector.h"
+#include "host/identification/uncertainty.h"
+
+namespace h4::host {
+
+/// The corners of each row (in row order) with their board points: corners of pose ids that
+/// are not rows are dropped, rows without corners get none. `default_sigma_px` weighs a
+/// corner without its own sigma. Throws std::invalid_argument on a corner id off the board.
+std::vector<PoseCorners> GroupCornersByRow(const std::vector<DatasetRow>& rows,
+                                           const std::vector<CornerObservation>& corners,
+                                           const BoardModel& board, double default_sigma_px);
+
+struct CornerFitOptions {
+  /// Keep every intrinsic at the file's value (`identify --camera-fixed`).
+  bool camera_fixed = false;
+  /// A pose needs this many corners to enter the fit (a pose from fewer is not a pose).
+  int min_corners_per_pose = 12;
+  /// A corner whose squared normalised residual exceeds this times the campaign's robust
+  /// scale (from the median, chi-square with 2 dof) is rejected: chi-square(2)'s 1e-4 tail.
+  double corner_outlier_chi2 = 18.42;
+  IdentifiabilityOptions identifiability;
+  LmOptions lm;
+};
+
+struct CornerFitOutcome {
+  CornerFitOutcome(ParameterVector start, CameraIntrinsics file_camera)
+      : parameters(std::move(start)), camera(std::move(file_camera)) {}
+
+  ParameterVector parameters;  ///< kinematics, X_BC, X_TE and the camera block
+  CameraIntrinsics camera;     ///< the refined intrinsics
+  bool ok = false;
+  std::string message;
+  Uncertainty uncertainty;     ///< of the free parameters, camera block included
+  IdentifiabilityReport identifiability;
+  MinimizerReport minimizer;
+  int poses = 0;
+  int corners = 0;           ///< in the fit
+  int rejected_corners = 0;  ///< outliers, weight 0
+  double rms_px_before = 0;  ///< corner residual RMS (px, per axis) at the start
+  double rms_px_after = 0;
+  std::vector<std::string> log;
+};
+
+/// Refines `start` (a pose-path solution of `model`'s kind, with its fixed mask) and the
+/// camera's intrinsics on the corners. Parameters fixed in `start` stay fixed; the camera
+/// block's parameters are freed unless options.camera_fixed, then the identifiability
+/// analysis fixes what the corners cannot see (preferences: the model's, then the camera's
+/// highest distortion terms first).
+CornerFitOutcome FitCorners(const KinematicModel& model, ModelKind kind,
+                            const ParameterVector& start, const std::vector<DatasetRow>& rows,
+                            const std::vector<PoseCorners>& corners,
+                            const CameraIntrinsics& camera, const CornerFitOptions& options);
+
+/// `p` without its camera block (same kinematics, placement and fixed mask).
+ParameterVector WithoutCameraBlock(const ParameterVector& p, const KinematicModel& model);
+
+/// The board pose of each row measured again from its corners through `camera` (weighted
+/// Gauss-Newton on X_CT from the row's pose), with sigma_t, sigma_r from the fit's
+/// covariance (the RMS of its per-axis standard deviations). Rows with fewer than
+/// `min_corners` corners, or whose fit fails, are dropped (listed in *dropped).
+std::vector<DatasetRow> RefitBoardPoses(const std::vector<DatasetRow>& rows,
+                                        const std::vector<PoseCorners>& corners,
+                                        const CameraIntrinsics& camera, int min_corners,
+                                        std::vector<int64_t>* dropped = nullptr);
+
+/// The whole corner path after a pose-path identification (`h4cal identify --corners`): the
+/// corner fit from the pose path's solution on its calibration poses, every pose measured
+/// again with the refined camera, then the pose path's identification (stages, outliers,
+/// cross-validation, verdict) on those poses from the corner fit's solution, so that its
+/// figures judge poses the camera file no longer biases. The result carries the camera.
+struct CornerPathOutcome {
+  CornerFitOutcome fit;
+  std::vector<DatasetRow> rows;  ///< the poses measured again (sigma_t, sigma_r filled)
+  std::vector<int64_t> dropped;  ///< poses without enough corners
+  IdentificationOutcome outcome;
+};
+CornerPathOutcome IdentifyOnCorners(const AprioriModel& apriori, ModelKind kind,
+                                    const IdentificationOutcome& pose_path,
+                                    const std::vector<DatasetRow>& rows,
+                                    const std::vector<PoseCorners>& corners,
+                                    const CameraIntrinsics& camera,
+                                    const IdentificationOptions& options,
+                                    const CornerFitOptions& corner_options);
+
+/// The `camera` key of a result from a corner fit (file values from `file_camera`).
+ResultCamera ResultCameraOf(const CornerFitOutcome& fit, const CameraIntrinsics& file_camera);
+
+}  // namespace h4::host
