@@ -1,6 +1,8 @@
-// Fuzz target: the joints CSV, poses CSV, fk output and offline board poses readers (one
-// input, every reader); what the poses reader accepts must write and read back.
+// Fuzz target: the joints CSV, poses CSV, fk output, offline board poses and board corner
+// readers (one input, every reader); what the poses and corner readers accept must write
+// and read back.
 #include "common/formats/board_poses_csv.h"
+#include "common/formats/corners_csv.h"
 #include "common/formats/joints_csv.h"
 #include "common/formats/poses_csv.h"
 #include "tests/fuzz/fuzz_support.h"
@@ -16,6 +18,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (poses) {
     const auto back = ParsePosesCsv(FormatPosesCsv(*poses), "written.csv");
     fuzz::Require(back.size() == poses->size(), "poses round trip keeps every row");
+  }
+  const auto corners =
+      fuzz::ParseOrRefuse(text, [](const std::string& t) { return ParseCornersCsv(t, "c.csv"); });
+  if (corners) {
+    std::string written = CornersCsvHeader(true) + "\n";
+    for (const CornerObservation& c : *corners) written += CornersCsvLine(c, true) + "\n";
+    const auto back = ParseCornersCsv(written, "written.csv");
+    fuzz::Require(back.size() == corners->size(), "corners round trip keeps every row");
+    for (size_t i = 0; i < back.size(); ++i) {
+      fuzz::Require(back[i].u == (*corners)[i].u && back[i].v == (*corners)[i].v &&
+                        back[i].sigma_px == (*corners)[i].sigma_px,
+                    "corners round trip keeps the values");
+    }
   }
   return 0;
 }
