@@ -43,8 +43,7 @@ ResultCamera ReadResultCamera(const JsonValue& object) {
   }
   camera.width = static_cast<int>(object["width"].Integer());
   camera.height = static_cast<int>(object["height"].Integer());
-  if (camera.width <= 0 || camera.height <= 0 || camera.width > 100000 ||
-      camera.height > 100000) {
+  if (camera.width <= 0 || camera.height <= 0 || camera.width > 100000 || camera.height > 100000) {
     object["width"].Fail("expected an image size of 1 to 100000 px");
   }
   camera.skew = object["skew"].Number();
@@ -57,7 +56,8 @@ ResultCamera ReadResultCamera(const JsonValue& object) {
     Eigen::MatrixXd C(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
     for (size_t i = 0; i < n; ++i) {
       const std::vector<double> row = field.At(i).Numbers(n);
-      for (size_t j = 0; j < n; ++j) C(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = row[j];
+      for (size_t j = 0; j < n; ++j)
+        C(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = row[j];
     }
     if (!C.isApprox(C.transpose(), 1e-9) && C.norm() > 0) field.Fail("expected a symmetric matrix");
     camera.covariance = C;

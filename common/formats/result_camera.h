@@ -28,8 +28,8 @@ struct ResultCamera {
   std::vector<ResultCameraParameter> parameters;
   /// Over `parameters` in their order (zero rows for kept ones); absent when not computed.
   std::optional<Eigen::MatrixXd> covariance;
-  int corners = 0;           ///< in the fit
-  int rejected_corners = 0;  ///< corner outliers
+  int corners = 0;             ///< in the fit
+  int rejected_corners = 0;    ///< corner outliers
   double corner_rms_px = 0.0;  ///< per-axis RMS of the corner residuals after the fit
 };
 

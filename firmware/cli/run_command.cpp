@@ -74,6 +74,7 @@ ServiceConfig ResolveRunConfig(const RunArgs& args) {
   if (args.camera_id) config.camera_id = *args.camera_id;
   if (args.frames) config.frames_averaged = *args.frames;
   if (args.free_run_hz) config.free_run_hz = *args.free_run_hz;
+  if (args.sim_camera_path) config.sim_camera_path = *args.sim_camera_path;
   if (args.sim_preset && !RenderPresetByName(*args.sim_preset, &config.sim_render)) {
     throw std::runtime_error("--sim-preset '" + *args.sim_preset +
                              "': expected clean or processed");
@@ -109,9 +110,12 @@ int RunService(const ServiceConfig& config, std::ostream& err, const std::atomic
   }
   BoardSpec board;
   CameraIntrinsics intrinsics;
+  CameraIntrinsics rendered_camera;
   try {
     board = ReadBoardYaml(config.board_path);
     intrinsics = ReadCameraYaml(config.camera_intrinsics_path);
+    rendered_camera =
+        config.sim_camera_path.empty() ? intrinsics : ReadCameraYaml(config.sim_camera_path);
   } catch (const std::exception& e) {
     return Fail(&bus, config, e.what(), err);
   }
@@ -121,7 +125,7 @@ int RunService(const ServiceConfig& config, std::ostream& err, const std::atomic
     sim_options.frame_rate_hz = 1e6 / config.frame_duration_us;
     sim_options.start_utime = NowUtime();
     sim_options.real_time = true;
-    auto sim_source = std::make_unique<SimSource>(board, intrinsics, sim_options);
+    auto sim_source = std::make_unique<SimSource>(board, rendered_camera, sim_options);
     sim = sim_source.get();
     source = std::move(sim_source);
   } else if (config.source.rfind("dir:", 0) == 0) {
@@ -170,6 +174,12 @@ void DeclareRunCommand(CLI::App* command) {
   command->add_option("--sim-preset", args->sim_preset,
                       "Rendered frames of --source sim: processed (default: a camera module's "
                       "sRGB output with defocus, gradient, shot noise) or clean");
+  command
+      ->add_option("--sim-camera", args->sim_camera_path,
+                   "Camera YAML --source sim renders through (the true camera; default: "
+                   "--camera). With a --camera that differs from it, the measurement "
+                   "assumes a wrong camera file, as a real intrinsic calibration does")
+      ->check(CLI::ExistingFile);
   h4::cli::AddLcmUrlOption(command, &args->lcm_url);
   h4::cli::AddAuthKeyOption(command, &args->auth_key_path, "lcm.auth_key_file, else off");
   command->add_option(

@@ -25,6 +25,9 @@ struct RunArgs {
   std::optional<std::string> auth_key_path;  ///< --auth-key: overrides lcm.auth_key_file
   /// Image formation of `--source sim` (replaces the file's sim: block).
   std::optional<std::string> sim_preset;
+  /// The camera `--source sim` renders through (the truth); --camera stays the file the
+  /// measurement assumes, so a wrong camera file can be rehearsed.
+  std::optional<std::string> sim_camera_path;
   std::optional<int> frames;
   std::optional<double> free_run_hz;
 };

@@ -54,6 +54,9 @@ struct ServiceConfig {
   // illumination_gradient_direction_deg, vignetting, full_well_electrons, read_noise
   // (grey levels), response (linear | srgb | gamma:E | table:V0,V1,...).
   RenderOptions sim_render = RenderOptions::Processed();
+  /// The camera `--source sim` renders through; empty: camera_intrinsics_path (the file
+  /// the measurement assumes is then exact). Command line only (`--sim-camera`).
+  std::string sim_camera_path;
 
   /// The camera name the messages carry.
   std::string MessageCameraId() const;

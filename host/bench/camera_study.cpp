@@ -78,6 +78,15 @@ PerturbationOptions Prior(const StudyOptions& options, uint64_t seed) {
   return p;
 }
 
+// Per camera-file error: the sum of log(true RMS / the exact camera's pose-path RMS) over
+// the robots, for the pose path and the corner path, and the count.
+struct RatioTally {
+  double log_pose = 0, log_corner = 0;
+  int robots = 0;
+};
+std::vector<RatioTally> g_tally;
+double g_exact_pose_rms = 0;
+
 double CpuSeconds() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
 
 void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed,
@@ -93,21 +102,27 @@ void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed
   std::vector<EePose> grid;
   for (const PlannedPose& p : GridPosePlan()) grid.push_back(p.x);
   const IdentificationOptions id_options;
-  const IdentificationOutcome m12 = IdentifyRobot(apriori, ModelKind::k12, campaign.rows, id_options);
+  const IdentificationOutcome m12 =
+      IdentifyRobot(apriori, ModelKind::k12, campaign.rows, id_options);
   const IdentificationOutcome m31 =
       IdentifyModel31FromModel12(apriori, m12.result, campaign.rows, id_options);
   const TrueAccuracy pose = TrueAccuracyOfResult(m31.result, truth, grid);
   const double start = CpuSeconds();
-  const CornerPathOutcome path = IdentifyOnCorners(
-      AprioriModelOf(apriori, ModelKind::k31), ModelKind::k31, m31, campaign.rows,
-      GroupCornersByRow(campaign.rows, campaign.corners, board, options.sigma_px), file_camera,
-      id_options, {});
+  const CornerPathOutcome path =
+      IdentifyOnCorners(AprioriModelOf(apriori, ModelKind::k31), ModelKind::k31, m31, campaign.rows,
+                        GroupCornersByRow(campaign.rows, campaign.corners, board, options.sigma_px),
+                        file_camera, id_options, {});
   const double cpu = CpuSeconds() - start;
   const TrueAccuracy corner = TrueAccuracyOfResult(path.outcome.result, truth, grid);
   const auto sigma = [&](size_t k) {
     const ResultCamera& c = *path.outcome.result.camera;
     return k < c.parameters.size() && c.parameters[k].std ? *c.parameters[k].std : NAN;
   };
+  if (&error == &CameraErrors().front()) g_exact_pose_rms = pose.position_rms_m;
+  RatioTally& tally = g_tally[static_cast<size_t>(&error - &CameraErrors().front())];
+  tally.log_pose += std::log(pose.position_rms_m / g_exact_pose_rms);
+  tally.log_corner += std::log(corner.position_rms_m / g_exact_pose_rms);
+  ++tally.robots;
   const double pose_pred = m31.result.predicted_position_accuracy_m.value_or(NAN);
   const double corner_pred = path.outcome.result.predicted_position_accuracy_m.value_or(NAN);
   std::printf(
@@ -121,6 +136,7 @@ void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed
 }
 
 void Run(const StudyOptions& options) {
+  g_tally.assign(CameraErrors().size(), RatioTally{});
   std::printf(
       "prior %s, corner noise %.3g px, paper grid (81 poses), legacy 6x6 board\n\n"
       "| camera file error | pose-path verdict | pose path TRUE RMS mm (Z scale) | pose path "
@@ -133,6 +149,13 @@ void Run(const StudyOptions& options) {
         MakeTrueRobot(PaperAprioriRobot(), TrueGeometry::kPerturbedModel31, Prior(options, seed));
     std::printf("| **robot %llu** | | | | | | | | | |\n", static_cast<unsigned long long>(seed));
     for (const CameraError& error : CameraErrors()) RunOne(truth, error, seed, options);
+  }
+  std::printf("\nGeometric mean over the robots of TRUE RMS / the exact camera's pose-path RMS:\n\n"
+              "| camera file error | pose path | corner path |\n|---|---|---|\n");
+  for (size_t k = 0; k < CameraErrors().size(); ++k) {
+    const RatioTally& t = g_tally[k];
+    std::printf("| %s | %.2f | %.2f |\n", CameraErrors()[k].name, std::exp(t.log_pose / t.robots),
+                std::exp(t.log_corner / t.robots));
   }
 }
 
@@ -150,16 +173,19 @@ StudyOptions Parse(int argc, char** argv) {
       options.first_seed = std::stoull(value());
     } else if (arg == "--prior") {
       const std::string prior = value();
-      if (prior != "simulate" && prior != "wide") throw std::invalid_argument("--prior simulate|wide");
+      if (prior != "simulate" && prior != "wide")
+        throw std::invalid_argument("--prior simulate|wide");
       options.wide_prior = prior == "wide";
     } else if (arg == "--sigma-px") {
       options.sigma_px = std::stod(value());
     } else {
-      throw std::invalid_argument("unknown option " + arg +
-                                  " (--robots N --first-seed S --prior simulate|wide --sigma-px P)");
+      throw std::invalid_argument(
+          "unknown option " + arg +
+          " (--robots N --first-seed S --prior simulate|wide --sigma-px P)");
     }
   }
-  if (options.robots < 1 || !(options.sigma_px > 0)) throw std::invalid_argument("bad option value");
+  if (options.robots < 1 || !(options.sigma_px > 0))
+    throw std::invalid_argument("bad option value");
   return options;
 }
 

@@ -5,17 +5,17 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <ctime>
+#include <filesystem>
 #include <numbers>
 #include <optional>
 
 #include <spdlog/spdlog.h>
 
+#include "common/board/board_model.h"
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
 #include "common/cli/subcommand.h"
-#include "common/board/board_model.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/formats/corners_csv.h"
@@ -304,11 +304,11 @@ void RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription
       GroupCornersByRow(rows, observed, board, options.default_sigma_px);
   CornerFitOptions corner_options;
   corner_options.camera_fixed = options.camera_fixed;
-  const CornerPathOutcome path = IdentifyOnCorners(AprioriModelOf(robot, model), model, pose_path,
-                                                   rows, corners, camera, id_options,
-                                                   corner_options);
-  PrintCornerFit(path);
+  const CornerPathOutcome path =
+      IdentifyOnCorners(AprioriModelOf(robot, model), model, pose_path, rows, corners, camera,
+                        id_options, corner_options);
   if (!path.fit.ok) {
+    PrintCornerFit(path);
     SetExitCode(h4::cli::kExitNothingUsable);
     throw std::runtime_error("the corner fit failed: " + path.fit.message);
   }
@@ -322,6 +322,7 @@ void RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription
     spdlog::info("refined camera written to {}", options.camera_out_path);
   }
   PrintHeadline(path.outcome);
+  PrintCornerFit(path);
   spdlog::info("result written to {}", options.out_path);
   if (path.outcome.verdict != Verdict::kGood || !path.outcome.summary.usable) {
     SetExitCode(h4::cli::kExitNothingUsable);
@@ -390,7 +391,8 @@ void DeclareIdentifyCommand(CLI::App* command) {
                               "intrinsics refined with the robot (needs --board, --camera)");
   h4::cli::AddBoardOption(command, &options->board_path)
       ->description("Corner path: the board YAML the corners were measured on");
-  h4::cli::AddCameraOption(command, &options->camera_path, "Corner path: the camera file h4cam used");
+  h4::cli::AddCameraOption(command, &options->camera_path,
+                           "Corner path: the camera file h4cam used");
   command->add_flag("--camera-fixed", options->camera_fixed,
                     "Corner path: keep every intrinsic at the camera file's value");
   command

@@ -7,8 +7,12 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/board/board_model.h"
 #include "common/cli/shared_options.h"
 #include "common/cli/subcommand.h"
+#include "common/formats/board_yaml.h"
+#include "common/formats/camera_yaml.h"
+#include "common/formats/corners_csv.h"
 #include "common/formats/dataset_csv.h"
 #include "common/formats/joints_csv.h"
 #include "common/formats/poses_csv.h"
@@ -16,6 +20,7 @@
 #include "common/units.h"
 #include "host/cli/commands.h"
 #include "host/kinematics/measurement_chain.h"
+#include "host/simulation/corner_campaign.h"
 #include "host/simulation/dataset_simulator.h"
 #include "host/simulation/paper_scenario.h"
 #include "host/simulation/pose_plan.h"
@@ -38,7 +43,39 @@ struct SimulateOptions {
   double sigma_q = 2e-5;
   int valid = 10;
   std::string out_dir;
+  // The camera at the corner level (common/README.md "Identification from corners").
+  std::string board_path;
+  std::string camera_path;       ///< the true camera the corners are projected through
+  std::string camera_file_path;  ///< the camera file the poses are solved with
+  double sigma_px = 0.05;
 };
+
+// With --board: the board's corners through the true camera with pixel noise, each pose
+// solved from them with the camera file (which may differ), corners.csv beside the dataset.
+SimulatedDataset SimulateThroughCamera(const SimulateOptions& options, const SimulatedRobot& robot,
+                                       const PosePlan& plan, const std::filesystem::path& dir) {
+  if (options.camera_path.empty()) {
+    throw std::invalid_argument("--board simulates the camera's corners: give --camera too");
+  }
+  const CameraIntrinsics true_camera = ReadCameraYaml(options.camera_path);
+  const CameraIntrinsics file_camera =
+      options.camera_file_path.empty() ? true_camera : ReadCameraYaml(options.camera_file_path);
+  if (file_camera.width != true_camera.width || file_camera.height != true_camera.height) {
+    throw std::invalid_argument("--camera-file must describe an image of --camera's size");
+  }
+  const CornerCampaign campaign = SimulateCornerCampaign(
+      robot, plan, BoardModel(ReadBoardYaml(options.board_path)), true_camera, file_camera,
+      {.sigma_px = options.sigma_px,
+       .sigma_q = options.sigma_q,
+       .seed = options.seed,
+       .valid_count = options.valid});
+  std::filesystem::create_directories(dir);
+  WriteCornersCsv((dir / "corners.csv").string(), campaign.corners);
+  SimulatedDataset dataset;
+  dataset.rows = campaign.rows;
+  dataset.truth = campaign.truth;
+  return dataset;
+}
 
 void Run(const SimulateOptions& options) {
   namespace fs = std::filesystem;
@@ -63,7 +100,10 @@ void Run(const SimulateOptions& options) {
   dataset_options.noise.sigma_t = options.sigma_t_mm * 1e-3;
   dataset_options.noise.sigma_r = RadiansFromDegrees(options.sigma_r_deg);
   dataset_options.noise.sigma_q = options.sigma_q;
-  const SimulatedDataset dataset = SimulateDataset(robot, plan, dataset_options);
+  const fs::path dir(options.out_dir);
+  const SimulatedDataset dataset = options.board_path.empty()
+                                       ? SimulateDataset(robot, plan, dataset_options)
+                                       : SimulateThroughCamera(options, robot, plan, dir);
   if (dataset.rows.empty()) {
     throw std::runtime_error("no planned pose is reachable by the true robot");
   }
@@ -74,7 +114,6 @@ void Run(const SimulateOptions& options) {
   }
 
   fs::create_directories(options.out_dir);
-  const fs::path dir(options.out_dir);
   WriteDatasetCsv((dir / "dataset.csv").string(), dataset.rows);
   WriteRobotYaml((dir / "robot.yaml").string(), apriori);
   SimulationTruth truth{robot, dataset_options.noise, options.robot_seed, options.seed};
@@ -112,8 +151,8 @@ void Run(const SimulateOptions& options) {
                dataset.rows.size(), heldout_joints.size(), dataset.unreachable.size());
   spdlog::info(
       "wrote {}/{{dataset.csv, robot.yaml, truth.yaml, heldout_joints.csv, heldout_truth.csv, "
-      "straightness_1.csv, straightness_2.csv}}",
-      options.out_dir);
+      "straightness_1.csv, straightness_2.csv{}}}",
+      options.out_dir, options.board_path.empty() ? "" : ", corners.csv");
 }
 
 }  // namespace
@@ -150,6 +189,19 @@ void DeclareSimulateCommand(CLI::App* command) {
       ->capture_default_str();
   command->add_option("--validation", options->valid, "Poses held out for validation")
       ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  h4::cli::AddBoardOption(command, &options->board_path)
+      ->description(
+          "Simulate the camera at the corner level on this board: its corners through --camera "
+          "with --sigma-px noise, each pose solved from them with --camera-file; writes "
+          "corners.csv (the --sigma-t-mm / --sigma-r-deg noise is then not used)");
+  h4::cli::AddCameraOption(command, &options->camera_path,
+                           "With --board: the true camera the corners are imaged through");
+  h4::cli::AddInputFileOption(command, "--camera-file", &options->camera_file_path,
+                              "With --board: the camera file the poses are solved with, e.g. one "
+                              "as wrong as a real intrinsic calibration (default: --camera)");
+  command->add_option("--sigma-px", options->sigma_px, "With --board: corner noise per axis, px")
+      ->check(CLI::Range(1e-6, 100.0))
       ->capture_default_str();
   h4::cli::AddOutDirOption(command, &options->out_dir, "Output folder")->required();
   h4::cli::RunWhenParsed(command, options, Run);

@@ -8,8 +8,7 @@ namespace h4::host {
 namespace {
 
 std::vector<std::string> DistortionNames(const CameraIntrinsics& camera) {
-  static const std::vector<std::string> kRadTan = {"k1", "k2", "p1", "p2",
-                                                   "k3", "k4", "k5", "k6"};
+  static const std::vector<std::string> kRadTan = {"k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6"};
   static const std::vector<std::string> kEquidistant = {"k1", "k2", "k3", "k4"};
   const std::vector<std::string>& all =
       camera.distortion_model == DistortionModel::kEquidistant ? kEquidistant : kRadTan;

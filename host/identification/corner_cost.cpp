@@ -43,61 +43,73 @@ bool CornerCost::Evaluate(const ParameterVector& p, Eigen::VectorXd* r, Eigen::M
   p.ApplyTo(model_.get());
   const CameraModel camera(WithCameraParameters(camera_, p.camera_values()));
   const ChainTransforms chain = MakeChainTransforms(p.X_BC(), p.X_TE());
-  const int n_kin = p.kinematic_count();
   r->resize(residual_count_);
   if (J != nullptr) J->setZero(residual_count_, p.size());
-  Eigen::Matrix<double, 6, Eigen::Dynamic> J_pose(6, n_kin + 12);  // (body rot, trans) by params
-  Eigen::MatrixXd J_uv_intrinsics;
   for (size_t j = 0; j < rows_.size(); ++j) {
     const DatasetRow& row = rows_[j];
+    const std::string pose = "pose " + std::to_string(row.pose_id);
     const FkResult fk = fk_.Solve(*model_, j, row, chain.X_BC, chain.X_TE);
     if (!fk.ok()) {
-      if (why != nullptr) *why = "pose " + std::to_string(row.pose_id) + ": forward kinematics";
+      if (why != nullptr) *why = pose + ": forward kinematics";
       return false;
     }
     const BoardPoseError err = BoardPoseErrorOf(chain, fk.x, row.X_CT, J != nullptr);
-    const Eigen::Matrix3d& R_CT = err.X_CT_predicted.rotation();
-    const Eigen::Vector3d& p_CT = err.X_CT_predicted.translation();
-    if (J != nullptr) {
-      const JointVector q(row.q[0], row.q[1], row.q[2], row.q[3]);
-      Eigen::Matrix4d J_f_x;
-      model_->ConstraintJacobians(q, fk.x, &J_f_x, nullptr, &J_f_xi_);
-      const Eigen::PartialPivLU<Eigen::Matrix4d> lu(J_f_x);
-      if (!(lu.rcond() > 1e-12)) {
-        if (why != nullptr) *why = "pose " + std::to_string(row.pose_id) + ": FK singular";
-        return false;
-      }
-      J_pose.leftCols(n_kin) = (-err.J_e_x * lu.inverse()) * J_f_xi_;
-      J_pose.middleCols<6>(n_kin) = err.J_e_bc;
-      J_pose.middleCols<6>(n_kin + 6) = err.J_e_te;
-      // The rotation rows are d e_r; the corners move with the body rate Jr(e_r) d e_r.
-      const Eigen::Matrix3d Jr = So3RightJacobianInverse(err.e.head<3>()).inverse();
-      J_pose.topRows<3>() = Jr * J_pose.topRows<3>();
+    if (J != nullptr && !BoardPoseJacobian(p, row, fk.x, err)) {
+      if (why != nullptr) *why = pose + ": forward kinematics singular";
+      return false;
     }
-    const PoseCorners& c = corners_[j];
-    for (size_t k = 0; k < c.uv.size(); ++k) {
-      const Eigen::Vector3d p_CQ = R_CT * c.p_TQ[k] + p_CT;
-      Eigen::Vector2d uv;
-      Eigen::Matrix<double, 2, 3> J_uv_p;
-      if (!camera.Project(p_CQ, &uv, J != nullptr ? &J_uv_p : nullptr)) {
-        if (why != nullptr) *why = "pose " + std::to_string(row.pose_id) + ": corner behind camera";
-        return false;
-      }
-      const Eigen::Index i = pose_offset_[j] + 2 * static_cast<Eigen::Index>(k);
-      const double w = c.weight[k];
-      r->segment<2>(i) = w * (uv - c.uv[k]);
-      if (J == nullptr || w == 0) continue;
-      Eigen::Matrix<double, 2, 6> J_uv_e;
-      J_uv_e.leftCols<3>() = -J_uv_p * R_CT * Skew(c.p_TQ[k]);
-      J_uv_e.rightCols<3>() = J_uv_p;
-      J->block(i, 0, 2, n_kin + 12).noalias() = w * (J_uv_e * J_pose);
-      camera.IntrinsicJacobian(p_CQ, &J_uv_intrinsics);
-      J->block(i, p.camera_offset(), 2, p.camera_count()) = w * J_uv_intrinsics;
+    if (!EvaluateCorners(p, camera, j, err.X_CT_predicted, r, J)) {
+      if (why != nullptr) *why = pose + ": a corner falls behind the camera";
+      return false;
     }
   }
   if (!r->allFinite() || (J != nullptr && !J->allFinite())) {
     if (why != nullptr) *why = "non-finite residual or Jacobian";
     return false;
+  }
+  return true;
+}
+
+// dX_CT_predicted by the kinematic parameters (through FK: dx = -J_f_x^-1 J_f_xi dxi), X_BC
+// and X_TE, as a body rotation rate Jr(e_r) de_r and a translation in C.
+bool CornerCost::BoardPoseJacobian(const ParameterVector& p, const DatasetRow& row, const EePose& x,
+                                   const BoardPoseError& err) {
+  const int n_kin = p.kinematic_count();
+  const JointVector q(row.q[0], row.q[1], row.q[2], row.q[3]);
+  Eigen::Matrix4d J_f_x;
+  model_->ConstraintJacobians(q, x, &J_f_x, nullptr, &J_f_xi_);
+  const Eigen::PartialPivLU<Eigen::Matrix4d> lu(J_f_x);
+  if (!(lu.rcond() > 1e-12)) return false;  // ForwardKinematicsJacobians' threshold
+  J_pose_.resize(6, n_kin + 12);
+  J_pose_.leftCols(n_kin) = (-err.J_e_x * lu.inverse()) * J_f_xi_;
+  J_pose_.middleCols<6>(n_kin) = err.J_e_bc;
+  J_pose_.middleCols<6>(n_kin + 6) = err.J_e_te;
+  const Eigen::Matrix3d Jr = So3RightJacobianInverse(err.e.head<3>()).inverse();
+  J_pose_.topRows<3>() = (Jr * J_pose_.topRows<3>()).eval();
+  return true;
+}
+
+// A corner p_CQ = R_CT p_TQ + p_CT moves by -R_CT [p_TQ]x d_body + dp_CT.
+bool CornerCost::EvaluateCorners(const ParameterVector& p, const CameraModel& camera, size_t j,
+                                 const RigidTransform& X_CT, Eigen::VectorXd* r,
+                                 Eigen::MatrixXd* J) {
+  const PoseCorners& c = corners_[j];
+  const int n_pose = p.kinematic_count() + 12;
+  for (size_t k = 0; k < c.uv.size(); ++k) {
+    const Eigen::Vector3d p_CQ = X_CT * c.p_TQ[k];
+    Eigen::Vector2d uv;
+    Eigen::Matrix<double, 2, 3> J_uv_p;
+    if (!camera.Project(p_CQ, &uv, J != nullptr ? &J_uv_p : nullptr)) return false;
+    const Eigen::Index i = pose_offset_[j] + 2 * static_cast<Eigen::Index>(k);
+    const double w = c.weight[k];
+    r->segment<2>(i) = w * (uv - c.uv[k]);
+    if (J == nullptr || w == 0) continue;
+    Eigen::Matrix<double, 2, 6> J_uv_e;
+    J_uv_e.leftCols<3>() = -J_uv_p * X_CT.rotation() * Skew(c.p_TQ[k]);
+    J_uv_e.rightCols<3>() = J_uv_p;
+    J->block(i, 0, 2, n_pose).noalias() = w * (J_uv_e * J_pose_);
+    camera.IntrinsicJacobian(p_CQ, &J_uv_intrinsics_);
+    J->block(i, p.camera_offset(), 2, p.camera_count()) = w * J_uv_intrinsics_;
   }
   return true;
 }

@@ -15,8 +15,10 @@
 
 #include "common/camera/board_pose_fit.h"
 #include "common/camera/camera_intrinsics.h"
+#include "common/camera/camera_model.h"
 #include "common/formats/dataset_csv.h"
 #include "host/identification/parameter_vector.h"
+#include "host/identification/pose_chain.h"
 #include "host/identification/warm_forward_kinematics.h"
 #include "host/kinematics/kinematic_model.h"
 
@@ -45,6 +47,11 @@ class CornerCost {
                 std::string* why = nullptr);
 
  private:
+  bool BoardPoseJacobian(const ParameterVector& p, const DatasetRow& row, const EePose& x,
+                         const BoardPoseError& err);
+  bool EvaluateCorners(const ParameterVector& p, const CameraModel& camera, size_t j,
+                       const RigidTransform& X_CT, Eigen::VectorXd* r, Eigen::MatrixXd* J);
+
   std::unique_ptr<KinematicModel> model_;
   std::vector<DatasetRow> rows_;
   std::vector<PoseCorners> corners_;
@@ -52,7 +59,11 @@ class CornerCost {
   std::vector<Eigen::Index> pose_offset_;
   int residual_count_ = 0;
   WarmForwardKinematics fk_;
+  // Buffers reused across poses: FK's J_f_xi, the board pose by the kinematic and placement
+  // parameters (6 x n), a corner's pixel by the intrinsics.
   Eigen::MatrixXd J_f_xi_;
+  Eigen::Matrix<double, 6, Eigen::Dynamic> J_pose_;
+  Eigen::MatrixXd J_uv_intrinsics_;
 };
 
 }  // namespace h4::host

@@ -13,6 +13,7 @@
 #include "common/geometry/rotation.h"
 #include "host/identification/camera_parameters.h"
 #include "host/identification/identification_cost.h"
+#include "host/kinematics/forward_kinematics.h"
 
 namespace h4::host {
 namespace {
@@ -41,8 +42,8 @@ int RejectCornerOutliers(CornerCost* cost, const Eigen::VectorXd& r, double limi
     const PoseCorners& c = cost->corners()[j];
     for (size_t k = 0; k < c.uv.size(); ++k) {
       if (c.weight[k] == 0) continue;
-      d2.push_back(r.segment<2>(cost->pose_offset(j) + 2 * static_cast<Eigen::Index>(k))
-                       .squaredNorm());
+      d2.push_back(
+          r.segment<2>(cost->pose_offset(j) + 2 * static_cast<Eigen::Index>(k)).squaredNorm());
     }
   }
   if (d2.empty()) return 0;
@@ -72,7 +73,8 @@ ParameterVector WithCameraBlock(const ParameterVector& start, const CameraIntrin
   ParameterVector p = start;
   p.AppendCameraBlock(CameraParameterNames(camera), CameraParameterValues(camera));
   if (camera_fixed) {
-    for (int i = p.camera_offset(); i < p.size(); ++i) p.Fix(i, "kept from the camera file (--camera-fixed)");
+    for (int i = p.camera_offset(); i < p.size(); ++i)
+      p.Fix(i, "kept from the camera file (--camera-fixed)");
   }
   return p;
 }
@@ -111,19 +113,57 @@ ParameterVector WithoutCameraBlock(const ParameterVector& p, const KinematicMode
   return out;
 }
 
+namespace {
+
+// The poses the fit can use: those with at least options.min_corners_per_pose corners.
+void SelectPoses(const std::vector<DatasetRow>& rows, const std::vector<PoseCorners>& corners,
+                 int min_corners, std::vector<DatasetRow>* fit_rows,
+                 std::vector<PoseCorners>* fit_corners, int* corner_count) {
+  for (size_t j = 0; j < rows.size(); ++j) {
+    if (static_cast<int>(corners[j].uv.size()) < min_corners) continue;
+    fit_rows->push_back(rows[j]);
+    fit_corners->push_back(corners[j]);
+    *corner_count += static_cast<int>(corners[j].uv.size());
+  }
+}
+
+// Levenberg-Marquardt on the free parameters, then the corner outliers out and a refit
+// (once). Leaves r, J at the solution; false when the cost cannot be evaluated there.
+bool SolveWithCornerOutliers(CornerCost* cost, const CornerFitOptions& options,
+                             CornerFitOutcome* out, Eigen::VectorXd* r, Eigen::MatrixXd* J) {
+  const ParameterCost evaluate = [cost](const ParameterVector& p, Eigen::VectorXd* res,
+                                        Eigen::MatrixXd* jac) {
+    return cost->Evaluate(p, res, jac);
+  };
+  for (int round = 0; round < 2; ++round) {
+    FreeParameterResiduals f(evaluate, out->parameters);
+    Eigen::VectorXd v = out->parameters.FreeValues();
+    out->minimizer = MinimizeWithLevenbergMarquardt(f, options.lm, &v);
+    out->parameters.SetFreeValues(v);
+    std::string why;
+    if (!cost->Evaluate(out->parameters, r, J, &why)) {
+      out->message = "the corner cost cannot be evaluated at the solution: " + why;
+      return false;
+    }
+    if (round == 1) break;
+    const int rejected = RejectCornerOutliers(cost, *r, options.corner_outlier_chi2);
+    out->rejected_corners += rejected;
+    if (rejected == 0) break;
+    if (!cost->Evaluate(out->parameters, r, J, &why)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 CornerFitOutcome FitCorners(const KinematicModel& model, ModelKind kind,
                             const ParameterVector& start, const std::vector<DatasetRow>& rows,
-                            const std::vector<PoseCorners>& corners,
-                            const CameraIntrinsics& camera, const CornerFitOptions& options) {
+                            const std::vector<PoseCorners>& corners, const CameraIntrinsics& camera,
+                            const CornerFitOptions& options) {
   CornerFitOutcome out{WithCameraBlock(start, camera, options.camera_fixed), camera};
   std::vector<DatasetRow> fit_rows;
   std::vector<PoseCorners> fit_corners;
-  for (size_t j = 0; j < rows.size(); ++j) {
-    if (static_cast<int>(corners[j].uv.size()) < options.min_corners_per_pose) continue;
-    fit_rows.push_back(rows[j]);
-    fit_corners.push_back(corners[j]);
-    out.corners += static_cast<int>(corners[j].uv.size());
-  }
+  SelectPoses(rows, corners, options.min_corners_per_pose, &fit_rows, &fit_corners, &out.corners);
   out.poses = static_cast<int>(fit_rows.size());
   if (out.poses < 3) {
     out.message = fmt::format("{} poses have at least {} corners; the corner path needs 3",
@@ -141,28 +181,10 @@ CornerFitOutcome FitCorners(const KinematicModel& model, ModelKind kind,
   out.rms_px_before = PixelRms(cost, r);
   IdentifiabilityOptions id_options = options.identifiability;
   if (id_options.preferences.empty()) id_options.preferences = DefaultFixPreferences(kind);
-  for (const std::string& name : CameraFixPreferences(camera)) id_options.preferences.push_back(name);
+  for (const std::string& name : CameraFixPreferences(camera))
+    id_options.preferences.push_back(name);
   out.identifiability = AnalyzeIdentifiability(J, kind, id_options, &out.parameters);
-  const ParameterCost evaluate = [&cost](const ParameterVector& p, Eigen::VectorXd* res,
-                                         Eigen::MatrixXd* jac) {
-    return cost.Evaluate(p, res, jac);
-  };
-  // Two rounds: a fit, then the corner outliers out and a refit.
-  for (int round = 0; round < 2; ++round) {
-    FreeParameterResiduals f(evaluate, out.parameters);
-    Eigen::VectorXd v = out.parameters.FreeValues();
-    out.minimizer = MinimizeWithLevenbergMarquardt(f, options.lm, &v);
-    out.parameters.SetFreeValues(v);
-    if (!cost.Evaluate(out.parameters, &r, &J, &why)) {
-      out.message = "the corner cost cannot be evaluated at the solution: " + why;
-      return out;
-    }
-    if (round == 1) break;
-    const int rejected = RejectCornerOutliers(&cost, r, options.corner_outlier_chi2);
-    out.rejected_corners += rejected;
-    if (rejected == 0) break;
-    if (!cost.Evaluate(out.parameters, &r, &J, &why)) return out;
-  }
+  if (!SolveWithCornerOutliers(&cost, options, &out, &r, &J)) return out;
   out.rms_px_after = PixelRms(cost, r);
   out.uncertainty = ComputeUncertainty(out.parameters, r, J, /*weighted=*/true);
   out.camera = WithCameraParameters(camera, out.parameters.camera_values());
@@ -220,6 +242,78 @@ std::vector<PoseCorners> CornersOfRows(const std::vector<DatasetRow>& all,
   return out;
 }
 
+// I - P, P the projection onto the position changes a rigid motion of the base frame makes
+// (translation, rotation about z), 3 rows per position.
+Eigen::MatrixXd WithoutRigidMotions(const std::vector<Eigen::Vector3d>& positions) {
+  const Eigen::Index n = static_cast<Eigen::Index>(positions.size());
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& x : positions) centre += x / static_cast<double>(n);
+  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(3 * n, 4);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const Eigen::Vector3d d = positions[static_cast<size_t>(j)] - centre;
+    R.block<3, 3>(3 * j, 0).setIdentity();
+    R.block<3, 1>(3 * j, 3) = Eigen::Vector3d(-d.y(), d.x(), 0.0);
+  }
+  const Eigen::MatrixXd P = R * (R.transpose() * R).ldlt().solve(R.transpose());
+  return Eigen::MatrixXd::Identity(3 * n, 3 * n) - P;
+}
+
+// The corner fit's values, sigmas and covariance in place of the pose-path refit's (the
+// corner fit is the efficient estimate); the refit's verdict, cross-validation and pose
+// lists stay: they judge the same campaign on the re-measured poses.
+void ApplyCornerFit(const CornerFitOutcome& fit, const KinematicModel& model,
+                    const std::vector<DatasetRow>& calib, IdentificationOutcome* outcome) {
+  IdentificationResult& result = outcome->result;
+  const ParameterVector& p = fit.parameters;
+  const Uncertainty& u = fit.uncertainty;
+  const Eigen::Index n = static_cast<Eigen::Index>(result.parameters.size());
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n, n);
+  std::vector<Eigen::Index> free_row(static_cast<size_t>(p.size()), -1);
+  for (size_t f = 0; f < u.free_indices.size(); ++f) {
+    free_row[static_cast<size_t>(u.free_indices[f])] = static_cast<Eigen::Index>(f);
+  }
+  for (Eigen::Index a = 0; a < n; ++a) {
+    ResultParameter& rp = result.parameters[static_cast<size_t>(a)];
+    const int i = p.IndexOf(rp.name);
+    rp.value = p.values()[i];
+    rp.fixed = !p.is_free(i);
+    rp.std.reset();
+    const Eigen::Index fa = free_row[static_cast<size_t>(i)];
+    if (fa < 0) continue;
+    rp.std = u.std[fa];
+    for (Eigen::Index b = 0; b < n; ++b) {
+      const Eigen::Index fb =
+          free_row[static_cast<size_t>(p.IndexOf(result.parameters[static_cast<size_t>(b)].name))];
+      if (fb >= 0) C(a, b) = 0.5 * (u.covariance(fa, fb) + u.covariance(fb, fa));
+    }
+  }
+  result.parameter_covariance = C;
+  result.X_BC = p.X_BC();
+  result.X_TE = p.X_TE();
+  outcome->parameters = WithoutCameraBlock(p, model);
+  // The end-effector positions' sensitivity to the kinematic parameters at the calibration
+  // poses (dx = -J_f_x^-1 J_f_xi dxi), other columns zero: where the robot goes, which the
+  // camera's placement and intrinsics do not change, after the rigid registration of the base
+  // frame (a base frame is a convention; host/validation/accuracy_map.h registers the same
+  // way). Measured on the board in C instead, the figure would carry X_BC's uncertainty,
+  // which free intrinsics widen along the optical axis.
+  std::unique_ptr<KinematicModel> identified = model.Clone();
+  outcome->parameters.ApplyTo(identified.get());
+  Eigen::MatrixXd J_p =
+      Eigen::MatrixXd::Zero(3 * static_cast<Eigen::Index>(calib.size()), p.size());
+  Eigen::MatrixXd J_x_xi;
+  std::vector<Eigen::Vector3d> positions;
+  for (size_t j = 0; j < calib.size(); ++j) {
+    const JointVector q(calib[j].q[0], calib[j].q[1], calib[j].q[2], calib[j].q[3]);
+    const FkResult fk = ForwardKinematics(*identified, q);
+    if (!fk.ok() || !ForwardKinematicsJacobians(*identified, q, fk.x, nullptr, &J_x_xi)) return;
+    J_p.block(3 * static_cast<Eigen::Index>(j), 0, 3, J_x_xi.cols()) = J_x_xi.topRows<3>();
+    positions.push_back(fk.x.head<3>());
+  }
+  J_p = WithoutRigidMotions(positions) * J_p;
+  result.predicted_position_accuracy_m = PredictedPositionAccuracy(u, J_p);
+}
+
 }  // namespace
 
 ResultCamera ResultCameraOf(const CornerFitOutcome& fit, const CameraIntrinsics& file_camera) {
@@ -269,7 +363,9 @@ CornerPathOutcome IdentifyOnCorners(const AprioriModel& apriori, ModelKind kind,
   const std::vector<DatasetRow> calib = RowsWithIds(rows, first.calib_poses);
   CornerPathOutcome out{FitCorners(*apriori.model, kind, pose_path.parameters, calib,
                                    CornersOfRows(rows, corners, calib), camera, corner_options),
-                        {}, {}, pose_path};
+                        {},
+                        {},
+                        pose_path};
   if (!out.fit.ok) return out;
   out.rows = RefitBoardPoses(rows, corners, out.fit.camera, corner_options.min_corners_per_pose,
                              &out.dropped);
@@ -277,12 +373,27 @@ CornerPathOutcome IdentifyOnCorners(const AprioriModel& apriori, ModelKind kind,
   std::vector<int64_t> calib_ids = first.calib_poses;
   calib_ids.insert(calib_ids.end(), first.rejected_poses.begin(), first.rejected_poses.end());
   const ParameterVector start = WithoutCameraBlock(out.fit.parameters, *apriori.model);
-  out.outcome = IdentifyFromStart(*apriori.model, apriori.parameters, start,
-                                  RowsWithIds(out.rows, calib_ids),
-                                  RowsWithIds(out.rows, first.valid_poses), options);
+  out.outcome =
+      IdentifyFromStart(*apriori.model, apriori.parameters, start, RowsWithIds(out.rows, calib_ids),
+                        RowsWithIds(out.rows, first.valid_poses), options);
+  if (!out.outcome.summary.usable) return out;
+  // The final poses are the refit's (its outlier judgement on unbiased poses): the corner
+  // fit again on exactly those when they differ, from where it ended.
+  const std::vector<DatasetRow> final_calib = RowsWithIds(rows, out.outcome.result.calib_poses);
+  if (out.outcome.result.calib_poses != first.calib_poses) {
+    CornerFitOutcome refit =
+        FitCorners(*apriori.model, kind, start, final_calib,
+                   CornersOfRows(rows, corners, final_calib), out.fit.camera, corner_options);
+    if (refit.ok) out.fit = std::move(refit);
+  }
+  ApplyCornerFit(out.fit, *apriori.model, RowsWithIds(out.rows, out.outcome.result.calib_poses),
+                 &out.outcome);
   out.outcome.result.camera = ResultCameraOf(out.fit, camera);
-  out.outcome.result.log.insert(out.outcome.result.log.begin(),
-                                "corner path: " + out.fit.message);
+  out.outcome.result.log.insert(
+      out.outcome.result.log.begin(),
+      "corner path: " + out.fit.message +
+          "; values, sigmas and covariance from the corner fit, the verdict and cross-validation "
+          "from the pose path on the poses measured again with the refined camera");
   return out;
 }
 

@@ -50,7 +50,7 @@ struct CornerFitOutcome {
   CameraIntrinsics camera;     ///< the refined intrinsics
   bool ok = false;
   std::string message;
-  Uncertainty uncertainty;     ///< of the free parameters, camera block included
+  Uncertainty uncertainty;  ///< of the free parameters, camera block included
   IdentifiabilityReport identifiability;
   MinimizerReport minimizer;
   int poses = 0;
@@ -68,8 +68,8 @@ struct CornerFitOutcome {
 /// highest distortion terms first).
 CornerFitOutcome FitCorners(const KinematicModel& model, ModelKind kind,
                             const ParameterVector& start, const std::vector<DatasetRow>& rows,
-                            const std::vector<PoseCorners>& corners,
-                            const CameraIntrinsics& camera, const CornerFitOptions& options);
+                            const std::vector<PoseCorners>& corners, const CameraIntrinsics& camera,
+                            const CornerFitOptions& options);
 
 /// `p` without its camera block (same kinematics, placement and fixed mask).
 ParameterVector WithoutCameraBlock(const ParameterVector& p, const KinematicModel& model);

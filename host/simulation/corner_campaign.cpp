@@ -28,7 +28,7 @@ CornerCampaign SimulateCornerCampaign(const SimulatedRobot& robot, const PosePla
   DatasetOptions dataset_options;
   dataset_options.noise = {.sigma_t = 0.0, .sigma_r = 0.0, .sigma_q = options.sigma_q};
   dataset_options.seed = options.seed;
-  dataset_options.valid_count = 0;
+  dataset_options.valid_count = options.valid_count;
   dataset_options.fill_sigma = false;
   const SimulatedDataset exact = SimulateDataset(robot, plan, dataset_options);
   const CameraModel camera(true_camera);

@@ -20,6 +20,7 @@ struct CornerCampaignOptions {
   double sigma_px = 0.05;  ///< per-axis corner noise, px
   double sigma_q = 2e-5;   ///< encoder noise, rad
   uint64_t seed = 1;
+  int valid_count = 0;  ///< rows marked "valid", chosen by seed (dataset_simulator.h)
 };
 
 struct CornerCampaign {

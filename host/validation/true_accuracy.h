@@ -13,8 +13,8 @@
 namespace h4::host {
 
 struct TrueAccuracy {
-  int poses = 0;                 ///< commanded poses both models reach
-  double position_rms_m = 0.0;   ///< registered position error, RMS over the poses
+  int poses = 0;                ///< commanded poses both models reach
+  double position_rms_m = 0.0;  ///< registered position error, RMS over the poses
   double position_max_m = 0.0;
   double z_scale_ppm = 0.0;  ///< slope of the registered Z error against the commanded Z
 };

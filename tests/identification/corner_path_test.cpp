@@ -11,9 +11,9 @@
 #include "common/board/board_model.h"
 #include "common/camera/board_pose_fit.h"
 #include "common/camera/camera_model.h"
-#include "common/geometry/rotation.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
+#include "common/geometry/rotation.h"
 #include "host/identification/camera_parameters.h"
 #include "host/identification/corner_cost.h"
 #include "host/identification/corner_identification.h"
@@ -51,6 +51,12 @@ std::vector<EePose> GridPoses() {
   return poses;
 }
 
+CornerFitOptions CornerOptions(bool camera_fixed) {
+  CornerFitOptions options;
+  options.camera_fixed = camera_fixed;
+  return options;
+}
+
 struct PathAccuracies {
   TrueAccuracy pose;
   TrueAccuracy corner;
@@ -60,7 +66,7 @@ struct PathAccuracies {
 // The paper's route on both paths: Model 12, then Model 31 from it; the corner path starts
 // from the pose path's Model 31.
 PathAccuracies RunBothPaths(const SimulatedRobot& truth, const CameraIntrinsics& file_camera,
-                            uint64_t seed) {
+                            uint64_t seed, bool camera_fixed = false) {
   const BoardModel board = LegacyBoard();
   const CornerCampaign campaign = SimulateCornerCampaign(truth, GridPosePlan(), board, TrueCamera(),
                                                          file_camera, {.seed = seed});
@@ -71,9 +77,9 @@ PathAccuracies RunBothPaths(const SimulatedRobot& truth, const CameraIntrinsics&
       IdentifyModel31FromModel12(apriori, m12.result, campaign.rows, options);
   const std::vector<PoseCorners> corners =
       GroupCornersByRow(campaign.rows, campaign.corners, board, 0.05);
-  CornerPathOutcome path = IdentifyOnCorners(AprioriModelOf(apriori, ModelKind::k31),
-                                             ModelKind::k31, m31, campaign.rows, corners,
-                                             file_camera, options, {});
+  CornerPathOutcome path =
+      IdentifyOnCorners(AprioriModelOf(apriori, ModelKind::k31), ModelKind::k31, m31, campaign.rows,
+                        corners, file_camera, options, CornerOptions(camera_fixed));
   const TrueAccuracy corner = TrueAccuracyOfResult(path.outcome.result, truth, GridPoses());
   return {TrueAccuracyOfResult(m31.result, truth, GridPoses()), corner, std::move(path)};
 }
@@ -85,7 +91,8 @@ SimulatedRobot Robot(uint64_t seed) {
 TEST(BoardPoseFit, RecoversThePoseFromExactCornersAndDepthFollowsTheFocalLength) {
   const BoardModel board = LegacyBoard();
   const CameraIntrinsics camera = TrueCamera();
-  const RigidTransform X_CT(So3Exp(Eigen::Vector3d(0.3, -0.2, 0.1)), Eigen::Vector3d(0.02, -0.01, 0.5));
+  const RigidTransform X_CT(So3Exp(Eigen::Vector3d(0.3, -0.2, 0.1)),
+                            Eigen::Vector3d(0.02, -0.01, 0.5));
   PoseCorners corners;
   const CameraModel model(camera);
   for (const Eigen::Vector3d& p_TQ : board.corners()) {
@@ -95,7 +102,8 @@ TEST(BoardPoseFit, RecoversThePoseFromExactCornersAndDepthFollowsTheFocalLength)
     corners.uv.push_back(uv);
     corners.weight.push_back(1.0);
   }
-  const RigidTransform start(So3Exp(Eigen::Vector3d(0.25, -0.15, 0.05)), Eigen::Vector3d(0, 0, 0.45));
+  const RigidTransform start(So3Exp(Eigen::Vector3d(0.25, -0.15, 0.05)),
+                             Eigen::Vector3d(0, 0, 0.45));
   RigidTransform fitted;
   ASSERT_TRUE(FitBoardPose(corners, camera, start, &fitted));
   EXPECT_LT((fitted.translation() - X_CT.translation()).norm(), 1e-9);
@@ -144,34 +152,43 @@ TEST(CornerCost, JacobianMatchesCentralDifferences) {
   }
 }
 
-// The done-when on a typical intrinsic-calibration error: the corner path's true
-// accuracy within 1.5x of the exact camera's pose path, its Z scale within 150 ppm, while
-// the pose path with the same file is measurably worse (the scene can embarrass the code).
+// The done-when on a typical intrinsic-calibration error, over three robots (one
+// campaign's true error varies by 1.5x from noise alone): the corner path's true accuracy
+// within 1.5x of the exact camera's pose path (geometric mean), each Z scale within 150 ppm,
+// the refined focal length within 3 sigma of the true camera's, while the pose path with the
+// same file is several times worse (the scene can embarrass the code). On an exact camera
+// kept exact (--camera-fixed) the corner path is at least as accurate as the pose path (it is
+// the efficient estimate), within 1.2x in geometric mean over the three campaigns.
 TEST(CornerPath, CorrectsATypicalIntrinsicCalibrationError) {
-  const SimulatedRobot truth = Robot(5);
-  const PathAccuracies exact = RunBothPaths(truth, TrueCamera(), 11);
-  const PathAccuracies wrong = RunBothPaths(truth, TypicalMixFile(TrueCamera()), 11);
-  ASSERT_TRUE(wrong.corner_path.fit.ok) << wrong.corner_path.fit.message;
-  ASSERT_TRUE(wrong.corner_path.outcome.summary.usable);
-  RecordProperty("pose_path_exact_um", static_cast<int>(1e6 * exact.pose.position_rms_m));
-  RecordProperty("pose_path_wrong_um", static_cast<int>(1e6 * wrong.pose.position_rms_m));
-  RecordProperty("corner_path_wrong_um", static_cast<int>(1e6 * wrong.corner.position_rms_m));
-  std::printf("true registered RMS: pose path exact %.4f mm, pose path typical mix %.4f mm "
-              "(Z %.0f ppm), corner path typical mix %.4f mm (Z %.0f ppm), exact %.4f mm\n",
-              1e3 * exact.pose.position_rms_m, 1e3 * wrong.pose.position_rms_m,
-              wrong.pose.z_scale_ppm, 1e3 * wrong.corner.position_rms_m,
-              wrong.corner.z_scale_ppm, 1e3 * exact.corner.position_rms_m);
-  EXPECT_GT(wrong.pose.position_rms_m, 2.0 * exact.pose.position_rms_m);
-  EXPECT_LT(wrong.corner.position_rms_m, 1.5 * exact.pose.position_rms_m);
-  EXPECT_LT(std::abs(wrong.corner.z_scale_ppm), 150.0);
-  // The refined focal length lands within 3 sigma of the true one.
-  const ResultCamera& camera = *wrong.corner_path.outcome.result.camera;
-  ASSERT_TRUE(camera.parameters[0].std.has_value());
-  EXPECT_LT(std::abs(camera.parameters[0].value - TrueCamera().K(0, 0)),
-            3.0 * *camera.parameters[0].std);
-  // On the exact camera the corner path is at least as accurate (it is the efficient
-  // estimate), within the spread of one campaign.
-  EXPECT_LT(exact.corner.position_rms_m, 1.2 * exact.pose.position_rms_m);
+  double log_corner = 0, log_wrong_pose = 0, log_exact_corner = 0;
+  const int robots = 3;
+  for (int k = 0; k < robots; ++k) {
+    const SimulatedRobot truth = Robot(5 + static_cast<uint64_t>(k));
+    // The exact camera kept exact: the corner path then estimates what the pose path does.
+    const PathAccuracies exact =
+        RunBothPaths(truth, TrueCamera(), 11 + static_cast<uint64_t>(k), /*camera_fixed=*/true);
+    const PathAccuracies wrong =
+        RunBothPaths(truth, TypicalMixFile(TrueCamera()), 11 + static_cast<uint64_t>(k));
+    ASSERT_TRUE(wrong.corner_path.fit.ok) << wrong.corner_path.fit.message;
+    ASSERT_TRUE(wrong.corner_path.outcome.summary.usable);
+    std::printf(
+        "robot %d true registered RMS: pose path exact %.4f mm, typical mix %.4f mm "
+        "(Z %.0f ppm); corner path typical mix %.4f mm (Z %.0f ppm, predicted %.4f mm)\n",
+        k, 1e3 * exact.pose.position_rms_m, 1e3 * wrong.pose.position_rms_m, wrong.pose.z_scale_ppm,
+        1e3 * wrong.corner.position_rms_m, wrong.corner.z_scale_ppm,
+        1e3 * *wrong.corner_path.outcome.result.predicted_position_accuracy_m);
+    log_corner += std::log(wrong.corner.position_rms_m / exact.pose.position_rms_m) / robots;
+    log_wrong_pose += std::log(wrong.pose.position_rms_m / exact.pose.position_rms_m) / robots;
+    log_exact_corner += std::log(exact.corner.position_rms_m / exact.pose.position_rms_m) / robots;
+    EXPECT_LT(std::abs(wrong.corner.z_scale_ppm), 150.0);
+    const ResultCamera& camera = *wrong.corner_path.outcome.result.camera;
+    ASSERT_TRUE(camera.parameters[0].std.has_value());
+    EXPECT_LT(std::abs(camera.parameters[0].value - TrueCamera().K(0, 0)),
+              3.0 * *camera.parameters[0].std);
+  }
+  EXPECT_GT(std::exp(log_wrong_pose), 4.0);
+  EXPECT_LT(std::exp(log_corner), 1.5);
+  EXPECT_LT(std::exp(log_exact_corner), 1.2);
 }
 
 }  // namespace

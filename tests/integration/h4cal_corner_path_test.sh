@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# The corner path of `h4cal identify` as a user runs it (common/README.md "Identification
+# from corners"): a campaign simulated at the corner level through the true camera, its
+# poses solved with a camera file as wrong as an ordinary intrinsic calibration
+# (boards/sim_camera_1024x768_typical_error.yaml). The pose path is fooled (its verdict
+# cannot see the file's error); the corner path refines the intrinsics back to the true
+# camera, writes them to the result and to --camera-out, and judges itself "good".
+set -uo pipefail
+. "$(dirname "$0")/h4cal_test_lib.sh"
+boards=$(cd "$(dirname "$0")/../../boards" && pwd)
+true_camera=$boards/sim_camera_1024x768.yaml
+file_camera=$boards/sim_camera_1024x768_typical_error.yaml
+board=$boards/aprilgrid_6x6_30mm.yaml
+
+"$h4cal" simulate --truth 31 --seed 11 --robot-seed 5 --validation 0 --board "$board" \
+  --camera "$true_camera" --camera-file "$file_camera" --out-dir "$dir/sim" 2> "$dir/simulate.log" \
+  || fail "simulate at the corner level: $(tail -1 "$dir/simulate.log")"
+head -1 "$dir/sim/corners.csv" | grep -q '^pose_id,tag_id,corner,u,v' \
+  || fail "corners.csv header: $(head -1 "$dir/sim/corners.csv")"
+
+run() {  # name expected-exit identify-options...
+  local name=$1 expected=$2
+  shift 2
+  "$h4cal" identify --robot "$dir/sim/robot.yaml" --data "$dir/sim/dataset.csv" \
+    --out "$dir/$name.json" "$@" > "$dir/$name.txt" 2> "$dir/$name.log"
+  local rc=$?
+  [ $rc -eq "$expected" ] || fail "$name: exit $rc, expected $expected: $(tail -2 "$dir/$name.log")"
+}
+run r12 3 --model 12
+run pose31 3 --model 31 --from "$dir/r12.json"
+grep -q '"camera": null' "$dir/pose31.json" || fail "the pose path's result has a camera"
+run corner31 0 --model 31 --from "$dir/r12.json" --corners "$dir/sim/corners.csv" \
+  --board "$board" --camera "$file_camera" --camera-out "$dir/refined.yaml"
+head -1 "$dir/corner31.txt" | grep -q '^VERDICT: good$' || fail "corner path: $(head -1 "$dir/corner31.txt")"
+grep -q '^corner path: 81 poses' "$dir/corner31.txt" || fail "corner path account missing"
+
+# The refined focal length is the true camera's (817 px), within 3 of its sigmas; the file
+# said 818.2255.
+read -r fx sigma < <(awk '$1 == "camera.fx" { print $2, $NF }' "$dir/corner31.txt")
+[ -n "${fx:-}" ] || fail "no camera.fx line: $(grep camera "$dir/corner31.txt")"
+awk -v fx="$fx" -v s="$sigma" 'BEGIN { d = fx - 817; if (d < 0) d = -d; exit !(d < 3 * s && s < 0.5) }' \
+  || fail "refined fx $fx (sigma $sigma) is not the true 817 px"
+grep -q '"name": "camera.fx"' "$dir/corner31.json" || fail "no camera key in the result"
+grep -q "818.2255" "$dir/corner31.json" || fail "the file's value is not recorded"
+grep -q '^camera_matrix' "$dir/refined.yaml" || fail "--camera-out wrote no camera YAML"
+
+# --camera-fixed keeps every intrinsic: the corner path then cannot repair the file.
+run fixed31 3 --model 31 --from "$dir/r12.json" --corners "$dir/sim/corners.csv" \
+  --board "$board" --camera "$file_camera" --camera-fixed
+grep -q 'camera.fx .* kept: kept from the camera file (--camera-fixed)' "$dir/fixed31.txt" \
+  || fail "--camera-fixed: $(grep camera.fx "$dir/fixed31.txt")"
+
+# The three files go together.
+run missing 1 --model 31 --from "$dir/r12.json" --corners "$dir/sim/corners.csv"
+grep -q 'needs --corners, --board and --camera together' "$dir/missing.log" \
+  || fail "missing --board/--camera: $(cat "$dir/missing.log")"
+echo "PASS: corner path refines the camera (fx $fx, sigma $sigma) and judges itself good"
