@@ -42,7 +42,7 @@ struct DetectorOptions {
   XCornerOptions x_corner;
   int subpix_half_window = 5;  ///< cornerSubPix window (2n+1)^2, px (chessboard too)
   /// Fewer corners than this: status kPartial (the pose would be unreliable).
-  int min_corners = 12;
+  int min_corners = kMinBoardCorners;  ///< the board reader refuses smaller boards
 };
 
 struct BoardDetection {
