@@ -52,6 +52,9 @@ struct BoardDetection {
   std::vector<CornerObservation> corners;
   int tags = 0;           ///< AprilTag grid: tags used
   int tags_rejected = 0;  ///< tags whose refinement failed (dropped)
+  /// AprilTag grid: ids decoded more than once in one search (two boards in view, or a
+  /// misdecode), every detection of them dropped; said in the measurement's message.
+  int ids_seen_twice = 0;
 };
 
 const char* ToString(BoardDetection::Status status);
