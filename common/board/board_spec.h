@@ -9,6 +9,13 @@
 
 namespace h4 {
 
+/// The fewest board corners a measurement uses (a pose from fewer is unreliable: h4cam's
+/// detector reports such a view as partial, DetectorOptions::min_corners): the board reader
+/// refuses a board with fewer corners in all, which h4cam could never measure.
+inline constexpr int kMinBoardCorners = 12;
+/// OpenCV's chessboard detectors need more than 2 inner corners per side (they assert so).
+inline constexpr int kMinChessboardCornersPerSide = 3;
+
 /// How the tags of an AprilTag grid are drawn and numbered.
 enum class AprilGridLayout {
   /// As kalibr_create_target_pdf prints it (and a plain Kalibr YAML means): tags with a

@@ -69,13 +69,26 @@ AprilGridSpec ReadAprilGrid(const YamlMap& root) {
   spec.tag_spacing = Size(root, "tagSpacing");
   if (root.Has("firstId")) spec.first_id = Count(root, "firstId", 0, kMaxFirstId);
   if (root.Has(kLayoutKey)) spec.layout = ReadLayout(root);
+  if (4 * spec.cols * spec.rows < kMinBoardCorners) {
+    root.Fail("tagCols", "a grid of " + std::to_string(spec.cols) + " x " +
+                             std::to_string(spec.rows) + " tags has " +
+                             std::to_string(4 * spec.cols * spec.rows) + " corners; h4cam needs " +
+                             std::to_string(kMinBoardCorners) + " to measure a pose");
+  }
   return spec;
 }
 
 CheckerboardSpec ReadCheckerboard(const YamlMap& root) {
   CheckerboardSpec spec;
-  spec.cols = Count(root, "targetCols", 2);
-  spec.rows = Count(root, "targetRows", 2);
+  // OpenCV's chessboard detectors assert on fewer per side: `h4cam measure` stopped with its
+  // assertion text and `h4cam run` exited on its first capture request.
+  spec.cols = Count(root, "targetCols", kMinChessboardCornersPerSide);
+  spec.rows = Count(root, "targetRows", kMinChessboardCornersPerSide);
+  if (spec.cols * spec.rows < kMinBoardCorners) {
+    root.Fail("targetCols", std::to_string(spec.cols) + " x " + std::to_string(spec.rows) +
+                                " inner corners; h4cam needs " + std::to_string(kMinBoardCorners) +
+                                " to measure a pose");
+  }
   spec.col_spacing = Size(root, "colSpacingMeters");
   spec.row_spacing = Size(root, "rowSpacingMeters");
   return spec;

@@ -85,6 +85,22 @@ bool ImageAreaWithinLimit(int width, int height) {
   return int64_t{width} * int64_t{height} <= kMaxImagePixels;
 }
 
+// The principal point inside the image: a real calibration never puts it outside, and
+// cy = 1e9 kept the image checks busy for 23 s before they refused the image.
+// `fail(index, what)` names element `index` (0 for cx, 1 for cy).
+template <typename Fail>
+void RequirePrincipalPointInImage(double cx, double cy, int width, int height, Fail fail) {
+  const double point[2] = {cx, cy};
+  const int side[2] = {width, height};
+  for (size_t i = 0; i < 2; ++i) {
+    if (!(point[i] >= 0.0 && point[i] <= side[i])) {
+      fail(i, std::string("expected the principal point ") + (i == 0 ? "cx" : "cy") +
+                  " within the image (0.." + std::to_string(side[i]) + " px), got " +
+                  FormatDouble(point[i], i == 0 ? "cx" : "cy"));
+    }
+  }
+}
+
 DistortionModel ReadDistortionModel(const YamlMap& map, const std::string& key) {
   const std::string name = map.String(key);
   const std::optional<DistortionModel> model = DistortionModelFromName(name);
@@ -116,6 +132,10 @@ CameraIntrinsics ParseOpenCvCamera(const YamlMap& root) {
           .FailElement("data", index, "expected a positive focal length in px (fx, fy)");
     }
   }
+  RequirePrincipalPointInImage(
+      K.data[2], K.data[5], camera.width, camera.height, [&](size_t i, const std::string& what) {
+        root.Map("camera_matrix").FailElement("data", i == 0 ? 2 : 5, what);
+      });
   RequireValue(root, K, 3, 0.0);
   RequireValue(root, K, 6, 0.0);
   RequireValue(root, K, 7, 0.0);
@@ -177,6 +197,9 @@ CameraIntrinsics ParseKalibrCamera(const YamlMap& block) {
       block.FailElement("intrinsics", i, "expected a positive focal length in px (fu, fv)");
     }
   }
+  RequirePrincipalPointInImage(
+      fu_fv_pu_pv[2], fu_fv_pu_pv[3], camera.width, camera.height,
+      [&](size_t i, const std::string& what) { block.FailElement("intrinsics", 2 + i, what); });
   camera.K << fu_fv_pu_pv[0], 0, fu_fv_pu_pv[2], 0, fu_fv_pu_pv[1], fu_fv_pu_pv[3], 0, 0, 1;
   camera.distortion_model = ReadDistortionModel(block, "distortion_model");
   // Kalibr's radtan is OpenCV's with 4 coefficients (k1 k2 p1 p2), its equidistant

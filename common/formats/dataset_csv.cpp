@@ -2,6 +2,7 @@
 #include "common/formats/dataset_csv.h"
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "common/formats/csv_table.h"
@@ -31,6 +32,18 @@ std::optional<double> BoundedSigma(const CsvTable& table, size_t row, const char
   return sigma;
 }
 
+// An encoder reading within a turn: a larger value is a unit mistake (degrees, encoder
+// counts) or a damaged file, and 1e308 made the kinematics non-finite.
+double JointReading(const CsvTable& table, size_t row, const std::string& column) {
+  const double value = table.GetDouble(row, column);
+  if (!(std::abs(value) <= 2.0 * std::numbers::pi)) {
+    table.Fail(row, column,
+               "expected a joint angle within one turn (|q| <= 2 pi rad), got " +
+                   FormatDouble(value, column));
+  }
+  return value;
+}
+
 }  // namespace
 
 std::vector<DatasetRow> ParseDatasetCsv(const std::string& text, const std::string& source_name) {
@@ -48,7 +61,7 @@ std::vector<DatasetRow> ParseDatasetCsv(const std::string& text, const std::stri
     DatasetRow row;
     row.pose_id = ids.Read(table, r);
     row.utime = table.GetInt64(r, "utime");
-    for (size_t i = 0; i < 4; ++i) row.q[i] = table.GetDouble(r, "q" + std::to_string(i + 1));
+    for (size_t i = 0; i < 4; ++i) row.q[i] = JointReading(table, r, "q" + std::to_string(i + 1));
     row.X_CT = ReadPoseColumns(table, r);
     if (table.HasColumn("set")) {
       const std::string& set = table.Cell(r, "set");

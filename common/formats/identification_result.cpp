@@ -40,6 +40,19 @@ void RequireSensibleValue(const JsonValue& field, const std::string& name, doubl
   }
 }
 
+// A standard deviation no larger than the range its value may take (a turn for an angle,
+// kMaxRobotSize_m for a length or position): anything larger says nothing of the robot,
+// and 1e200 made every d^2 of `h4cal check` NaN, which no threshold flags.
+void RequireSensibleStd(const JsonValue& field, const std::string& name, double std_dev) {
+  const bool angle = IsAngleParameter(name);
+  const double limit = angle ? 2.0 * kPi : kMaxRobotSize_m;
+  if (!(std_dev <= limit)) {
+    field.Fail("expected a standard deviation of " + name +
+               " <= " + (angle ? std::string("2 pi rad") : FormatDouble(limit, name) + " m") +
+               ", got " + FormatDouble(std_dev, name));
+  }
+}
+
 RigidTransform ReadTransform(const JsonValue& value) {
   const std::vector<double> t = value["translation"].Numbers(3);
   for (size_t i = 0; i < 3; ++i) {
@@ -83,6 +96,7 @@ void ReadParameters(const JsonValue& list, IdentificationResult* result) {
     p.std = entry["std"].NumberOrNull();
     if (p.std && p.fixed) entry["std"].Fail("expected null for a fixed parameter");
     if (p.std && *p.std < 0.0) entry["std"].Fail("expected a non-negative standard deviation");
+    if (p.std) RequireSensibleStd(entry["std"], p.name, *p.std);
     result->parameters.push_back(p);
   }
 }

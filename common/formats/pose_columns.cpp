@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "common/formats/identification_result.h"
 #include "common/formats/number_text.h"
 #include "common/geometry/rotation.h"
 
@@ -13,9 +14,25 @@ const std::vector<std::string>& PoseColumnNames() {
   return names;
 }
 
+namespace {
+
+// A board within kMaxRobotSize_m of the camera, the result JSON's bound on translations:
+// 1e308 read as a position made `analyze` print -inf and `check` inf.
+double Translation(const CsvTable& table, size_t row, const char* column) {
+  const double value = table.GetDouble(row, column);
+  if (!(std::abs(value) <= kMaxRobotSize_m)) {
+    table.Fail(row, column,
+               "expected a translation within " + FormatDouble(kMaxRobotSize_m, column) +
+                   " m, got " + FormatDouble(value, column));
+  }
+  return value;
+}
+
+}  // namespace
+
 RigidTransform ReadPoseColumns(const CsvTable& table, size_t row) {
-  const Eigen::Vector3d p(table.GetDouble(row, "x"), table.GetDouble(row, "y"),
-                          table.GetDouble(row, "z"));
+  const Eigen::Vector3d p(Translation(table, row, "x"), Translation(table, row, "y"),
+                          Translation(table, row, "z"));
   const double w = table.GetDouble(row, "qw");
   const double x = table.GetDouble(row, "qx");
   const double y = table.GetDouble(row, "qy");

@@ -17,8 +17,9 @@ const std::vector<std::string>& PoseColumnNames();
 /// Tolerance on the quaternion norm (common/formats/README.md).
 inline constexpr double kQuaternionNormTolerance = 1e-3;
 
-/// Reads the pose of row `row`; a non-number names its column, a quaternion whose norm
-/// is not 1 within 1e-3 is an error on field "qw,qx,qy,qz".
+/// Reads the pose of row `row`; a non-number or a translation beyond kMaxRobotSize_m (10 m)
+/// names its column, a quaternion whose norm is not 1 within 1e-3 is an error on field
+/// "qw,qx,qy,qz".
 RigidTransform ReadPoseColumns(const CsvTable& table, size_t row);
 
 /// "x,y,z,qw,qx,qy,qz" values of X (w >= 0), shortest round-trip text.

@@ -1,25 +1,70 @@
 // Robot description YAML; see robot_yaml.h.
 #include "common/formats/robot_yaml.h"
 
+#include <cmath>
+#include <numbers>
+#include <optional>
+
 #include "common/formats/csv_table.h"
 #include "common/formats/file_kind.h"
 #include "common/formats/format_error.h"
+#include "common/formats/identification_result.h"
 #include "common/formats/number_text.h"
 #include "common/formats/yaml_map.h"
 
 namespace h4 {
 namespace {
 
-std::array<double, 4> Four(const YamlMap& map, const std::string& key, bool positive) {
-  const std::vector<double> values = map.Doubles(key, 4);
-  std::array<double, 4> out{};
-  for (size_t i = 0; i < 4; ++i) {
-    if (positive && !(values[i] > 0.0)) {
-      map.FailElement(key, i, "expected a positive length, got " + FormatDouble(values[i], key));
-    }
-    out[i] = values[i];
+// The bounds of common/formats/README.md "Robot description", the result JSON's (no part of
+// an H4 lies kMaxRobotSize_m from its base, no angle needs more than a turn): a value past
+// them is a typing mistake or a damaged file, and 1e154 made `identify` loop on a Jacobian
+// of inf and NaN and `analyze` print NaN. Each check names the file, line and field.
+constexpr double kTurn = 2.0 * std::numbers::pi;
+
+enum class Quantity { kLength, kPosition, kAngle };
+
+void CheckBound(const YamlMap& map, const std::string& key, std::optional<size_t> index,
+                double value, Quantity quantity) {
+  const auto fail = [&](const std::string& what) {
+    if (index) map.FailElement(key, *index, what);
+    map.Fail(key, what);
+  };
+  const std::string field = map.FieldOf(key);
+  switch (quantity) {
+    case Quantity::kLength:
+      if (!(value > 0.0)) fail("expected a positive length, got " + FormatDouble(value, field));
+      [[fallthrough]];
+    case Quantity::kPosition:
+      if (!(std::abs(value) <= kMaxRobotSize_m)) {
+        fail("expected a length within " + FormatDouble(kMaxRobotSize_m, field) + " m, got " +
+             FormatDouble(value, field));
+      }
+      break;
+    case Quantity::kAngle:
+      if (!(std::abs(value) <= kTurn)) {
+        fail("expected an angle within one turn (|a| <= 2 pi rad), got " +
+             FormatDouble(value, field));
+      }
+      break;
   }
-  return out;
+}
+
+double Bounded(const YamlMap& map, const std::string& key, Quantity quantity) {
+  const double value = map.Double(key);
+  CheckBound(map, key, std::nullopt, value, quantity);
+  return value;
+}
+
+std::vector<double> BoundedList(const YamlMap& map, const std::string& key, size_t count,
+                                Quantity quantity) {
+  const std::vector<double> values = map.Doubles(key, count);
+  for (size_t i = 0; i < count; ++i) CheckBound(map, key, i, values[i], quantity);
+  return values;
+}
+
+std::array<double, 4> Four(const YamlMap& map, const std::string& key, Quantity quantity) {
+  const std::vector<double> values = BoundedList(map, key, 4, quantity);
+  return {values[0], values[1], values[2], values[3]};
 }
 
 std::array<int, 4> Signs(const YamlMap& map, const std::string& key) {
@@ -36,8 +81,8 @@ std::array<int, 4> Signs(const YamlMap& map, const std::string& key) {
 
 RigidTransform ReadTransform(const YamlMap& map) {
   map.RejectUnknownKeys({"translation", "rpy"});
-  const std::vector<double> t = map.Doubles("translation", 3);
-  const std::vector<double> rpy = map.Doubles("rpy", 3);
+  const std::vector<double> t = BoundedList(map, "translation", 3, Quantity::kPosition);
+  const std::vector<double> rpy = BoundedList(map, "rpy", 3, Quantity::kAngle);
   return RigidTransform::FromTranslationRpy({t[0], t[1], t[2]}, {rpy[0], rpy[1], rpy[2]});
 }
 
@@ -47,15 +92,17 @@ Model31Parameters ReadModel31(const YamlMap& map) {
   Model31Parameters m31;
   for (size_t j = 0; j < 3; ++j) {
     const std::string n = std::to_string(j + 2);
-    m31.P[j] = Eigen::Vector3d(map.Double("x" + n), map.Double("y" + n), map.Double("z" + n));
+    m31.P[j] = Eigen::Vector3d(Bounded(map, "x" + n, Quantity::kPosition),
+                               Bounded(map, "y" + n, Quantity::kPosition),
+                               Bounded(map, "z" + n, Quantity::kPosition));
   }
-  m31.psi = Four(map, "psi", false);
-  m31.beta = Four(map, "beta", false);
-  m31.q0 = Four(map, "q0", false);
-  m31.arm = Four(map, "arm", true);
-  m31.forearm = Four(map, "forearm", true);
-  m31.h = map.PositiveDouble("h");
-  m31.d = map.Double("d");
+  m31.psi = Four(map, "psi", Quantity::kAngle);
+  m31.beta = Four(map, "beta", Quantity::kAngle);
+  m31.q0 = Four(map, "q0", Quantity::kAngle);
+  m31.arm = Four(map, "arm", Quantity::kLength);
+  m31.forearm = Four(map, "forearm", Quantity::kLength);
+  m31.h = Bounded(map, "h", Quantity::kLength);
+  m31.d = Bounded(map, "d", Quantity::kPosition);
   return m31;
 }
 
@@ -97,13 +144,13 @@ RobotDescription ParseRobotYaml(const std::string& text, const std::string& sour
   RobotDescription robot;
   const YamlMap m12 = root.Map("model12");
   m12.RejectUnknownKeys({"h", "arm", "forearm", "R", "d", "alpha", "q0"});
-  robot.model12.h = m12.PositiveDouble("h");
-  robot.model12.arm = m12.PositiveDouble("arm");
-  robot.model12.forearm = m12.PositiveDouble("forearm");
-  robot.model12.R = m12.PositiveDouble("R");
-  robot.model12.d = m12.Double("d");
-  robot.model12.alpha = Four(m12, "alpha", false);
-  robot.model12.q0 = Four(m12, "q0", false);
+  robot.model12.h = Bounded(m12, "h", Quantity::kLength);
+  robot.model12.arm = Bounded(m12, "arm", Quantity::kLength);
+  robot.model12.forearm = Bounded(m12, "forearm", Quantity::kLength);
+  robot.model12.R = Bounded(m12, "R", Quantity::kLength);
+  robot.model12.d = Bounded(m12, "d", Quantity::kPosition);
+  robot.model12.alpha = Four(m12, "alpha", Quantity::kAngle);
+  robot.model12.q0 = Four(m12, "q0", Quantity::kAngle);
   if (root.Has("assembly")) {
     const YamlMap assembly = root.Map("assembly");
     assembly.RejectUnknownKeys({"bar", "elbow"});

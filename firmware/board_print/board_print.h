@@ -24,8 +24,13 @@ cv::Mat BoardRaster(const BoardLayout& layout, double dpi);
 /// PNG bytes of BoardRaster with a pHYs chunk for `dpi`.
 std::string BoardPng(const BoardLayout& layout, double dpi);
 
+/// The largest PNG page WriteBoardFile rasterises, px (256 MB at a byte a pixel: an A0
+/// page at 400 dpi).
+inline constexpr double kMaxBoardPngPixels = 256.0 * 1024 * 1024;
+
 /// Writes the format chosen by the extension of `path` (.svg, .pdf, .png); false with
-/// `error` naming the path for an unknown extension or a failed write.
+/// `error` naming the path for an unknown extension, a PNG of more than kMaxBoardPngPixels
+/// or a failed write.
 bool WriteBoardFile(const std::string& path, const BoardLayout& layout, double dpi,
                     std::string* error);
 

@@ -97,6 +97,18 @@ bool WriteBoardFile(const std::string& path, const BoardLayout& layout, double d
       *error = path + ": dpi must be in [50, 2400], got " + std::to_string(dpi);
       return false;
     }
+    // Sized in floating point before anything is allocated: a board of 0.5 m tags took
+    // 2.1 GB, tagSize 10 asked OpenCV for 838 GB (and a side past INT_MAX px overflows).
+    const double px_per_m = dpi / kMetresPerInch;
+    const double pixels =
+        std::round(layout.width * px_per_m) * std::round(layout.height * px_per_m);
+    if (!(pixels <= kMaxBoardPngPixels)) {
+      *error = path + ": the page is " + std::to_string(std::llround(pixels / 1e6)) + " Mpx at " +
+               std::to_string(std::lround(dpi)) + " dpi, more than the " +
+               std::to_string(std::llround(kMaxBoardPngPixels / 1e6)) +
+               " Mpx a PNG may have; lower --dpi or write .svg or .pdf (vector, any size)";
+      return false;
+    }
     bytes = BoardPng(layout, dpi);
   } else {
     *error = path + ": unknown extension, expected .svg, .pdf or .png";

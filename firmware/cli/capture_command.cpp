@@ -174,8 +174,10 @@ CaptureSummary RunCapture(const CaptureArgs& args, bool save_frames, std::ostrea
   while ((args.count == 0 || summary.frames < args.count) && !stop.load()) {
     std::optional<Frame> frame = source->Next(std::chrono::milliseconds(1000));
     if (!frame) {
-      if (source->finished()) break;
+      // The error first: an unreadable last file also leaves the file source finished, and
+      // was skipped silently ("checked 1 frame(s)", exit 0) where any other was an error.
       if (!source->error().empty()) throw std::runtime_error(source->error());
+      if (source->finished()) break;
       continue;
     }
     const auto now = std::chrono::steady_clock::now();

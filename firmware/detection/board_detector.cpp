@@ -103,6 +103,9 @@ BoardDetection BoardDetector::DetectAprilGrid(const cv::Mat& image8, const cv::M
     const int first = board_.TagCornerId(tag.id, 0);
     if (first >= 0) ++seen[static_cast<size_t>(first / 4) * 2 + (tag.search > 0 ? 1 : 0)];
   }
+  for (size_t index = 0; index < tag_count; ++index) {
+    if (seen[2 * index] > 1 || seen[2 * index + 1] > 1) ++detection.ids_seen_twice;
+  }
   // Per tag, the candidate with the most refined corners (the first of equals).
   std::vector<std::optional<RefinedTag>> best(tag_count);
   std::vector<char> candidate(tag_count, 0);

@@ -42,7 +42,7 @@ struct DetectorOptions {
   XCornerOptions x_corner;
   int subpix_half_window = 5;  ///< cornerSubPix window (2n+1)^2, px (chessboard too)
   /// Fewer corners than this: status kPartial (the pose would be unreliable).
-  int min_corners = 12;
+  int min_corners = kMinBoardCorners;  ///< the board reader refuses smaller boards
 };
 
 struct BoardDetection {
@@ -52,6 +52,9 @@ struct BoardDetection {
   std::vector<CornerObservation> corners;
   int tags = 0;           ///< AprilTag grid: tags used
   int tags_rejected = 0;  ///< tags whose refinement failed (dropped)
+  /// AprilTag grid: ids decoded more than once in one search (two boards in view, or a
+  /// misdecode), every detection of them dropped; said in the measurement's message.
+  int ids_seen_twice = 0;
 };
 
 const char* ToString(BoardDetection::Status status);

@@ -73,15 +73,22 @@ Measurement MeasurePipeline::MeasureImage(const cv::Mat& image, int frames_avera
   }
   const BoardDetection detection = detector_.Detect(image);
   m.corners_used = static_cast<int>(detection.corners.size());
+  // Tags whose id was decoded twice are dropped (a second board, or a misdecode): say so,
+  // or two boards in view read as if no board had been seen at all.
+  const std::string seen_twice =
+      detection.ids_seen_twice == 0
+          ? std::string()
+          : "; " + std::to_string(detection.ids_seen_twice) +
+                " tag id(s) were seen twice and not used (two boards in view?)";
   if (detection.status == BoardDetection::Status::kNoBoard) {
     m.status = Measurement::Status::kNoBoard;
-    m.message = "no board corner found";
+    m.message = "no board corner found" + seen_twice;
     return m;
   }
   if (detection.status == BoardDetection::Status::kPartial) {
     m.status = Measurement::Status::kPartial;
     m.message = std::to_string(m.corners_used) + " corners, need " +
-                std::to_string(options_.detector.min_corners);
+                std::to_string(options_.detector.min_corners) + seen_twice;
     return m;
   }
   const PoseEstimate pose = EstimatePose(detection.corners, camera_, options_.pose);

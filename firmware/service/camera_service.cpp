@@ -2,6 +2,8 @@
 #include "firmware/service/camera_service.h"
 
 #include <cmath>
+#include <exception>
+#include <string>
 
 #include <spdlog/spdlog.h>
 
@@ -136,8 +138,16 @@ std::optional<h4msgs::board_pose_t> CameraService::Step(Clock::time_point now) {
 
   capture_->last_progress = now;
   ++capture_->received;
-  std::optional<Measurement> m = pipeline_.AddFrame(*frame);
-  if (!m && capture_->received >= capture_->frames) m = pipeline_.Finish();
+  std::optional<Measurement> m;
+  try {
+    m = pipeline_.AddFrame(*frame);
+    if (!m && capture_->received >= capture_->frames) m = pipeline_.Finish();
+  } catch (const std::exception& e) {
+    // One capture request must never end the service (under systemd, a few such requests
+    // made the unit give up): an error in the measurement (OpenCV's assertions on a board
+    // it cannot detect) answers this request with a camera error, and the next one runs.
+    return FailCapture(std::string("measurement failed: ") + e.what());
+  }
   if (!m) return std::nullopt;
   if (m->status == Measurement::Status::kCameraError) RecordError(m->message);
   return Finish(*m, capture_->pose_id);

@@ -3,8 +3,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <set>
+#include <vector>
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -23,7 +27,24 @@ bool IsImageName(const fs::path& path) {
   return kExtensions.count(ext) > 0;
 }
 
+bool ReadFileBytes(const std::string& path, std::vector<uint8_t>* bytes) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  bytes->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return !in.bad();
+}
+
 }  // namespace
+
+bool IsTruncatedJpeg(const std::vector<uint8_t>& bytes) {
+  if (bytes.size() < 2 || bytes[0] != 0xFF || bytes[1] != 0xD8) return false;  // not a JPEG
+  // libjpeg decodes a JPEG cut short (it warns "Premature end of JPEG file" and fills the
+  // rest grey), so a half-copied file would be measured: a whole one ends with the EOI
+  // marker, after at most some zero padding that some writers add.
+  size_t end = bytes.size();
+  while (end > 2 && bytes[end - 1] == 0x00) --end;
+  return !(end >= 4 && bytes[end - 2] == 0xFF && bytes[end - 1] == 0xD9);
+}
 
 ImageFileSource::ImageFileSource(std::vector<std::string> paths) : paths_(std::move(paths)) {}
 
@@ -58,7 +79,18 @@ bool ImageFileSource::Open() {
 }
 
 cv::Mat ImageFileSource::ReadGrey(const std::string& path, std::string* why) {
-  const cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
+  std::vector<uint8_t> bytes;
+  if (!ReadFileBytes(path, &bytes)) {
+    *why = path + ": cannot read the image (missing, unreadable or not an image format)";
+    return {};
+  }
+  if (IsTruncatedJpeg(bytes)) {
+    *why = path +
+           ": truncated JPEG (no end-of-image marker FF D9: a partial copy or an "
+           "interrupted write)";
+    return {};
+  }
+  const cv::Mat image = bytes.empty() ? cv::Mat() : cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
   if (image.empty()) {
     *why = path + ": cannot read the image (missing, unreadable or not an image format)";
     return {};

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <chrono>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +13,11 @@
 #include "firmware/sources/frame_source.h"
 
 namespace h4::cam {
+
+/// A file that starts as a JPEG (FF D8) but does not end with its end-of-image marker
+/// (FF D9, trailing zero bytes allowed): a copy cut short, which libjpeg would decode with
+/// a warning and grey in place of the missing part.
+bool IsTruncatedJpeg(const std::vector<uint8_t>& bytes);
 
 class ImageFileSource final : public DevicelessFrameSource {
  public:
@@ -30,7 +36,8 @@ class ImageFileSource final : public DevicelessFrameSource {
   /// The files, in the order they are delivered (after Open()).
   const std::vector<std::string>& files() const { return files_; }
 
-  /// Reads one image file as CV_8UC1; empty with `why` set when it cannot.
+  /// Reads one image file as CV_8UC1; empty with `why` set when it cannot (a truncated
+  /// JPEG included).
   static cv::Mat ReadGrey(const std::string& path, std::string* why);
   /// A decoded image (cv::imread / cv::imdecode with IMREAD_UNCHANGED) as CV_8UC1: grey
   /// kept, colour (3 or 4 channels) converted; empty with `why` (naming `name`) for an

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
@@ -231,8 +232,24 @@ IdentifiabilityReport AnalyzeIdentifiability(const Eigen::MatrixXd& J_full, Mode
   IdentifiabilityReport report;
   const std::vector<std::string> preferences =
       options.preferences.empty() ? DefaultFixPreferences(model) : options.preferences;
+  // inf or NaN (a start point far outside any robot, or a pose the model cannot evaluate)
+  // makes every singular value NaN: no direction would ever be broken and the rounds below
+  // would not end. Say so instead of fixing parameters at random.
+  if (!J_full.allFinite()) {
+    throw std::runtime_error(
+        "identifiability analysis: the Jacobian at the start point holds inf or NaN (are the "
+        "robot description's values those of a real robot?)");
+  }
   FixSecondOrderParameters(J_full, options, p, &report);
-  while (p->free_count() > 0 && FixNullDirections(J_full, preferences, options, p, &report)) {
+  // Each round fixes at least one parameter, else it stops: at most one round per free
+  // parameter, whatever the Jacobian holds.
+  for (int round = 0, rounds = p->free_count(); round < rounds && p->free_count() > 0; ++round) {
+    const int free_before = p->free_count();
+    if (!FixNullDirections(J_full, preferences, options, p, &report)) break;
+    if (p->free_count() == free_before) {
+      report.log.push_back("a near-null direction could not be broken by fixing a parameter");
+      break;
+    }
   }
   report.log.push_back(
       fmt::format("scaled Jacobian condition number {:.3g} over {} free parameters",

@@ -51,7 +51,8 @@ struct IdentifiabilityReport {
 };
 
 /// Analyses J_full (residuals x p->size(), the Jacobian by all parameters) over p's free
-/// parameters and fixes the unidentifiable ones in *p (at their current values).
+/// parameters and fixes the unidentifiable ones in *p (at their current values). Throws
+/// std::runtime_error when J_full holds inf or NaN.
 IdentifiabilityReport AnalyzeIdentifiability(const Eigen::MatrixXd& J_full, ModelKind model,
                                              const IdentifiabilityOptions& options,
                                              ParameterVector* p);

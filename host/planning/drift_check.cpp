@@ -104,6 +104,17 @@ DriftCheckResult CheckForDrift(const KinematicModel& model, const ParameterVecto
     check.predicted_covariance =
         Eigen::Matrix<double, 6, 6>::Identity() + J_j * parameter_covariance * J_j.transpose();
     check.mahalanobis2 = r_j.dot(check.predicted_covariance.ldlt().solve(r_j));
+    // NaN compares false with every threshold and would pass as a match: a d^2 that is not
+    // a finite number means the result cannot judge this pose.
+    if (!std::isfinite(check.mahalanobis2)) {
+      result.evaluable = false;
+      result.drift = true;
+      result.message = fmt::format(
+          "pose {}: d^2 is not a finite number (the result's standard deviations or "
+          "covariance are too large to predict a board pose)",
+          check.pose_id);
+      return result;
+    }
     check.rotation_error = r_j.head<3>().norm() / cost.RotationWeight(rows[static_cast<size_t>(j)]);
     check.position_error =
         r_j.tail<3>().norm() / cost.TranslationWeight(rows[static_cast<size_t>(j)]);

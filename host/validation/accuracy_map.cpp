@@ -125,8 +125,16 @@ AccuracyMap ComputeAccuracyMap(const KinematicModel& model, const Eigen::MatrixX
   }
   for (size_t k = 0; k < reached.size(); ++k) {
     const Eigen::Matrix4d S = sensitivity[k] * C * sensitivity[k].transpose();
-    map.points.push_back({reached[k], std::sqrt(std::max(0.0, S.topLeftCorner<3, 3>().trace())),
-                          std::sqrt(std::max(0.0, S(3, 3)))});
+    const double position_sigma = std::sqrt(std::max(0.0, S.topLeftCorner<3, 3>().trace()));
+    const double theta_sigma = std::sqrt(std::max(0.0, S(3, 3)));
+    // A covariance too large for doubles gives no sigma (inf, or NaN that std::max(0, NaN)
+    // would turn into 0, hence the check of S itself): the pose is left out rather than
+    // printed or plotted as inf, which neither the median nor gnuplot can take.
+    if (!std::isfinite(position_sigma) || !std::isfinite(theta_sigma) || !S.allFinite()) {
+      ++map.left_out;
+      continue;
+    }
+    map.points.push_back({reached[k], position_sigma, theta_sigma});
   }
   return map;
 }

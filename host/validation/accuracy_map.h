@@ -59,7 +59,7 @@ struct AccuracyMap {
   EePose centre = EePose::Zero();  ///< the grid's centre (the model's workspace centre)
   AccuracyMapOptions options;
   std::vector<AccuracyMapPoint> points;  ///< reachable poses, Z level, theta, Y, X order
-  int left_out = 0;  ///< grid poses out of reach or singular
+  int left_out = 0;  ///< grid poses out of reach, singular, or without a finite sigma
   /// Median and largest position sigma over the points, m (0 when none).
   double MedianPositionSigma() const;
   double MaxPositionSigma() const;

@@ -53,7 +53,9 @@ std::vector<uint8_t> ReadAll(int fd, const std::string& path, size_t size) {
 }  // namespace
 
 AuthKey ReadAuthKeyFile(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // O_NONBLOCK: opening a FIFO (or a device) for reading would otherwise wait for a writer
+  // before the checks below could refuse it; on a regular file it changes nothing.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
   if (fd < 0) Fail(path, std::string("cannot open: ") + std::strerror(errno));
   AuthKey key;
   try {

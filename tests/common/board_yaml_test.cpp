@@ -186,11 +186,38 @@ TEST(BoardYamlErrors, NonPositiveCountsAndSizes) {
                         "b.yaml", 5, "tagSize", "expected a number, got '24mm'"));
   std::string chess = ReplacedOnce(kCheckerboard, "targetRows: 6", "targetRows: 1");
   EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(chess, "c.yaml"); }, "c.yaml", 3, "targetRows",
-                        "in [2, 200], got 1"));
+                        "in [3, 200], got 1"));
   chess = kCheckerboard;
   chess.erase(chess.find("rowSpacingMeters"));
   EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(chess, "c.yaml"); }, "c.yaml", 0, "rowSpacingMeters",
                         "missing key"));
+}
+
+// issue 27 point 9: a checkerboard of 2 inner corners per side was read; OpenCV's detector
+// asserts on it and `h4cam run` exited on the first capture request. A board h4cam cannot
+// measure (under 3 per side, fewer than 12 corners in all) is refused naming the field.
+TEST(BoardYamlErrors, BoardsTooSmallToMeasureAreRefused) {
+  const auto chess = [](int cols, int rows) {
+    return ReplacedOnce(
+        ReplacedOnce(kCheckerboard, "targetCols: 9", "targetCols: " + std::to_string(cols)),
+        "targetRows: 6", "targetRows: " + std::to_string(rows));
+  };
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(chess(2, 2), "c.yaml"); }, "c.yaml", 2, "targetCols",
+                        "in [3, 200], got 2"));
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(chess(9, 2), "c.yaml"); }, "c.yaml", 3, "targetRows",
+                        "in [3, 200], got 2"));
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(chess(3, 3), "c.yaml"); }, "c.yaml", 2, "targetCols",
+                        "3 x 3 inner corners; h4cam needs 12"));
+  EXPECT_NO_THROW(ParseBoardYaml(chess(3, 4), "c.yaml"));
+  const auto grid = [](int cols, int rows) {
+    return ReplacedOnce(ReplacedOnce(kAprilGrid, "tagCols: 6", "tagCols: " + std::to_string(cols)),
+                        "tagRows: 6", "tagRows: " + std::to_string(rows));
+  };
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(grid(1, 1), "b.yaml"); }, "b.yaml", 3, "tagCols",
+                        "1 x 1 tags has 4 corners; h4cam needs 12"));
+  EXPECT_TRUE(
+      FailsWith([&] { ParseBoardYaml(grid(2, 1), "b.yaml"); }, "b.yaml", 3, "tagCols", "needs 12"));
+  EXPECT_NO_THROW(ParseBoardYaml(grid(3, 1), "b.yaml"));
 }
 
 // Regression: tagRows: 2147483647 ended in bad_alloc after 36 s. Counts and sizes are
@@ -219,7 +246,7 @@ TEST(BoardYamlErrors, CountsAndSizesAboveTheLimitsNameTheField) {
         ParseBoardYaml(ReplacedOnce(kCheckerboard, "targetRows: 6", "targetRows: 100000"),
                        "b.yaml");
       },
-      "b.yaml", 3, "targetRows", "[2, 200]"));
+      "b.yaml", 3, "targetRows", "[3, 200]"));
   EXPECT_NO_THROW(ParseBoardYaml(ReplacedOnce(kAprilGrid, "tagRows: 6", "tagRows: 200"), "b.yaml"));
 }
 

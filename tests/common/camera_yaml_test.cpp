@@ -272,6 +272,22 @@ TEST(CameraYaml, ReadsOneCameraOfAKalibrCamchainByName) {
   EXPECT_TRUE(FailsWith([&] { ReadCameraYaml(path + "#cam2"); }, path, 0, "cam2", "missing key"));
 }
 
+// issue 27 point 7: cy = 1e9 read, and the image checks took 23 s before refusing the
+// image. A principal point outside the image is refused naming the element.
+TEST(CameraYamlErrors, APrincipalPointOutsideTheImageNamesTheElement) {
+  EXPECT_TRUE(
+      FailsWith([] { ParseCameraYaml(CameraFileWith("544.", "1e9"), "cam.yaml"); }, "cam.yaml", 11,
+                "camera_matrix.data[5]",
+                "expected the principal point cy within the image (0..1088 px), got 1e+09"));
+  EXPECT_TRUE(FailsWith(
+      [] { ParseCameraYaml(CameraFileWith("7.2810000000000002e+02", "-1."), "cam.yaml"); },
+      "cam.yaml", 10, "camera_matrix.data[2]", "principal point cx"));
+  std::string kalibr = kKalibrCamchain;
+  kalibr.replace(kalibr.find("248.375"), 7, "1e9");
+  EXPECT_TRUE(FailsWith([&] { ParseCameraYaml(kalibr, "k.yaml"); }, "k.yaml", 6,
+                        "cam0.intrinsics[3]", "principal point cy"));
+}
+
 TEST(CameraYamlErrors, KalibrFieldsAreCheckedAndNamed) {
   const auto with = [](const std::string& from, const std::string& to) {
     std::string text = kKalibrCamchain;

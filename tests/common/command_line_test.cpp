@@ -2,10 +2,13 @@
 // shared_options.h): old spellings accepted but not shown, one error line, exit codes.
 #include "common/cli/command_line.h"
 
+#include <cstdio>
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include "common/cli/shared_options.h"
 #include "common/formats/format_error.h"
@@ -70,6 +73,30 @@ TEST(CommandLineTest, CommandErrorIsOneLineNamingFileLineAndField) {
   const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_EQ(code, kExitError);
   EXPECT_EQ(err, "prog: error: robot.yaml:12: field 'model12.h': expected a number, got 'abc'\n");
+}
+
+// issue 27 point 18: --camera camchain.yaml#cam1 was refused "File does not exist": the
+// option checked the whole text as a file. The part before '#' is the file.
+TEST(CommandLineTest, TheCameraOptionTakesAKalibrCameraAfterTheFile) {
+  const std::string dir = ::testing::TempDir();
+  const std::string file = dir + "h4_camchain_" + std::to_string(::getpid()) + ".yaml";
+  std::ofstream(file) << "cam0: {}\n";
+  const auto parses = [](const std::string& value) {
+    CLI::App app{"test"};
+    std::string camera;
+    AddCameraOption(&app, &camera);
+    try {
+      app.parse(std::vector<std::string>{value, "--camera"});  // CLI11 parses the vector reversed
+    } catch (const CLI::ParseError& e) {
+      return e.what() + std::string();
+    }
+    return camera == value ? std::string("ok") : "read '" + camera + "'";
+  };
+  EXPECT_EQ(parses(file), "ok");
+  EXPECT_EQ(parses(file + "#cam1"), "ok");
+  EXPECT_NE(parses(dir + "h4_missing.yaml#cam1"), "ok");
+  EXPECT_NE(parses(dir + "h4_missing.yaml"), "ok");
+  std::remove(file.c_str());
 }
 
 TEST(CommandLineTest, ExitCodeOfTheCommandIsReturned) {

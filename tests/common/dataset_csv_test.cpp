@@ -162,6 +162,20 @@ TEST(DatasetCsvErrors, MalformedRowIsNamedByLineAndField) {
   ExpectEachFailsWith(ParseDatasetCsv, "d.csv", rows);
 }
 
+// issue 27 point 2: a row with x or z = 1e308 read, and `analyze` printed -inf, `check` inf.
+// Translations are bounded at 10 m (the result JSON's bound), joint readings at a turn.
+TEST(DatasetCsvErrors, ValuesBeyondAnyRobotNameTheField) {
+  const std::vector<MalformedInput> rows = {
+      {WithRow("1,100,0,0,0,0,1e308,0,1,1,0,0,0"), 3, "x", "within 10 m, got 1e+308"},
+      {WithRow("1,100,0,0,0,0,0,0,-1e308,1,0,0,0"), 3, "z", "within 10 m"},
+      {WithRow("1,100,0,0,0,0,0,10.001,1,1,0,0,0"), 3, "y", "within 10 m"},
+      {WithRow("1,100,0,1e300,0,0,0,0,1,1,0,0,0"), 3, "q2", "within one turn"},
+      {WithRow("1,100,0,0,0,-6.3,0,0,1,1,0,0,0"), 3, "q4", "within one turn"},
+  };
+  ExpectEachFailsWith(ParseDatasetCsv, "d.csv", rows);
+  EXPECT_EQ(ParseDatasetCsv(WithRow("1,100,6.28,0,0,0,10,-10,10,1,0,0,0"), "d.csv").size(), 2u);
+}
+
 TEST(DatasetCsvErrors, UnknownSet) {
   const std::string header = kDatasetHeader + ",set";
   EXPECT_TRUE(

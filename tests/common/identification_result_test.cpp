@@ -293,6 +293,26 @@ TEST(IdentificationResultErrors, ValuesTheKinematicsCannotUseNameTheField) {
       fails(ResultWith("[0, 0, -1.05]", "[0, 0, -1e300]"), "X_BC.translation[2]", "within 10 m"));
 }
 
+// issue 27 point 1: nothing bounded `std`; 1e200 made every d^2 of `h4cal check` NaN and
+// the check passed. A sigma beyond the range its value may take is refused.
+TEST(IdentificationResultErrors, AStandardDeviationBeyondItsRangeNamesTheField) {
+  const auto fails = [](const std::string& text, const std::string& field,
+                        const std::string& expected) {
+    return FailsWith([&] { ParseIdentificationResult(text, "r.json"); }, "r.json", 0, field,
+                     expected);
+  };
+  EXPECT_TRUE(fails(ResultWith("\"std\": 0.0001", "\"std\": 1e200"), "parameters[0].std",
+                    "expected a standard deviation of h <= 10 m, got 1e+200"));
+  EXPECT_TRUE(
+      fails(ResultWith("\"std\": 0.0001", "\"std\": 10.5"), "parameters[0].std", "<= 10 m"));
+  EXPECT_TRUE(
+      fails(ResultWith("{\"name\": \"h\", \"value\": 0.0610, \"apriori\": 0.06, \"std\": 0.0001",
+                       "{\"name\": \"alpha1\", \"value\": 0.1, \"apriori\": 0.1, \"std\": 7"),
+            "parameters[0].std", "<= 2 pi rad"));
+  EXPECT_NO_THROW(
+      ParseIdentificationResult(ResultWith("\"std\": 0.0001", "\"std\": 10"), "r.json"));
+}
+
 // Regression: a JSON nested 100,000 deep crashed fk, ik, export, validate and identify --from
 // (the error message printed the value recursively). The depth is checked before parsing.
 TEST(IdentificationResultErrors, DeepNestingIsRefusedBeforeParsing) {

@@ -193,6 +193,30 @@ TEST(RobotYamlErrors, NonPositiveLength) {
                         "positive"));
 }
 
+// issue 27 points 2 and 5: nothing bounded robot.yaml's numbers; h = 1e154 made `identify`
+// loop, X_TE.translation x = -1e308 made `analyze` print NaN. Lengths and positions are
+// bounded at 10 m like the result JSON's, angles at a turn, each error with line and field.
+TEST(RobotYamlErrors, ValuesBeyondAnyRobotNameTheField) {
+  const auto fails = [](const std::string& text, int line, const std::string& field,
+                        const std::string& expected) {
+    return FailsWith([&] { ParseRobotYaml(text, "r.yaml"); }, "r.yaml", line, field, expected);
+  };
+  EXPECT_TRUE(fails(Replace(3, "  h: 1e154"), 3, "model12.h", "within 10 m, got 1e+154"));
+  EXPECT_TRUE(fails(Replace(5, "  forearm: 10.01"), 5, "model12.forearm", "within 10 m"));
+  EXPECT_TRUE(fails(Replace(7, "  d: -1e308"), 7, "model12.d", "within 10 m"));
+  EXPECT_TRUE(fails(Replace(8, "  alpha: [0, 3.1416, 4.7124, 1e300]"), 8, "model12.alpha[3]",
+                    "within one turn"));
+  EXPECT_TRUE(fails(Replace(14, "  translation: [0, 1e154, -1.05]"), 14, "X_BC.translation[1]",
+                    "within 10 m"));
+  EXPECT_TRUE(fails(Replace(17, "  translation: [-1e308, 0.09, 0.025]"), 17, "X_TE.translation[0]",
+                    "within 10 m"));
+  EXPECT_TRUE(fails(Replace(18, "  rpy: [0, 7, 0]"), 18, "X_TE.rpy[1]", "within one turn"));
+  std::string text = kExample + kModel31;
+  text.replace(text.find("arm: [0.26, 0.261"), 17, "arm: [0.26, 1e200");
+  EXPECT_TRUE(fails(text, 32, "model31.arm[1]", "within 10 m"));
+  EXPECT_NO_THROW(ParseRobotYaml(Replace(5, "  forearm: 10"), "r.yaml"));
+}
+
 TEST(RobotYamlErrors, AssemblySignMustBePlusOrMinusOne) {
   EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(11, "  bar: [1, -1, 2, -1]"), "r.yaml"); },
                         "r.yaml", 11, "assembly.bar[2]", "expected 1 or -1, got 2"));

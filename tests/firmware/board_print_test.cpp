@@ -276,6 +276,22 @@ TEST(BoardPrint, UnknownExtensionAndUnsupportedFamilyAreErrors) {
   EXPECT_NE(error.find("tag id 587 is beyond family tag36h11"), std::string::npos) << error;
 }
 
+// issue 27 point 8: a PNG had no pixel limit: a board of 0.5 m tags took 2.1 GB, tagSize 10
+// asked OpenCV for 838 GB. The page is sized before anything is allocated.
+TEST(BoardPrint, APngPageBeyondThePixelLimitIsRefusedBeforeAllocating) {
+  const fs::path tmp = fs::temp_directory_path() / "h4_board_print_limit.png";
+  AprilGridSpec huge = LegacyGrid();
+  huge.tag_size = 10.0;
+  BoardLayout layout;
+  std::string error;
+  ASSERT_TRUE(LayoutBoard(huge, {}, &layout, &error)) << error;
+  EXPECT_FALSE(WriteBoardFile(tmp.string(), layout, 300, &error));
+  EXPECT_NE(error.find("Mpx a PNG may have"), std::string::npos) << error;
+  EXPECT_FALSE(fs::exists(tmp));
+  EXPECT_TRUE(WriteBoardFile(tmp.string(), Layout(CheckerboardSpec{}, 0.01), 300, &error)) << error;
+  fs::remove(tmp);
+}
+
 // boards/README.md gives the commands that made the committed printables; this checks
 // they are still what make-board writes.
 TEST(BoardPrint, CommittedPrintablesAreUpToDate) {

@@ -276,6 +276,34 @@ TEST(CameraServiceTest, AnExhaustedFileSourceAnswersWithACameraError) {
   EXPECT_NE(service.last_error().find("no more frames"), std::string::npos);
 }
 
+// issue 27 point 9: a checkerboard of 2 inner corners per side made OpenCV's chessboard
+// detector throw, and `h4cam run` exited on its first capture request. The board reader now
+// refuses such a board; the service answers any measurement that throws with a camera error
+// and serves the next request.
+TEST(CameraServiceTest, AMeasurementThatThrowsIsACameraErrorAndTheServiceGoesOn) {
+  SimSource sim(scenes::PaperBoard(), scenes::PaperCamera(), SimSourceOptions{});
+  CheckerboardSpec too_small;
+  too_small.cols = 2;
+  too_small.rows = 2;
+  CameraService service(CameraServiceOptions{}, sim, BoardSpec{too_small}, scenes::PaperCamera());
+  ASSERT_TRUE(service.Start()) << service.last_error();
+  ASSERT_TRUE(service.SubmitRequest(Request(1, 1)));
+  ASSERT_TRUE(service.SubmitRequest(Request(2, 1)));
+  std::vector<h4msgs::board_pose_t> poses;
+  for (int i = 0; i < 20 && poses.size() < 2; ++i) {
+    std::optional<h4msgs::board_pose_t> m;
+    ASSERT_NO_THROW(m = service.Step());
+    if (m) poses.push_back(*m);
+  }
+  ASSERT_EQ(poses.size(), 2u);
+  for (size_t k = 0; k < 2; ++k) {
+    EXPECT_EQ(poses[k].pose_id, static_cast<int64_t>(k + 1));
+    EXPECT_EQ(poses[k].status, int8_t{h4msgs::board_pose_t::STATUS_CAMERA_ERROR});
+  }
+  EXPECT_NE(service.last_error().find("measurement failed"), std::string::npos)
+      << service.last_error();
+}
+
 TEST(CameraServiceTest, DirectorySourceMeasuresImagesInNameOrderThenReportsExhaustion) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("h4cam_dir_source_" + std::to_string(getpid()));

@@ -6,8 +6,10 @@
 
 #include <atomic>
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -55,6 +57,24 @@ class CaptureCommandTest : public ::testing::Test {
   fs::path dir_;
   CaptureArgs args_;
 };
+
+// issue 27 point 15: an unreadable last file of `--source dir:` was skipped silently
+// ("checked 1 frame(s)", exit 0) while the same file anywhere else was an error.
+TEST_F(CaptureCommandTest, AnUnreadableLastFileOfADirectoryIsAnError) {
+  const fs::path images = dir_ / "images";
+  fs::create_directories(images);
+  ASSERT_TRUE(
+      cv::imwrite((images / "a.png").string(), cv::Mat(768, 1024, CV_8UC1, cv::Scalar(128))));
+  std::ofstream(images / "b.png") << "not a png";
+  args_.source = "dir:" + images.string();
+  args_.out_dir.clear();
+  try {
+    Run(false);
+    FAIL() << "the unreadable b.png was skipped";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("b.png"), std::string::npos) << e.what();
+  }
+}
 
 TEST_F(CaptureCommandTest, SavesTheFramesAndPrintsTheDetectionOfEach) {
   args_.count = 2;

@@ -3,8 +3,10 @@
 // identified model's joints; the grid, the poses left out, the CSV and a result's map.
 #include "host/validation/accuracy_map.h"
 
+#include <cmath>
 #include <random>
 #include <sstream>
+#include <string>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
@@ -162,6 +164,19 @@ TEST(AccuracyMapTest, PosesOutOfReachAreLeftOut) {
   for (const AccuracyMapPoint& point : map.points) {
     EXPECT_TRUE(model->InverseKinematics(point.x).ok());
   }
+}
+
+// issue 27 point 1: a covariance beyond what a double holds gave sigmas of inf; the report
+// printed "median inf mm" and passed inf to gnuplot. Such poses are left out.
+TEST(AccuracyMapTest, PosesWithoutAFiniteSigmaAreLeftOut) {
+  const std::unique_ptr<KinematicModel> model = Model31Robot().MakeModel();
+  const AccuracyMap map = ComputeAccuracyMap(*model, Eigen::MatrixXd::Identity(31, 31) * 1e308);
+  EXPECT_GT(map.left_out, 0);
+  for (const AccuracyMapPoint& point : map.points) {
+    EXPECT_TRUE(std::isfinite(point.position_sigma_m) && std::isfinite(point.theta_sigma_rad));
+  }
+  EXPECT_TRUE(std::isfinite(map.MedianPositionSigma()));
+  EXPECT_EQ(AccuracyMapCsv(map).find("inf"), std::string::npos);
 }
 
 TEST(AccuracyMapTest, RefusesBadOptionsAndAWronglySizedCovariance) {

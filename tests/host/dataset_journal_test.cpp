@@ -93,6 +93,27 @@ TEST_F(DatasetJournalTest, DropsALastLineCutByACrash) {
   EXPECT_EQ(ReadDatasetCsv(path_).size(), 3u);
 }
 
+// issue 27 point 13: a dataset saved with CRLF line ends or a byte order mark (which the
+// readers take) was refused on resume, "exists with other columns", quoting two headers
+// that print the same.
+TEST_F(DatasetJournalTest, ResumesAFileWithCrlfLineEndsOrAByteOrderMark) {
+  {
+    DatasetJournal journal(path_);
+    journal.Append(Row(1));
+  }
+  const std::string lf = Slurp(path_);
+  std::string crlf;
+  for (char c : lf) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  for (const std::string& text : {crlf, "\xEF\xBB\xBF" + lf, "\xEF\xBB\xBF" + crlf}) {
+    std::ofstream(path_, std::ios::binary | std::ios::trunc) << text;
+    DatasetJournal resumed(path_);
+    EXPECT_EQ(resumed.resumed_count(), 1u);
+    EXPECT_TRUE(resumed.Contains(1));
+    resumed.Append(Row(2));
+    EXPECT_EQ(ReadDatasetCsv(path_).size(), 2u);
+  }
+}
+
 TEST_F(DatasetJournalTest, RefusesAFileWithOtherColumns) {
   std::ofstream(path_) << "pose_id,utime,q1,q2,q3,q4,x,y,z,qw,qx,qy,qz\n";
   try {

@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <iostream>
+#include <limits>
+#include <stdexcept>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -72,6 +75,31 @@ TEST(IdentifiabilityTest, AFullRankJacobianFixesNothing) {
   const IdentifiabilityReport report = AnalyzeIdentifiability(J, ModelKind::k12, {}, &p);
   EXPECT_TRUE(report.fixed.empty());
   EXPECT_EQ(p.free_count(), 25);
+}
+
+// issue 27 point 5: a robot.yaml with h = 1e154 gave a Jacobian holding inf and NaN, on
+// which every round found a null direction and fixed nothing: `identify` never ended. The
+// analysis refuses such a Jacobian, and ends either way.
+TEST(IdentifiabilityTest, ANonFiniteJacobianIsRefusedNotLoopedOn) {
+  const testing::TrueSetup setup = testing::TrueModel12Setup();
+  ParameterVector p(*setup.model, setup.X_BC, PaperX_TE());
+  IdentificationCost cost(CostKind::kMeasurement, *setup.model,
+                          ConsistentRows(*setup.model, p, testing::NoiseFreeRows(setup)));
+  Eigen::VectorXd r;
+  Eigen::MatrixXd J;
+  ASSERT_TRUE(cost.Evaluate(p, &r, &J));
+  for (const double bad :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    Eigen::MatrixXd J_bad = J;
+    J_bad.col(0).setConstant(bad);
+    ParameterVector q = p;
+    try {
+      AnalyzeIdentifiability(J_bad, setup.model->kind(), {}, &q);
+      ADD_FAILURE() << "a Jacobian holding " << bad << " was analysed";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("inf or NaN"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace

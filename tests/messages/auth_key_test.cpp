@@ -2,13 +2,19 @@
 // name the file and say how to fix it.
 #include "messages/bus/auth_key.h"
 
+#include <cerrno>
+#include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <future>
 #include <stdexcept>
 #include <string>
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 namespace h4::bus {
 namespace {
@@ -73,6 +79,22 @@ TEST_F(AuthKeyTest, RefusesAMissingFileAndADirectoryNamingThem) {
   fs::create_directories(dir_ / "folder");
   ::chmod((dir_ / "folder").c_str(), 0700);
   EXPECT_NE(ErrorOf((dir_ / "folder").string()).find("not a regular file"), std::string::npos);
+}
+
+// issue 27 point 6: a FIFO blocked in open() until a writer came, before the check that
+// refuses it. The read runs aside, so that a regression fails here instead of hanging.
+TEST_F(AuthKeyTest, RefusesAFifoWithoutWaitingForAWriter) {
+  const std::string fifo = (dir_ / "fifo").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0) << std::strerror(errno);
+  std::future<std::string> error = std::async(std::launch::async, [&] { return ErrorOf(fifo); });
+  if (error.wait_for(std::chrono::seconds(5)) != std::future_status::ready) {
+    // Unblock the reader (a writer opens the other end), then fail.
+    const int writer = ::open(fifo.c_str(), O_WRONLY);
+    if (writer >= 0) ::close(writer);
+    FAIL() << "reading a FIFO as a key still waits in open() for a writer";
+  }
+  const std::string text = error.get();
+  EXPECT_NE(text.find(fifo + ": auth key: not a regular file"), std::string::npos) << text;
 }
 
 }  // namespace

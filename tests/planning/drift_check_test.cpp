@@ -6,6 +6,7 @@
 #include "host/planning/drift_check.h"
 
 #include <cmath>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -160,6 +161,22 @@ TEST(DriftCheck, ChiSquareQuantilesMatchTables) {
   EXPECT_NEAR(ChiSquareUpperQuantileEvenDof(2, 0.05), 5.991, 1e-3);
   EXPECT_NEAR(ChiSquareUpperQuantileEvenDof(6, 0.01), 16.812, 1e-3);
   EXPECT_NEAR(ChiSquareUpperQuantileEvenDof(30, 0.05), 43.773, 1e-3);
+}
+
+// issue 27 point 1: a result whose sigmas were 1e200 (no parameter_covariance: C is their
+// squares, which overflow) made every d^2 NaN, which no threshold flags: `check` printed
+// "-nan ... ok" and "the robot matches the result".
+TEST(DriftCheck, ANonFiniteDSquaredIsNotEvaluableNotAMatch) {
+  const SimulatedRobot truth = Truth();
+  const ParameterVector result = ResultOf(truth);
+  const Eigen::MatrixXd huge =
+      Eigen::VectorXd::Constant(result.size(), 1e200).cwiseAbs2().asDiagonal();
+  const DriftCheckResult check =
+      CheckForDrift(*truth.MakeModel(), result, huge, Campaign(truth, 1, true));
+  EXPECT_FALSE(check.evaluable);
+  EXPECT_TRUE(check.drift);
+  EXPECT_NE(check.Summary().find("not a finite number"), std::string::npos) << check.Summary();
+  for (const PoseCheck& pose : check.poses) EXPECT_TRUE(std::isfinite(pose.mahalanobis2));
 }
 
 }  // namespace
