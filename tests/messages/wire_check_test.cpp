@@ -69,7 +69,7 @@ h4msgs::board_corners_t SampleBoardCorners(int corners) {
 constexpr size_t kBoardPoseCameraIdLength = 8 + 8 + 8;
 constexpr size_t kJointStateCount = 8 + 8 + 8;
 constexpr size_t kCameraStatusCameraIdLength = 8 + 8;
-constexpr size_t kBoardCornersCount = 8 + 8 + 4 + 4;  // camera_id "sim": 4 bytes and the NUL
+constexpr size_t kBoardCornersCount = 8 + 8 + 8 + 4 + 4;  // camera_id "sim": length, 3 bytes, NUL
 
 TEST(WireCheck, EveryLayoutAcceptsWhatTheGeneratedEncoderWrites) {
   std::string why;
