@@ -598,25 +598,25 @@ TEST_F(CampaignCornersTest, ImpossibleCornersAreCountedNotWritten) {
   DatasetJournal journal(path_);
   CornersJournal corners(corners_path_);
   Campaign campaign(bus, Plan(2), journal, corners, FastOptions());
-  // Published before each pose is recorded: a non-finite u, a corner twice.
+  // Once each pose is recorded, its corners with its utime but an impossible value: a
+  // non-finite u for pose 1, one corner twice for pose 2.
   h4msgs::board_pose_t pose{};
-  pose.pose_id = 1;
   h4msgs::board_corners_t bad = ScriptedCell::Corners(pose);
-  cell.send_corners = false;
-  int published = 0;
-  Run(bus, campaign, &cell, 20.0, [&] {
-    // Bad corners for every OK answer: the cell's answers carry the request's utime.
-    if (published < 2 && journal.Contains(published + 1)) {
-      const DatasetRow& row = journal.rows()[static_cast<size_t>(published)];
-      bad.pose_id = row.pose_id;
-      bad.utime = row.utime;
-      if (published == 0) bad.u[0] = std::nan("");
-      if (published == 1) bad.corner[1] = bad.corner[0];
-      bus.Publish(channels::kBoardCorners, bad);
-      ++published;
-    }
-  });
+  size_t published = 0;
+  const auto publish_bad = [&] {
+    if (published >= 2 || journal.rows().size() <= published) return;
+    const DatasetRow& row = journal.rows()[published];
+    bad.pose_id = row.pose_id;
+    bad.utime = row.utime;
+    if (published == 0) bad.u[0] = std::nan("");
+    if (published == 1) bad.corner[1] = bad.corner[0];
+    bus.Publish(channels::kBoardCorners, bad);
+    ++published;
+  };
+  Run(bus, campaign, &cell, 20.0, publish_bad);
+  publish_bad();  // the last pose was recorded by the Handle that ended the campaign
   bus.Handle(std::chrono::milliseconds(1));
+  EXPECT_EQ(published, 2u);
   EXPECT_EQ(campaign.counters().unusable_corners, 2);
   EXPECT_EQ(campaign.poses_without_corners(), (std::vector<int64_t>{1, 2}));
   EXPECT_TRUE(ReadCornersCsv(corners_path_).empty());
