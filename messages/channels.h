@@ -3,6 +3,7 @@
 
 namespace h4::channels {
 inline constexpr const char* kBoardPose = "H4_BOARD_POSE";
+inline constexpr const char* kBoardCorners = "H4_BOARD_CORNERS";
 inline constexpr const char* kJointState = "H4_JOINT_STATE";
 inline constexpr const char* kCaptureRequest = "H4_CAPTURE_REQUEST";
 inline constexpr const char* kCameraStatus = "H4_CAMERA_STATUS";

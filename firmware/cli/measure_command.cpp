@@ -12,6 +12,8 @@
 #include "common/formats/board_poses_csv.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
+#include "common/formats/corners_csv.h"
+#include "common/formats/file_output.h"
 #include "firmware/cli/exit_code.h"
 #include "firmware/pose/measure_pipeline.h"
 #include "firmware/sources/image_file_source.h"
@@ -19,6 +21,11 @@
 namespace h4::cam {
 
 int RunMeasure(const MeasureArgs& args, std::ostream& progress) {
+  if (!args.corners_out_path.empty()) {
+    RequireOutputIsNotAnInput(
+        {"--corners-out", args.corners_out_path},
+        {{"--out", args.out_path}, {"--board", args.board_path}, {"--camera", args.camera_path}});
+  }
   const BoardSpec board = ReadBoardYaml(args.board_path);
   const CameraIntrinsics camera = ReadCameraYaml(args.camera_path);
   PipelineOptions options;
@@ -38,6 +45,7 @@ int RunMeasure(const MeasureArgs& args, std::ostream& progress) {
   }
 
   std::vector<BoardPoseRow> rows;
+  std::vector<h4::CornerObservation> corner_rows;
   int with_pose = 0;
   auto record = [&](const Measurement& m) {
     BoardPoseRow row;
@@ -49,6 +57,10 @@ int RunMeasure(const MeasureArgs& args, std::ostream& progress) {
       row.sigma_t = m.sigma_t;
       row.sigma_r = m.sigma_r;
       ++with_pose;
+      // The pose id is the row's number in --out (README "Board corners: CSV").
+      const std::vector<h4::CornerObservation> used =
+          CornerRows(m, static_cast<int64_t>(rows.size()));
+      corner_rows.insert(corner_rows.end(), used.begin(), used.end());
     }
     rows.push_back(row);
     progress << "[" << rows.size() << "/" << groups << "] " << m.origin << ": "
@@ -84,6 +96,10 @@ int RunMeasure(const MeasureArgs& args, std::ostream& progress) {
   WriteBoardPosesCsv(args.out_path, rows);
   progress << "wrote " << rows.size() << " row(s), " << with_pose << " with a pose, to "
            << args.out_path << "\n";
+  if (!args.corners_out_path.empty()) {
+    WriteCornersCsv(args.corners_out_path, corner_rows);
+    progress << "wrote " << corner_rows.size() << " corner(s) to " << args.corners_out_path << "\n";
+  }
   return with_pose;
 }
 
@@ -100,6 +116,10 @@ void DeclareMeasureCommand(CLI::App* command) {
       ->default_val(args->max_spread_px)
       ->check(CLI::PositiveNumber);
   h4::cli::AddOutOption(command, &args->out_path, "Output CSV (image,x,y,z,qw,qx,qy,qz,...)");
+  command->add_option("--corners-out", args->corners_out_path,
+                      "Also write the refined corners of each pose: CSV "
+                      "pose_id,tag_id,corner,u,v,sigma_px (pose_id: the row's number in --out, "
+                      "from 0)");
   command->add_option("images", args->images, "Image files or directories, in order")->required();
   command->footer(
       "Exit codes: 0 at least one row has a pose, 3 no image showed the board (the rows are "

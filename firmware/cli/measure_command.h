@@ -21,6 +21,9 @@ struct MeasureArgs {
   int group = 10;                   ///< images averaged per measurement
   double max_spread_px = 0.5;       ///< motion threshold, the camera service's (service_config.h)
   std::string out_path;
+  /// Board-corner CSV (common/formats/README.md "Board corners: CSV") of the poses in
+  /// `out_path`: pose_id is the row's number there, from 0. Empty: not written.
+  std::string corners_out_path;
 };
 
 void DeclareMeasureCommand(CLI::App* command);

@@ -1,7 +1,49 @@
 // Average -> detect -> pose; see measure_pipeline.h.
 #include "firmware/pose/measure_pipeline.h"
 
+#include <algorithm>
+#include <variant>
+
 namespace h4::cam {
+namespace {
+
+// The corners the pose was fitted to, with their tag and noise, to travel with the pose
+// (common/formats/README.md "Board corners: CSV": the tag of corner id 4 * (tag - firstId) + k,
+// -1 on a chessboard).
+std::vector<MeasuredCorner> MeasuredCorners(const BoardModel& board,
+                                            const std::vector<CornerObservation>& corners,
+                                            const std::vector<double>& sigma_px) {
+  const auto* grid = std::get_if<AprilGridSpec>(&board.spec());
+  std::vector<MeasuredCorner> measured;
+  measured.reserve(corners.size());
+  for (size_t i = 0; i < corners.size(); ++i) {
+    MeasuredCorner m;
+    m.tag_id = grid != nullptr ? grid->first_id + corners[i].id / 4 : -1;
+    m.corner = corners[i].id;
+    m.uv = corners[i].uv;
+    m.sigma_px = i < sigma_px.size() ? sigma_px[i] : 0.0;
+    measured.push_back(m);
+  }
+  return measured;
+}
+
+}  // namespace
+
+std::vector<h4::CornerObservation> CornerRows(const Measurement& m, int64_t pose_id) {
+  std::vector<h4::CornerObservation> rows;
+  rows.reserve(m.corners.size());
+  for (const MeasuredCorner& c : m.corners) {
+    h4::CornerObservation row;
+    row.pose_id = pose_id;
+    row.tag_id = c.tag_id;
+    row.corner = c.corner;
+    row.u = c.uv.x();
+    row.v = c.uv.y();
+    row.sigma_px = std::clamp(c.sigma_px, kCornerSigmaBounds.min, kCornerSigmaBounds.max);
+    rows.push_back(row);
+  }
+  return rows;
+}
 
 bool PipelineOptions::IsValid(std::string* why) const {
   if (frames < 1) {
@@ -105,6 +147,7 @@ Measurement MeasurePipeline::MeasureImage(const cv::Mat& image, int frames_avera
   m.sigma_r = pose.sigma_r;
   m.rms_px = pose.rms_px;
   m.erosion_px = pose.erosion_px;
+  m.corners = MeasuredCorners(detector_.board(), detection.corners, pose.corner_sigma_px);
   return m;
 }
 

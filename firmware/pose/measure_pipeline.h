@@ -11,6 +11,7 @@
 #include "common/board/board_spec.h"
 #include "common/camera/camera_intrinsics.h"
 #include "common/camera/camera_model.h"
+#include "common/formats/corners_csv.h"
 #include "firmware/averaging/frame_averager.h"
 #include "firmware/averaging/motion_check.h"
 #include "firmware/detection/board_detector.h"
@@ -27,6 +28,11 @@ struct PipelineOptions {
   PoseOptions pose;
   bool IsValid(std::string* why) const;
 };
+
+/// The measurement's corners as rows of the board-corner CSV (common/formats/README.md
+/// "Board corners: CSV") for pose `pose_id`; each sigma clamped into kCornerSigmaBounds (a
+/// perfect synthetic fit has none to speak of, and the format bounds what a weight may be).
+std::vector<h4::CornerObservation> CornerRows(const Measurement& m, int64_t pose_id);
 
 class MeasurePipeline {
  public:

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -12,6 +13,17 @@
 #include "common/geometry/rigid_transform.h"
 
 namespace h4::cam {
+
+/// A refined board corner the pose was fitted to, as it travels with the pose
+/// (common/formats/README.md "Board corners: CSV"; board_corners_t on the bus).
+struct MeasuredCorner {
+  int tag_id = -1;                               ///< AprilTag id, -1 for a chessboard corner
+  int corner = 0;                                ///< BoardModel corner id
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();  ///< px, OpenCV convention, averaged image
+  /// Per-axis standard deviation, px: the noise the pose covariance takes for this corner
+  /// (PoseEstimate::corner_sigma_px).
+  double sigma_px = 0;
+};
 
 struct Measurement {
   /// The values of board_pose_t's STATUS_ constants.
@@ -25,6 +37,8 @@ struct Measurement {
   double sigma_t = 0;  ///< per-axis position sigma from the fit, m
   double sigma_r = 0;  ///< per-axis rotation sigma from the fit, rad
   int corners_used = 0;
+  /// The refined corners the pose was fitted to (kOk and kMoved), in the detector's order.
+  std::vector<MeasuredCorner> corners;
   double rms_px = 0;           ///< reprojection RMS of the fit
   double erosion_px = 0;       ///< fitted erosion of the tags (pose_estimator.h), px
   double frame_spread_px = 0;  ///< max per-corner spread between the group's frames

@@ -215,9 +215,10 @@ std::vector<std::vector<Eigen::Index>> CornersByEdgeGroup(
 // E|r|^2 = trace(Sigma) - trace(J H^-1 J^T Sigma) is what the noise alone would leave and
 // s ~ sqrt(2 trace(Sigma^2)) its standard deviation: a residual sum within the noise's own
 // spread is no evidence of more error (a tag's 8 noise sources make |r|^2 spread ~20 %).
+// `excess_out`: e^2, px^2 per coordinate.
 Eigen::MatrixXd EdgeNoiseCovariance(const std::vector<CornerObservation>& corners,
                                     const Eigen::MatrixXd& H_inverse, const Eigen::MatrixXd& J,
-                                    const Eigen::VectorXd& r) {
+                                    const Eigen::VectorXd& r, double* excess_out) {
   const Eigen::Index p = J.cols();
   Eigen::MatrixXd propagated = Eigen::MatrixXd::Zero(p, p);
   double expected_rss = 0, rss_variance = 0;
@@ -238,6 +239,7 @@ Eigen::MatrixXd EdgeNoiseCovariance(const std::vector<CornerObservation>& corner
   const double dof = static_cast<double>(r.size() - p);
   const double beyond_noise = r.squaredNorm() - expected_rss - 2.0 * std::sqrt(rss_variance);
   const double excess = dof > 0 ? std::max(0.0, beyond_noise) / dof : 0.0;
+  *excess_out = excess;
   return propagated + excess * H_inverse;
 }
 
@@ -260,6 +262,21 @@ int CountEdgeGroups(const std::vector<CornerObservation>& corners) {
   if (ids.empty()) return 0;
   std::sort(ids.begin(), ids.end());
   return singles + static_cast<int>(std::unique(ids.begin(), ids.end()) - ids.begin());
+}
+
+// Each corner's per-axis standard deviation under the noise the covariance was built from:
+// with the edge noise, its own share of the edge fits' noise (trace(N N^T) / 2 per axis)
+// plus the excess the residuals show; otherwise the residuals' sigma^2; then the floor.
+// What travels with the pose (common/formats/README.md "Board corners: CSV").
+std::vector<double> CornerSigmas(const std::vector<CornerObservation>& corners, bool edge_noise,
+                                 double independent_variance, double floor_px) {
+  std::vector<double> sigmas;
+  sigmas.reserve(corners.size());
+  for (const CornerObservation& c : corners) {
+    const double own = edge_noise ? c.noise_px.squaredNorm() / 2.0 : 0.0;
+    sigmas.push_back(std::sqrt(own + independent_variance + floor_px * floor_px));
+  }
+  return sigmas;
 }
 
 }  // namespace
@@ -362,8 +379,9 @@ PoseEstimate EstimatePose(const std::vector<CornerObservation>& corners, const C
   const bool clustered =
       options.covariance == CovarianceModel::kEdgeGroup &&
       CountEdgeGroups(corners) >= kMinGroupsPerParameter * static_cast<int>(J.cols());
-  const Eigen::MatrixXd fitted = options.covariance == CovarianceModel::kEdgeNoise
-                                     ? EdgeNoiseCovariance(corners, H_inverse, J, r)
+  const bool edge_noise = options.covariance == CovarianceModel::kEdgeNoise;
+  double excess = sigma2;  // kResidual and kEdgeGroup: the residuals' own sigma^2
+  const Eigen::MatrixXd fitted = edge_noise ? EdgeNoiseCovariance(corners, H_inverse, J, r, &excess)
                                  : clustered ? EdgeGroupCovariance(corners, H_inverse, J, r)
                                              : (sigma2 * H_inverse).eval();
   const double erosion_px = basis.count() > 0 ? sol.state.erosion[0] : 0.0;
@@ -380,6 +398,7 @@ PoseEstimate EstimatePose(const std::vector<CornerObservation>& corners, const C
       std::sqrt(std::max(0.0, estimate.covariance.topLeftCorner<3, 3>().trace() / 3));
   estimate.sigma_r =
       std::sqrt(std::max(0.0, estimate.covariance.bottomRightCorner<3, 3>().trace() / 3));
+  estimate.corner_sigma_px = CornerSigmas(corners, edge_noise, excess, floor_px);
   estimate.status = PoseEstimate::Status::kOk;
   return estimate;
 }

@@ -95,6 +95,10 @@ struct PoseEstimate {
   double erosion_px = 0;
   double erosion_sigma_px = 0;
   int erosion_parameters = 0;  ///< nuisance parameters fitted (0, 1, 3 or one per tag)
+  /// Per-axis standard deviation of each corner (input order), px: the per-corner noise the
+  /// covariance is built from (CovarianceModel: the edge fits' noise, or the residuals' sigma,
+  /// plus the excess and the floor). Empty when not ok.
+  std::vector<double> corner_sigma_px;
   bool ok() const { return status == Status::kOk; }
 };
 

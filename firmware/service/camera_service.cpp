@@ -13,6 +13,34 @@
 namespace h4::cam {
 namespace {
 
+// The corners that travel with a STATUS_OK pose (messages/README.md, H4_BOARD_CORNERS;
+// common/formats/README.md "Board corners: CSV"); none when there are more than a message
+// holds or a value is not finite.
+std::optional<h4msgs::board_corners_t> CornersMessage(const Measurement& m,
+                                                      const h4msgs::board_pose_t& pose) {
+  if (pose.status != h4msgs::board_pose_t::STATUS_OK) return std::nullopt;
+  const std::vector<h4::CornerObservation> rows = CornerRows(m, pose.pose_id);
+  if (rows.size() > static_cast<size_t>(h4msgs::board_corners_t::MAX_CORNERS)) {
+    spdlog::warn("pose {}: {} corners, more than a board_corners_t holds ({}): not sent",
+                 pose.pose_id, rows.size(), h4msgs::board_corners_t::MAX_CORNERS);
+    return std::nullopt;
+  }
+  h4msgs::board_corners_t msg{};
+  msg.utime = pose.utime;
+  msg.pose_id = pose.pose_id;
+  msg.camera_id = pose.camera_id;
+  msg.corner_count = static_cast<int32_t>(rows.size());
+  for (const h4::CornerObservation& c : rows) {
+    if (!std::isfinite(c.u) || !std::isfinite(c.v)) return std::nullopt;
+    msg.tag_id.push_back(c.tag_id);
+    msg.corner.push_back(c.corner);
+    msg.u.push_back(c.u);
+    msg.v.push_back(c.v);
+    msg.sigma_px.push_back(c.sigma_px.value_or(0.0));
+  }
+  return msg;
+}
+
 PipelineOptions MakePipelineOptions(const CameraServiceOptions& options) {
   PipelineOptions p;
   // The service ends each group itself (Finish() after the request's N frames), so the
@@ -193,10 +221,17 @@ h4msgs::board_pose_t CameraService::Finish(const Measurement& m, int64_t pose_id
     msg.quaternion[0] = 1;  // identity rather than an invalid all-zero quaternion
     if (has_pose) msg.status = h4msgs::board_pose_t::STATUS_CAMERA_ERROR;
   }
+  corners_ = CornersMessage(m, msg);
   ++measurements_total_;
   spdlog::info("pose {}: {}{}", pose_id, ToString(m.status),
                m.message.empty() ? "" : " (" + m.message + ")");
   return msg;
+}
+
+std::optional<h4msgs::board_corners_t> CameraService::TakeCorners() {
+  std::optional<h4msgs::board_corners_t> corners;
+  corners.swap(corners_);
+  return corners;
 }
 
 void CameraService::CountFrame(Clock::time_point now) {

@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include <h4msgs/board_corners_t.hpp>
 #include <h4msgs/board_pose_t.hpp>
 #include <h4msgs/camera_status_t.hpp>
 #include <h4msgs/capture_request_t.hpp>
@@ -67,6 +68,10 @@ class CameraService {
   /// capture that completed in this step.
   std::optional<h4msgs::board_pose_t> Step(Clock::time_point now = Clock::now());
 
+  /// The corners of the board pose the last Step() returned, once (then empty): only for a
+  /// STATUS_OK pose, same utime and pose_id (board_corners_t.lcm).
+  std::optional<h4msgs::board_corners_t> TakeCorners();
+
   /// True when Step() will pull a frame (the caller should not block elsewhere then).
   bool WantsFrames() const;
 
@@ -106,6 +111,7 @@ class CameraService {
   int64_t frames_total_ = 0;
   int64_t measurements_total_ = 0;
   int64_t rejected_requests_ = 0;
+  std::optional<h4msgs::board_corners_t> corners_;  // of the last pose, until taken
 };
 
 const char* ToString(CameraService::State state);

@@ -76,6 +76,10 @@ void ServiceNode::Poll(std::chrono::milliseconds timeout) {
   }
   if (std::optional<h4msgs::board_pose_t> pose = service_.Step(Clock::now())) {
     if (bus_.Publish(channels::kBoardPose, *pose)) ++board_poses_published_;
+    // Right after the pose it belongs to (messages/README.md, H4_BOARD_CORNERS).
+    if (std::optional<h4msgs::board_corners_t> corners = service_.TakeCorners()) {
+      if (bus_.Publish(channels::kBoardCorners, *corners)) ++board_corners_published_;
+    }
   }
 }
 

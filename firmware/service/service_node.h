@@ -1,7 +1,8 @@
 // The camera service on the bus: wires a CameraService to a bus::LcmBus. Subscribes to
 // H4_CAPTURE_REQUEST (and H4_SIM_BOARD_TRUTH for the synthetic camera), publishes
-// H4_BOARD_POSE and the H4_CAMERA_STATUS heartbeat, and pings the systemd watchdog with
-// each heartbeat. Poll() is one iteration of the main loop, so tests drive it directly.
+// H4_BOARD_POSE (each OK one followed by its H4_BOARD_CORNERS) and the H4_CAMERA_STATUS heartbeat,
+// and pings the systemd watchdog with each heartbeat. Poll() is one iteration of the main loop, so
+// tests drive it directly.
 #pragma once
 
 #include <chrono>
@@ -33,6 +34,7 @@ class ServiceNode {
   void PublishStatus();
 
   int64_t board_poses_published() const { return board_poses_published_; }
+  int64_t board_corners_published() const { return board_corners_published_; }
   int64_t statuses_published() const { return statuses_published_; }
   /// Sim truths refused (not finite, not a unit quaternion).
   int64_t invalid_truths() const { return invalid_truths_; }
@@ -45,6 +47,7 @@ class ServiceNode {
   SimSource* sim_;
   PeriodicSchedule heartbeats_;
   int64_t board_poses_published_ = 0;
+  int64_t board_corners_published_ = 0;
   int64_t statuses_published_ = 0;
   int64_t invalid_truths_ = 0;
   /// The newest valid truth not yet rendered: truths arrive at the robot's 100 Hz, faster

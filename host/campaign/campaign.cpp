@@ -9,6 +9,8 @@
 #include <h4msgs/robot_target_t.hpp>
 #include <spdlog/spdlog.h>
 
+#include "common/formats/corners_csv.h"
+#include "common/formats/format_error.h"
 #include "common/text/enum_names.h"
 #include "common/timing/clock.h"
 #include "common/units.h"
@@ -50,6 +52,14 @@ Campaign::Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal,
   spdlog::info("campaign ({} mode): {} poses planned, {} already in {}, {} to measure",
                ModeName(options_.mode), plan_.size(), plan_.size() - pending_.size(),
                journal_.path(), pending_.size());
+}
+
+Campaign::Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal,
+                   CornersJournal& corners, CampaignOptions options)
+    : Campaign(bus, std::move(plan), journal, std::move(options)) {
+  corners_ = &corners;
+  bus_.Subscribe<h4msgs::board_corners_t>(
+      channels::kBoardCorners, [this](const h4msgs::board_corners_t& m) { OnBoardCorners(m); });
 }
 
 int Campaign::done_count() const {
@@ -96,7 +106,73 @@ bool Campaign::Record(const h4msgs::board_pose_t& msg, std::optional<int64_t> jo
   }
   journal_.Append(MakeDatasetRow(msg, *joints));
   history_.Forget(msg.pose_id);
+  PairCornersOf(msg.pose_id, msg.utime);
   return true;
+}
+
+// The corners belong to the measurement with the same pose id and utime (board_corners_t.lcm):
+// those of an earlier attempt at the pose (moved, unpaired) are not this row's.
+void Campaign::OnBoardCorners(const h4msgs::board_corners_t& msg) {
+  ++counters_.board_corners;
+  if (corners_ == nullptr || msg.pose_id < 0 || corners_->Contains(msg.pose_id)) return;
+  const auto awaiting = awaiting_corners_.find(msg.pose_id);
+  if (awaiting != awaiting_corners_.end() && awaiting->second == msg.utime) {
+    if (AppendCorners(msg)) awaiting_corners_.erase(awaiting);
+    return;
+  }
+  if (journal_.Contains(msg.pose_id)) {
+    ++counters_.unusable_corners;
+    spdlog::debug("corners of pose {}: not those of its recorded measurement", msg.pose_id);
+    return;
+  }
+  early_corners_[msg.pose_id] = msg;
+  if (early_corners_.size() > kEarlyCornersKept) {
+    const auto oldest = std::min_element(
+        early_corners_.begin(), early_corners_.end(),
+        [](const auto& a, const auto& b) { return a.second.utime < b.second.utime; });
+    early_corners_.erase(oldest);
+  }
+}
+
+void Campaign::PairCornersOf(int64_t pose_id, int64_t utime) {
+  if (corners_ == nullptr || corners_->Contains(pose_id)) return;
+  const auto early = early_corners_.find(pose_id);
+  if (early != early_corners_.end()) {
+    const h4msgs::board_corners_t msg = early->second;
+    early_corners_.erase(early);
+    if (msg.utime == utime && AppendCorners(msg)) return;
+  }
+  awaiting_corners_[pose_id] = utime;
+}
+
+// Written only if the file will read back: the rows go through the CSV reader first
+// (common/formats/README.md "Board corners: CSV": bounds, one row per corner).
+bool Campaign::AppendCorners(const h4msgs::board_corners_t& msg) {
+  std::string text = CornersCsvHeader(true) + "\n";
+  try {
+    for (size_t i = 0; i < static_cast<size_t>(msg.corner_count); ++i) {
+      const CornerObservation c{msg.pose_id, msg.tag_id[i], msg.corner[i],
+                                msg.u[i],    msg.v[i],      msg.sigma_px[i]};
+      text += CornersCsvLine(c, true) + "\n";
+    }
+    const std::vector<CornerObservation> rows = ParseCornersCsv(text, channels::kBoardCorners);
+    if (rows.empty()) throw std::invalid_argument("no corners");
+    corners_->Append(rows);
+    return true;
+  } catch (const std::invalid_argument& e) {
+    ++counters_.unusable_corners;
+    spdlog::warn("ignored the corners of pose {}: {}", msg.pose_id, e.what());
+  } catch (const FormatError& e) {
+    ++counters_.unusable_corners;
+    spdlog::warn("ignored the corners of pose {}: {}", msg.pose_id, e.what());
+  }
+  return false;
+}
+
+std::vector<int64_t> Campaign::poses_without_corners() const {
+  std::vector<int64_t> poses;
+  for (const auto& [pose_id, utime] : awaiting_corners_) poses.push_back(pose_id);
+  return poses;
 }
 
 void Campaign::OnBoardPose(const h4msgs::board_pose_t& msg) {

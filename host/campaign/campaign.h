@@ -15,14 +15,17 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include <h4msgs/board_corners_t.hpp>
 #include <h4msgs/board_pose_t.hpp>
 #include <h4msgs/camera_status_t.hpp>
 #include <h4msgs/joint_state_t.hpp>
 
+#include "host/campaign/corners_journal.h"
 #include "host/campaign/dataset_journal.h"
 #include "host/campaign/measurement_pairing.h"
 #include "host/simulation/pose_plan.h"
@@ -71,6 +74,8 @@ struct CampaignCounters {
   int64_t duplicates = 0;               ///< measurements of a pose already recorded
   int64_t unpaired = 0;                 ///< measurements with no settled joint reading in tolerance
   int64_t retries = 0;                  ///< attempts repeated (timeouts, moved, partial, ...)
+  int64_t board_corners = 0;            ///< board_corners_t messages heard
+  int64_t unusable_corners = 0;  ///< board_corners_t not written (impossible values, no pose)
 };
 
 class Campaign {
@@ -80,6 +85,12 @@ class Campaign {
   /// Subscribes to H4_JOINT_STATE, H4_BOARD_POSE and H4_CAMERA_STATUS on `bus`. Poses of
   /// `plan` already in `journal` (a resumed campaign) are not measured again.
   Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal, CampaignOptions options);
+  /// Also subscribes to H4_BOARD_CORNERS and appends the corners of each pose recorded by
+  /// this campaign to `corners` (paired by pose id and the pose's utime, whichever comes
+  /// first). A camera that sends none (older firmware, old logs) costs nothing but the
+  /// corners: poses_without_corners() lists them.
+  Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal, CornersJournal& corners,
+           CampaignOptions options);
 
   /// Sends what is due and handles timeouts at time `now`; false once every planned pose
   /// is recorded or skipped. Active and manual campaigns first wait (up to the settle
@@ -102,12 +113,20 @@ class Campaign {
   static constexpr double kSilentAfter_s = 3.0;
   const std::vector<SkippedPose>& skipped() const { return skipped_; }
   const CampaignCounters& counters() const { return counters_; }
+  /// Poses recorded by this campaign whose corners have not arrived (none without a
+  /// corners journal).
+  std::vector<int64_t> poses_without_corners() const;
 
  private:
   enum class Phase { kWaitForDevices, kSendTarget, kSettling, kSendRequest, kMeasuring };
 
   void OnJointState(const h4msgs::joint_state_t& msg);
   void OnBoardPose(const h4msgs::board_pose_t& msg);
+  void OnBoardCorners(const h4msgs::board_corners_t& msg);
+  /// After pose `pose_id` (measured at `utime`) is recorded: its corners, if already here.
+  void PairCornersOf(int64_t pose_id, int64_t utime);
+  /// Appends a message's corners; false (counted, logged) when a value is impossible.
+  bool AppendCorners(const h4msgs::board_corners_t& msg);
   /// Pairs and records an OK measurement of `pose_id`; false (with `why`) when it cannot.
   bool Record(const h4msgs::board_pose_t& msg, std::optional<int64_t> joint_pose_id,
               std::string* why);
@@ -158,6 +177,14 @@ class Campaign {
   Clock::time_point first_step_{}, last_step_{}, silence_logged_at_{};
   std::vector<int64_t> unsettled_in_a_row_;  ///< poses skipped as not settled since the last
                                              ///< pose that settled
+
+  CornersJournal* corners_ = nullptr;
+  /// Recorded poses awaiting their corners: pose id -> the board pose's utime.
+  std::map<int64_t, int64_t> awaiting_corners_;
+  /// Corners heard before their pose was recorded (reordered, or the pose not yet paired),
+  /// the newest per pose id, at most kEarlyCornersKept.
+  std::map<int64_t, h4msgs::board_corners_t> early_corners_;
+  static constexpr size_t kEarlyCornersKept = 8;
 
   JointHistory history_;
   std::vector<SkippedPose> skipped_;

@@ -9,25 +9,16 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include <sys/types.h>
-#include <unistd.h>
 
 #include "common/formats/dataset_csv.h"
+#include "host/campaign/journal_file.h"  // JournalFileOps
 
 namespace h4::host {
-
-/// The two system calls that make a row durable, replaceable so that tests can inject the
-/// faults a disk gives rarely (an fsync that fails with EIO after the write succeeded).
-/// Both default to the system's; each returns what the system call would, errno set.
-struct JournalFileOps {
-  std::function<ssize_t(int fd, const void* data, size_t size)> write = ::write;
-  std::function<int(int fd)> fsync = ::fsync;
-};
 
 class DatasetJournal {
  public:

@@ -2,16 +2,20 @@
 // the robot and the camera through a pose plan (or listens, or reads a recorded log) and
 // writes the paired dataset durably; a restarted campaign resumes where it stopped. With
 // --identify DIR it then identifies Models 12 and 31, validates and writes the report.
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <thread>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
 #include "common/cli/subcommand.h"
+#include "common/formats/file_output.h"
 #include "common/formats/identification_result.h"
 #include "common/formats/poses_csv.h"
 #include "common/formats/robot_yaml.h"
@@ -24,12 +28,14 @@
 #include "host/identification/identification.h"
 #include "host/report/html_report.h"
 #include "messages/bus/lcm_bus.h"
+#include "messages/channels.h"
 
 namespace h4::host::cli {
 namespace {
 
 struct CollectOptions {
   std::string out_path;
+  std::string corners_out_path;  ///< "" = beside out_path (CornersPathBeside)
   std::string plan_path;
   bool manual = false;
   bool passive = false;
@@ -75,12 +81,13 @@ std::string LogUrl(const std::string& path) {
   return "file://" + std::filesystem::absolute(path).string() + "?speed=0";
 }
 
-void PrintSummary(const Campaign& campaign, const DatasetJournal& journal, const bus::LcmBus& bus,
-                  bool interrupted) {
+void PrintSummary(const Campaign& campaign, const DatasetJournal& journal,
+                  const CornersJournal& corners, const bus::LcmBus& bus, bool interrupted) {
   const CampaignCounters& c = campaign.counters();
   std::printf("campaign: %zu of %d planned poses in %s (%zu from an earlier run)%s\n",
               journal.rows().size(), campaign.planned_count(), journal.path().c_str(),
               journal.resumed_count(), interrupted ? ", interrupted" : "");
+  std::printf("  corners of %zu poses in %s\n", corners.pose_count(), corners.path().c_str());
   for (const SkippedPose& s : campaign.skipped()) {
     std::printf("  skipped pose %lld: %s\n", static_cast<long long>(s.pose_id), s.reason.c_str());
   }
@@ -157,6 +164,24 @@ bool RunCampaign(Campaign& campaign, bus::LcmBus& bus, bool from_log, const std:
   return false;  // every pose recorded or skipped
 }
 
+/// The corners of the last poses come right after them (board_corners_t.lcm): listens a
+/// little longer for those still missing (up to 1 s live; to the end of a log), then says
+/// once which poses have none (an older camera or log sends none; the dataset is whole).
+void AwaitLastCorners(Campaign& campaign, bus::LcmBus& bus, bool from_log,
+                      const std::atomic<bool>& stop, const std::string& corners_path) {
+  const auto until = Campaign::Clock::now() + std::chrono::seconds(1);
+  while (!campaign.poses_without_corners().empty() && !stop.load() &&
+         Campaign::Clock::now() < until) {
+    if (bus.Handle(std::chrono::milliseconds(20)) < 0 && from_log) break;
+  }
+  const std::vector<int64_t> missing = campaign.poses_without_corners();
+  if (missing.empty()) return;
+  spdlog::warn(
+      "{} of the poses recorded have no corners in {} (a camera or log without {}; their dataset "
+      "rows are written): pose {}",
+      missing.size(), corners_path, channels::kBoardCorners, fmt::join(missing, ", "));
+}
+
 void Run(CollectOptions options, const std::string& command_line) {
   if (options.manual && options.passive) {
     throw std::invalid_argument("--manual and --passive exclude each other");
@@ -183,6 +208,13 @@ void Run(CollectOptions options, const std::string& command_line) {
                             ? GridPosePlan()
                             : PosePlanFromRows(ReadPosesCsv(options.plan_path));
   if (plan.empty()) throw std::invalid_argument(options.plan_path + ": the pose plan is empty");
+  if (options.corners_out_path.empty()) {
+    options.corners_out_path = CornersPathBeside(options.out_path);
+  }
+  RequireOutputIsNotAnInput({"--corners-out", options.corners_out_path},
+                            {{"--out", options.out_path},
+                             {"--plan", options.plan_path},
+                             {"--from-log", options.from_log}});
 
   // Before the dataset is locked: a stop signal from then on must end the campaign as an
   // interruption (130, resumable), not kill it with the default action (the
@@ -199,14 +231,17 @@ void Run(CollectOptions options, const std::string& command_line) {
       "LCM: {}{}", bus.url(),
       options.auth_key_path.empty() ? "" : ", authenticated with " + options.auth_key_path);
   DatasetJournal journal(options.out_path);
-  Campaign campaign(bus, plan, journal, options.campaign);
+  CornersJournal corners(options.corners_out_path);
+  Campaign campaign(bus, plan, journal, corners, options.campaign);
 
   Progress progress("collect", campaign.planned_count());
-  const bool interrupted = RunCampaign(campaign, bus, from_log, stop, progress);
+  bool interrupted = RunCampaign(campaign, bus, from_log, stop, progress);
   progress.Finish(campaign.finished() ? "every pose recorded or skipped"
                   : interrupted       ? "interrupted"
                                       : "end of the log");
-  PrintSummary(campaign, journal, bus, interrupted);
+  if (!interrupted) AwaitLastCorners(campaign, bus, from_log, stop, corners.path());
+  interrupted = interrupted || stop.load();
+  PrintSummary(campaign, journal, corners, bus, interrupted);
   if (interrupted) {
     SetExitCode(h4::cli::kExitInterrupted);
     return;
@@ -222,6 +257,10 @@ void DeclareCollectCommand(CLI::App* command) {
   h4::cli::AddOutOption(command, &options->out_path,
                         "Dataset CSV; an existing one is resumed (its poses are not measured "
                         "again)");
+  command->add_option(
+      "--corners-out", options->corners_out_path,
+      "Board corners CSV (pose_id,tag_id,corner,u,v,sigma_px) of the recorded poses, appended "
+      "and resumed like the dataset; default beside --out: DIR/STEM.corners.csv");
   h4::cli::AddInputFileOption(command, "--plan", &options->plan_path,
                               "Poses CSV (pose_id,X,Y,Z,theta); default the paper's 81-pose grid");
   command->add_flag("--manual", options->manual,

@@ -34,7 +34,8 @@ struct AuthOptions {
   /// The channels whose messages are authenticated: those between h4cam and h4cal. The
   /// robot controller's channels (H4_JOINT_STATE, H4_ROBOT_TARGET) and the simulation's are
   /// not, by default: a third-party controller cannot sign.
-  std::vector<std::string> channels = {"H4_BOARD_POSE", "H4_CAPTURE_REQUEST", "H4_CAMERA_STATUS"};
+  std::vector<std::string> channels = {"H4_BOARD_POSE", "H4_BOARD_CORNERS", "H4_CAPTURE_REQUEST",
+                                       "H4_CAMERA_STATUS"};
   /// [s] Largest difference accepted between a message's utime and the receiver's clock:
   /// the two hosts' clocks must agree this well (NTP); a recorded message is refused once
   /// this old, even by a receiver that never saw it (one started later).

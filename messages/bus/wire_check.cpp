@@ -66,8 +66,9 @@ class Walker {
     int64_t count = field.count;
     if (field.count_field >= 0) {
       count = int32_values_[static_cast<size_t>(field.count_field)];
-      if (count < 0 || count > limits_.max_array_length) {
-        *why = fmt::format("array length {} outside [0, {}]", count, limits_.max_array_length);
+      const int64_t max_count = field.max_count > 0 ? field.max_count : limits_.max_array_length;
+      if (count < 0 || count > max_count) {
+        *why = fmt::format("array length {} outside [0, {}]", count, max_count);
         return false;
       }
     }

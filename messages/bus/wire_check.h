@@ -31,6 +31,9 @@ struct WireField {
   WireKind kind = WireKind::kInt8;
   int count = 1;
   int count_field = -1;
+  /// A variable array's own bound when > 0 (board_corners_t's corners: a board has more than
+  /// WireLimits::max_array_length), else WireLimits::max_array_length.
+  int max_count = 0;
 };
 
 /// A type's fingerprint (lcm-gen's getHash()) and fields.

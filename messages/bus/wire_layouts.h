@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "h4msgs/board_corners_t.hpp"
 #include "h4msgs/board_pose_t.hpp"
 #include "h4msgs/camera_status_t.hpp"
 #include "h4msgs/capture_request_t.hpp"
@@ -41,11 +42,31 @@ inline WireField Doubles(const char* name, int count) {
   return {name, WireKind::kDouble, count, -1};
 }
 inline WireField String(const char* name) { return {name, WireKind::kString, 1, -1}; }
-/// Doubles counted by the int32 field at `count_field` (its index in the layout).
-inline WireField CountedDoubles(const char* name, int count_field) {
-  return {name, WireKind::kDouble, 1, count_field};
+/// Doubles counted by the int32 field at `count_field` (its index in the layout), at most
+/// `max_count` of them (0: WireLimits::max_array_length).
+inline WireField CountedDoubles(const char* name, int count_field, int max_count = 0) {
+  return {name, WireKind::kDouble, 1, count_field, max_count};
+}
+inline WireField CountedInt32s(const char* name, int count_field, int max_count = 0) {
+  return {name, WireKind::kInt32, 1, count_field, max_count};
 }
 }  // namespace wire
+
+/// Corners one board_corners_t may carry (its MAX_CORNERS: within the 64 KiB of
+/// WireLimits::max_message_bytes).
+inline constexpr int kMaxBoardCorners = h4msgs::board_corners_t::MAX_CORNERS;
+
+template <>
+inline std::vector<WireField> WireFieldsOf<h4msgs::board_corners_t>() {
+  using namespace wire;
+  constexpr int kCount = 3;  // index of corner_count
+  return std::vector<WireField>(
+      {Int64("utime"), Int64("pose_id"), String("camera_id"), Int32("corner_count"),
+       CountedInt32s("tag_id", kCount, kMaxBoardCorners),
+       CountedInt32s("corner", kCount, kMaxBoardCorners),
+       CountedDoubles("u", kCount, kMaxBoardCorners), CountedDoubles("v", kCount, kMaxBoardCorners),
+       CountedDoubles("sigma_px", kCount, kMaxBoardCorners)});
+}
 
 template <>
 inline std::vector<WireField> WireFieldsOf<h4msgs::board_pose_t>() {

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <unistd.h>
 
+#include "common/board/board_model.h"
+#include "common/camera/camera_model.h"
 #include "common/geometry/rotation.h"
 #include "common/units.h"
 #include "firmware/render/paper_scenes.h"
@@ -64,6 +67,11 @@ class ServiceFixture : public ::testing::Test {
     bus_.Subscribe<h4msgs::camera_status_t>(
         channels::kCameraStatus,
         [this](const h4msgs::camera_status_t& m) { statuses_.push_back(m); });
+    bus_.Subscribe<h4msgs::board_corners_t>(channels::kBoardCorners,
+                                            [this](const h4msgs::board_corners_t& m) {
+                                              corners_.push_back(m);
+                                              poses_before_corners_.push_back(poses_.size());
+                                            });
   }
   // As `h4cam run --source sim`: synthetic timestamps start now.
   static SimSourceOptions SimOptions() {
@@ -98,6 +106,8 @@ class ServiceFixture : public ::testing::Test {
   ServiceNode node_;
   std::vector<h4msgs::board_pose_t> poses_;
   std::vector<h4msgs::camera_status_t> statuses_;
+  std::vector<h4msgs::board_corners_t> corners_;
+  std::vector<size_t> poses_before_corners_;  // poses received when each corners message came
 };
 
 TEST_F(ServiceFixture, CaptureRequestMeasuresTheTruePoseWithTheRequestsPoseId) {
@@ -129,6 +139,37 @@ TEST_F(ServiceFixture, CaptureRequestMeasuresTheTruePoseWithTheRequestsPoseId) {
   EXPECT_LT(m.reprojection_rms_px, 0.5);
 }
 
+// The corners travel right after their pose, same pose_id and utime, on the board's ids,
+// where the true pose projects them (messages/README.md, H4_BOARD_CORNERS).
+TEST_F(ServiceFixture, AnOkPoseIsFollowedByItsCorners) {
+  const RigidTransform X_CT = scenes::RandomPoses(1, 31)[0];
+  bus_.Publish(channels::kSimBoardTruth, Truth(X_CT));
+  bus_.Publish(channels::kCaptureRequest, Request(42, 0));
+  PollForPoses(1);
+  bus_.Handle(std::chrono::milliseconds(0));
+  ASSERT_EQ(poses_.size(), 1u);
+  ASSERT_EQ(corners_.size(), 1u);
+  EXPECT_EQ(poses_before_corners_[0], 1u);
+  EXPECT_EQ(node_.board_corners_published(), 1);
+  const h4msgs::board_corners_t& c = corners_[0];
+  EXPECT_EQ(c.pose_id, 42);
+  EXPECT_EQ(c.utime, poses_[0].utime);
+  EXPECT_EQ(c.camera_id, "test-cam");
+  ASSERT_EQ(c.corner_count, poses_[0].corners_used);
+  const AprilGridSpec board = scenes::PaperBoard();
+  const BoardModel model(board);
+  const CameraModel camera(scenes::PaperCamera());
+  for (size_t i = 0; i < static_cast<size_t>(c.corner_count); ++i) {
+    EXPECT_EQ(c.tag_id[i], board.first_id + c.corner[i] / 4);
+    EXPECT_GT(c.sigma_px[i], 0.0);
+    const std::optional<Eigen::Vector3d> p_TQ = model.Corner(c.corner[i]);
+    ASSERT_TRUE(p_TQ.has_value());
+    Eigen::Vector2d uv;
+    ASSERT_TRUE(camera.Project(X_CT * *p_TQ, &uv));
+    EXPECT_LT((uv - Eigen::Vector2d(c.u[i], c.v[i])).norm(), 0.3) << c.corner[i];
+  }
+}
+
 TEST_F(ServiceFixture, WithoutABoardTheAnswerIsNoBoard) {
   bus_.Publish(channels::kCaptureRequest, Request(3, 2));
   PollForPoses(1);
@@ -137,6 +178,7 @@ TEST_F(ServiceFixture, WithoutABoardTheAnswerIsNoBoard) {
   EXPECT_EQ(poses_[0].status, int8_t{h4msgs::board_pose_t::STATUS_NO_BOARD});
   EXPECT_EQ(poses_[0].frames_averaged, 2);
   EXPECT_EQ(poses_[0].translation[2], 0.0);
+  EXPECT_TRUE(corners_.empty()) << "no pose, no corners";
 }
 
 TEST_F(ServiceFixture, MalformedAndImpossibleMessagesAreCountedAndIgnored) {

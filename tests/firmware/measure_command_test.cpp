@@ -2,15 +2,21 @@
 // group with the board, empty pose fields for a group without.
 #include "firmware/cli/measure_command.h"
 
+#include <algorithm>
 #include <filesystem>
+#include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include "common/board/board_model.h"
+#include "common/camera/camera_model.h"
 #include "common/formats/board_poses_csv.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
+#include "common/formats/corners_csv.h"
 #include "firmware/render/board_renderer.h"
 #include "firmware/render/paper_scenes.h"
 
@@ -53,6 +59,68 @@ TEST(MeasureCommandTest, WritesOneRowPerGroupWithEmptyPoseWhenNoBoard) {
   EXPECT_EQ(rows[0].corners, 144);
   EXPECT_EQ(fs::path(rows[1].image).filename(), "f2.png");
   EXPECT_FALSE(rows[1].X_CT.has_value());
+}
+
+// --corners-out: the corners of the pose of row 1 (the first group shows no board), with the
+// board's tag and corner ids, and the reported pose reprojects them within a fraction of a
+// pixel (common/formats/README.md "Board corners: CSV").
+TEST(MeasureCommandTest, CornersOutCarriesTheCornersOfEachPose) {
+  const fs::path dir = fs::path(H4_BINARY_DIR) / "test_tmp" / "measure_command_corners";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "images");
+  const AprilGridSpec board = scenes::PaperBoard();
+  const CameraIntrinsics camera = scenes::PaperCamera();
+  WriteBoardYaml((dir / "board.yaml").string(), board);
+  WriteCameraYaml((dir / "camera.yaml").string(), camera);
+  const BoardRenderer renderer(board, camera, RenderOptions{});
+  const cv::Mat clean = renderer.RenderClean(scenes::BoardPose(board, 0.5, 0.3, 1.2, 0.4));
+  cv::RNG rng(2);
+  for (int k = 0; k < 4; ++k) {  // group 1: an empty scene; group 2: the board
+    const cv::Mat frame =
+        k < 2 ? cv::Mat(768, 1024, CV_8U, cv::Scalar(90)) : renderer.Expose(clean, rng);
+    cv::imwrite((dir / "images" / ("f" + std::to_string(k) + ".png")).string(), frame);
+  }
+  MeasureArgs args;
+  args.board_path = (dir / "board.yaml").string();
+  args.camera_path = (dir / "camera.yaml").string();
+  args.images = {(dir / "images").string()};
+  args.group = 2;
+  args.out_path = (dir / "poses.csv").string();
+  args.corners_out_path = (dir / "corners.csv").string();
+  std::ostringstream progress;
+  ASSERT_EQ(RunMeasure(args, progress), 1);
+
+  const std::vector<BoardPoseRow> rows = ReadBoardPosesCsv(args.out_path);
+  ASSERT_EQ(rows.size(), 2u);
+  ASSERT_TRUE(rows[1].X_CT.has_value());
+  const std::vector<h4::CornerObservation> corners = ReadCornersCsv(args.corners_out_path);
+  ASSERT_EQ(static_cast<int>(corners.size()), rows[1].corners);
+  const BoardModel model(board);
+  const CameraModel projection(camera);
+  double worst_px = 0;
+  for (const h4::CornerObservation& c : corners) {
+    EXPECT_EQ(c.pose_id, 1);
+    EXPECT_EQ(c.tag_id, board.first_id + c.corner / 4);
+    ASSERT_TRUE(c.sigma_px.has_value());
+    EXPECT_GT(*c.sigma_px, 0.0);
+    EXPECT_LT(*c.sigma_px, 0.5);
+    const std::optional<Eigen::Vector3d> p_TQ = model.Corner(c.corner);
+    ASSERT_TRUE(p_TQ.has_value()) << c.corner;
+    Eigen::Vector2d uv;
+    ASSERT_TRUE(projection.Project(*rows[1].X_CT * *p_TQ, &uv));
+    worst_px = std::max(worst_px, (uv - Eigen::Vector2d(c.u, c.v)).norm());
+  }
+  EXPECT_LT(worst_px, 0.3);
+}
+
+TEST(MeasureCommandTest, CornersOutThatIsTheOutFileIsRefused) {
+  MeasureArgs args;
+  args.board_path = "board.yaml";
+  args.camera_path = "camera.yaml";
+  args.out_path = (fs::path(H4_BINARY_DIR) / "test_tmp" / "same.csv").string();
+  args.corners_out_path = args.out_path;
+  std::ostringstream progress;
+  EXPECT_THROW(RunMeasure(args, progress), std::invalid_argument);
 }
 
 TEST(MeasureCommandTest, ImageOfWrongSizeIsAnErrorNamingTheFile) {

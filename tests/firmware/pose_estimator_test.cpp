@@ -2,6 +2,7 @@
 // Jacobian, and the covariance against Monte-Carlo error statistics.
 #include "firmware/pose/pose_estimator.h"
 
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -64,6 +65,40 @@ TEST(PoseEstimatorTest, ExactCornersGiveTheExactPose) {
     EXPECT_LT(estimate.rms_px, 1e-8);
     EXPECT_EQ(estimate.corners, 144);
   }
+}
+
+// The per-corner sigma that travels with the pose (common/formats/README.md "Board corners:
+// CSV") is the noise the covariance takes for that corner: the residuals' sigma with
+// kResidual, the corner's own edge-fit noise (plus the excess) with kEdgeNoise; the floor on
+// top of both.
+TEST(PoseEstimatorTest, CornerSigmasAreTheNoiseTheCovarianceTakes) {
+  const BoardModel board(scenes::PaperBoard());
+  const CameraModel camera(scenes::PaperCamera());
+  const RigidTransform X_CT = scenes::RandomPoses(1, 3)[0];
+  cv::RNG rng(11);
+  PoseOptions residual;
+  residual.covariance = CovarianceModel::kResidual;
+  residual.corner_floor_px = 0;
+  const PoseEstimate noisy =
+      EstimatePose(Project(board, camera, X_CT, 0.1, &rng), camera, residual);
+  ASSERT_TRUE(noisy.ok()) << noisy.message;
+  ASSERT_EQ(noisy.corner_sigma_px.size(), 144u);
+  for (const double sigma : noisy.corner_sigma_px) EXPECT_NEAR(sigma, 0.1, 0.015);
+
+  std::vector<CornerObservation> exact = Project(board, camera, X_CT, 0, nullptr);
+  for (CornerObservation& c : exact) {
+    c.noise_px(0, 0) = 0.03;
+    c.noise_px(1, 1) = c.id == 5 ? 0.08 : 0.04;
+  }
+  PoseOptions edge_noise;  // kEdgeNoise, floor 0.0015 px (no erosion fitted: no directions)
+  const PoseEstimate estimate = EstimatePose(exact, camera, edge_noise);
+  ASSERT_TRUE(estimate.ok()) << estimate.message;
+  ASSERT_EQ(estimate.corner_sigma_px.size(), exact.size());
+  const double floor2 = edge_noise.corner_floor_px * edge_noise.corner_floor_px;
+  EXPECT_NEAR(estimate.corner_sigma_px[0], std::sqrt((0.03 * 0.03 + 0.04 * 0.04) / 2 + floor2),
+              1e-12);
+  EXPECT_NEAR(estimate.corner_sigma_px[5], std::sqrt((0.03 * 0.03 + 0.08 * 0.08) / 2 + floor2),
+              1e-12);
 }
 
 TEST(PoseEstimatorTest, NearFrontalBoardPicksTheTrueOfTheTwoPlanarSolutions) {

@@ -67,6 +67,23 @@ class ScriptedCell {
         });
   }
 
+  /// The four corners of tag 0 with the measurement's pose id and utime; u tells the pose.
+  static h4msgs::board_corners_t Corners(const h4msgs::board_pose_t& pose) {
+    h4msgs::board_corners_t c{};
+    c.utime = pose.utime;
+    c.pose_id = pose.pose_id;
+    c.corner_count = 4;
+    for (int k = 0; k < 4; ++k) {
+      c.tag_id.push_back(0);
+      c.corner.push_back(k);
+      c.u.push_back(CornerU(pose.pose_id) + k);
+      c.v.push_back(200.5);
+      c.sigma_px.push_back(0.05);
+    }
+    return c;
+  }
+  static double CornerU(int64_t pose_id) { return 100.25 + 10.0 * static_cast<double>(pose_id); }
+
   /// Joint values of a pose: distinct per pose so that pairing mistakes show.
   static std::array<double, 4> Joints(int64_t pose_id) {
     const double p = static_cast<double>(pose_id);
@@ -116,7 +133,10 @@ class ScriptedCell {
       m.quaternion[0] = 1.0;
       for (int i = 0; i < 6; ++i) m.covariance[i * 7] = 1e-8;
       m.status = camera_status ? camera_status(id, attempt) : h4msgs::board_pose_t::STATUS_OK;
+      const bool corners = send_corners && m.status == h4msgs::board_pose_t::STATUS_OK;
+      if (corners && corners_before_pose) bus_.Publish(channels::kBoardCorners, Corners(m));
       if (!Lost()) bus_.Publish(channels::kBoardPose, m);
+      if (corners && !corners_before_pose) bus_.Publish(channels::kBoardCorners, Corners(m));
     }
     pending_requests_ = later;
   }
@@ -138,6 +158,8 @@ class ScriptedCell {
   double reorder = 0.0;               ///< probability that a joint state arrives after the next one
   int64_t robot_clock_offset_us = 0;  ///< added to the robot's utimes (a clock jump)
   std::function<int8_t(int64_t, int)> camera_status;
+  bool send_corners = false;         ///< an OK answer is followed by its board_corners_t
+  bool corners_before_pose = false;  ///< ... or preceded (reordered)
 
  private:
   bus::LcmBus& bus_;
@@ -489,6 +511,115 @@ TEST_F(CampaignTest, ResumesWithoutMeasuringRecordedPosesAgain) {
   std::set<int64_t> ids;
   for (const DatasetRow& r : rows) ids.insert(r.pose_id);
   EXPECT_EQ(ids, (std::set<int64_t>{1, 2, 3, 4}));
+}
+
+// Issue 25: the corners of each recorded pose, beside the dataset, once per pose.
+class CampaignCornersTest : public CampaignTest {
+ protected:
+  void SetUp() override {
+    CampaignTest::SetUp();
+    corners_path_ = CornersPathBeside(path_);
+  }
+  /// A campaign of Plan(`poses`) with the corners journal; the corners still queued after
+  /// the last pose are handled as `collect` does.
+  std::vector<int64_t> RunWithCorners(int poses, ScriptedCell* cell, bus::LcmBus& bus) {
+    DatasetJournal journal(path_);
+    CornersJournal corners(corners_path_);
+    Campaign campaign(bus, Plan(poses), journal, corners, FastOptions());
+    Run(bus, campaign, cell);
+    EXPECT_TRUE(campaign.finished());
+    for (int i = 0; i < 5 && !campaign.poses_without_corners().empty(); ++i) {
+      bus.Handle(std::chrono::milliseconds(1));
+    }
+    return campaign.poses_without_corners();
+  }
+  /// Every corner row checked against the cell's corners of its pose; the poses found.
+  std::set<int64_t> CornerPosesOnDisk() const {
+    std::set<int64_t> poses;
+    for (const CornerObservation& c : ReadCornersCsv(corners_path_)) {
+      EXPECT_EQ(c.tag_id, 0);
+      EXPECT_EQ(c.u, ScriptedCell::CornerU(c.pose_id) + c.corner) << c.pose_id;
+      EXPECT_EQ(c.sigma_px, 0.05);
+      poses.insert(c.pose_id);
+    }
+    return poses;
+  }
+  std::string corners_path_;
+};
+
+TEST_F(CampaignCornersTest, WritesTheCornersOfEachPoseBesideTheDataset) {
+  EXPECT_EQ(fs::path(corners_path_), dir_ / "dataset.corners.csv");
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  cell.send_corners = true;
+  EXPECT_TRUE(RunWithCorners(4, &cell, bus).empty());
+  EXPECT_EQ(ReadDatasetCsv(path_).size(), 4u);
+  EXPECT_EQ(ReadCornersCsv(corners_path_).size(), 16u);
+  EXPECT_EQ(CornerPosesOnDisk(), (std::set<int64_t>{1, 2, 3, 4}));
+}
+
+TEST_F(CampaignCornersTest, CornersThatArriveBeforeTheirPoseArePairedToo) {
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  cell.send_corners = true;
+  cell.corners_before_pose = true;
+  EXPECT_TRUE(RunWithCorners(3, &cell, bus).empty());
+  EXPECT_EQ(CornerPosesOnDisk(), (std::set<int64_t>{1, 2, 3}));
+}
+
+TEST_F(CampaignCornersTest, ACameraWithoutCornersStillGivesEveryRowAndListsThePoses) {
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  EXPECT_EQ(RunWithCorners(3, &cell, bus), (std::vector<int64_t>{1, 2, 3}));
+  EXPECT_EQ(ReadDatasetCsv(path_).size(), 3u);
+  EXPECT_TRUE(ReadCornersCsv(corners_path_).empty());
+}
+
+TEST_F(CampaignCornersTest, ResumeWritesTheCornersOfEachPoseOnce) {
+  {
+    bus::LcmBus bus("memq://");
+    ScriptedCell cell(bus);
+    cell.send_corners = true;
+    RunWithCorners(2, &cell, bus);
+  }
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  cell.send_corners = true;
+  EXPECT_TRUE(RunWithCorners(4, &cell, bus).empty());
+  EXPECT_EQ(cell.targets, (std::vector<int64_t>{3, 4}));
+  // ReadCornersCsv refuses a (pose_id, corner) twice: each pose is there once.
+  EXPECT_EQ(ReadCornersCsv(corners_path_).size(), 16u);
+  EXPECT_EQ(CornerPosesOnDisk(), (std::set<int64_t>{1, 2, 3, 4}));
+}
+
+TEST_F(CampaignCornersTest, ImpossibleCornersAreCountedNotWritten) {
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  DatasetJournal journal(path_);
+  CornersJournal corners(corners_path_);
+  Campaign campaign(bus, Plan(2), journal, corners, FastOptions());
+  // Once each pose is recorded, its corners with its utime but an impossible value: a
+  // non-finite u for pose 1, one corner twice for pose 2.
+  h4msgs::board_pose_t pose{};
+  h4msgs::board_corners_t bad = ScriptedCell::Corners(pose);
+  size_t published = 0;
+  const auto publish_bad = [&] {
+    if (published >= 2 || journal.rows().size() <= published) return;
+    const DatasetRow& row = journal.rows()[published];
+    bad.pose_id = row.pose_id;
+    bad.utime = row.utime;
+    if (published == 0) bad.u[0] = std::nan("");
+    if (published == 1) bad.corner[1] = bad.corner[0];
+    bus.Publish(channels::kBoardCorners, bad);
+    ++published;
+  };
+  Run(bus, campaign, &cell, 20.0, publish_bad);
+  publish_bad();  // the last pose was recorded by the Handle that ended the campaign
+  bus.Handle(std::chrono::milliseconds(1));
+  EXPECT_EQ(published, 2u);
+  EXPECT_EQ(campaign.counters().unusable_corners, 2);
+  EXPECT_EQ(campaign.poses_without_corners(), (std::vector<int64_t>{1, 2}));
+  EXPECT_TRUE(ReadCornersCsv(corners_path_).empty());
 }
 
 TEST_F(CampaignTest, CountsGarbageAndImpossibleMessagesWithoutUsingThem) {

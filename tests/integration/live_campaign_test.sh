@@ -44,6 +44,7 @@ fi
 fail() { echo "FAIL: $*" >&2; for f in "$dir"/*.log; do echo "--- $f"; tail -n 5 "$f"; done >&2; exit 1; }
 below() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a <= b) }'; }
 rows() { [ -f "$1" ] && echo $(( $(wc -l < "$1") - 1 )) || echo 0; }
+corner_poses() { tail -n +2 "$1" | cut -d, -f1 | sort -n | uniq | wc -l; }
 pids=()
 cleanup() { for p in "${pids[@]}"; do kill "$p" 2> /dev/null || true; done; wait 2> /dev/null || true; }
 trap cleanup EXIT
@@ -87,6 +88,11 @@ collect=("$h4cal" collect --plan plan.csv --settle-timeout $((20 * scale))
          --capture-timeout $((10 * scale)) --auth-key h4.key)
 "${collect[@]}" --out dataset.csv > collect.log 2>&1 || fail "collect exited $?"
 [ "$(rows dataset.csv)" -eq 12 ] || fail "dataset.csv has $(rows dataset.csv) rows, expected 12"
+# The corners of each pose beside the dataset (issue 25), from the camera's H4_BOARD_CORNERS.
+[ "$(head -1 dataset.corners.csv)" = "pose_id,tag_id,corner,u,v,sigma_px" ] \
+  || fail "dataset.corners.csv: no corners header"
+[ "$(corner_poses dataset.corners.csv)" -eq 12 ] \
+  || fail "dataset.corners.csv has the corners of $(corner_poses dataset.corners.csv) poses, expected 12"
 kill -INT $logger; wait $logger || true
 
 # Interrupted (Ctrl-C: SIGINT) in the middle: exit 130, the rows so far flushed, and the
@@ -117,6 +123,10 @@ grep -q "$before already in" resumed_2.log || fail "the restart did not resume f
 [ "$(rows resumed.csv)" -eq 12 ] || fail "resumed.csv has $(rows resumed.csv) rows"
 [ "$(cut -d, -f1 resumed.csv | tail -n +2 | sort -n | uniq | wc -l)" -eq 12 ] \
   || fail "resumed.csv does not hold 12 distinct poses"
+# A resumed campaign writes each pose's corners once (a pose killed between its row and its
+# corners may have none).
+[ "$(tail -n +2 resumed.corners.csv | cut -d, -f1,3 | sort | uniq -d | wc -l)" -eq 0 ] \
+  || fail "resumed.corners.csv holds a corner of a pose twice"
 
 kill -TERM $robot $camera
 wait $robot || fail "sim-robot exited $? on SIGTERM"
@@ -127,6 +137,7 @@ pids=()
 "$h4cal" collect --from-log campaign.lcmlog --plan plan.csv --out from_log.csv --auth-key h4.key \
   > from_log.log 2>&1 || fail "collect --from-log exited $?"
 cmp dataset.csv from_log.csv || fail "--from-log rebuilt other rows"
+cmp dataset.corners.csv from_log.corners.csv || fail "--from-log rebuilt other corners"
 grep -q " 0 not authentic" from_log.log || fail "--from-log with the key dropped messages"
 "$h4cal" collect --passive --plan plan.csv --out passive.csv > passive.log 2>&1 &
 listener=$!; pids+=($listener)

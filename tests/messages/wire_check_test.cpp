@@ -49,11 +49,27 @@ h4msgs::camera_status_t SampleCameraStatus() {
   return m;
 }
 
+h4msgs::board_corners_t SampleBoardCorners(int corners) {
+  h4msgs::board_corners_t m{};
+  m.utime = 1700000000000000;
+  m.pose_id = 3;
+  m.camera_id = "sim";
+  m.corner_count = corners;
+  const auto n = static_cast<size_t>(corners);
+  m.tag_id.assign(n, 2);
+  m.corner.assign(n, 9);
+  m.u.assign(n, 640.5);
+  m.v.assign(n, 480.25);
+  m.sigma_px.assign(n, 0.02);
+  return m;
+}
+
 // Byte offsets of the length fields in FullBoardPose (wire_bytes.h) and the samples above
 // (after the 8-byte fingerprint).
 constexpr size_t kBoardPoseCameraIdLength = 8 + 8 + 8;
 constexpr size_t kJointStateCount = 8 + 8 + 8;
 constexpr size_t kCameraStatusCameraIdLength = 8 + 8;
+constexpr size_t kBoardCornersCount = 8 + 8 + 8 + 4 + 4;  // camera_id "sim": length, 3 bytes, NUL
 
 TEST(WireCheck, EveryLayoutAcceptsWhatTheGeneratedEncoderWrites) {
   std::string why;
@@ -72,6 +88,24 @@ TEST(WireCheck, EveryLayoutAcceptsWhatTheGeneratedEncoderWrites) {
   EXPECT_TRUE(Accepted<h4msgs::robot_target_t>(Encode(h4msgs::robot_target_t{}), &why)) << why;
   EXPECT_TRUE(Accepted<h4msgs::sim_board_truth_t>(Encode(h4msgs::sim_board_truth_t{}), &why))
       << why;
+  // A board has more corners than a joint state has joints: the corners' own bound.
+  for (int corners : {0, 1, 144, kMaxBoardCorners}) {
+    EXPECT_TRUE(Accepted<h4msgs::board_corners_t>(Encode(SampleBoardCorners(corners)), &why))
+        << corners << ": " << why;
+  }
+}
+
+TEST(WireCheck, RefusesCornerCountsBeyondTheirBound) {
+  for (int32_t count : {-1, INT_MIN, kMaxBoardCorners + 1, INT_MAX}) {
+    std::vector<uint8_t> bytes = Encode(SampleBoardCorners(4));
+    PutBigEndian32(&bytes, kBoardCornersCount, count);
+    std::string why;
+    EXPECT_FALSE(Accepted<h4msgs::board_corners_t>(bytes, &why)) << count;
+    EXPECT_NE(why.find("tag_id"), std::string::npos) << why;
+  }
+  std::string why;
+  EXPECT_FALSE(
+      Accepted<h4msgs::board_corners_t>(Encode(SampleBoardCorners(kMaxBoardCorners + 1)), &why));
 }
 
 TEST(WireCheck, RefusesAnotherTypesFingerprintAndTrailingOrMissingBytes) {

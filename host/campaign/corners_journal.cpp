@@ -1,0 +1,116 @@
+// Durable, resumable board-corner appends; see corners_journal.h.
+#include "host/campaign/corners_journal.h"
+
+#include <filesystem>
+#include <stdexcept>
+
+#include <spdlog/spdlog.h>
+
+namespace h4::host {
+namespace {
+
+// Every corner the campaign writes has a sigma (the camera sends one per corner), so the
+// column is always there (common/formats/README.md "Board corners: CSV").
+constexpr bool kWithSigma = true;
+
+// The first field of `line` (its pose id), or "" when the line has no comma.
+std::string PoseIdField(const std::string& line) {
+  const size_t comma = line.find(',');
+  return comma == std::string::npos ? std::string() : line.substr(0, comma);
+}
+
+// `text` without a last line cut by a crash inside a pose's single write, nor the rows of
+// that pose before it: a pose's corners are in the file whole or not at all. A cut inside
+// the pose id itself cannot tell which pose it was: the last whole pose goes too (its
+// corners are then missing; the dataset keeps its row).
+std::string WithoutCutPose(std::string text, const std::string& path) {
+  if (text.empty() || text.back() == '\n') return text;
+  size_t keep = text.rfind('\n');
+  keep = (keep == std::string::npos) ? 0 : keep + 1;
+  const std::string cut = text.substr(keep);
+  spdlog::warn("{}: removing an incomplete last line left by an interrupted run: '{}'", path, cut);
+  text.resize(keep);
+  std::string pose = PoseIdField(cut);
+  while (!text.empty()) {
+    const size_t start = text.rfind('\n', text.size() - 2);
+    const size_t line_start = (start == std::string::npos) ? 0 : start + 1;
+    const std::string line = text.substr(line_start, text.size() - 1 - line_start);
+    if (line_start == 0 || (pose.empty() && PoseIdField(line).empty())) break;  // the header
+    if (pose.empty()) pose = PoseIdField(line);
+    if (PoseIdField(line) != pose) break;
+    spdlog::warn("{}: removing a row of pose {}, whose corners the interrupted run cut", path,
+                 pose);
+    text.resize(line_start);
+  }
+  return text;
+}
+
+}  // namespace
+
+CornersJournal::CornersJournal(std::string path, JournalFileOps ops)
+    : path_(std::move(path)), ops_(std::move(ops)) {
+  fd_ = OpenLocked(path_, "--corners-out");
+  try {
+    Load();
+  } catch (...) {
+    ::close(fd_);
+    fd_ = -1;
+    throw;
+  }
+}
+
+CornersJournal::~CornersJournal() {
+  if (fd_ >= 0) ::close(fd_);  // also releases the lock
+}
+
+void CornersJournal::Load() {
+  const std::string text = WithoutCutPose(ReadAll(fd_, path_), path_);
+  const std::string header = CornersCsvHeader(kWithSigma);
+  if (!text.empty()) {
+    const std::string first_line = text.substr(0, text.find('\n'));
+    if (first_line != header) {
+      throw std::runtime_error(path_ + ": exists with other columns (line 1: '" + first_line +
+                               "'; a campaign writes '" + header +
+                               "'): choose another --corners-out or move the file away");
+    }
+    for (const CornerObservation& c : ParseCornersCsv(text, path_)) pose_ids_.insert(c.pose_id);
+  }
+  committed_size_ = static_cast<off_t>(text.size());
+  if (::ftruncate(fd_, committed_size_) != 0 || ::lseek(fd_, 0, SEEK_END) < 0) {
+    throw SystemError(path_, "truncate to its last complete row");
+  }
+  if (text.empty()) {
+    const std::string line = header + "\n";
+    AppendDurably(ops_, fd_, line, 0, path_);
+    committed_size_ = static_cast<off_t>(line.size());
+    FlushDirectoryEntry(path_);
+  }
+}
+
+void CornersJournal::Append(const std::vector<CornerObservation>& corners) {
+  if (corners.empty()) throw std::invalid_argument(path_ + ": no corners to append");
+  const int64_t pose_id = corners.front().pose_id;
+  if (Contains(pose_id)) {
+    throw std::invalid_argument(path_ + ": the corners of pose " + std::to_string(pose_id) +
+                                " are already recorded");
+  }
+  std::string text;
+  for (const CornerObservation& c : corners) {
+    if (c.pose_id != pose_id) {
+      throw std::invalid_argument(path_ + ": corners of poses " + std::to_string(pose_id) +
+                                  " and " + std::to_string(c.pose_id) + " in one append");
+    }
+    text += CornersCsvLine(c, kWithSigma) + "\n";
+  }
+  // One write per pose: a kill between poses leaves whole poses only.
+  AppendDurably(ops_, fd_, text, committed_size_, path_);
+  committed_size_ += static_cast<off_t>(text.size());
+  pose_ids_.insert(pose_id);
+}
+
+std::string CornersPathBeside(const std::string& dataset_path) {
+  const std::filesystem::path dataset(dataset_path);
+  return (dataset.parent_path() / (dataset.stem().string() + ".corners.csv")).string();
+}
+
+}  // namespace h4::host

@@ -1,0 +1,57 @@
+// The campaign's board corners (issue 25: corners travel with the pose), appended durably
+// beside the dataset: for each recorded pose whose camera sent them (board_corners_t), the
+// refined corners as rows of the board-corner CSV (common/formats/README.md "Board corners:
+// CSV"), all rows of a pose in one write(2) and one fsync(2), as the dataset's rows are
+// (dataset_journal.h). On open, an existing file is read back (a last line cut by a crash is
+// dropped): the poses it holds are not appended again, so a resumed campaign writes each
+// pose's corners once. Locked like the dataset while open.
+#pragma once
+
+#include <cstdint>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <sys/types.h>
+
+#include "common/formats/corners_csv.h"
+#include "host/campaign/journal_file.h"
+
+namespace h4::host {
+
+class CornersJournal {
+ public:
+  /// Opens (creating it with the header when absent or empty) `path`. An existing file must
+  /// have the campaign's columns (pose_id,tag_id,corner,u,v,sigma_px) and parse; throws
+  /// FormatError or std::runtime_error naming the file otherwise, or when it is locked.
+  explicit CornersJournal(std::string path, JournalFileOps ops = {});
+  ~CornersJournal();
+  CornersJournal(const CornersJournal&) = delete;
+  CornersJournal& operator=(const CornersJournal&) = delete;
+
+  const std::string& path() const { return path_; }
+  bool Contains(int64_t pose_id) const { return pose_ids_.count(pose_id) != 0; }
+  /// Poses whose corners were in the file when it was opened, plus those appended since.
+  size_t pose_count() const { return pose_ids_.size(); }
+
+  /// Appends the corners of one pose (every row's pose_id the same, not yet in the file)
+  /// and flushes them to the disk; throws std::invalid_argument for an empty list, mixed or
+  /// recorded pose ids, and std::runtime_error (file cut back to its complete poses) when
+  /// the disk refuses.
+  void Append(const std::vector<CornerObservation>& corners);
+
+ private:
+  void Load();
+
+  std::string path_;
+  JournalFileOps ops_;
+  int fd_ = -1;
+  off_t committed_size_ = 0;
+  std::set<int64_t> pose_ids_;
+};
+
+/// The corners file beside `dataset_path`: its stem + ".corners.csv" in the same directory
+/// (`runs/day1.csv` -> `runs/day1.corners.csv`), the default of `h4cal collect --corners-out`.
+std::string CornersPathBeside(const std::string& dataset_path);
+
+}  // namespace h4::host

@@ -1,0 +1,142 @@
+// Durable, resumable appends of the campaign's board corners (host/campaign/corners_journal.h,
+// common/formats/README.md "Board corners: CSV").
+#include "host/campaign/corners_journal.h"
+
+#include <cerrno>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+#include "common/formats/format_error.h"
+#include "tests/support/test_dir.h"
+
+namespace h4::host {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<CornerObservation> PoseCorners(int64_t pose_id, int count = 3) {
+  std::vector<CornerObservation> corners;
+  for (int k = 0; k < count; ++k) {
+    corners.push_back({pose_id, 2, 8 + k, 10.5 * static_cast<double>(pose_id) + k, 20.25, 0.04});
+  }
+  return corners;
+}
+
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void WriteText(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+class CornersJournalTest : public TestWithDatasetFile {
+ protected:
+  CornersJournalTest() : TestWithDatasetFile("h4_corners_journal_") {}
+  void SetUp() override {
+    TestWithDatasetFile::SetUp();
+    corners_path_ = CornersPathBeside(path_);
+  }
+  std::string corners_path_;
+};
+
+TEST(CornersPathBeside, IsTheDatasetStemWithCornersCsvInItsDirectory) {
+  EXPECT_EQ(CornersPathBeside("runs/day1.csv"), "runs/day1.corners.csv");
+  EXPECT_EQ(CornersPathBeside("data.csv"), "data.corners.csv");
+  EXPECT_EQ(CornersPathBeside("/tmp/a.b/set"), "/tmp/a.b/set.corners.csv");
+}
+
+TEST_F(CornersJournalTest, WritesPosesThatReadBackAndResumesWithThem) {
+  {
+    CornersJournal journal(corners_path_);
+    journal.Append(PoseCorners(1));
+    journal.Append(PoseCorners(4));
+    // Durable: on disk before the journal is closed.
+    EXPECT_EQ(ReadCornersCsv(corners_path_).size(), 6u);
+    EXPECT_TRUE(journal.Contains(4));
+    EXPECT_THROW(journal.Append(PoseCorners(4)), std::invalid_argument);
+  }
+  CornersJournal resumed(corners_path_);
+  EXPECT_TRUE(resumed.Contains(1));
+  EXPECT_TRUE(resumed.Contains(4));
+  EXPECT_EQ(resumed.pose_count(), 2u);
+  resumed.Append(PoseCorners(5));
+  const std::vector<CornerObservation> back = ReadCornersCsv(corners_path_);
+  ASSERT_EQ(back.size(), 9u);
+  EXPECT_EQ(back[8].pose_id, 5);
+  EXPECT_EQ(back[8].u, 52.5 + 2);
+  EXPECT_EQ(Slurp(corners_path_).substr(0, 37), "pose_id,tag_id,corner,u,v,sigma_px\n1,");
+}
+
+TEST_F(CornersJournalTest, RefusesMixedPosesAndAnEmptyList) {
+  CornersJournal journal(corners_path_);
+  std::vector<CornerObservation> mixed = PoseCorners(1);
+  mixed[2].pose_id = 2;
+  EXPECT_THROW(journal.Append(mixed), std::invalid_argument);
+  EXPECT_THROW(journal.Append({}), std::invalid_argument);
+  EXPECT_TRUE(ReadCornersCsv(corners_path_).empty()) << "nothing of a refused append";
+}
+
+// A crash inside a pose's write leaves a cut last line: that pose's rows all go, the whole
+// poses before it stay.
+TEST_F(CornersJournalTest, DropsThePoseACrashCut) {
+  {
+    CornersJournal journal(corners_path_);
+    journal.Append(PoseCorners(1));
+  }
+  const std::string whole = Slurp(corners_path_);
+  WriteText(corners_path_, whole + "2,2,8,21,20.25,0.04\n2,2,9,22,20.2");
+  {
+    CornersJournal journal(corners_path_);
+    EXPECT_TRUE(journal.Contains(1));
+    EXPECT_FALSE(journal.Contains(2));
+    journal.Append(PoseCorners(2));
+  }
+  const std::vector<CornerObservation> back = ReadCornersCsv(corners_path_);
+  ASSERT_EQ(back.size(), 6u);
+  EXPECT_EQ(back[3].pose_id, 2);
+  EXPECT_EQ(back[3].u, 21.0);
+  // A cut inside the pose id cannot tell its pose: the last whole one goes too.
+  WriteText(corners_path_, whole + "1");
+  CornersJournal journal(corners_path_);
+  EXPECT_FALSE(journal.Contains(1));
+  EXPECT_EQ(Slurp(corners_path_), "pose_id,tag_id,corner,u,v,sigma_px\n");
+}
+
+TEST_F(CornersJournalTest, RefusesAFileWithOtherColumnsOrMalformedRows) {
+  WriteText(corners_path_, "pose_id,tag_id,corner,u,v\n1,0,0,1,1\n");
+  try {
+    CornersJournal journal(corners_path_);
+    FAIL() << "expected a refusal";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("other columns"), std::string::npos) << e.what();
+  }
+  WriteText(corners_path_, "pose_id,tag_id,corner,u,v,sigma_px\n1,0,0,1,x,\n");
+  EXPECT_THROW(CornersJournal journal(corners_path_), FormatError);
+}
+
+TEST_F(CornersJournalTest, AFailedFsyncCutsThePoseOff) {
+  JournalFileOps ops;
+  bool fail = false;
+  ops.fsync = [&fail](int fd) {
+    if (!fail) return ::fsync(fd);
+    errno = EIO;
+    return -1;
+  };
+  CornersJournal journal(corners_path_, ops);
+  journal.Append(PoseCorners(1));
+  fail = true;
+  EXPECT_THROW(journal.Append(PoseCorners(2)), std::runtime_error);
+  EXPECT_FALSE(journal.Contains(2));
+  EXPECT_EQ(ReadCornersCsv(corners_path_).size(), 3u);
+}
+
+}  // namespace
+}  // namespace h4::host
