@@ -13,7 +13,7 @@ namespace {
 
 using Ordered = nlohmann::ordered_json;
 
-Ordered Number(double value, const std::string& field) {
+Ordered FiniteNumber(double value, const std::string& field) {
   FormatDouble(value, field);  // throws on a non-finite value
   return value;
 }
@@ -73,9 +73,9 @@ Ordered ResultCameraJson(const ResultCamera& camera) {
   for (const ResultCameraParameter& p : camera.parameters) {
     parameters.push_back(
         {{"name", p.name},
-         {"value", Number(p.value, "camera." + p.name)},
-         {"file_value", Number(p.file_value, "camera." + p.name + ".file_value")},
-         {"std", p.std ? Number(*p.std, "camera." + p.name + ".std") : Ordered(nullptr)},
+         {"value", FiniteNumber(p.value, "camera." + p.name)},
+         {"file_value", FiniteNumber(p.file_value, "camera." + p.name + ".file_value")},
+         {"std", p.std ? FiniteNumber(*p.std, "camera." + p.name + ".std") : Ordered(nullptr)},
          {"fixed_reason", p.fixed_reason.empty() ? Ordered(nullptr) : Ordered(p.fixed_reason)}});
   }
   Ordered covariance = nullptr;
@@ -84,7 +84,7 @@ Ordered ResultCameraJson(const ResultCamera& camera) {
     for (Eigen::Index i = 0; i < camera.covariance->rows(); ++i) {
       Ordered row = Ordered::array();
       for (Eigen::Index j = 0; j < camera.covariance->cols(); ++j) {
-        row.push_back(Number((*camera.covariance)(i, j), "camera.covariance"));
+        row.push_back(FiniteNumber((*camera.covariance)(i, j), "camera.covariance"));
       }
       covariance.push_back(row);
     }
@@ -92,12 +92,12 @@ Ordered ResultCameraJson(const ResultCamera& camera) {
   return {{"distortion_model", camera.distortion_model},
           {"width", camera.width},
           {"height", camera.height},
-          {"skew", Number(camera.skew, "camera.skew")},
+          {"skew", FiniteNumber(camera.skew, "camera.skew")},
           {"parameters", parameters},
           {"covariance", covariance},
           {"corners", camera.corners},
           {"rejected_corners", camera.rejected_corners},
-          {"corner_rms_px", Number(camera.corner_rms_px, "camera.corner_rms_px")}};
+          {"corner_rms_px", FiniteNumber(camera.corner_rms_px, "camera.corner_rms_px")}};
 }
 
 }  // namespace h4
