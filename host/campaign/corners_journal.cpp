@@ -11,7 +11,7 @@ namespace {
 
 // Every corner the campaign writes has a sigma (the camera sends one per corner), so the
 // column is always there (common/formats/README.md "Board corners: CSV").
-constexpr bool kWithSigma = true;
+constexpr bool kCornersWithSigma = true;
 
 // The first field of `line` (its pose id), or "" when the line has no comma.
 std::string PoseIdField(const std::string& line) {
@@ -65,7 +65,7 @@ CornersJournal::~CornersJournal() {
 
 void CornersJournal::Load() {
   const std::string text = WithoutCutPose(ReadAll(fd_, path_), path_);
-  const std::string header = CornersCsvHeader(kWithSigma);
+  const std::string header = CornersCsvHeader(kCornersWithSigma);
   if (!text.empty()) {
     const std::string first_line = text.substr(0, text.find('\n'));
     if (first_line != header) {
@@ -100,7 +100,7 @@ void CornersJournal::Append(const std::vector<CornerObservation>& corners) {
       throw std::invalid_argument(path_ + ": corners of poses " + std::to_string(pose_id) +
                                   " and " + std::to_string(c.pose_id) + " in one append");
     }
-    text += CornersCsvLine(c, kWithSigma) + "\n";
+    text += CornersCsvLine(c, kCornersWithSigma) + "\n";
   }
   // One write per pose: a kill between poses leaves whole poses only.
   AppendDurably(ops_, fd_, text, committed_size_, path_);

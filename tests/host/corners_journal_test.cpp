@@ -18,7 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<CornerObservation> PoseCorners(int64_t pose_id, int count = 3) {
+std::vector<CornerObservation> CornersOfPose(int64_t pose_id, int count = 3) {
   std::vector<CornerObservation> corners;
   for (int k = 0; k < count; ++k) {
     corners.push_back({pose_id, 2, 8 + k, 10.5 * static_cast<double>(pose_id) + k, 20.25, 0.04});
@@ -26,7 +26,7 @@ std::vector<CornerObservation> PoseCorners(int64_t pose_id, int count = 3) {
   return corners;
 }
 
-std::string Slurp(const std::string& path) {
+std::string ReadWholeCornersFile(const std::string& path) {
   std::ifstream in(path);
   std::ostringstream s;
   s << in.rdbuf();
@@ -56,28 +56,28 @@ TEST(CornersPathBeside, IsTheDatasetStemWithCornersCsvInItsDirectory) {
 TEST_F(CornersJournalTest, WritesPosesThatReadBackAndResumesWithThem) {
   {
     CornersJournal journal(corners_path_);
-    journal.Append(PoseCorners(1));
-    journal.Append(PoseCorners(4));
+    journal.Append(CornersOfPose(1));
+    journal.Append(CornersOfPose(4));
     // Durable: on disk before the journal is closed.
     EXPECT_EQ(ReadCornersCsv(corners_path_).size(), 6u);
     EXPECT_TRUE(journal.Contains(4));
-    EXPECT_THROW(journal.Append(PoseCorners(4)), std::invalid_argument);
+    EXPECT_THROW(journal.Append(CornersOfPose(4)), std::invalid_argument);
   }
   CornersJournal resumed(corners_path_);
   EXPECT_TRUE(resumed.Contains(1));
   EXPECT_TRUE(resumed.Contains(4));
   EXPECT_EQ(resumed.pose_count(), 2u);
-  resumed.Append(PoseCorners(5));
+  resumed.Append(CornersOfPose(5));
   const std::vector<CornerObservation> back = ReadCornersCsv(corners_path_);
   ASSERT_EQ(back.size(), 9u);
   EXPECT_EQ(back[8].pose_id, 5);
   EXPECT_EQ(back[8].u, 52.5 + 2);
-  EXPECT_EQ(Slurp(corners_path_).substr(0, 37), "pose_id,tag_id,corner,u,v,sigma_px\n1,");
+  EXPECT_EQ(ReadWholeCornersFile(corners_path_).substr(0, 37), "pose_id,tag_id,corner,u,v,sigma_px\n1,");
 }
 
 TEST_F(CornersJournalTest, RefusesMixedPosesAndAnEmptyList) {
   CornersJournal journal(corners_path_);
-  std::vector<CornerObservation> mixed = PoseCorners(1);
+  std::vector<CornerObservation> mixed = CornersOfPose(1);
   mixed[2].pose_id = 2;
   EXPECT_THROW(journal.Append(mixed), std::invalid_argument);
   EXPECT_THROW(journal.Append({}), std::invalid_argument);
@@ -89,15 +89,15 @@ TEST_F(CornersJournalTest, RefusesMixedPosesAndAnEmptyList) {
 TEST_F(CornersJournalTest, DropsThePoseACrashCut) {
   {
     CornersJournal journal(corners_path_);
-    journal.Append(PoseCorners(1));
+    journal.Append(CornersOfPose(1));
   }
-  const std::string whole = Slurp(corners_path_);
+  const std::string whole = ReadWholeCornersFile(corners_path_);
   WriteText(corners_path_, whole + "2,2,8,21,20.25,0.04\n2,2,9,22,20.2");
   {
     CornersJournal journal(corners_path_);
     EXPECT_TRUE(journal.Contains(1));
     EXPECT_FALSE(journal.Contains(2));
-    journal.Append(PoseCorners(2));
+    journal.Append(CornersOfPose(2));
   }
   const std::vector<CornerObservation> back = ReadCornersCsv(corners_path_);
   ASSERT_EQ(back.size(), 6u);
@@ -107,7 +107,7 @@ TEST_F(CornersJournalTest, DropsThePoseACrashCut) {
   WriteText(corners_path_, whole + "1");
   CornersJournal journal(corners_path_);
   EXPECT_FALSE(journal.Contains(1));
-  EXPECT_EQ(Slurp(corners_path_), "pose_id,tag_id,corner,u,v,sigma_px\n");
+  EXPECT_EQ(ReadWholeCornersFile(corners_path_), "pose_id,tag_id,corner,u,v,sigma_px\n");
 }
 
 TEST_F(CornersJournalTest, RefusesAFileWithOtherColumnsOrMalformedRows) {
@@ -131,9 +131,9 @@ TEST_F(CornersJournalTest, AFailedFsyncCutsThePoseOff) {
     return -1;
   };
   CornersJournal journal(corners_path_, ops);
-  journal.Append(PoseCorners(1));
+  journal.Append(CornersOfPose(1));
   fail = true;
-  EXPECT_THROW(journal.Append(PoseCorners(2)), std::runtime_error);
+  EXPECT_THROW(journal.Append(CornersOfPose(2)), std::runtime_error);
   EXPECT_FALSE(journal.Contains(2));
   EXPECT_EQ(ReadCornersCsv(corners_path_).size(), 3u);
 }
