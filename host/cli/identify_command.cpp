@@ -212,9 +212,14 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
     throw std::invalid_argument("--algorithm: " + algorithm_why);
   }
   RequireCornerPathFiles(options);
-  RequireOutputIsNotAnInput({"--out", options.out_path}, {{"--robot", options.robot_path},
-                                                          {"--data", options.data_path},
-                                                          {"--from", options.from_path}});
+  const std::vector<NamedPath> input_files = {
+      {"--robot", options.robot_path}, {"--data", options.data_path},
+      {"--from", options.from_path},   {"--corners", options.corners_path},
+      {"--board", options.board_path}, {"--camera", options.camera_path}};
+  RequireOutputIsNotAnInput({"--out", options.out_path}, input_files);
+  if (!options.camera_out_path.empty()) {
+    RequireOutputIsNotAnInput({"--camera-out", options.camera_out_path}, input_files);
+  }
   const RobotDescription robot = ReadRobotYaml(options.robot_path);
   const std::vector<DatasetRow> rows = ReadDatasetCsv(options.data_path);
   RequireUsableSplit(options, rows);

@@ -102,7 +102,8 @@ h4msgs::joint_state_t SettledAt(int64_t pose_id, int64_t utime) {
   js.utime = utime;
   js.pose_id = pose_id;
   js.joint_count = 4;
-  js.position = {0.1 * static_cast<double>(pose_id), 0.2, 0.3, 0.4};
+  js.position = {0.01 * static_cast<double>(pose_id), 0.2, 0.3,
+                 0.4};  // within a turn (the reader's bound)
   js.settled = true;
   return js;
 }

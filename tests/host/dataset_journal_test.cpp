@@ -27,7 +27,7 @@ DatasetRow Row(int64_t id) {
   DatasetRow row;
   row.pose_id = id;
   row.utime = 1'700'000'000'000'000 + id;
-  row.q = {0.1 * static_cast<double>(id), 0.2, 0.3, 0.4};
+  row.q = {0.01 * static_cast<double>(id), 0.2, 0.3, 0.4};  // within a turn (the reader's bound)
   row.X_CT = RigidTransform::FromTranslationRpy(Eigen::Vector3d(0.01, 0.02, 0.5 + 0.01 * id),
                                                 Eigen::Vector3d(0.1, -0.2, 0.3));
   row.sigma_t = 2e-4;
@@ -56,7 +56,7 @@ TEST_F(DatasetJournalTest, WritesRowsThatReadBackAsADataset) {
     const std::vector<DatasetRow> on_disk = ReadDatasetCsv(path_);
     ASSERT_EQ(on_disk.size(), 2u);
     EXPECT_EQ(on_disk[1].pose_id, 2);
-    EXPECT_EQ(on_disk[1].q[0], 0.2);
+    EXPECT_EQ(on_disk[1].q[0], 0.02);
     ASSERT_TRUE(on_disk[1].sigma_t);
     EXPECT_EQ(*on_disk[1].sigma_t, 2e-4);
   }

@@ -50,6 +50,13 @@ run fixed31 3 --model 31 --from "$dir/r12.json" --corners "$dir/sim/corners.csv"
 grep -q 'camera.fx .* kept: kept from the camera file (--camera-fixed)' "$dir/fixed31.txt" \
   || fail "--camera-fixed: $(grep camera.fx "$dir/fixed31.txt")"
 
+# The refined camera never overwrites the camera file it was refined from.
+cp "$file_camera" "$dir/camera.yaml"
+run overwrite 1 --model 31 --from "$dir/r12.json" --corners "$dir/sim/corners.csv" \
+  --board "$board" --camera "$dir/camera.yaml" --camera-out "$dir/camera.yaml"
+grep -q 'same file as --camera' "$dir/overwrite.log" || fail "--camera-out over --camera: $(cat "$dir/overwrite.log")"
+cmp -s "$file_camera" "$dir/camera.yaml" || fail "the camera file was changed"
+
 # The three files go together.
 run missing 1 --model 31 --from "$dir/r12.json" --corners "$dir/sim/corners.csv"
 grep -q 'needs --corners, --board and --camera together' "$dir/missing.log" \

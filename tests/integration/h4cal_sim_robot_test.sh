@@ -9,7 +9,7 @@ set -uo pipefail
 help=$("$h4cal" sim-robot --help 2>&1) || fail "--help exited non-zero: $help"
 for option in --truth --robot --paper --robot-seed --joint-speed --settle-time --sigma-q \
               --joint-range --seed --rate --status-period --lcm-url --duration; do
-  echo "$help" | grep -q -- "$option" || fail "--help does not list $option"
+  grep -q -- "$option" <<< "$help" || fail "--help does not list $option"
 done
 
 out=$("$h4cal" sim-robot --duration 1 2>&1)

@@ -37,7 +37,20 @@ grep -q "Use Model 31" "$dir/model12_on_31.txt" || fail "model12_on_31: the text
 sed -E 's/^(  arm: )([0-9.]+)/echo "\1$(awk "BEGIN{print \2*1000}")"/e' "$dir/m12/robot.yaml" \
   > "$dir/robot_mm.yaml"
 grep -q '^  arm: 260' "$dir/robot_mm.yaml" || fail "robot_mm.yaml: $(grep arm "$dir/robot_mm.yaml")"
-expect_verdict millimetres inconsistent_with_apriori 3 "$dir/robot_mm.yaml" "$dir/m12/dataset.csv"
+# 260 m is past the reader's bound (no part of an H4 lies 10 m from its base): refused
+# before any work, naming the field.
+"$h4cal" identify --robot "$dir/robot_mm.yaml" --data "$dir/m12/dataset.csv" \
+  --out "$dir/millimetres.json" > /dev/null 2> "$dir/millimetres.log"
+rc=$?
+[ $rc -eq 1 ] || fail "millimetres: exit $rc, expected 1"
+grep -q "field 'model12.arm': expected a length within 10 m, got 260" "$dir/millimetres.log" \
+  || fail "millimetres: $(cat "$dir/millimetres.log")"
+# The arm ten times too long (a unit slip within the bound) reads, and the verdict says the
+# a priori is wrong.
+sed -E 's/^(  arm: )([0-9.]+)/echo "\1$(awk "BEGIN{print \2*10}")"/e' "$dir/m12/robot.yaml" \
+  > "$dir/robot_dm.yaml"
+grep -q '^  arm: 2.6' "$dir/robot_dm.yaml" || fail "robot_dm.yaml: $(grep arm "$dir/robot_dm.yaml")"
+expect_verdict decimetres inconsistent_with_apriori 3 "$dir/robot_dm.yaml" "$dir/m12/dataset.csv"
 
 # Joint columns q1 and q2 swapped (a controller reporting its joints in another order).
 awk -F, 'BEGIN{OFS=","} NR > 1 {t=$3; $3=$4; $4=t} {print}' "$dir/m12/dataset.csv" > "$dir/swapped.csv"
