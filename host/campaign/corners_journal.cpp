@@ -68,7 +68,7 @@ void CornersJournal::Load() {
   const std::string header = CornersCsvHeader(kCornersWithSigma);
   if (!text.empty()) {
     const std::string first_line = text.substr(0, text.find('\n'));
-    if (first_line != header) {
+    if (!IsJournalHeader(first_line, header)) {
       throw std::runtime_error(path_ + ": exists with other columns (line 1: '" + first_line +
                                "'; a campaign writes '" + header +
                                "'): choose another --corners-out or move the file away");

@@ -43,13 +43,7 @@ void DatasetJournal::Load() {
   }
   if (!text.empty()) {
     const std::string first_line = text.substr(0, text.find('\n'));
-    // The readers take a UTF-8 byte order mark and CRLF line ends (common/formats/README.md,
-    // "Paired dataset"), which an editor or a spreadsheet may add: the header is compared
-    // without them, else the file is refused quoting two headers that print the same.
-    std::string_view columns = first_line;
-    if (columns.starts_with("\xEF\xBB\xBF")) columns.remove_prefix(3);
-    if (columns.ends_with('\r')) columns.remove_suffix(1);
-    if (columns != header) {
+    if (!IsJournalHeader(first_line, header)) {
       throw std::runtime_error(path_ + ": exists with other columns (line 1: '" + first_line +
                                "'; a campaign writes '" + header +
                                "'): choose another --out or move the file away");

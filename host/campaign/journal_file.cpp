@@ -120,4 +120,10 @@ void FlushDirectoryEntry(const std::string& path) {
   }
 }
 
+bool IsJournalHeader(std::string_view first_line, std::string_view header) {
+  if (first_line.starts_with("\xEF\xBB\xBF")) first_line.remove_prefix(3);
+  if (first_line.ends_with('\r')) first_line.remove_suffix(1);
+  return first_line == header;
+}
+
 }  // namespace h4::host

@@ -7,6 +7,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include <sys/types.h>
 #include <unistd.h>
@@ -38,6 +39,11 @@ std::string ReadAll(int fd, const std::string& path);
 /// thrown names the file and the system's reason.
 void AppendDurably(const JournalFileOps& ops, int fd, const std::string& text, off_t committed_size,
                    const std::string& path);
+
+/// Whether the first line of a journal file is `header`, read as the CSV readers read it: a
+/// UTF-8 byte order mark and a CR line end, which an editor or a spreadsheet may add, do not
+/// count (else a resume is refused quoting two headers that print the same).
+bool IsJournalHeader(std::string_view first_line, std::string_view header);
 
 /// fsync of the directory holding `path`: a new file's name survives a crash too.
 void FlushDirectoryEntry(const std::string& path);

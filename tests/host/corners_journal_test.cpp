@@ -72,7 +72,22 @@ TEST_F(CornersJournalTest, WritesPosesThatReadBackAndResumesWithThem) {
   ASSERT_EQ(back.size(), 9u);
   EXPECT_EQ(back[8].pose_id, 5);
   EXPECT_EQ(back[8].u, 52.5 + 2);
-  EXPECT_EQ(ReadWholeCornersFile(corners_path_).substr(0, 37), "pose_id,tag_id,corner,u,v,sigma_px\n1,");
+  EXPECT_EQ(ReadWholeCornersFile(corners_path_).substr(0, 37),
+            "pose_id,tag_id,corner,u,v,sigma_px\n1,");
+}
+
+TEST_F(CornersJournalTest, ResumesAFileWithCrlfLineEndsOrAByteOrderMark) {
+  { CornersJournal(corners_path_).Append(CornersOfPose(1)); }
+  const std::string lf = ReadWholeCornersFile(corners_path_);
+  std::string crlf;
+  for (char c : lf) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  for (const std::string& text : {crlf, "\xEF\xBB\xBF" + lf}) {
+    std::ofstream(corners_path_, std::ios::binary | std::ios::trunc) << text;
+    CornersJournal resumed(corners_path_);
+    EXPECT_TRUE(resumed.Contains(1));
+    resumed.Append(CornersOfPose(2));
+    EXPECT_EQ(ReadCornersCsv(corners_path_).size(), 6u);
+  }
 }
 
 TEST_F(CornersJournalTest, RefusesMixedPosesAndAnEmptyList) {
