@@ -58,7 +58,6 @@ struct CornerFitOutcome {
   int rejected_corners = 0;  ///< outliers, weight 0
   double rms_px_before = 0;  ///< corner residual RMS (px, per axis) at the start
   double rms_px_after = 0;
-  std::vector<std::string> log;
 };
 
 /// Refines `start` (a pose-path solution of `model`'s kind, with its fixed mask) and the
