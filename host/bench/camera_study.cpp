@@ -7,6 +7,7 @@
 // and each result's TRUE registered accuracy measured where the true robot goes over the
 // paper's 81 grid poses (host/validation/true_accuracy.h).
 //   h4_camera_study [--robots N] [--first-seed S] [--prior simulate|wide] [--sigma-px P]
+//                 [--sigma-q RAD]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -34,6 +35,7 @@ struct StudyOptions {
   uint64_t first_seed = 1;
   bool wide_prior = false;
   double sigma_px = 0.05;
+  double sigma_q = 2e-5;  // encoder noise, rad
 };
 
 struct CameraError {
@@ -97,7 +99,7 @@ void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed
   const BoardModel board(ReadBoardYaml(dir + "aprilgrid_6x6_30mm.yaml"));
   const CornerCampaign campaign =
       SimulateCornerCampaign(truth, GridPosePlan(), board, true_camera, file_camera,
-                             {.sigma_px = options.sigma_px, .seed = seed});
+                             {.sigma_px = options.sigma_px, .sigma_q = options.sigma_q, .seed = seed});
   const RobotDescription apriori = PaperAprioriRobot();
   std::vector<EePose> grid;
   for (const PlannedPose& p : GridPosePlan()) grid.push_back(p.x);
@@ -127,27 +129,28 @@ void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed
   const double corner_pred = path.outcome.result.predicted_position_accuracy_m.value_or(NAN);
   std::printf(
       "| %-20s | %s | %.4f (%+6.0f ppm) | %.4f | %.4f (%+6.0f ppm) | %.4f | %.0f ppm | %.3f px | "
-      "%.3f %% | %.2f s |\n",
+      "%.3f %% | %.1f urad | %.2f s |\n",
       error.name, m31.result.verdict ? m31.result.verdict->code.c_str() : "-",
       1e3 * pose.position_rms_m, pose.z_scale_ppm, 1e3 * pose_pred, 1e3 * corner.position_rms_m,
       corner.z_scale_ppm, 1e3 * corner_pred, 1e6 * sigma(0) / true_camera.K(0, 0), sigma(2),
-      100 * sigma(4) / std::abs(true_camera.distortion[0]), cpu);
+      100 * sigma(4) / std::abs(true_camera.distortion[0]), 1e6 * path.fit.joint_noise.sigma_q, cpu);
   std::fflush(stdout);
 }
 
 void Run(const StudyOptions& options) {
   g_tally.assign(CameraErrors().size(), RatioTally{});
   std::printf(
-      "prior %s, corner noise %.3g px, paper grid (81 poses), legacy 6x6 board\n\n"
+      "prior %s, corner noise %.3g px, encoder noise %.3g rad, paper grid (81 poses), legacy 6x6 board\n\n"
       "| camera file error | pose-path verdict | pose path TRUE RMS mm (Z scale) | pose path "
       "predicted mm | corner path TRUE RMS mm (Z scale) | corner path predicted mm | sigma fx | "
-      "sigma cx | sigma k1 | corner path CPU |\n|---|---|---|---|---|---|---|---|---|---|\n",
-      options.wide_prior ? "wide" : "simulate", options.sigma_px);
+      "sigma cx | sigma k1 | joint noise seen | corner path CPU |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n",
+      options.wide_prior ? "wide" : "simulate", options.sigma_px, options.sigma_q);
   for (int r = 0; r < options.robots; ++r) {
     const uint64_t seed = options.first_seed + static_cast<uint64_t>(r);
     const SimulatedRobot truth =
         MakeTrueRobot(PaperAprioriRobot(), TrueGeometry::kPerturbedModel31, Prior(options, seed));
-    std::printf("| **robot %llu** | | | | | | | | | |\n", static_cast<unsigned long long>(seed));
+    std::printf("| **robot %llu** | | | | | | | | | | |\n", static_cast<unsigned long long>(seed));
     for (const CameraError& error : CameraErrors()) RunOne(truth, error, seed, options);
   }
   std::printf("\nGeometric mean over the robots of TRUE RMS / the exact camera's pose-path RMS:\n\n"
@@ -178,13 +181,15 @@ StudyOptions Parse(int argc, char** argv) {
       options.wide_prior = prior == "wide";
     } else if (arg == "--sigma-px") {
       options.sigma_px = std::stod(value());
+    } else if (arg == "--sigma-q") {
+      options.sigma_q = std::stod(value());
     } else {
       throw std::invalid_argument(
           "unknown option " + arg +
-          " (--robots N --first-seed S --prior simulate|wide --sigma-px P)");
+           " (--robots N --first-seed S --prior simulate|wide --sigma-px P --sigma-q RAD)");
     }
   }
-  if (options.robots < 1 || !(options.sigma_px > 0))
+  if (options.robots < 1 || !(options.sigma_px > 0) || !(options.sigma_q >= 0))
     throw std::invalid_argument("bad option value");
   return options;
 }

@@ -44,7 +44,10 @@ bool CornerCost::Evaluate(const ParameterVector& p, Eigen::VectorXd* r, Eigen::M
   const CameraModel camera(WithCameraParameters(camera_, p.camera_values()));
   const ChainTransforms chain = MakeChainTransforms(p.X_BC(), p.X_TE());
   r->resize(residual_count_);
-  if (J != nullptr) J->setZero(residual_count_, p.size());
+  if (J != nullptr) {
+    J->setZero(residual_count_, p.size());
+    J_joints_.resize(rows_.size());
+  }
   for (size_t j = 0; j < rows_.size(); ++j) {
     const DatasetRow& row = rows_[j];
     const std::string pose = "pose " + std::to_string(row.pose_id);
@@ -71,21 +74,25 @@ bool CornerCost::Evaluate(const ParameterVector& p, Eigen::VectorXd* r, Eigen::M
 }
 
 // dX_CT_predicted by the kinematic parameters (through FK: dx = -J_f_x^-1 J_f_xi dxi), X_BC
-// and X_TE, as a body rotation rate Jr(e_r) de_r and a translation in C.
+// and X_TE, and by the joint readings (dx = -J_f_x^-1 J_f_q dq), as a body rotation rate
+// Jr(e_r) de_r and a translation in C.
 bool CornerCost::BoardPoseJacobian(const ParameterVector& p, const DatasetRow& row, const EePose& x,
                                    const BoardPoseError& err) {
   const int n_kin = p.kinematic_count();
   const JointVector q(row.q[0], row.q[1], row.q[2], row.q[3]);
   Eigen::Matrix4d J_f_x;
-  model_->ConstraintJacobians(q, x, &J_f_x, nullptr, &J_f_xi_);
+  Eigen::Vector4d J_f_q;
+  model_->ConstraintJacobians(q, x, &J_f_x, &J_f_q, &J_f_xi_);
   const Eigen::PartialPivLU<Eigen::Matrix4d> lu(J_f_x);
   if (!(lu.rcond() > 1e-12)) return false;  // ForwardKinematicsJacobians' threshold
   J_pose_.resize(6, n_kin + 12);
   J_pose_.leftCols(n_kin) = (-err.J_e_x * lu.inverse()) * J_f_xi_;
   J_pose_.middleCols<6>(n_kin) = err.J_e_bc;
   J_pose_.middleCols<6>(n_kin + 6) = err.J_e_te;
+  J_pose_q_ = (-err.J_e_x * lu.inverse()) * J_f_q.asDiagonal();
   const Eigen::Matrix3d Jr = So3RightJacobianInverse(err.e.head<3>()).inverse();
   J_pose_.topRows<3>() = (Jr * J_pose_.topRows<3>()).eval();
+  J_pose_q_.topRows<3>() = (Jr * J_pose_q_.topRows<3>()).eval();
   return true;
 }
 
@@ -95,6 +102,7 @@ bool CornerCost::EvaluateCorners(const ParameterVector& p, const CameraModel& ca
                                  Eigen::MatrixXd* J) {
   const PoseCorners& c = corners_[j];
   const int n_pose = p.kinematic_count() + 12;
+  if (J != nullptr) J_joints_[j].setZero(2 * static_cast<Eigen::Index>(c.uv.size()), 4);
   for (size_t k = 0; k < c.uv.size(); ++k) {
     const Eigen::Vector3d p_CQ = X_CT * c.p_TQ[k];
     Eigen::Vector2d uv;
@@ -108,6 +116,8 @@ bool CornerCost::EvaluateCorners(const ParameterVector& p, const CameraModel& ca
     J_uv_e.leftCols<3>() = -J_uv_p * X_CT.rotation() * Skew(c.p_TQ[k]);
     J_uv_e.rightCols<3>() = J_uv_p;
     J->block(i, 0, 2, n_pose).noalias() = w * (J_uv_e * J_pose_);
+    J_joints_[j].middleRows<2>(2 * static_cast<Eigen::Index>(k)).noalias() =
+        w * (J_uv_e * J_pose_q_);
     camera.IntrinsicJacobian(p_CQ, &J_uv_intrinsics_);
     J->block(i, p.camera_offset(), 2, p.camera_count()) = w * J_uv_intrinsics_;
   }

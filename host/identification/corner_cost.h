@@ -46,6 +46,13 @@ class CornerCost {
   bool Evaluate(const ParameterVector& p, Eigen::VectorXd* r, Eigen::MatrixXd* J,
                 std::string* why = nullptr);
 
+  /// Per pose j, the residuals' derivative by that pose's four joint readings (2 rows per
+  /// corner, weighted like the residuals; rad^-1): how encoder noise moves the pose's
+  /// corners together (joint_noise.h). Valid after an Evaluate at the same p with J.
+  const std::vector<Eigen::Matrix<double, Eigen::Dynamic, 4>>& joint_jacobians() const {
+    return J_joints_;
+  }
+
  private:
   bool BoardPoseJacobian(const ParameterVector& p, const DatasetRow& row, const EePose& x,
                          const BoardPoseError& err);
@@ -64,6 +71,9 @@ class CornerCost {
   Eigen::MatrixXd J_f_xi_;
   Eigen::Matrix<double, 6, Eigen::Dynamic> J_pose_;
   Eigen::MatrixXd J_uv_intrinsics_;
+  // The board pose by the pose's joint readings (6 x 4), and per pose the residuals by them.
+  Eigen::Matrix<double, 6, 4> J_pose_q_;
+  std::vector<Eigen::Matrix<double, Eigen::Dynamic, 4>> J_joints_;
 };
 
 }  // namespace h4::host

@@ -154,6 +154,13 @@ bool SolveWithCornerOutliers(CornerCost* cost, const CornerFitOptions& options,
   return true;
 }
 
+std::vector<PoseJointColumns> JointColumnsOf(const CornerCost& cost) {
+  std::vector<PoseJointColumns> out;
+  for (size_t j = 0; j < cost.corners().size(); ++j)
+    out.push_back({cost.pose_offset(j), cost.joint_jacobians()[j]});
+  return out;
+}
+
 }  // namespace
 
 CornerFitOutcome FitCorners(const KinematicModel& model, ModelKind kind,
@@ -187,12 +194,14 @@ CornerFitOutcome FitCorners(const KinematicModel& model, ModelKind kind,
   if (!SolveWithCornerOutliers(&cost, options, &out, &r, &J)) return out;
   out.rms_px_after = PixelRms(cost, r);
   out.uncertainty = ComputeUncertainty(out.parameters, r, J, /*weighted=*/true);
+  out.joint_noise = AddJointNoise(out.parameters, r, J, JointColumnsOf(cost), &out.uncertainty);
   out.camera = WithCameraParameters(camera, out.parameters.camera_values());
   out.ok = out.minimizer.converged && out.uncertainty.ok;
   out.message = fmt::format(
-      "{} poses, {} corners ({} rejected): corner RMS {:.4f} -> {:.4f} px, chi2/dof {:.3g}",
+      "{} poses, {} corners ({} rejected): corner RMS {:.4f} -> {:.4f} px, chi2/dof {:.3g}, "
+      "joint noise seen {:.3g} urad",
       out.poses, out.corners, out.rejected_corners, out.rms_px_before, out.rms_px_after,
-      out.uncertainty.chi2_per_dof);
+      out.uncertainty.chi2_per_dof, 1e6 * out.joint_noise.sigma_q);
   return out;
 }
 

@@ -17,6 +17,7 @@
 #include "host/identification/corner_cost.h"
 #include "host/identification/identifiability.h"
 #include "host/identification/identification.h"
+#include "host/identification/joint_noise.h"
 #include "host/identification/least_squares.h"
 #include "host/identification/parameter_vector.h"
 #include "host/identification/uncertainty.h"
@@ -50,7 +51,9 @@ struct CornerFitOutcome {
   CameraIntrinsics camera;     ///< the refined intrinsics
   bool ok = false;
   std::string message;
-  Uncertainty uncertainty;  ///< of the free parameters, camera block included
+  /// Of the free parameters, camera block included, widened by the joint noise.
+  Uncertainty uncertainty;
+  JointNoise joint_noise;  ///< the encoder noise the corner residuals show
   IdentifiabilityReport identifiability;
   MinimizerReport minimizer;
   int poses = 0;

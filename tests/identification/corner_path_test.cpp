@@ -66,10 +66,10 @@ struct PathAccuracies {
 // The paper's route on both paths: Model 12, then Model 31 from it; the corner path starts
 // from the pose path's Model 31.
 PathAccuracies RunBothPaths(const SimulatedRobot& truth, const CameraIntrinsics& file_camera,
-                            uint64_t seed, bool camera_fixed = false) {
+                            uint64_t seed, bool camera_fixed = false, double sigma_q = 2e-5) {
   const BoardModel board = LegacyBoard();
   const CornerCampaign campaign = SimulateCornerCampaign(truth, GridPosePlan(), board, TrueCamera(),
-                                                         file_camera, {.seed = seed});
+                                                         file_camera, {.sigma_q = sigma_q, .seed = seed});
   const RobotDescription apriori = PaperAprioriRobot();
   IdentificationOptions options;
   const IdentificationOutcome m12 = IdentifyRobot(apriori, ModelKind::k12, campaign.rows, options);
@@ -181,6 +181,10 @@ TEST(CornerPath, CorrectsATypicalIntrinsicCalibrationError) {
     log_wrong_pose += std::log(wrong.pose.position_rms_m / exact.pose.position_rms_m) / robots;
     log_exact_corner += std::log(exact.corner.position_rms_m / exact.pose.position_rms_m) / robots;
     EXPECT_LT(std::abs(wrong.corner.z_scale_ppm), 150.0);
+    // The predicted accuracy is the true one within a factor 2 (encoder noise included).
+    const double predicted = *wrong.corner_path.outcome.result.predicted_position_accuracy_m;
+    EXPECT_LT(wrong.corner.position_rms_m, 2.0 * predicted);
+    EXPECT_GT(wrong.corner.position_rms_m, 0.5 * predicted);
     const ResultCamera& camera = *wrong.corner_path.outcome.result.camera;
     ASSERT_TRUE(camera.parameters[0].std.has_value());
     EXPECT_LT(std::abs(camera.parameters[0].value - TrueCamera().K(0, 0)),
@@ -189,6 +193,23 @@ TEST(CornerPath, CorrectsATypicalIntrinsicCalibrationError) {
   EXPECT_GT(std::exp(log_wrong_pose), 4.0);
   EXPECT_LT(std::exp(log_corner), 1.5);
   EXPECT_LT(std::exp(log_exact_corner), 1.2);
+}
+
+// The encoder noise the corner residuals show is the simulated one (joint_noise.h), and none
+// when the encoders are exact.
+TEST(JointNoise, IsSeenInTheCornerResidualsAtItsSimulatedSize) {
+  const SimulatedRobot truth = Robot(21);
+  for (const double sigma_q : {0.0, 2e-5, 6e-5}) {
+    const PathAccuracies run =
+        RunBothPaths(truth, TypicalMixFile(TrueCamera()), 31, /*camera_fixed=*/false, sigma_q);
+    ASSERT_TRUE(run.corner_path.fit.ok) << run.corner_path.fit.message;
+    const JointNoise& seen = run.corner_path.fit.joint_noise;
+    ASSERT_TRUE(seen.estimated);
+    std::printf("encoders %.1f urad: seen %.1f urad, pixel scale^2 %.3f\n", 1e6 * sigma_q,
+                1e6 * seen.sigma_q, seen.pixel_scale2);
+    EXPECT_NEAR(seen.sigma_q, sigma_q, 0.25 * sigma_q + 3e-6);
+    EXPECT_NEAR(seen.pixel_scale2, 1.0, 0.1);
+  }
 }
 
 }  // namespace
