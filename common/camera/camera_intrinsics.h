@@ -43,6 +43,10 @@ struct CameraIntrinsics {
   /// distortion_coefficients in OpenCV's order for distortion_model (see DistortionModel).
   Eigen::VectorXd distortion = Eigen::VectorXd::Zero(5);
   std::optional<double> avg_reprojection_error;  ///< px, when the calibration wrote it
+  /// The calibration's covariance of fx, fy, cx, cy, then the distortion coefficients in
+  /// their order (CameraModel::IntrinsicJacobian's order; px^2, px, 1), when it wrote one
+  /// (camera YAML `intrinsics_covariance`, common/camera/intrinsics_uncertainty.h).
+  std::optional<Eigen::MatrixXd> intrinsics_covariance;
 
   /// A width x height px camera with focal lengths (fx, fy) and principal point (cx, cy),
   /// px, no skew, and no distortion until the caller sets one.

@@ -1,8 +1,12 @@
 // Camera intrinsics in OpenCV FileStorage YAML or a Kalibr camchain; see camera_yaml.h.
 #include "common/formats/camera_yaml.h"
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 #include <vector>
+
+#include <Eigen/Eigenvalues>
 
 #include "common/formats/csv_table.h"
 #include "common/formats/number_text.h"
@@ -108,10 +112,56 @@ DistortionModel ReadDistortionModel(const YamlMap& map, const std::string& key) 
   return *model;
 }
 
+// intrinsics_covariance: n x n for fx, fy, cx, cy and the n - 4 distortion coefficients;
+// symmetric, positive semi-definite, and no sigma beyond what the file could mean (a focal
+// length's sigma above the focal length, a principal point's above the image's size, a
+// distortion coefficient's above 1000).
+void ReadIntrinsicsCovariance(const YamlMap& root, CameraIntrinsics* camera) {
+  const YamlMap m = root.Map("intrinsics_covariance");
+  const Matrix C = ReadMatrix(root, "intrinsics_covariance");
+  const int n = 4 + static_cast<int>(camera->distortion.size());
+  if (C.rows != n || C.cols != n) {
+    m.Fail("rows", "expected " + std::to_string(n) + "x" + std::to_string(n) +
+                       " (fx, fy, cx, cy and the " + std::to_string(n - 4) +
+                       " distortion coefficients), got " + std::to_string(C.rows) + "x" +
+                       std::to_string(C.cols));
+  }
+  const Eigen::MatrixXd M =
+      Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+          C.data.data(), n, n);
+  const double sigma_limit[4] = {camera->K(0, 0), camera->K(1, 1),
+                                 static_cast<double>(camera->width),
+                                 static_cast<double>(camera->height)};
+  for (int i = 0; i < n; ++i) {
+    const size_t index = static_cast<size_t>(i * n + i);
+    const double limit = i < 4 ? sigma_limit[i] : 1e3;
+    if (!(M(i, i) >= 0.0) || !(std::sqrt(M(i, i)) <= limit)) {
+      m.FailElement("data", index,
+                    "expected a variance in [0, " + FormatDouble(limit * limit, "limit") +
+                        "] on the diagonal, got " + FormatDouble(M(i, i), "variance"));
+    }
+    for (int j = 0; j < i; ++j) {
+      const double tolerance = 1e-9 * std::sqrt(M(i, i) * M(j, j)) + 1e-300;
+      if (!(std::abs(M(i, j) - M(j, i)) <= tolerance) ||
+          !(std::abs(M(i, j)) <= std::sqrt(M(i, i) * M(j, j)) * (1 + 1e-9))) {
+        m.FailElement("data", static_cast<size_t>(i * n + j),
+                      "expected a symmetric covariance (|C_ij| <= sigma_i sigma_j)");
+      }
+    }
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(M, Eigen::EigenvaluesOnly);
+  if (eigen.eigenvalues().minCoeff() < -1e-9 * std::max(eigen.eigenvalues().maxCoeff(), 0.0)) {
+    m.Fail("data", "expected a positive semi-definite covariance (an eigenvalue is " +
+                       FormatDouble(eigen.eigenvalues().minCoeff(), "eigenvalue") + ")");
+  }
+  camera->intrinsics_covariance = M;
+}
+
 // The camera YAML OpenCV's calibration sample writes, plus an optional distortion_model.
 CameraIntrinsics ParseOpenCvCamera(const YamlMap& root) {
   root.RejectCaseVariants({"image_width", "image_height", "camera_matrix", "distortion_model",
-                           "distortion_coefficients", "avg_reprojection_error"});
+                           "distortion_coefficients", "avg_reprojection_error",
+                           "intrinsics_covariance"});
   CameraIntrinsics camera;
   camera.width = ImageSize(root, "image_width");
   camera.height = ImageSize(root, "image_height");
@@ -163,6 +213,7 @@ CameraIntrinsics ParseOpenCvCamera(const YamlMap& root) {
     if (error < 0.0) root.Fail("avg_reprojection_error", "expected a non-negative RMS in px");
     camera.avg_reprojection_error = error;
   }
+  if (root.Has("intrinsics_covariance")) ReadIntrinsicsCovariance(root, &camera);
   return camera;
 }
 
@@ -282,6 +333,13 @@ std::string FormatCameraYaml(const CameraIntrinsics& camera) {
   if (camera.avg_reprojection_error) {
     text += "avg_reprojection_error: " +
             Real(*camera.avg_reprojection_error, "avg_reprojection_error") + "\n";
+  }
+  if (camera.intrinsics_covariance) {
+    const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> C =
+        *camera.intrinsics_covariance;
+    text += "# fx, fy, cx, cy, then the distortion coefficients (common/formats/README.md)\n";
+    text += WriteMatrix("intrinsics_covariance", static_cast<int>(C.rows()),
+                        static_cast<int>(C.cols()), C.data());
   }
   return text;
 }

@@ -223,6 +223,7 @@ void ReadExtras(const JsonValue& root, IdentificationResult* result) {
   result->valid_position_rms_m = OptionalNumber(root, "valid_position_rms_m");
   result->valid_rotation_rms_rad = OptionalNumber(root, "valid_rotation_rms_rad");
   result->predicted_position_accuracy_m = OptionalNumber(root, "predicted_position_accuracy_m");
+  result->predicted_robot_accuracy_m = OptionalNumber(root, "predicted_robot_accuracy_m");
   if (root.HasNonNull("correlations")) {
     const JsonValue list = root["correlations"];
     const size_t n = list.ArraySize();
@@ -400,6 +401,8 @@ std::string FormatIdentificationResult(const IdentificationResult& result) {
       NumberOrNull(result.valid_rotation_rms_rad, "valid_rotation_rms_rad");
   root["predicted_position_accuracy_m"] =
       NumberOrNull(result.predicted_position_accuracy_m, "predicted_position_accuracy_m");
+  root["predicted_robot_accuracy_m"] =
+      NumberOrNull(result.predicted_robot_accuracy_m, "predicted_robot_accuracy_m");
   root["log"] = result.log;
   WriteJudgement(result, &root);
   root["parameter_covariance"] = Covariance(result);

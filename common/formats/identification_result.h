@@ -86,6 +86,10 @@ struct IdentificationResult {
   std::optional<double> valid_position_rms_m;  ///< held-out board position error, m
   std::optional<double> valid_rotation_rms_rad;
   std::optional<double> predicted_position_accuracy_m;  ///< from the covariance, calib poses
+  /// Where the robot goes: the one-sigma end-effector position error the covariance predicts
+  /// on the calibration poses after the rigid registration of the base frame (what
+  /// host/validation/true_accuracy.h measures against a known robot), m.
+  std::optional<double> predicted_robot_accuracy_m;
   std::vector<std::string> log;                         ///< solver stages, one line each
   std::optional<ResultVerdict> verdict;                 ///< absent in older results
   std::vector<RejectedPose> rejected_details;           ///< one per rejected pose

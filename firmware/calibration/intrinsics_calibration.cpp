@@ -8,6 +8,7 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include "common/camera/intrinsics_uncertainty.h"
 #include "common/text/enum_names.h"
 #include "common/units.h"
 
@@ -19,6 +20,7 @@ struct Solution {
   double rms_px = 0;
   std::vector<double> view_rms_px;
   std::vector<cv::Vec3d> board_normals;  ///< per view, in the camera frame
+  std::vector<CalibrationViewFit> fits;  ///< per view, its corners and X_CT
 };
 
 double Median(std::vector<double> values) {
@@ -75,6 +77,26 @@ void ProjectView(const std::vector<cv::Point3f>& object_points, const cv::Mat& r
   }
 }
 
+// A view's corners (unit weights) and the pose the calibration solved for it.
+CalibrationViewFit ViewFit(const std::vector<cv::Point3f>& object_points,
+                           const std::vector<cv::Point2f>& image_points, const cv::Mat& rvec,
+                           const cv::Mat& tvec) {
+  cv::Matx33d R;
+  cv::Rodrigues(rvec, R);
+  Eigen::Matrix3d R_CT;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) R_CT(r, c) = R(r, c);
+  }
+  const cv::Vec3d t = tvec;
+  CalibrationViewFit fit{{}, RigidTransform(R_CT, Eigen::Vector3d(t[0], t[1], t[2]))};
+  for (size_t k = 0; k < object_points.size(); ++k) {
+    fit.corners.p_TQ.emplace_back(object_points[k].x, object_points[k].y, object_points[k].z);
+    fit.corners.uv.emplace_back(image_points[k].x, image_points[k].y);
+    fit.corners.weight.push_back(1.0);
+  }
+  return fit;
+}
+
 bool Solve(const std::vector<const CalibrationView*>& views, cv::Size image_size,
            const IntrinsicsCalibrationOptions& options, Solution* solution, std::string* error) {
   std::vector<std::vector<cv::Point3f>> object_points;
@@ -102,7 +124,9 @@ bool Solve(const std::vector<const CalibrationView*>& views, cv::Size image_size
   }
   solution->view_rms_px.clear();
   solution->board_normals.clear();
+  solution->fits.clear();
   for (size_t i = 0; i < views.size(); ++i) {
+    solution->fits.push_back(ViewFit(object_points[i], image_points[i], rvecs[i], tvecs[i]));
     std::vector<cv::Point2f> projected;
     ProjectView(object_points[i], rvecs[i], tvecs[i], K, distortion, options.model, &projected);
     const double sum_sq = std::pow(cv::norm(image_points[i], projected, cv::NORM_L2), 2);
@@ -310,6 +334,12 @@ IntrinsicsCalibrationResult CalibrateIntrinsics(const std::vector<CalibrationVie
                                                      [](const auto& v) { return v.used; }));
   FillCamera(solution, image_size, options.model, &result.camera);
   result.camera.avg_reprojection_error = result.rms_px;
+  // The intrinsics' covariance (written to the camera YAML for the identification's
+  // predicted accuracy); without it the file claims nothing.
+  if (const auto covariance =
+          IntrinsicsCovarianceOf(result.camera, solution.fits, options.fix_aspect_ratio)) {
+    result.camera.intrinsics_covariance = covariance->covariance;
+  }
   const std::string degenerate = FocalLengthObservability(solution, options, &result);
   if (!degenerate.empty()) {
     result.status = IntrinsicsCalibrationResult::Status::kDegenerateViews;
@@ -337,6 +367,14 @@ std::string IntrinsicsCalibrationResult::Report() const {
       << "distortion (" << CoefficientNames(model) << "):";
   out.precision(5);
   for (Eigen::Index i = 0; i < camera.distortion.size(); ++i) out << " " << camera.distortion(i);
+  if (camera.intrinsics_covariance) {
+    const Eigen::VectorXd sigma = camera.intrinsics_covariance->diagonal().cwiseSqrt();
+    out.precision(3);
+    out << "\none sigma: fx " << sigma[0] << "  fy " << sigma[1] << "  cx " << sigma[2]
+        << "  cy " << sigma[3] << " px; distortion";
+    out.precision(5);
+    for (Eigen::Index i = 4; i < sigma.size(); ++i) out << " " << sigma[i];
+  }
   out.precision(4);
   out << "\nRMS reprojection error " << rms_px << " px (median per view " << median_view_rms_px
       << " px)\n";

@@ -22,6 +22,7 @@
 #include "host/bench/study_main.h"
 #include "host/identification/corner_identification.h"
 #include "host/identification/identification.h"
+#include "host/simulation/calibration_draw.h"
 #include "host/simulation/corner_campaign.h"
 #include "host/simulation/paper_scenario.h"
 #include "host/simulation/pose_plan.h"
@@ -43,6 +44,7 @@ struct CameraError {
   double fx = 0, fy = 0;  // relative
   double cx = 0, cy = 0;  // px
   double k1 = 0;          // relative
+  bool drawn = false;     // a draw from the 25-view calibration's covariance instead
 };
 
 const std::vector<CameraError>& CameraErrors() {
@@ -53,6 +55,7 @@ const std::vector<CameraError>& CameraErrors() {
       {"cx +1 px, cy -1 px", 0, 0, 1.0, -1.0},
       {"k1 +2 %", 0, 0, 0, 0, 0.02},
       {"typical mix", 1.5e-3, 1.2e-3, 0.7, -0.5, 0.01},
+      {"25-view calibration", 0, 0, 0, 0, 0, true},
   };
   return kErrors;
 }
@@ -95,7 +98,10 @@ void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed
             const StudyOptions& options) {
   const std::string dir = std::string(H4_SOURCE_DIR) + "/boards/";
   const CameraIntrinsics true_camera = ReadCameraYaml(dir + "sim_camera_1024x768.yaml");
-  const CameraIntrinsics file_camera = WithError(true_camera, error);
+  static const Eigen::MatrixXd calibration = ChessboardCalibrationCovariance(true_camera);
+  CameraIntrinsics file_camera = error.drawn ? DrawnFromCovariance(true_camera, calibration, 1000 + seed)
+                                             : WithError(true_camera, error);
+  file_camera.intrinsics_covariance = calibration;
   const BoardModel board(ReadBoardYaml(dir + "aprilgrid_6x6_30mm.yaml"));
   const CornerCampaign campaign =
       SimulateCornerCampaign(truth, GridPosePlan(), board, true_camera, file_camera,
@@ -103,7 +109,9 @@ void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed
   const RobotDescription apriori = PaperAprioriRobot();
   std::vector<EePose> grid;
   for (const PlannedPose& p : GridPosePlan()) grid.push_back(p.x);
-  const IdentificationOptions id_options;
+  IdentificationOptions id_options;
+  // The pose path knows the file's covariance: its predicted accuracy carries it.
+  id_options.camera_file = CameraFileUncertainty{file_camera, board.corners()};
   const IdentificationOutcome m12 =
       IdentifyRobot(apriori, ModelKind::k12, campaign.rows, id_options);
   const IdentificationOutcome m31 =
@@ -125,8 +133,8 @@ void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed
   tally.log_pose += std::log(pose.position_rms_m / g_exact_pose_rms);
   tally.log_corner += std::log(corner.position_rms_m / g_exact_pose_rms);
   ++tally.robots;
-  const double pose_pred = m31.result.predicted_position_accuracy_m.value_or(NAN);
-  const double corner_pred = path.outcome.result.predicted_position_accuracy_m.value_or(NAN);
+  const double pose_pred = m31.result.predicted_robot_accuracy_m.value_or(NAN);
+  const double corner_pred = path.outcome.result.predicted_robot_accuracy_m.value_or(NAN);
   std::printf(
       "| %-20s | %s | %.4f (%+6.0f ppm) | %.4f | %.4f (%+6.0f ppm) | %.4f | %.0f ppm | %.3f px | "
       "%.3f %% | %.1f urad | %.2f s |\n",
@@ -139,6 +147,16 @@ void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed
 
 void Run(const StudyOptions& options) {
   g_tally.assign(CameraErrors().size(), RatioTally{});
+  {
+    const CameraIntrinsics camera =
+        ReadCameraYaml(std::string(H4_SOURCE_DIR) + "/boards/sim_camera_1024x768.yaml");
+    const Eigen::VectorXd sigma = ChessboardCalibrationCovariance(camera).diagonal().cwiseSqrt();
+    std::printf(
+        "every camera file carries a 25-view chessboard calibration's covariance: sigma fx %.0f "
+        "ppm, fy %.0f ppm, cx %.2f px, cy %.2f px, k1 %.2f %%\n",
+        1e6 * sigma[0] / camera.K(0, 0), 1e6 * sigma[1] / camera.K(1, 1), sigma[2], sigma[3],
+        100 * sigma[4] / std::abs(camera.distortion[0]));
+  }
   std::printf(
       "prior %s, corner noise %.3g px, encoder noise %.3g rad, paper grid (81 poses), legacy 6x6 board\n\n"
       "| camera file error | pose-path verdict | pose path TRUE RMS mm (Z scale) | pose path "

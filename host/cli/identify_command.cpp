@@ -118,6 +118,12 @@ void PrintHeadline(const IdentificationOutcome& outcome) {
     std::printf("  predicted position accuracy (1 sigma, calibration poses): %.4f mm\n",
                 1e3 * *r.predicted_position_accuracy_m);
   }
+  if (r.predicted_robot_accuracy_m) {
+    std::printf(
+        "  predicted robot accuracy (1 sigma, end-effector positions at the calibration poses, "
+        "base frame registered): %.4f mm\n",
+        1e3 * *r.predicted_robot_accuracy_m);
+  }
   for (const CorrelatedPair& c : r.correlations) {
     std::printf("  correlated: %s ~ %s (%.3f)\n", c.a.c_str(), c.b.c_str(), c.correlation);
   }

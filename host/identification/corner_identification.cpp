@@ -13,7 +13,7 @@
 #include "common/geometry/rotation.h"
 #include "host/identification/camera_parameters.h"
 #include "host/identification/identification_cost.h"
-#include "host/kinematics/forward_kinematics.h"
+#include "host/identification/robot_accuracy.h"
 
 namespace h4::host {
 namespace {
@@ -251,22 +251,6 @@ std::vector<PoseCorners> CornersOfRows(const std::vector<DatasetRow>& all,
   return out;
 }
 
-// I - P, P the projection onto the position changes a rigid motion of the base frame makes
-// (translation, rotation about z), 3 rows per position.
-Eigen::MatrixXd WithoutRigidMotions(const std::vector<Eigen::Vector3d>& positions) {
-  const Eigen::Index n = static_cast<Eigen::Index>(positions.size());
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& x : positions) centre += x / static_cast<double>(n);
-  Eigen::MatrixXd R = Eigen::MatrixXd::Zero(3 * n, 4);
-  for (Eigen::Index j = 0; j < n; ++j) {
-    const Eigen::Vector3d d = positions[static_cast<size_t>(j)] - centre;
-    R.block<3, 3>(3 * j, 0).setIdentity();
-    R.block<3, 1>(3 * j, 3) = Eigen::Vector3d(-d.y(), d.x(), 0.0);
-  }
-  const Eigen::MatrixXd P = R * (R.transpose() * R).ldlt().solve(R.transpose());
-  return Eigen::MatrixXd::Identity(3 * n, 3 * n) - P;
-}
-
 // The corner fit's values, sigmas and covariance in place of the pose-path refit's (the
 // corner fit is the efficient estimate); the refit's verdict, cross-validation and pose
 // lists stay: they judge the same campaign on the re-measured poses.
@@ -300,27 +284,8 @@ void ApplyCornerFit(const CornerFitOutcome& fit, const KinematicModel& model,
   result.X_BC = p.X_BC();
   result.X_TE = p.X_TE();
   outcome->parameters = WithoutCameraBlock(p, model);
-  // The end-effector positions' sensitivity to the kinematic parameters at the calibration
-  // poses (dx = -J_f_x^-1 J_f_xi dxi), other columns zero: where the robot goes, which the
-  // camera's placement and intrinsics do not change, after the rigid registration of the base
-  // frame (a base frame is a convention; host/validation/accuracy_map.h registers the same
-  // way). Measured on the board in C instead, the figure would carry X_BC's uncertainty,
-  // which free intrinsics widen along the optical axis.
-  std::unique_ptr<KinematicModel> identified = model.Clone();
-  outcome->parameters.ApplyTo(identified.get());
-  Eigen::MatrixXd J_p =
-      Eigen::MatrixXd::Zero(3 * static_cast<Eigen::Index>(calib.size()), p.size());
-  Eigen::MatrixXd J_x_xi;
-  std::vector<Eigen::Vector3d> positions;
-  for (size_t j = 0; j < calib.size(); ++j) {
-    const JointVector q(calib[j].q[0], calib[j].q[1], calib[j].q[2], calib[j].q[3]);
-    const FkResult fk = ForwardKinematics(*identified, q);
-    if (!fk.ok() || !ForwardKinematicsJacobians(*identified, q, fk.x, nullptr, &J_x_xi)) return;
-    J_p.block(3 * static_cast<Eigen::Index>(j), 0, 3, J_x_xi.cols()) = J_x_xi.topRows<3>();
-    positions.push_back(fk.x.head<3>());
-  }
-  J_p = WithoutRigidMotions(positions) * J_p;
-  result.predicted_position_accuracy_m = PredictedPositionAccuracy(u, J_p);
+  // Where the robot goes (robot_accuracy.h); the board-position figure stays the refit's.
+  result.predicted_robot_accuracy_m = PredictedRobotAccuracy(model, p, calib, u);
 }
 
 }  // namespace
@@ -382,9 +347,13 @@ CornerPathOutcome IdentifyOnCorners(const AprioriModel& apriori, ModelKind kind,
   std::vector<int64_t> calib_ids = first.calib_poses;
   calib_ids.insert(calib_ids.end(), first.rejected_poses.begin(), first.rejected_poses.end());
   const ParameterVector start = WithoutCameraBlock(out.fit.parameters, *apriori.model);
-  out.outcome =
-      IdentifyFromStart(*apriori.model, apriori.parameters, start, RowsWithIds(out.rows, calib_ids),
-                        RowsWithIds(out.rows, first.valid_poses), options);
+  // The poses measured again no longer carry the file's error: the corner fit's covariance
+  // holds what is left of the camera's uncertainty.
+  IdentificationOptions refit_options = options;
+  refit_options.camera_file.reset();
+  out.outcome = IdentifyFromStart(*apriori.model, apriori.parameters, start,
+                                  RowsWithIds(out.rows, calib_ids),
+                                  RowsWithIds(out.rows, first.valid_poses), refit_options);
   if (!out.outcome.summary.usable) return out;
   // The final poses are the refit's (its outlier judgement on unbiased poses): the corner
   // fit again on exactly those when they differ, from where it ended.

@@ -11,12 +11,14 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "common/formats/dataset_csv.h"
 #include "common/formats/identification_result.h"
 #include "common/robot/robot_description.h"
+#include "host/identification/camera_file_uncertainty.h"
 #include "host/identification/cross_validation.h"
 #include "host/identification/identifiability.h"
 #include "host/identification/identification_cost.h"
@@ -55,6 +57,10 @@ struct IdentificationOptions {
   IdentifiabilityOptions identifiability;
   /// Parameters the user fixes at their start value (common/README.md names).
   std::vector<std::string> fixed_parameters;
+  /// The camera file and board the poses were measured with, when the file has an
+  /// intrinsics_covariance (`identify --camera --board`): its share enters the measurement
+  /// cost's covariance and predicted accuracy (camera_file_uncertainty.h).
+  std::optional<CameraFileUncertainty> camera_file;
   /// k-fold cross-validation of the fit on every pose (cross_validation.h): the held-out
   /// figures, and the residuals outliers are judged on. folds = 0: off.
   CrossValidationOptions cross_validation;

@@ -1,6 +1,7 @@
 // The IdentificationResult of an identified solution; see solution_summary.h.
 #include "host/identification/solution_summary.h"
 
+#include <cmath>
 #include <memory>
 #include <optional>
 
@@ -8,6 +9,7 @@
 
 #include "common/units.h"
 #include "host/identification/identified_robot.h"
+#include "host/identification/robot_accuracy.h"
 
 namespace h4::host {
 namespace {
@@ -68,6 +70,26 @@ std::optional<Eigen::MatrixXd> BoardPositionRows(const SolutionToSummarise& s,
   return J_p;
 }
 
+// The camera file's intrinsics_covariance in the covariance (camera_file_uncertainty.h),
+// with the predicted accuracy it had without it in the log.
+void AddCameraFileShare(const SolutionToSummarise& s, const IdentificationCost& cost,
+                        const SolutionJacobian& at_solution, Uncertainty* u,
+                        IdentificationResult* result) {
+  const std::optional<double> without = PredictedRobotAccuracy(s.model, s.p, s.calib, *u);
+  const CameraShare share =
+      AddCameraFileUncertainty(s.p, at_solution.J, cost, s.calib, *s.options.camera_file, u);
+  if (!share.added) {
+    result->log.push_back(
+        "camera file: no intrinsics_covariance (or no pose it could be propagated to): the "
+        "covariance assumes the intrinsics exact");
+    return;
+  }
+  result->log.push_back(fmt::format(
+      "camera file: its intrinsics_covariance, shared by all {} poses, is in the covariance "
+      "(predicted robot accuracy {:.4f} mm without it)",
+      share.poses, 1e3 * without.value_or(NAN)));
+}
+
 // Covariance figures: condition number, correlations, the chi2 line, and the position
 // accuracy the covariance predicts for the board on the calibration poses.
 void FillCovarianceFigures(const SolutionToSummarise& s, const IdentificationCost& cost,
@@ -79,6 +101,7 @@ void FillCovarianceFigures(const SolutionToSummarise& s, const IdentificationCos
                                     u.chi2_per_dof, u.sigma2, u.condition_number));
   const std::optional<Eigen::MatrixXd> J_p = BoardPositionRows(s, cost, J);
   if (J_p) result->predicted_position_accuracy_m = PredictedPositionAccuracy(u, *J_p);
+  result->predicted_robot_accuracy_m = PredictedRobotAccuracy(s.model, s.p, s.calib, u);
 }
 
 // One row per parameter: value, a priori, one sigma when free and the covariance exists;
@@ -170,6 +193,8 @@ void SummariseSolution(const SolutionToSummarise& s, IdentificationOutcome* out)
                                           s.options.estimator == CostKind::kMeasurement,
                                           s.options.correlation_threshold);
     RecheckIdentifiability(s, at_solution->J, &result.log);
+    if (out->uncertainty.ok && s.options.camera_file)
+      AddCameraFileShare(s, cost, *at_solution, &out->uncertainty, &result);
     if (out->uncertainty.ok)
       FillCovarianceFigures(s, cost, at_solution->J, out->uncertainty, &result);
   }

@@ -5,9 +5,13 @@
 // their errors.
 #include "common/formats/camera_yaml.h"
 
+#include <string>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "common/formats/csv_table.h"
+#include "common/formats/number_text.h"
 #include "tests/common/format_error_helpers.h"
 
 #ifdef H4_TEST_WITH_OPENCV
@@ -142,6 +146,62 @@ TEST(CameraYamlErrors, NameLineAndField) {
   EXPECT_TRUE(
       FailsWith([] { ParseCameraYaml(CameraFileWith("   cols: 3", "     cols: 3"), "c.yaml"); },
                 "c.yaml", 8, "", "invalid YAML"));
+}
+
+// intrinsics_covariance: 9 x 9 (fx, fy, cx, cy, five coefficients), kept exactly; a wrong
+// size, an asymmetric, negative or non-positive-semi-definite matrix is refused by element.
+std::string CovarianceKey(const std::vector<double>& data, int n = 9) {
+  std::string text = "intrinsics_covariance: !!opencv-matrix\n   rows: " + std::to_string(n) +
+                     "\n   cols: " + std::to_string(n) + "\n   dt: d\n   data: [ ";
+  for (size_t i = 0; i < data.size(); ++i) text += (i ? ", " : "") + FormatDouble(data[i], "x");
+  return text + " ]\n";
+}
+
+std::vector<double> DiagonalCovariance() {
+  std::vector<double> c(81, 0.0);
+  const double sigma[9] = {0.4, 0.4, 0.5, 0.4, 1e-3, 5e-3, 1e-5, 1e-5, 1e-2};
+  for (int i = 0; i < 9; ++i) c[static_cast<size_t>(10 * i)] = sigma[i] * sigma[i];
+  return c;
+}
+
+TEST(CameraYaml, KeepsTheIntrinsicsCovariance) {
+  std::vector<double> c = DiagonalCovariance();
+  c[1] = c[9] = 0.9 * 0.4 * 0.4;  // fx and fy correlated
+  const CameraIntrinsics camera = ParseCameraYaml(kOpenCvFile + CovarianceKey(c), "c.yaml");
+  ASSERT_TRUE(camera.intrinsics_covariance.has_value());
+  EXPECT_DOUBLE_EQ((*camera.intrinsics_covariance)(0, 1), 0.9 * 0.4 * 0.4);
+  const CameraIntrinsics back = ParseCameraYaml(FormatCameraYaml(camera), "back.yaml");
+  EXPECT_EQ(*back.intrinsics_covariance, *camera.intrinsics_covariance);
+}
+
+TEST(CameraYamlErrors, TheIntrinsicsCovarianceIsChecked) {
+  EXPECT_TRUE(FailsWith(
+      [] {
+        ParseCameraYaml(kOpenCvFile + CovarianceKey(std::vector<double>(64, 0.0), 8), "c.yaml");
+      },
+      "c.yaml", 20, "intrinsics_covariance.rows", "expected 9x9"));
+  std::vector<double> negative = DiagonalCovariance();
+  negative[20] = -1.0;
+  EXPECT_TRUE(FailsWith([&] { ParseCameraYaml(kOpenCvFile + CovarianceKey(negative), "c.yaml"); },
+                        "c.yaml", 23, "intrinsics_covariance.data[20]", "variance in [0"));
+  std::vector<double> huge = DiagonalCovariance();
+  huge[0] = 1e20;  // a focal length's sigma of 1e10 px
+  EXPECT_TRUE(FailsWith([&] { ParseCameraYaml(kOpenCvFile + CovarianceKey(huge), "c.yaml"); },
+                        "c.yaml", 23, "intrinsics_covariance.data[0]", "variance in [0"));
+  std::vector<double> asymmetric = DiagonalCovariance();
+  asymmetric[1] = 0.01;
+  EXPECT_TRUE(
+      FailsWith([&] { ParseCameraYaml(kOpenCvFile + CovarianceKey(asymmetric), "c.yaml"); },
+                "c.yaml", 23, "intrinsics_covariance.data[9]", "symmetric"));
+  std::vector<double> indefinite = DiagonalCovariance();
+  // |rho| <= 1 pairwise, yet fx, fy, cx at correlations -1, -1, -1: not a covariance.
+  const double s0 = 0.4, s1 = 0.4, s2 = 0.5;
+  indefinite[1] = indefinite[9] = -s0 * s1;
+  indefinite[2] = indefinite[18] = -s0 * s2;
+  indefinite[11] = indefinite[19] = -s1 * s2;
+  EXPECT_TRUE(
+      FailsWith([&] { ParseCameraYaml(kOpenCvFile + CovarianceKey(indefinite), "c.yaml"); },
+                "c.yaml", 23, "intrinsics_covariance.data", "positive semi-definite"));
 }
 
 // A 20000 x 20000 camera made `measure` and `render` run for minutes and take gigabytes:

@@ -79,6 +79,7 @@ IdentificationResult FullResult() {
   r.valid_position_rms_m = 0.00012;
   r.valid_rotation_rms_rad = 0.0003;
   r.predicted_position_accuracy_m = 0.0001;
+  r.predicted_robot_accuracy_m = 0.00002;
   r.log = {"stage 1: \"quoted\"", "stage 2"};
   return r;
 }
@@ -113,6 +114,7 @@ TEST(IdentificationResult, RoundTripIsExact) {
   EXPECT_EQ(b.valid_position_rms_m, r.valid_position_rms_m);
   EXPECT_EQ(b.valid_rotation_rms_rad, r.valid_rotation_rms_rad);
   EXPECT_EQ(b.predicted_position_accuracy_m, r.predicted_position_accuracy_m);
+  EXPECT_EQ(b.predicted_robot_accuracy_m, r.predicted_robot_accuracy_m);
   EXPECT_EQ(b.log, r.log);
 }
 

@@ -5,6 +5,7 @@
 // fronto-parallel views are refused as not determining the focal length.
 #include "firmware/calibration/intrinsics_calibration.h"
 
+#include <random>
 #include <filesystem>
 #include <sstream>
 
@@ -84,6 +85,51 @@ IntrinsicsCalibrationResult CalibratedModel(IntrinsicsModel model, int count, Le
   EXPECT_TRUE(result.ok()) << result.message;
   EXPECT_EQ(result.camera.distortion_model, distortion);
   return result;
+}
+
+// The covariance written to the camera file (common/camera/intrinsics_uncertainty.h) agrees
+// with OpenCV's own standard deviations of the same calibration (cv::calibrateCameraExtended,
+// an independent implementation) on views with 0.2 px corner noise.
+TEST(IntrinsicsCalibration, WritesTheCovarianceOpenCvsStandardDeviationsAgreeWith) {
+  std::vector<CalibrationView> views = SyntheticViews(20);
+  std::mt19937_64 rng(7);
+  std::normal_distribution<float> noise(0.0f, 0.2f);
+  for (CalibrationView& view : views) {
+    for (cv::Point2f& p : view.image_points) p += cv::Point2f(noise(rng), noise(rng));
+  }
+  const auto result = CalibrateIntrinsics(views, cv::Size(640, 480), {});
+  ASSERT_TRUE(result.ok()) << result.message;
+  ASSERT_TRUE(result.camera.intrinsics_covariance.has_value());
+  std::vector<std::vector<cv::Point3f>> object_points;
+  std::vector<std::vector<cv::Point2f>> image_points;
+  for (const CalibrationView& view : views) {
+    object_points.push_back(view.object_points);
+    image_points.push_back(view.image_points);
+  }
+  cv::Mat K = cv::Mat::eye(3, 3, CV_64F), distortion = cv::Mat::zeros(5, 1, CV_64F);
+  cv::Mat std_intrinsics, std_extrinsics, view_errors;
+  std::vector<cv::Mat> rvecs, tvecs;
+  cv::calibrateCamera(object_points, image_points, cv::Size(640, 480), K, distortion, rvecs, tvecs,
+                      std_intrinsics, std_extrinsics, view_errors);
+  const Eigen::VectorXd sigma = result.camera.intrinsics_covariance->diagonal().cwiseSqrt();
+  ASSERT_EQ(sigma.size(), 9);
+  // Before 4.7 OpenCV divided the squared residuals by (points - parameters) where there are
+  // two residuals per point (opencv/opencv#19803, fixed by #22992): undo that here.
+  const double points = 54.0 * static_cast<double>(views.size());
+  const double parameters = 9.0 + 6.0 * static_cast<double>(views.size());
+  const double denominator_fix =
+      CV_VERSION_MAJOR == 4 && CV_VERSION_MINOR < 7
+          ? std::sqrt((points - parameters) / (2 * points - parameters))
+          : 1.0;
+  for (int i = 0; i < 9; ++i) {
+    const double opencv = denominator_fix * std_intrinsics.at<double>(i);
+    std::printf("parameter %d: sigma %.6g, OpenCV %.6g\n", i, sigma[i], opencv);
+    EXPECT_NEAR(sigma[i], opencv, 0.01 * opencv) << "parameter " << i;
+  }
+  // And the file keeps it.
+  const CameraIntrinsics back = ParseCameraYaml(FormatCameraYaml(result.camera), "test");
+  ASSERT_TRUE(back.intrinsics_covariance.has_value());
+  EXPECT_EQ(*back.intrinsics_covariance, *result.camera.intrinsics_covariance);
 }
 
 TEST(IntrinsicsCalibration, RecoversTheCameraFromExactCorrespondences) {

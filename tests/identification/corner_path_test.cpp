@@ -18,6 +18,7 @@
 #include "host/identification/corner_cost.h"
 #include "host/identification/corner_identification.h"
 #include "host/identification/identification.h"
+#include "host/simulation/calibration_draw.h"
 #include "host/simulation/corner_campaign.h"
 #include "host/simulation/paper_scenario.h"
 #include "host/simulation/pose_plan.h"
@@ -176,13 +177,13 @@ TEST(CornerPath, CorrectsATypicalIntrinsicCalibrationError) {
         "(Z %.0f ppm); corner path typical mix %.4f mm (Z %.0f ppm, predicted %.4f mm)\n",
         k, 1e3 * exact.pose.position_rms_m, 1e3 * wrong.pose.position_rms_m, wrong.pose.z_scale_ppm,
         1e3 * wrong.corner.position_rms_m, wrong.corner.z_scale_ppm,
-        1e3 * *wrong.corner_path.outcome.result.predicted_position_accuracy_m);
+        1e3 * *wrong.corner_path.outcome.result.predicted_robot_accuracy_m);
     log_corner += std::log(wrong.corner.position_rms_m / exact.pose.position_rms_m) / robots;
     log_wrong_pose += std::log(wrong.pose.position_rms_m / exact.pose.position_rms_m) / robots;
     log_exact_corner += std::log(exact.corner.position_rms_m / exact.pose.position_rms_m) / robots;
     EXPECT_LT(std::abs(wrong.corner.z_scale_ppm), 150.0);
     // The predicted accuracy is the true one within a factor 2 (encoder noise included).
-    const double predicted = *wrong.corner_path.outcome.result.predicted_position_accuracy_m;
+    const double predicted = *wrong.corner_path.outcome.result.predicted_robot_accuracy_m;
     EXPECT_LT(wrong.corner.position_rms_m, 2.0 * predicted);
     EXPECT_GT(wrong.corner.position_rms_m, 0.5 * predicted);
     const ResultCamera& camera = *wrong.corner_path.outcome.result.camera;
@@ -193,6 +194,38 @@ TEST(CornerPath, CorrectsATypicalIntrinsicCalibrationError) {
   EXPECT_GT(std::exp(log_wrong_pose), 4.0);
   EXPECT_LT(std::exp(log_corner), 1.5);
   EXPECT_LT(std::exp(log_exact_corner), 1.2);
+}
+
+// A camera file as a 25-view chessboard calibration leaves it (an error drawn from its own
+// covariance, which the file carries): the pose path's predicted robot accuracy carries the
+// file's share (camera_file_uncertainty.h) and is not below half the true one; without the
+// covariance it claims less.
+TEST(CameraFileUncertainty, ThePosePathsPredictionCarriesTheFilesCovariance) {
+  const Eigen::MatrixXd calibration = ChessboardCalibrationCovariance(TrueCamera());
+  const BoardModel board = LegacyBoard();
+  const RobotDescription apriori = PaperAprioriRobot();
+  for (int k = 0; k < 3; ++k) {
+    const SimulatedRobot truth = Robot(41 + static_cast<uint64_t>(k));
+    CameraIntrinsics file = DrawnFromCovariance(TrueCamera(), calibration, 51 + k);
+    file.intrinsics_covariance = calibration;
+    const CornerCampaign campaign = SimulateCornerCampaign(truth, GridPosePlan(), board,
+                                                           TrueCamera(), file, {.seed = 61u + k});
+    IdentificationOptions options;
+    const IdentificationOutcome m12 =
+        IdentifyRobot(apriori, ModelKind::k12, campaign.rows, options);
+    const IdentificationOutcome plain =
+        IdentifyModel31FromModel12(apriori, m12.result, campaign.rows, options);
+    options.camera_file = CameraFileUncertainty{file, board.corners()};
+    const IdentificationOutcome with_file =
+        IdentifyModel31FromModel12(apriori, m12.result, campaign.rows, options);
+    const TrueAccuracy truth_of = TrueAccuracyOfResult(with_file.result, truth, GridPoses());
+    const double predicted = *with_file.result.predicted_robot_accuracy_m;
+    const double predicted_plain = *plain.result.predicted_robot_accuracy_m;
+    std::printf("robot %d: true %.4f mm, predicted %.4f mm (without the file's covariance %.4f)\n",
+                k, 1e3 * truth_of.position_rms_m, 1e3 * predicted, 1e3 * predicted_plain);
+    EXPECT_GT(predicted, 0.5 * truth_of.position_rms_m);
+    EXPECT_GT(predicted, 1.5 * predicted_plain);
+  }
 }
 
 // The encoder noise the corner residuals show is the simulated one (joint_noise.h), and none
