@@ -193,18 +193,43 @@ void PrintCornerFit(const CornerPathOutcome& path) {
   }
 }
 
-// Why the corner path needs its three files together, said before any work.
-void RequireCornerPathFiles(const IdentifyCommandOptions& options) {
-  const bool any = !options.corners_path.empty() || !options.board_path.empty() ||
-                   !options.camera_path.empty() || options.camera_fixed ||
-                   !options.camera_out_path.empty();
-  if (!any) return;
-  if (options.corners_path.empty() || options.board_path.empty() || options.camera_path.empty()) {
+// Which files go together, said before any work: the corner path needs its three; the
+// camera file with its board alone gives the pose path the file's uncertainty.
+void RequireCameraFiles(const IdentifyCommandOptions& options) {
+  const bool corner_only = options.camera_fixed || !options.camera_out_path.empty();
+  if (options.corners_path.empty() && corner_only) {
+    throw std::invalid_argument(
+        "--camera-fixed and --camera-out belong to the corner path: give --corners, --board "
+        "and --camera");
+  }
+  if (!options.corners_path.empty() &&
+      (options.board_path.empty() || options.camera_path.empty())) {
     throw std::invalid_argument(
         "the corner path needs --corners, --board and --camera together (the corners CSV "
         "h4cal collect or h4cam measure --corners-out wrote, the board and the camera file "
         "h4cam used)");
   }
+  if (options.board_path.empty() != options.camera_path.empty()) {
+    throw std::invalid_argument(
+        "--camera and --board go together: the camera file h4cam measured with and its board "
+        "(without --corners, the pose path's covariance then carries the file's "
+        "intrinsics_covariance)");
+  }
+}
+
+// The camera file's uncertainty for the pose path (common/README.md "The camera file's
+// uncertainty"), when --camera and --board are given.
+std::optional<CameraFileUncertainty> CameraFileOf(const IdentifyCommandOptions& options) {
+  if (options.camera_path.empty()) return std::nullopt;
+  CameraFileUncertainty file{ReadCameraYaml(options.camera_path),
+                             BoardModel(ReadBoardYaml(options.board_path)).corners()};
+  if (!file.camera.intrinsics_covariance && options.corners_path.empty()) {
+    spdlog::warn(
+        "{} has no intrinsics_covariance (h4cam calibrate-intrinsics writes one): the "
+        "predicted accuracy assumes the intrinsics exact",
+        options.camera_path);
+  }
+  return file;
 }
 
 void RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription& robot,
@@ -217,7 +242,7 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
   if (!IsValidNloptAlgorithm(options.algorithm, &algorithm_why)) {
     throw std::invalid_argument("--algorithm: " + algorithm_why);
   }
-  RequireCornerPathFiles(options);
+  RequireCameraFiles(options);
   const std::vector<NamedPath> input_files = {
       {"--robot", options.robot_path}, {"--data", options.data_path},
       {"--from", options.from_path},   {"--corners", options.corners_path},
@@ -242,6 +267,7 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
   id_options.lm_polish = !options.no_polish;
   id_options.cross_validation.folds = options.folds;
   id_options.cross_validation.seed = options.seed;
+  id_options.camera_file = CameraFileOf(options);
   Progress progress("identify Model " + options.model, 0);
   int iterations = 0;
   id_options.progress = [&](const std::string& stage, int iteration, double cost) {
@@ -401,9 +427,11 @@ void DeclareIdentifyCommand(CLI::App* command) {
                               "common/formats/README.md); fits in pixels with the camera's "
                               "intrinsics refined with the robot (needs --board, --camera)");
   h4::cli::AddBoardOption(command, &options->board_path)
-      ->description("Corner path: the board YAML the corners were measured on");
+      ->description("The board YAML the poses (and corners) were measured on (with --camera)");
   h4::cli::AddCameraOption(command, &options->camera_path,
-                           "Corner path: the camera file h4cam used");
+                           "The camera file h4cam used (with --board): its "
+                           "intrinsics_covariance enters the pose path's covariance; with "
+                           "--corners, its intrinsics are refined");
   command->add_flag("--camera-fixed", options->camera_fixed,
                     "Corner path: keep every intrinsic at the camera file's value");
   command

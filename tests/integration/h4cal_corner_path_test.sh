@@ -57,8 +57,24 @@ run overwrite 1 --model 31 --from "$dir/r12.json" --corners "$dir/sim/corners.cs
 grep -q 'same file as --camera' "$dir/overwrite.log" || fail "--camera-out over --camera: $(cat "$dir/overwrite.log")"
 cmp -s "$file_camera" "$dir/camera.yaml" || fail "the camera file was changed"
 
+# The pose path given the camera file and its board carries the file's intrinsics_covariance
+# (common/README.md "The camera file's uncertainty"): a larger predicted robot accuracy than
+# without it, said in the result's log.
+run posecam31 3 --model 31 --from "$dir/r12.json" --board "$board" --camera "$file_camera"
+grep -q 'camera file: its intrinsics_covariance, shared by all' "$dir/posecam31.json" \
+  || fail "the pose path did not take the file's covariance: $(grep -c camera "$dir/posecam31.json")"
+predicted() { awk '/predicted robot accuracy/ { print $NF == "mm" ? $(NF-1) : $NF }' "$1"; }
+without=$(predicted "$dir/pose31.txt")
+with=$(predicted "$dir/posecam31.txt")
+awk -v a="$with" -v b="$without" 'BEGIN { exit !(a > 1.5 * b && b > 0) }' \
+  || fail "predicted robot accuracy with the file's covariance $with mm, without $without mm"
+run camera_alone 1 --model 31 --from "$dir/r12.json" --camera "$file_camera"
+grep -q -- '--camera and --board go together' "$dir/camera_alone.log" \
+  || fail "--camera without --board: $(cat "$dir/camera_alone.log")"
+
 # The three files go together.
 run missing 1 --model 31 --from "$dir/r12.json" --corners "$dir/sim/corners.csv"
 grep -q 'needs --corners, --board and --camera together' "$dir/missing.log" \
   || fail "missing --board/--camera: $(cat "$dir/missing.log")"
-echo "PASS: corner path refines the camera (fx $fx, sigma $sigma) and judges itself good"
+echo "PASS: corner path refines the camera (fx $fx, sigma $sigma) and judges itself good;" \
+  "the pose path predicts $with mm with the file's covariance, $without mm without"
