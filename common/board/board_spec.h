@@ -4,6 +4,7 @@
 // chessboard), x right along a row, y down a column, z into the board (away from the print).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <variant>
 
@@ -48,6 +49,7 @@ struct AprilGridSpec {
   double tag_spacing = 0.25;  ///< tagSpacing: gap between tags / tagSize (unitless)
   int first_id = 0;           ///< firstId: id of the first tag (see AprilGridLayout)
   AprilGridLayout layout = AprilGridLayout::kKalibr;  ///< h4camLayout (absent: kKalibr)
+  std::optional<double> size_sigma;  ///< h4camSizeSigma (BoardSizeSigma)
 
   AprilGridDesign design() const { return DesignOf(layout); }
 };
@@ -57,8 +59,18 @@ struct CheckerboardSpec {
   int rows = 6;                ///< targetRows: inner corners along a column
   double col_spacing = 0.025;  ///< colSpacingMeters, m
   double row_spacing = 0.025;  ///< rowSpacingMeters, m
+  std::optional<double> size_sigma;  ///< h4camSizeSigma (BoardSizeSigma)
 };
 
 using BoardSpec = std::variant<AprilGridSpec, CheckerboardSpec>;
+
+/// h4camSizeSigma: the relative one-sigma of the board's true size against its stated one
+/// (a print measured with calipers to 0.02 %: 0.0002). A uniform scale of the board is not
+/// observable with rotary joints (it scales every identified length), so the stated size
+/// is the calibration's metric reference and this its uncertainty (common/README.md "The
+/// camera file's uncertainty"); nullopt when the file does not state it.
+inline std::optional<double> BoardSizeSigma(const BoardSpec& board) {
+  return std::visit([](const auto& spec) { return spec.size_sigma; }, board);
+}
 
 }  // namespace h4

@@ -2,6 +2,8 @@
 #include "common/formats/board_yaml.h"
 
 #include <algorithm>
+#include <optional>
+#include <string>
 
 #include "common/formats/csv_table.h"
 #include "common/formats/number_text.h"
@@ -43,6 +45,25 @@ AprilGridLayout ReadLayout(const YamlMap& root) {
   root.Fail(kLayoutKey, "unknown layout '" + name + "', expected 'kalibr' or 'legacy'");
 }
 
+// h4cam's own key: the stated size's relative one-sigma (board_spec.h BoardSizeSigma).
+const char* const kSizeSigmaKey = "h4camSizeSigma";
+
+std::optional<double> ReadSizeSigma(const YamlMap& root) {
+  if (!root.Has(kSizeSigmaKey)) return std::nullopt;
+  const double value = root.Double(kSizeSigmaKey);
+  if (!(value >= 0.0 && value <= 0.1)) {
+    root.Fail(kSizeSigmaKey, "expected a relative one-sigma in [0, 0.1] (0.0002: 0.02 %), got " +
+                                 FormatDouble(value, kSizeSigmaKey));
+  }
+  return value;
+}
+
+std::string SizeSigmaLine(const std::optional<double>& sigma) {
+  if (!sigma) return "";
+  return std::string(kSizeSigmaKey) + ": " + FormatDouble(*sigma, kSizeSigmaKey) +
+         "  # relative one-sigma of the printed size\n";
+}
+
 // A positive size no larger than kMaxSize_m (a ratio for tagSpacing).
 double Size(const YamlMap& map, const std::string& key) {
   const double value = map.PositiveDouble(key);
@@ -69,6 +90,7 @@ AprilGridSpec ReadAprilGrid(const YamlMap& root) {
   spec.tag_spacing = Size(root, "tagSpacing");
   if (root.Has("firstId")) spec.first_id = Count(root, "firstId", 0, kMaxFirstId);
   if (root.Has(kLayoutKey)) spec.layout = ReadLayout(root);
+  spec.size_sigma = ReadSizeSigma(root);
   if (4 * spec.cols * spec.rows < kMinBoardCorners) {
     root.Fail("tagCols", "a grid of " + std::to_string(spec.cols) + " x " +
                              std::to_string(spec.rows) + " tags has " +
@@ -91,6 +113,7 @@ CheckerboardSpec ReadCheckerboard(const YamlMap& root) {
   }
   spec.col_spacing = Size(root, "colSpacingMeters");
   spec.row_spacing = Size(root, "rowSpacingMeters");
+  spec.size_sigma = ReadSizeSigma(root);
   return spec;
 }
 
@@ -107,7 +130,7 @@ BoardSpec ParseBoardYaml(const std::string& text, const std::string& source_name
   const YamlMap root(LoadYaml(text, source_name), source_name, "", 0);
   root.RejectCaseVariants({"target_type", "tagFamily", "tagCols", "tagRows", "tagSize",
                            "tagSpacing", "firstId", kLayoutKey, "targetCols", "targetRows",
-                           "colSpacingMeters", "rowSpacingMeters"});
+                           "colSpacingMeters", "rowSpacingMeters", kSizeSigmaKey});
   const std::string type = root.String("target_type");
   if (type == "aprilgrid") return ReadAprilGrid(root);
   if (type == "checkerboard") return ReadCheckerboard(root);
@@ -134,13 +157,15 @@ std::string FormatBoardYaml(const BoardSpec& board) {
       text += std::string(kLayoutKey) +
               ": legacy  # 1-cell tag border, no corner squares, ids from the top-left\n";
     }
+    text += SizeSigmaLine(grid->size_sigma);
   } else {
     const auto& chess = std::get<CheckerboardSpec>(board);
     text += "target_type: checkerboard\ntargetCols: " + std::to_string(chess.cols) +
             "  # inner corners along a row\ntargetRows: " + std::to_string(chess.rows) +
             "  # inner corners along a column\ncolSpacingMeters: " +
             FormatDouble(chess.col_spacing, "colSpacingMeters") +
-            "\nrowSpacingMeters: " + FormatDouble(chess.row_spacing, "rowSpacingMeters") + "\n";
+            "\nrowSpacingMeters: " + FormatDouble(chess.row_spacing, "rowSpacingMeters") + "\n" +
+            SizeSigmaLine(chess.size_sigma);
   }
   return text;
 }

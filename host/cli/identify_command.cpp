@@ -268,6 +268,8 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
   id_options.cross_validation.folds = options.folds;
   id_options.cross_validation.seed = options.seed;
   id_options.camera_file = CameraFileOf(options);
+  if (!options.board_path.empty())
+    id_options.board_size_sigma = BoardSizeSigma(ReadBoardYaml(options.board_path));
   Progress progress("identify Model " + options.model, 0);
   int iterations = 0;
   id_options.progress = [&](const std::string& stage, int iteration, double cost) {

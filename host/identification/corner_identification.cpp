@@ -255,7 +255,8 @@ std::vector<PoseCorners> CornersOfRows(const std::vector<DatasetRow>& all,
 // corner fit is the efficient estimate); the refit's verdict, cross-validation and pose
 // lists stay: they judge the same campaign on the re-measured poses.
 void ApplyCornerFit(const CornerFitOutcome& fit, const KinematicModel& model,
-                    const std::vector<DatasetRow>& calib, IdentificationOutcome* outcome) {
+                    const std::vector<DatasetRow>& calib, double board_size_sigma,
+                    IdentificationOutcome* outcome) {
   IdentificationResult& result = outcome->result;
   const ParameterVector& p = fit.parameters;
   const Uncertainty& u = fit.uncertainty;
@@ -285,7 +286,7 @@ void ApplyCornerFit(const CornerFitOutcome& fit, const KinematicModel& model,
   result.X_TE = p.X_TE();
   outcome->parameters = WithoutCameraBlock(p, model);
   // Where the robot goes (robot_accuracy.h); the board-position figure stays the refit's.
-  result.predicted_robot_accuracy_m = PredictedRobotAccuracy(model, p, calib, u);
+  result.predicted_robot_accuracy_m = PredictedRobotAccuracy(model, p, calib, u, board_size_sigma);
 }
 
 }  // namespace
@@ -365,7 +366,7 @@ CornerPathOutcome IdentifyOnCorners(const AprioriModel& apriori, ModelKind kind,
     if (refit.ok) out.fit = std::move(refit);
   }
   ApplyCornerFit(out.fit, *apriori.model, RowsWithIds(out.rows, out.outcome.result.calib_poses),
-                 &out.outcome);
+                 options.board_size_sigma.value_or(0.0), &out.outcome);
   out.outcome.result.camera = ResultCameraOf(out.fit, camera);
   out.outcome.result.log.insert(
       out.outcome.result.log.begin(),

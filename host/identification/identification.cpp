@@ -312,6 +312,21 @@ void RecordCrossValidation(const StageContext& context, IdentificationState* sta
       cv.reduced_chi2, cv.failed_folds, cv.seconds * 1e3));
 }
 
+// What no campaign can tell (common/README.md "Identification from corners"): with rotary
+// joints a board printed 0.2 % large gives a robot 0.2 % large that fits as well.
+std::string BoardScaleNote(const std::optional<double>& board_size_sigma) {
+  if (!board_size_sigma) {
+    return " Lengths are as right as the board's stated size, which no pose can check "
+           "(a uniform scale is not observable): measure the print and state its tolerance "
+           "(board YAML h4camSizeSigma, with --board) to have it in the predicted accuracy.";
+  }
+  return fmt::format(
+      " Lengths are as right as the board's stated size, which no pose can check (a uniform "
+      "scale is not observable): its stated tolerance, {:.0f} ppm, is in the predicted robot "
+      "accuracy.",
+      1e6 * *board_size_sigma);
+}
+
 // The verdict on the solution in `state` (verdict.h), into out->result.verdict.
 void JudgeSolution(const KinematicModel& model, const ParameterVector& apriori,
                    const IdentificationState& state, size_t poses_given,
@@ -327,6 +342,8 @@ void JudgeSolution(const KinematicModel& model, const ParameterVector& apriori,
                                  options.cost};
   out->result.verdict =
       DecideVerdict(GatherVerdictInputs(solution), options.verdict, &out->verdict);
+  if (out->verdict == Verdict::kGood)
+    out->result.verdict->text += BoardScaleNote(options.board_size_sigma);
   out->result.rejected_details = state.rejected_details;
 }
 

@@ -61,6 +61,9 @@ struct IdentificationOptions {
   /// intrinsics_covariance (`identify --camera --board`): its share enters the measurement
   /// cost's covariance and predicted accuracy (camera_file_uncertainty.h).
   std::optional<CameraFileUncertainty> camera_file;
+  /// The board YAML's h4camSizeSigma (board_spec.h BoardSizeSigma): the metric reference's
+  /// uncertainty, in the predicted robot accuracy and the verdict's note.
+  std::optional<double> board_size_sigma;
   /// k-fold cross-validation of the fit on every pose (cross_validation.h): the held-out
   /// figures, and the residuals outliers are judged on. folds = 0: off.
   CrossValidationOptions cross_validation;

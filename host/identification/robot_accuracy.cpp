@@ -1,6 +1,7 @@
 // The registered end-effector accuracy a covariance predicts; see robot_accuracy.h.
 #include "host/identification/robot_accuracy.h"
 
+#include <cmath>
 #include <memory>
 
 #include <Eigen/Cholesky>
@@ -30,7 +31,7 @@ Eigen::MatrixXd WithoutRigidMotions(const std::vector<Eigen::Vector3d>& position
 
 std::optional<double> PredictedRobotAccuracy(const KinematicModel& model, const ParameterVector& p,
                                              const std::vector<DatasetRow>& rows,
-                                             const Uncertainty& u) {
+                                             const Uncertainty& u, double board_size_sigma) {
   if (!u.ok || rows.size() < 2) return std::nullopt;
   std::unique_ptr<KinematicModel> identified = model.Clone();
   p.ApplyTo(identified.get());
@@ -45,7 +46,13 @@ std::optional<double> PredictedRobotAccuracy(const KinematicModel& model, const 
     J_p.block(3 * static_cast<Eigen::Index>(j), 0, 3, J_x_xi.cols()) = J_x_xi.topRows<3>();
     positions.push_back(fk.x.head<3>());
   }
-  return PredictedPositionAccuracy(u, WithoutRigidMotions(positions) * J_p);
+  const double rms = PredictedPositionAccuracy(u, WithoutRigidMotions(positions) * J_p);
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& x : positions) centroid += x / static_cast<double>(positions.size());
+  double spread2 = 0;  // mean |x - centroid|^2
+  for (const Eigen::Vector3d& x : positions)
+    spread2 += (x - centroid).squaredNorm() / static_cast<double>(positions.size());
+  return std::sqrt(rms * rms + board_size_sigma * board_size_sigma * spread2);
 }
 
 }  // namespace h4::host

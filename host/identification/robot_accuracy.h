@@ -19,8 +19,10 @@ namespace h4::host {
 
 /// RMS one-sigma registered end-effector position error over `rows` (m), from u (whose
 /// free_indices index p); nullopt when a pose's forward kinematics fails or u has none.
+/// `board_size_sigma` (relative): the board's size uncertainty, not observable, scales the
+/// whole robot: it adds sigma^2 |x - centroid|^2 to each position's variance.
 std::optional<double> PredictedRobotAccuracy(const KinematicModel& model, const ParameterVector& p,
                                              const std::vector<DatasetRow>& rows,
-                                             const Uncertainty& u);
+                                             const Uncertainty& u, double board_size_sigma = 0.0);
 
 }  // namespace h4::host

@@ -101,7 +101,8 @@ void FillCovarianceFigures(const SolutionToSummarise& s, const IdentificationCos
                                     u.chi2_per_dof, u.sigma2, u.condition_number));
   const std::optional<Eigen::MatrixXd> J_p = BoardPositionRows(s, cost, J);
   if (J_p) result->predicted_position_accuracy_m = PredictedPositionAccuracy(u, *J_p);
-  result->predicted_robot_accuracy_m = PredictedRobotAccuracy(s.model, s.p, s.calib, u);
+  result->predicted_robot_accuracy_m =
+      PredictedRobotAccuracy(s.model, s.p, s.calib, u, s.options.board_size_sigma.value_or(0.0));
 }
 
 // One row per parameter: value, a priori, one sigma when free and the covariance exists;

@@ -128,7 +128,14 @@ TEST(BoardYaml, RoundTripIsExact) {
   EXPECT_EQ(back.tag_spacing, grid.tag_spacing);
   EXPECT_EQ(back.first_id, grid.first_id);
   EXPECT_EQ(back.layout, grid.layout);
-  CheckerboardSpec chess{11, 8, 0.0251, 0.0249};
+  grid.size_sigma = 2e-4;
+  EXPECT_EQ(std::get<AprilGridSpec>(ParseBoardYaml(FormatBoardYaml(grid), "mem")).size_sigma,
+            2e-4);
+  CheckerboardSpec chess;
+  chess.cols = 11;
+  chess.rows = 8;
+  chess.col_spacing = 0.0251;
+  chess.row_spacing = 0.0249;
   const std::string path = TempPath("board.yaml");
   WriteBoardYaml(path, chess);
   const auto chess_back = std::get<CheckerboardSpec>(ReadBoardYaml(path));
@@ -136,6 +143,19 @@ TEST(BoardYaml, RoundTripIsExact) {
   EXPECT_EQ(chess_back.rows, 8);
   EXPECT_EQ(chess_back.col_spacing, 0.0251);
   EXPECT_EQ(chess_back.row_spacing, 0.0249);
+  EXPECT_FALSE(chess_back.size_sigma.has_value());
+}
+
+// h4camSizeSigma: the stated size's relative one-sigma, in [0, 0.1].
+TEST(BoardYamlErrors, SizeSigmaIsARelativeSigma) {
+  const std::string grid =
+      "target_type: aprilgrid\ntagCols: 6\ntagRows: 6\ntagSize: 0.03\ntagSpacing: 0.25\n";
+  EXPECT_EQ(BoardSizeSigma(ParseBoardYaml(grid + "h4camSizeSigma: 0.0005\n", "b.yaml")), 5e-4);
+  EXPECT_FALSE(BoardSizeSigma(ParseBoardYaml(grid, "b.yaml")).has_value());
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(grid + "h4camSizeSigma: 0.5\n", "b.yaml"); },
+                        "b.yaml", 6, "h4camSizeSigma", "relative one-sigma in [0, 0.1]"));
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(grid + "h4camSizeSigma: -1e-4\n", "b.yaml"); },
+                        "b.yaml", 6, "h4camSizeSigma", "relative one-sigma"));
 }
 
 TEST(BoardYamlErrors, UnknownTargetTypeNamesTheAcceptedOnes) {

@@ -68,6 +68,19 @@ without=$(predicted "$dir/pose31.txt")
 with=$(predicted "$dir/posecam31.txt")
 awk -v a="$with" -v b="$without" 'BEGIN { exit !(a > 1.5 * b && b > 0) }' \
   || fail "predicted robot accuracy with the file's covariance $with mm, without $without mm"
+# A board whose printed size is known to 0.1 % (h4camSizeSigma): no pose can check a uniform
+# scale, so its tolerance enters the predicted robot accuracy and the verdict says so.
+{ cat "$board"; echo "h4camSizeSigma: 0.001"; } > "$dir/board_tolerance.yaml"
+run corner_tol 0 --model 31 --from "$dir/r12.json" --corners "$dir/sim/corners.csv" \
+  --board "$dir/board_tolerance.yaml" --camera "$file_camera"
+grep -q 'its stated tolerance, 1000 ppm, is in the predicted robot' "$dir/corner_tol.json" \
+  || fail "the verdict does not name the board's tolerance"
+grep -q 'a uniform scale is not observable' "$dir/corner31.json" \
+  || fail "the verdict does not say the board's scale is not observable"
+corner=$(predicted "$dir/corner31.txt")
+tolerance=$(predicted "$dir/corner_tol.txt")
+awk -v a="$tolerance" -v b="$corner" 'BEGIN { exit !(a > b + 0.03) }' \
+  || fail "a 0.1 % board tolerance left the predicted robot accuracy at $tolerance mm ($corner mm without)"
 run camera_alone 1 --model 31 --from "$dir/r12.json" --camera "$file_camera"
 grep -q -- '--camera and --board go together' "$dir/camera_alone.log" \
   || fail "--camera without --board: $(cat "$dir/camera_alone.log")"
