@@ -49,7 +49,7 @@ struct AprilGridSpec {
   double tag_spacing = 0.25;  ///< tagSpacing: gap between tags / tagSize (unitless)
   int first_id = 0;           ///< firstId: id of the first tag (see AprilGridLayout)
   AprilGridLayout layout = AprilGridLayout::kKalibr;  ///< h4camLayout (absent: kKalibr)
-  std::optional<double> size_sigma;  ///< h4camSizeSigma (BoardSizeSigma)
+  std::optional<double> size_sigma = std::nullopt;  ///< h4camSizeSigma (BoardSizeSigma)
 
   AprilGridDesign design() const { return DesignOf(layout); }
 };
@@ -59,7 +59,7 @@ struct CheckerboardSpec {
   int rows = 6;                ///< targetRows: inner corners along a column
   double col_spacing = 0.025;  ///< colSpacingMeters, m
   double row_spacing = 0.025;  ///< rowSpacingMeters, m
-  std::optional<double> size_sigma;  ///< h4camSizeSigma (BoardSizeSigma)
+  std::optional<double> size_sigma = std::nullopt;  ///< h4camSizeSigma (BoardSizeSigma)
 };
 
 using BoardSpec = std::variant<AprilGridSpec, CheckerboardSpec>;
