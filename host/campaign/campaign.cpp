@@ -436,15 +436,20 @@ void Campaign::SendCaptureRequest(Clock::time_point now) {
 }
 
 // Until the camera's board pose is recorded (by the handler); a failed measurement or
-// none within the capture timeout retries the request.
+// none within the capture timeout retries. An active campaign retries from the target: the
+// robot may have left it (one stray robot_target_t made it hold, not settled, and retrying
+// only the capture then cost the pose); sending the same target to a robot still settled
+// there changes nothing.
 void Campaign::WaitForMeasurement(Clock::time_point now) {
+  const Phase retry_from =
+      options_.mode == CampaignMode::kActive ? Phase::kSendTarget : Phase::kSendRequest;
   if (failed_attempt_) {
-    Retry(Phase::kSendRequest, *failed_attempt_, now);
+    Retry(retry_from, *failed_attempt_, now);
   } else if (Seconds(now - phase_start_) > options_.capture_timeout_s) {
     const std::string hint = camera_heard_ ? ""
                                            : " (no camera status heard at all: is "
                                              "h4cam running?)";
-    Retry(Phase::kSendRequest,
+    Retry(retry_from,
           fmt::format("no measurement after {:.1f} s{}", options_.capture_timeout_s, hint), now);
   }
 }

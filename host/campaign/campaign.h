@@ -2,7 +2,8 @@
 // IV.A): for each planned pose, send the robot target, wait until the robot has settled,
 // request an averaged camera measurement, pair it with the joint reading of the same moment
 // and append the row to the dataset durably. Retries measurements flagged moved / partial /
-// no board and timeouts, then skips and lists the pose. Three modes:
+// no board, unpaired ones and timeouts (active mode: from the target, sent again, and the
+// robot settled again), then skips and lists the pose. Three modes:
 //   active  - drives the robot (H4_ROBOT_TARGET) and the camera (H4_CAPTURE_REQUEST);
 //   manual  - the operator moves the robot; a pose is taken when the robot has moved and
 //             settled again; only capture requests are sent;

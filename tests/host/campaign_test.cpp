@@ -58,6 +58,13 @@ class ScriptedCell {
                                              if (Lost()) return;
                                              pose_id_ = t.pose_id;
                                              target_time_ = Clock::now();
+                                             // As h4cal sim-robot: an unknown target type is
+                                             // refused; the robot holds, never settled, until
+                                             // a target it understands comes.
+                                             holding_ = t.target_type !=
+                                                            h4msgs::robot_target_t::TARGET_POSE &&
+                                                        t.target_type !=
+                                                            h4msgs::robot_target_t::TARGET_JOINTS;
                                            });
     bus_.Subscribe<h4msgs::capture_request_t>(
         channels::kCaptureRequest, [this](const h4msgs::capture_request_t& r) {
@@ -92,7 +99,7 @@ class ScriptedCell {
   static double Depth(int64_t pose_id) { return 0.5 + 0.001 * static_cast<double>(pose_id); }
 
   void Step() {
-    const bool settled = pose_id_ >= 0 && !never_settles.count(pose_id_) &&
+    const bool settled = pose_id_ >= 0 && !never_settles.count(pose_id_) && !holding_ &&
                          Clock::now() - target_time_ > settle_delay;
     h4msgs::joint_state_t js{};
     js.utime = NowUtime() + robot_clock_offset_us;
@@ -164,6 +171,7 @@ class ScriptedCell {
  private:
   bus::LcmBus& bus_;
   int64_t pose_id_ = -1;
+  bool holding_ = false;  ///< the last target was refused
   Clock::time_point target_time_{};
   struct Request {
     int64_t pose_id;
@@ -1118,6 +1126,36 @@ TEST_F(CampaignTest, WithoutAuthenticationTheSameAttackerGetsItsPosesRecorded) {
   });
   EXPECT_GT(forged, 0) << "the attacker's depth of 0.5 m became a row";
   EXPECT_GT(std::count(cell.requests.begin(), cell.requests.end(), 77), 0);
+}
+
+// Issue 27 point 10: one stray robot_target_t of an unknown type (5) during a capture made
+// the robot hold, not settled; collect retried only the capture, never paired it, and
+// skipped the pose. The retry sends the target again and waits for the robot to settle.
+TEST_F(CampaignTest, AStrayTargetDuringACaptureCostsARetryNotThePose) {
+  bus::LcmBus bus("memq://");
+  // The camera answers 300 ms after the request, stamped then: the robot's last settled
+  // reading before the stray target is out of the 0.2 s pairing tolerance.
+  ScriptedCell cell(bus, std::chrono::milliseconds(300));
+  DatasetJournal journal(path_);
+  CampaignOptions options = FastOptions();
+  options.capture_timeout_s = 2.0;
+  Campaign campaign(bus, Plan(3), journal, options);
+  bool injected = false;
+  Run(bus, campaign, &cell, 20.0, [&] {
+    if (injected || std::count(cell.requests.begin(), cell.requests.end(), 2) == 0) return;
+    h4msgs::robot_target_t stray{};
+    stray.utime = NowUtime();
+    stray.pose_id = 2;
+    stray.target_type = 5;
+    bus.Publish(channels::kRobotTarget, stray);
+    injected = true;
+  });
+  ASSERT_TRUE(injected);
+  ASSERT_TRUE(campaign.finished());
+  EXPECT_TRUE(campaign.skipped().empty()) << campaign.skipped()[0].reason;
+  EXPECT_EQ(ReadDatasetCsv(path_).size(), 3u);
+  // Pose 2's target: sent, the stray one, sent again.
+  EXPECT_GE(std::count(cell.targets.begin(), cell.targets.end(), 2), 3);
 }
 
 }  // namespace
