@@ -71,13 +71,24 @@ bool Campaign::IsPlanned(int64_t pose_id) const {
                      [pose_id](const PlannedPose& p) { return p.pose_id == pose_id; });
 }
 
+void Campaign::WarnThrottled(bus::WarningThrottle& throttle, const std::string& text) {
+  int64_t suppressed = 0;
+  if (!throttle.Allow(bus::WarningThrottle::Clock::now(), &suppressed)) return;
+  if (suppressed > 0) {
+    spdlog::warn("{} ({} similar warnings not logged)", text, suppressed);
+  } else {
+    spdlog::warn("{}", text);
+  }
+}
+
 void Campaign::OnJointState(const h4msgs::joint_state_t& msg) {
   ++counters_.joint_states;
   JointReading reading;
   std::string why;
   if (CheckJointState(msg, &reading, &why) != MessageProblem::kNone) {
     ++counters_.impossible_values;
-    spdlog::warn("ignored a joint state: {} ({} so far)", why, counters_.impossible_values);
+    WarnThrottled(joint_state_warnings_, fmt::format("ignored a joint state: {} ({} so far)", why,
+                                                     counters_.impossible_values));
     return;
   }
   joints_heard_ = true;
@@ -161,10 +172,12 @@ bool Campaign::AppendCorners(const h4msgs::board_corners_t& msg) {
     return true;
   } catch (const std::invalid_argument& e) {
     ++counters_.unusable_corners;
-    spdlog::warn("ignored the corners of pose {}: {}", msg.pose_id, e.what());
+    WarnThrottled(corners_warnings_,
+                  fmt::format("ignored the corners of pose {}: {}", msg.pose_id, e.what()));
   } catch (const FormatError& e) {
     ++counters_.unusable_corners;
-    spdlog::warn("ignored the corners of pose {}: {}", msg.pose_id, e.what());
+    WarnThrottled(corners_warnings_,
+                  fmt::format("ignored the corners of pose {}: {}", msg.pose_id, e.what()));
   }
   return false;
 }
@@ -188,9 +201,11 @@ void Campaign::OnBoardPose(const h4msgs::board_pose_t& msg) {
       !finished() && phase_ == Phase::kMeasuring && msg.pose_id == current().pose_id;
   if (!(passive ? IsPlanned(msg.pose_id) : awaited)) {
     ++counters_.unexpected_pose_ids;
-    spdlog::warn("ignored a measurement of pose {}: {} ({} so far)", msg.pose_id,
-                 IsPlanned(msg.pose_id) ? "not the pose being measured" : "not in the plan",
-                 counters_.unexpected_pose_ids);
+    WarnThrottled(
+        unexpected_pose_warnings_,
+        fmt::format("ignored a measurement of pose {}: {} ({} so far)", msg.pose_id,
+                    IsPlanned(msg.pose_id) ? "not the pose being measured" : "not in the plan",
+                    counters_.unexpected_pose_ids));
     return;
   }
   std::string why;
@@ -204,7 +219,8 @@ void Campaign::OnBoardPose(const h4msgs::board_pose_t& msg) {
                          ? counters_.nonphysical_covariances
                          : counters_.impossible_values;
     ++count;
-    spdlog::warn("ignored a measurement: {} ({} so far)", why, count);
+    WarnThrottled(measurement_warnings_,
+                  fmt::format("ignored a measurement: {} ({} so far)", why, count));
     return;
   } else {
     // Active mode pairs with the robot's report for this very pose id; a robot moved by hand

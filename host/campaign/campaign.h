@@ -31,6 +31,7 @@
 #include "host/campaign/measurement_pairing.h"
 #include "host/simulation/pose_plan.h"
 #include "messages/bus/lcm_bus.h"
+#include "messages/bus/warning_throttle.h"
 
 namespace h4::host {
 
@@ -152,6 +153,9 @@ class Campaign {
   /// Logs which side is silent, at most every kSilentAfter_s while it stays so.
   void LogSilentSides(Clock::time_point now);
   bool IsPlanned(int64_t pose_id) const;
+  /// Logs `text` through `throttle` (at most once a second, as the bus does: a flood of bad
+  /// messages must not become a flood of log lines), saying how many were held back.
+  static void WarnThrottled(bus::WarningThrottle& throttle, const std::string& text);
   const PlannedPose& current() const { return plan_[pending_[next_]]; }
 
   bus::LcmBus& bus_;
@@ -190,6 +194,10 @@ class Campaign {
   JointHistory history_;
   std::vector<SkippedPose> skipped_;
   CampaignCounters counters_;
+
+  /// One per kind of warning a message can cause.
+  bus::WarningThrottle joint_state_warnings_, unexpected_pose_warnings_, measurement_warnings_,
+      corners_warnings_;
 };
 
 }  // namespace h4::host

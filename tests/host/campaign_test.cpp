@@ -15,11 +15,14 @@
 #include <map>
 #include <random>
 #include <set>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <h4msgs/camera_status_t.hpp>
 #include <h4msgs/capture_request_t.hpp>
 #include <h4msgs/robot_target_t.hpp>
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 #include <sched.h>
 #include <sys/mount.h>
 #include <sys/resource.h>
@@ -1156,6 +1159,49 @@ TEST_F(CampaignTest, AStrayTargetDuringACaptureCostsARetryNotThePose) {
   EXPECT_EQ(ReadDatasetCsv(path_).size(), 3u);
   // Pose 2's target: sent, the stray one, sent again.
   EXPECT_GE(std::count(cell.targets.begin(), cell.targets.end(), 2), 3);
+}
+
+// Issue 27 point 14: without a key, a 15 s flood of wrong board poses gave 23 679 log lines:
+// the campaign's own warnings were not throttled, the bus's were.
+TEST_F(CampaignTest, AFloodOfForeignMeasurementsIsLoggedAtMostOnceASecond) {
+  std::ostringstream log;
+  const auto sink = std::make_shared<spdlog::sinks::ostream_sink_mt>(log);
+  spdlog::default_logger()->sinks().push_back(sink);
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  DatasetJournal journal(path_);
+  Campaign campaign(bus, Plan(2), journal, FastOptions());
+  int sent = 0;
+  Run(bus, campaign, &cell, 20.0, [&] {
+    for (int k = 0; k < 20; ++k, ++sent) {
+      bus.Publish(channels::kBoardPose, ForeignBoardPose(1000 + sent));  // not planned
+      h4msgs::board_pose_t behind = ForeignBoardPose(1);
+      behind.translation[2] = -0.5;  // impossible
+      bus.Publish(channels::kBoardPose, behind);
+      h4msgs::joint_state_t three_joints{};
+      three_joints.utime = NowUtime();
+      three_joints.joint_count = 3;
+      three_joints.position = {0.0, 0.0, 0.0};
+      bus.Publish(channels::kJointState, three_joints);
+    }
+  });
+  spdlog::default_logger()->sinks().pop_back();
+  ASSERT_TRUE(campaign.finished());
+  ASSERT_GE(sent, 200);
+  const std::string text = log.str();
+  const auto lines_with = [&text](const std::string& what) {
+    size_t count = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) {
+      ++count;
+    }
+    return count;
+  };
+  // The campaign lasts well under 20 s: a line a second of each kind, and the first.
+  EXPECT_LE(lines_with("ignored a measurement of pose"), 21u) << text.substr(0, 2000);
+  EXPECT_LE(lines_with("ignored a measurement: "), 21u);
+  EXPECT_LE(lines_with("ignored a joint state"), 21u);
+  EXPECT_GE(lines_with("ignored a measurement of pose"), 1u);
+  EXPECT_GE(campaign.counters().unexpected_pose_ids, sent);
 }
 
 }  // namespace
