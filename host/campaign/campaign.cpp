@@ -2,6 +2,7 @@
 #include "host/campaign/campaign.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -44,11 +45,8 @@ Campaign::Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal,
       channels::kJointState, [this](const h4msgs::joint_state_t& m) { OnJointState(m); });
   bus_.Subscribe<h4msgs::board_pose_t>(channels::kBoardPose,
                                        [this](const h4msgs::board_pose_t& m) { OnBoardPose(m); });
-  bus_.Subscribe<h4msgs::camera_status_t>(channels::kCameraStatus,
-                                          [this](const h4msgs::camera_status_t&) {
-                                            camera_heard_ = true;
-                                            ++camera_statuses_;
-                                          });
+  bus_.Subscribe<h4msgs::camera_status_t>(
+      channels::kCameraStatus, [this](const h4msgs::camera_status_t& m) { OnCameraStatus(m); });
   spdlog::info("campaign ({} mode): {} poses planned, {} already in {}, {} to measure",
                ModeName(options_.mode), plan_.size(), plan_.size() - pending_.size(),
                journal_.path(), pending_.size());
@@ -81,6 +79,12 @@ void Campaign::WarnThrottled(bus::WarningThrottle& throttle, const std::string& 
   }
 }
 
+void Campaign::OnCameraStatus(const h4msgs::camera_status_t& msg) {
+  camera_heard_ = true;
+  ++camera_statuses_;
+  if (options_.mode != CampaignMode::kPassive) camera_clock_.Add(msg.utime, NowUtime());
+}
+
 void Campaign::OnJointState(const h4msgs::joint_state_t& msg) {
   ++counters_.joint_states;
   JointReading reading;
@@ -92,6 +96,7 @@ void Campaign::OnJointState(const h4msgs::joint_state_t& msg) {
     return;
   }
   joints_heard_ = true;
+  if (options_.mode != CampaignMode::kPassive) robot_clock_.Add(reading.utime, NowUtime());
   history_.Add(reading);
   if (finished()) return;
   if (options_.mode == CampaignMode::kActive && phase_ == Phase::kSettling && reading.settled &&
@@ -111,8 +116,8 @@ bool Campaign::Record(const h4msgs::board_pose_t& msg, std::optional<int64_t> jo
       history_.FindSettled(joint_pose_id, msg.utime, tolerance_us);
   if (!joints) {
     ++counters_.unpaired;
-    *why = fmt::format("no settled joint reading within {:.3f} s of the measurement",
-                       options_.pair_tolerance_s);
+    *why = fmt::format("no settled joint reading within {:.3f} s of the measurement{}",
+                       options_.pair_tolerance_s, ClockSkewNote());
     return false;
   }
   journal_.Append(MakeDatasetRow(msg, *joints));
@@ -320,6 +325,39 @@ void Campaign::RetryUnsettled(Clock::time_point now) {
       options_.settle_timeout_s, journal_.path(), journal_.rows().size()));
 }
 
+std::string Campaign::ClockSkewNote() const {
+  const std::optional<double> camera = camera_clock_.seconds();
+  const std::optional<double> robot = robot_clock_.seconds();
+  if (!camera || !robot) return "";
+  const double disagreement = *camera - *robot;
+  if (std::abs(disagreement) <= options_.pair_tolerance_s) return "";
+  return fmt::format(
+      " ({}, the robot's joint states {:+.1f} s: the camera's clock is {:.1f} s {} the robot's, "
+      "more than the {:.3f} s pairing tolerance: check NTP/chrony on both)",
+      DescribeClockOffset("camera status timestamps", *camera), *robot, std::abs(disagreement),
+      disagreement > 0 ? "ahead of" : "behind", options_.pair_tolerance_s);
+}
+
+void Campaign::WarnOfClockSkew() {
+  const std::string note = ClockSkewNote();
+  if (note.empty()) return;
+  int64_t suppressed = 0;
+  if (!clock_warnings_.Allow(bus::WarningThrottle::Clock::now(), &suppressed)) return;
+  // The note without its parentheses.
+  spdlog::warn("measurements cannot be paired with joint readings: {}",
+               note.substr(2, note.size() - 3));
+}
+
+std::string Campaign::StaleCameraNote() const {
+  const std::optional<double> offset = bus_.stale_clock_offset_s(channels::kCameraStatus);
+  if (!offset) return "";
+  return fmt::format(
+      ": {} dropped as stale: {}, beyond the {:.0f} s the message authentication accepts: "
+      "check NTP/chrony on the camera and on this host",
+      bus_.stale_messages(channels::kCameraStatus),
+      DescribeClockOffset("camera status timestamps", *offset), bus_.max_clock_offset_s());
+}
+
 void Campaign::NoteWhoWasHeard(Clock::time_point now) {
   if (first_step_ == Clock::time_point{}) first_step_ = now;
   last_step_ = now;
@@ -359,6 +397,7 @@ bool Campaign::Step(Clock::time_point now) {
   if (options_.mode == CampaignMode::kPassive) return true;  // handlers do all the work
   NoteWhoWasHeard(now);
   LogSilentSides(now);
+  WarnOfClockSkew();
   if (recorded_current_) {
     NextPose();
     return !finished();
@@ -396,8 +435,10 @@ void Campaign::WaitForDevices(Clock::time_point now) {
                                         "controller or h4cal sim-robot running?)"
                                       : "";
   if (!camera_heard_) {
+    const std::string stale = StaleCameraNote();
     silent += std::string(silent.empty() ? "" : "; ") +
-              "no camera status on H4_CAMERA_STATUS (is h4cam running?)";
+              (stale.empty() ? "no camera status on H4_CAMERA_STATUS (is h4cam running?)"
+                             : "no camera status accepted on H4_CAMERA_STATUS" + stale);
   }
   throw std::runtime_error(fmt::format("nothing heard for {:.0f} s on {}: {}",
                                        options_.settle_timeout_s, bus_.url(), silent));

@@ -21,9 +21,9 @@
 #include <h4msgs/camera_status_t.hpp>
 #include <h4msgs/capture_request_t.hpp>
 #include <h4msgs/robot_target_t.hpp>
+#include <sched.h>
 #include <spdlog/sinks/ostream_sink.h>
 #include <spdlog/spdlog.h>
-#include <sched.h>
 #include <sys/mount.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -122,7 +122,7 @@ class ScriptedCell {
     }
     if (!silent_camera && !Lost()) {
       h4msgs::camera_status_t status{};
-      status.utime = NowUtime();
+      status.utime = NowUtime() + camera_clock_offset_us;
       status.state = h4msgs::camera_status_t::STATE_IDLE;
       bus_.Publish(channels::kCameraStatus, status);
     }
@@ -137,7 +137,7 @@ class ScriptedCell {
       const int attempt = attempts_[id]++;
       h4msgs::board_pose_t m{};
       // A real camera stamps the first frame of the group (the start of its averaging).
-      m.utime = stamp_first_frame ? request.received_utime : NowUtime();
+      m.utime = (stamp_first_frame ? request.received_utime : NowUtime()) + camera_clock_offset_us;
       m.pose_id = id;
       m.translation[2] = Depth(id);
       m.quaternion[0] = 1.0;
@@ -167,6 +167,7 @@ class ScriptedCell {
   double loss = 0.0;                  ///< probability that any one message, either way, is lost
   double reorder = 0.0;               ///< probability that a joint state arrives after the next one
   int64_t robot_clock_offset_us = 0;  ///< added to the robot's utimes (a clock jump)
+  int64_t camera_clock_offset_us = 0;  ///< added to the camera's utimes (a clock set wrong)
   std::function<int8_t(int64_t, int)> camera_status;
   bool send_corners = false;         ///< an OK answer is followed by its board_corners_t
   bool corners_before_pose = false;  ///< ... or preceded (reordered)
@@ -1159,6 +1160,56 @@ TEST_F(CampaignTest, AStrayTargetDuringACaptureCostsARetryNotThePose) {
   EXPECT_EQ(ReadDatasetCsv(path_).size(), 3u);
   // Pose 2's target: sent, the stray one, sent again.
   EXPECT_GE(std::count(cell.targets.begin(), cell.targets.end(), 2), 3);
+}
+
+// Issue 27 point 12: with the camera's clock 20 s ahead every pose was skipped "no settled
+// joint reading within 0.200 s" and nothing named the clocks.
+TEST_F(CampaignTest, ACameraClockAheadOfTheRobotsIsNamedInTheSkipReason) {
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  cell.camera_clock_offset_us = 20'000'000;
+  DatasetJournal journal(path_);
+  Campaign campaign(bus, Plan(2), journal, FastOptions(0));
+  Run(bus, campaign, &cell);
+  ASSERT_EQ(campaign.skipped().size(), 2u);
+  for (const SkippedPose& s : campaign.skipped()) {
+    EXPECT_NE(s.reason.find("camera status timestamps are 20.0 s ahead of this host's clock"),
+              std::string::npos)
+        << s.reason;
+    EXPECT_NE(s.reason.find("check NTP/chrony"), std::string::npos) << s.reason;
+  }
+}
+
+// ... and with authentication and the camera 40 s ahead every status was dropped as stale
+// and the campaign ended "no camera status (is h4cam running?)".
+TEST_F(CampaignTest, CameraStatusesDroppedAsStaleAreNamedAsAClockOffset) {
+  bus::LcmBus bus("memq://", bus::WireLimits{}, CampaignKey());
+  ScriptedCell cell(bus);
+  cell.silent_camera = true;  // its statuses come from the camera below, sealed 40 s ahead
+  bus::MessageAuthenticator camera(CampaignKey().key, CampaignKey().options);
+  DatasetJournal journal(path_);
+  Campaign campaign(bus, Plan(2), journal, FastOptions());
+  std::string error;
+  try {
+    Run(bus, campaign, &cell, 20.0, [&] {
+      const int64_t camera_utime = NowUtime() + 40'000'000;
+      h4msgs::camera_status_t status{};
+      status.utime = camera_utime;
+      status.state = h4msgs::camera_status_t::STATE_IDLE;
+      const std::vector<uint8_t> bytes = bus::wire_bytes::Encode(status);
+      const std::vector<uint8_t> sealed =
+          camera.Seal(channels::kCameraStatus, bytes.data(), bytes.size(), camera_utime);
+      bus.lcm().publish(channels::kCameraStatus, sealed.data(),
+                        static_cast<unsigned>(sealed.size()));
+    });
+  } catch (const std::runtime_error& e) {
+    error = e.what();
+  }
+  EXPECT_NE(error.find("camera status timestamps are 40.0 s ahead of this host's clock"),
+            std::string::npos)
+      << error;
+  EXPECT_NE(error.find("check NTP/chrony"), std::string::npos) << error;
+  EXPECT_GT(bus.stale_messages(channels::kCameraStatus), 0);
 }
 
 // Issue 27 point 14: without a key, a 15 s flood of wrong board poses gave 23 679 log lines:
