@@ -135,8 +135,11 @@ TargetResult SimulatedController::SetTarget(int64_t pose_id, const JointVector& 
     }
   }
   EePose x_target_model;
-  const bool solved = seed_model ? TruePoseFrom(q, *seed_model, &x_target_model)
-                                 : TruePoseFromHome(q, &x_target_model);
+  // The commanded pose is the nearer start; where the a priori robot misses it by too much
+  // for Newton's method (near the theta singularity, tenths of a radian), home followed
+  // along the joints is the start on the branch.
+  const bool solved = (seed_model && TruePoseFrom(q, *seed_model, &x_target_model)) ||
+                      TruePoseFromHome(q, &x_target_model);
   if (!solved) {
     return Refuse(pose_id, TargetStatus::kUnreachable,
                   "the true robot has no pose at joints " + FormatJoints(q));
