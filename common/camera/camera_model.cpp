@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/LU>
 
@@ -31,11 +32,28 @@ CameraModel::CameraModel(const CameraIntrinsics& intrinsics) : intrinsics_(intri
   cy_ = intrinsics.K(1, 2);
   skew_ = intrinsics.K(0, 1);
   valid_ = IsSupportedDistortionCount(intrinsics.distortion_model, n) && fx_ > 0 && fy_ > 0;
-  max_theta_ = kHalfPi;
   if (intrinsics.distortion_model == DistortionModel::kEquidistant) {
-    max_theta_ = FirstEquidistantFold();
+    max_theta_ = FirstFold([this](double theta) {
+      double slope = 0;
+      EquidistantThetaD(theta, &slope);
+      return slope;
+    });
     max_theta_d_ = EquidistantThetaD(max_theta_);
+  } else {
+    max_theta_ = FirstFold([this](double theta) { return RadTanRadialSlope(std::tan(theta)); });
   }
+  max_r_ = max_theta_ < kHalfPi ? std::tan(max_theta_) : std::numeric_limits<double>::infinity();
+}
+
+bool CameraModel::InValidField(const Eigen::Vector3d& p_CQ) const {
+  const double z = p_CQ.z();
+  if (!(z > 0)) return false;
+  // |(x, y)| / z < tan(max angle), written without the division.
+  return p_CQ.head<2>().norm() < max_r_ * z;
+}
+
+bool CameraModel::ProjectVisible(const Eigen::Vector3d& p_CQ, Eigen::Vector2d* uv) const {
+  return InValidField(p_CQ) && Project(p_CQ, uv);
 }
 
 Eigen::Vector2d CameraModel::Distort(const Eigen::Vector2d& xn, Eigen::Matrix2d* J_xd_xn) const {
@@ -76,16 +94,28 @@ double CameraModel::EquidistantThetaD(double theta, double* dthetad_dtheta) cons
   return theta * (1 + k1 * t2 + k2 * t4 + k3 * t6 + k4 * t8);
 }
 
-// The first angle in (0, pi/2] where d theta_d / d theta reaches 0 (pi/2 when it stays
+// r_d = r g(r^2) with g = a / b: d r_d / d r = g + 2 r^2 dg/d(r^2). The tangential terms
+// are left out: they are small and do not fold the image. A denominator b at or below 0 is a
+// pole of the rational model: the field ends there too.
+double CameraModel::RadTanRadialSlope(double r) const {
+  const double k1 = d_[0], k2 = d_[1], k3 = d_[4], k4 = d_[5], k5 = d_[6], k6 = d_[7];
+  const double r2 = r * r, r4 = r2 * r2, r6 = r4 * r2;
+  const double a = 1 + k1 * r2 + k2 * r4 + k3 * r6;
+  const double b = 1 + k4 * r2 + k5 * r4 + k6 * r6;
+  if (!(b > 0)) return 0;
+  const double da = k1 + 2 * k2 * r2 + 3 * k3 * r4;
+  const double db = k4 + 2 * k5 * r2 + 3 * k6 * r4;
+  const double slope = a / b + 2 * r2 * (da * b - a * db) / (b * b);
+  return std::isfinite(slope) ? slope : 0;
+}
+
+// The first angle in (0, pi/2] where slope(theta) is no longer positive (pi/2 when it stays
 // positive): past it two rays share a pixel and the model cannot be inverted. Scanned
-// finely (a polynomial of degree 8 turns at most 4 times) then bisected.
-double CameraModel::FirstEquidistantFold() const {
+// finely (a polynomial of degree 8 turns at most 4 times) then bisected. Runs once per
+// model, in the constructor.
+template <class Slope>
+double CameraModel::FirstFold(const Slope& slope) {
   const int steps = 2048;
-  const auto slope = [this](double theta) {
-    double d = 0;
-    EquidistantThetaD(theta, &d);
-    return d;
-  };
   for (int i = 1; i <= steps; ++i) {
     double hi = kHalfPi * i / steps;
     if (slope(hi) > 0) continue;

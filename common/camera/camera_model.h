@@ -27,10 +27,22 @@ class CameraModel {
   int width() const { return intrinsics_.width; }
   int height() const { return intrinsics_.height; }
 
-  /// Equidistant model: the largest angle from the optical axis (rad) the model images
-  /// one to one: pi/2, or less where theta_d(theta) stops increasing (a lens polynomial
-  /// that folds back). Radtan: pi/2 (not used).
+  /// The largest angle from the optical axis (rad) the model images one to one: pi/2, or
+  /// less where the radial map stops increasing (a lens polynomial that folds back: past
+  /// the fold two rays share a pixel and the image shrinks back toward the centre).
+  /// Equidistant: where d theta_d / d theta reaches 0. Radtan: where d r_d / d r of the
+  /// radial part r_d = r g(r^2) reaches 0 (or its rational denominator does). Computed once.
   double max_field_angle() const { return max_theta_; }
+
+  /// Whether the point p_CQ (camera frame) is in front of the camera and inside the field
+  /// the model images one to one (max_field_angle()). A projection decides visibility
+  /// only there: beyond the fold the formulas return pixels inside the image for points
+  /// the lens never shows there.
+  bool InValidField(const Eigen::Vector3d& p_CQ) const;
+
+  /// Project(), refused (false, uv untouched) outside InValidField(): what deciding
+  /// whether a point is seen, and where, must use.
+  bool ProjectVisible(const Eigen::Vector3d& p_CQ, Eigen::Vector2d* uv) const;
 
   /// Distorted normalised coordinates of undistorted normalised ones (x/z, y/z),
   /// with the 2x2 Jacobian J_xd_xn when asked.
@@ -73,13 +85,19 @@ class CameraModel {
   bool UndistortEquidistant(const Eigen::Vector2d& xd, Eigen::Vector2d* xn) const;
   /// theta_d(theta) of the equidistant model, and its derivative when asked.
   double EquidistantThetaD(double theta, double* dthetad_dtheta = nullptr) const;
-  double FirstEquidistantFold() const;
+  /// d r_d / d r of the radial-tangential model's radial part at normalised radius r
+  /// (non-positive also where the rational denominator is).
+  double RadTanRadialSlope(double r) const;
+  /// The first angle in (0, pi/2] where slope(theta) stops being positive; pi/2 if never.
+  template <class Slope>
+  static double FirstFold(const Slope& slope);
 
   CameraIntrinsics intrinsics_;
   std::array<double, 8> d_{};  // radtan: k1 k2 p1 p2 k3 k4 k5 k6; equidistant: k1 k2 k3 k4
   double fx_ = 1, fy_ = 1, cx_ = 0, cy_ = 0, skew_ = 0;
   double max_theta_ = 0;    // see max_field_angle()
-  double max_theta_d_ = 0;  // EquidistantThetaD(max_theta_)
+  double max_theta_d_ = 0;  // equidistant: EquidistantThetaD(max_theta_)
+  double max_r_ = 0;        // tan(max_theta_), or infinity at pi/2
   bool valid_ = false;
 };
 

@@ -12,9 +12,11 @@
 namespace h4 {
 namespace {
 
-std::string Joined(const std::vector<std::string>& names) {
+std::string JoinedFamilyNames() {
   std::string text;
-  for (const std::string& name : names) text += (text.empty() ? "" : ", ") + name;
+  for (const AprilTagFamilyInfo& family : AprilTagFamilies()) {
+    text += (text.empty() ? "" : ", ") + family.name;
+  }
   return text;
 }
 
@@ -78,10 +80,9 @@ AprilGridSpec ReadAprilGrid(const YamlMap& root) {
   AprilGridSpec spec;
   if (root.Has("tagFamily")) {
     spec.tag_family = root.String("tagFamily");
-    const std::vector<std::string>& families = AprilTagFamilies();
-    if (std::find(families.begin(), families.end(), spec.tag_family) == families.end()) {
-      root.Fail("tagFamily", "unknown tag family '" + spec.tag_family +
-                                 "', expected one of: " + Joined(families));
+    if (FindAprilTagFamily(spec.tag_family) == nullptr) {
+      root.Fail("tagFamily", "unknown tag family '" + spec.tag_family + "', expected one of: " +
+                                 JoinedFamilyNames() + " (the families h4cam detects)");
     }
   }
   spec.cols = Count(root, "tagCols", 1);
@@ -96,6 +97,16 @@ AprilGridSpec ReadAprilGrid(const YamlMap& root) {
                              std::to_string(spec.rows) + " tags has " +
                              std::to_string(4 * spec.cols * spec.rows) + " corners; h4cam needs " +
                              std::to_string(kMinBoardCorners) + " to measure a pose");
+  }
+  // A tag id past the family's codes has no pattern: h4cam can neither print nor detect it
+  // (plan accepted such a board, make-board and render refused it).
+  const int codes = FindAprilTagFamily(spec.tag_family)->codes;
+  const int64_t last_id = static_cast<int64_t>(spec.first_id) + spec.cols * spec.rows - 1;
+  if (last_id >= codes) {
+    root.Fail(root.Has("firstId") ? "firstId" : "tagCols",
+              "the grid's ids run from " + std::to_string(spec.first_id) + " to " +
+                  std::to_string(last_id) + ", past the " + std::to_string(codes) + " codes of " +
+                  spec.tag_family + " (ids 0 to " + std::to_string(codes - 1) + ")");
   }
   return spec;
 }
@@ -119,11 +130,17 @@ CheckerboardSpec ReadCheckerboard(const YamlMap& root) {
 
 }  // namespace
 
-const std::vector<std::string>& AprilTagFamilies() {
-  static const std::vector<std::string> families = {
-      "tag36h11",       "tag36h10",       "tag25h9",          "tag16h5",         "tagCircle21h7",
-      "tagCircle49h12", "tagCustom48h12", "tagStandard41h12", "tagStandard52h13"};
+const std::vector<AprilTagFamilyInfo>& AprilTagFamilies() {
+  static const std::vector<AprilTagFamilyInfo> families = {
+      {"tag36h11", 587}, {"tag25h9", 35}, {"tag16h5", 30}};
   return families;
+}
+
+const AprilTagFamilyInfo* FindAprilTagFamily(const std::string& name) {
+  for (const AprilTagFamilyInfo& family : AprilTagFamilies()) {
+    if (family.name == name) return &family;
+  }
+  return nullptr;
 }
 
 BoardSpec ParseBoardYaml(const std::string& text, const std::string& source_name) {

@@ -9,12 +9,24 @@
 
 namespace h4 {
 
-/// The tag families AprilTag 3.3 ships (the names of its tag*.h headers).
-const std::vector<std::string>& AprilTagFamilies();
+/// A tag family h4cam detects, renders and prints, with its number of codes (ids 0 to
+/// codes - 1).
+struct AprilTagFamilyInfo {
+  std::string name;  ///< AprilTag's name, that of its tag*.h header
+  int codes = 0;     ///< the family's ncodes in AprilTag 3.3
+};
+
+/// The families h4cam supports (firmware/detection/tag_family.cpp creates them; a test
+/// checks the codes against libapriltag): tag36h11, tag25h9, tag16h5. AprilTag ships others
+/// (tagCircle21h7, ...), which h4cam cannot detect, so a board of them is refused.
+const std::vector<AprilTagFamilyInfo>& AprilTagFamilies();
+/// The family called `name`, or nullptr when h4cam does not support it.
+const AprilTagFamilyInfo* FindAprilTagFamily(const std::string& name);
 
 /// Reads a board file. aprilgrid: tagCols, tagRows (positive integers), tagSize (m) and
 /// tagSpacing (ratio), both positive; optional tagFamily (one of AprilTagFamilies(),
-/// default tag36h11), firstId (>= 0, default 0) and h4cam's own h4camLayout ('kalibr',
+/// default tag36h11), firstId (>= 0, default 0; the grid's last id, firstId + tagCols x
+/// tagRows - 1, must be a code of the family) and h4cam's own h4camLayout ('kalibr',
 /// the default: the design kalibr_create_target_pdf prints; 'legacy': h4cam's earlier
 /// 1-cell-border design, board_spec.h AprilGridLayout). checkerboard: targetCols, targetRows
 /// (inner corners, >= 2), colSpacingMeters, rowSpacingMeters (positive). An unknown

@@ -81,8 +81,9 @@ std::string BoardOutOfView(const BoardSpec& board, const CameraIntrinsics& camer
   for (const Eigen::Vector3d& p_TQ : model.corners()) {
     const Eigen::Vector3d p_CQ = X_CT * p_TQ;
     Eigen::Vector2d uv;
-    if (!projection.Project(p_CQ, &uv)) continue;
+    if (!(p_CQ.z() > 0)) continue;
     ++in_front;
+    if (!projection.ProjectVisible(p_CQ, &uv)) continue;
     // Pixel centres run from 0 to width - 1 (common/formats/README.md): the image covers
     // [-0.5, width - 0.5).
     if (uv.x() >= -0.5 && uv.x() < camera.width - 0.5 && uv.y() >= -0.5 &&

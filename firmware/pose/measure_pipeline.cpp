@@ -162,7 +162,7 @@ Measurement MeasurePipeline::MeasureGroup() {
     std::vector<Eigen::Vector2d> corners_px;
     for (const Eigen::Vector3d& p_TQ : detector_.board().corners()) {
       Eigen::Vector2d uv;
-      if (camera_.Project(m.X_CT * p_TQ, &uv) && uv.x() >= 0 && uv.y() >= 0 &&
+      if (camera_.ProjectVisible(m.X_CT * p_TQ, &uv) && uv.x() >= 0 && uv.y() >= 0 &&
           uv.x() <= mean.cols - 1 && uv.y() <= mean.rows - 1) {
         corners_px.push_back(uv);
       }

@@ -2,6 +2,7 @@
 #include "host/campaign/campaign.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -44,11 +45,8 @@ Campaign::Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal,
       channels::kJointState, [this](const h4msgs::joint_state_t& m) { OnJointState(m); });
   bus_.Subscribe<h4msgs::board_pose_t>(channels::kBoardPose,
                                        [this](const h4msgs::board_pose_t& m) { OnBoardPose(m); });
-  bus_.Subscribe<h4msgs::camera_status_t>(channels::kCameraStatus,
-                                          [this](const h4msgs::camera_status_t&) {
-                                            camera_heard_ = true;
-                                            ++camera_statuses_;
-                                          });
+  bus_.Subscribe<h4msgs::camera_status_t>(
+      channels::kCameraStatus, [this](const h4msgs::camera_status_t& m) { OnCameraStatus(m); });
   spdlog::info("campaign ({} mode): {} poses planned, {} already in {}, {} to measure",
                ModeName(options_.mode), plan_.size(), plan_.size() - pending_.size(),
                journal_.path(), pending_.size());
@@ -71,16 +69,34 @@ bool Campaign::IsPlanned(int64_t pose_id) const {
                      [pose_id](const PlannedPose& p) { return p.pose_id == pose_id; });
 }
 
+void Campaign::WarnThrottled(bus::WarningThrottle& throttle, const std::string& text) {
+  int64_t suppressed = 0;
+  if (!throttle.Allow(bus::WarningThrottle::Clock::now(), &suppressed)) return;
+  if (suppressed > 0) {
+    spdlog::warn("{} ({} similar warnings not logged)", text, suppressed);
+  } else {
+    spdlog::warn("{}", text);
+  }
+}
+
+void Campaign::OnCameraStatus(const h4msgs::camera_status_t& msg) {
+  camera_heard_ = true;
+  ++camera_statuses_;
+  if (options_.mode != CampaignMode::kPassive) camera_clock_.Add(msg.utime, NowUtime());
+}
+
 void Campaign::OnJointState(const h4msgs::joint_state_t& msg) {
   ++counters_.joint_states;
   JointReading reading;
   std::string why;
   if (CheckJointState(msg, &reading, &why) != MessageProblem::kNone) {
     ++counters_.impossible_values;
-    spdlog::warn("ignored a joint state: {} ({} so far)", why, counters_.impossible_values);
+    WarnThrottled(joint_state_warnings_, fmt::format("ignored a joint state: {} ({} so far)", why,
+                                                     counters_.impossible_values));
     return;
   }
   joints_heard_ = true;
+  if (options_.mode != CampaignMode::kPassive) robot_clock_.Add(reading.utime, NowUtime());
   history_.Add(reading);
   if (finished()) return;
   if (options_.mode == CampaignMode::kActive && phase_ == Phase::kSettling && reading.settled &&
@@ -100,8 +116,8 @@ bool Campaign::Record(const h4msgs::board_pose_t& msg, std::optional<int64_t> jo
       history_.FindSettled(joint_pose_id, msg.utime, tolerance_us);
   if (!joints) {
     ++counters_.unpaired;
-    *why = fmt::format("no settled joint reading within {:.3f} s of the measurement",
-                       options_.pair_tolerance_s);
+    *why = fmt::format("no settled joint reading within {:.3f} s of the measurement{}",
+                       options_.pair_tolerance_s, ClockSkewNote());
     return false;
   }
   journal_.Append(MakeDatasetRow(msg, *joints));
@@ -161,10 +177,12 @@ bool Campaign::AppendCorners(const h4msgs::board_corners_t& msg) {
     return true;
   } catch (const std::invalid_argument& e) {
     ++counters_.unusable_corners;
-    spdlog::warn("ignored the corners of pose {}: {}", msg.pose_id, e.what());
+    WarnThrottled(corners_warnings_,
+                  fmt::format("ignored the corners of pose {}: {}", msg.pose_id, e.what()));
   } catch (const FormatError& e) {
     ++counters_.unusable_corners;
-    spdlog::warn("ignored the corners of pose {}: {}", msg.pose_id, e.what());
+    WarnThrottled(corners_warnings_,
+                  fmt::format("ignored the corners of pose {}: {}", msg.pose_id, e.what()));
   }
   return false;
 }
@@ -188,9 +206,11 @@ void Campaign::OnBoardPose(const h4msgs::board_pose_t& msg) {
       !finished() && phase_ == Phase::kMeasuring && msg.pose_id == current().pose_id;
   if (!(passive ? IsPlanned(msg.pose_id) : awaited)) {
     ++counters_.unexpected_pose_ids;
-    spdlog::warn("ignored a measurement of pose {}: {} ({} so far)", msg.pose_id,
-                 IsPlanned(msg.pose_id) ? "not the pose being measured" : "not in the plan",
-                 counters_.unexpected_pose_ids);
+    WarnThrottled(
+        unexpected_pose_warnings_,
+        fmt::format("ignored a measurement of pose {}: {} ({} so far)", msg.pose_id,
+                    IsPlanned(msg.pose_id) ? "not the pose being measured" : "not in the plan",
+                    counters_.unexpected_pose_ids));
     return;
   }
   std::string why;
@@ -204,7 +224,8 @@ void Campaign::OnBoardPose(const h4msgs::board_pose_t& msg) {
                          ? counters_.nonphysical_covariances
                          : counters_.impossible_values;
     ++count;
-    spdlog::warn("ignored a measurement: {} ({} so far)", why, count);
+    WarnThrottled(measurement_warnings_,
+                  fmt::format("ignored a measurement: {} ({} so far)", why, count));
     return;
   } else {
     // Active mode pairs with the robot's report for this very pose id; a robot moved by hand
@@ -304,6 +325,39 @@ void Campaign::RetryUnsettled(Clock::time_point now) {
       options_.settle_timeout_s, journal_.path(), journal_.rows().size()));
 }
 
+std::string Campaign::ClockSkewNote() const {
+  const std::optional<double> camera = camera_clock_.seconds();
+  const std::optional<double> robot = robot_clock_.seconds();
+  if (!camera || !robot) return "";
+  const double disagreement = *camera - *robot;
+  if (std::abs(disagreement) <= options_.pair_tolerance_s) return "";
+  return fmt::format(
+      " ({}, the robot's joint states {:+.1f} s: the camera's clock is {:.1f} s {} the robot's, "
+      "more than the {:.3f} s pairing tolerance: check NTP/chrony on both)",
+      DescribeClockOffset("camera status timestamps", *camera), *robot, std::abs(disagreement),
+      disagreement > 0 ? "ahead of" : "behind", options_.pair_tolerance_s);
+}
+
+void Campaign::WarnOfClockSkew() {
+  const std::string note = ClockSkewNote();
+  if (note.empty()) return;
+  int64_t suppressed = 0;
+  if (!clock_warnings_.Allow(bus::WarningThrottle::Clock::now(), &suppressed)) return;
+  // The note without its parentheses.
+  spdlog::warn("measurements cannot be paired with joint readings: {}",
+               note.substr(2, note.size() - 3));
+}
+
+std::string Campaign::StaleCameraNote() const {
+  const std::optional<double> offset = bus_.stale_clock_offset_s(channels::kCameraStatus);
+  if (!offset) return "";
+  return fmt::format(
+      ": {} dropped as stale: {}, beyond the {:.0f} s the message authentication accepts: "
+      "check NTP/chrony on the camera and on this host",
+      bus_.stale_messages(channels::kCameraStatus),
+      DescribeClockOffset("camera status timestamps", *offset), bus_.max_clock_offset_s());
+}
+
 void Campaign::NoteWhoWasHeard(Clock::time_point now) {
   if (first_step_ == Clock::time_point{}) first_step_ = now;
   last_step_ = now;
@@ -343,6 +397,7 @@ bool Campaign::Step(Clock::time_point now) {
   if (options_.mode == CampaignMode::kPassive) return true;  // handlers do all the work
   NoteWhoWasHeard(now);
   LogSilentSides(now);
+  WarnOfClockSkew();
   if (recorded_current_) {
     NextPose();
     return !finished();
@@ -380,8 +435,10 @@ void Campaign::WaitForDevices(Clock::time_point now) {
                                         "controller or h4cal sim-robot running?)"
                                       : "";
   if (!camera_heard_) {
+    const std::string stale = StaleCameraNote();
     silent += std::string(silent.empty() ? "" : "; ") +
-              "no camera status on H4_CAMERA_STATUS (is h4cam running?)";
+              (stale.empty() ? "no camera status on H4_CAMERA_STATUS (is h4cam running?)"
+                             : "no camera status accepted on H4_CAMERA_STATUS" + stale);
   }
   throw std::runtime_error(fmt::format("nothing heard for {:.0f} s on {}: {}",
                                        options_.settle_timeout_s, bus_.url(), silent));
@@ -436,15 +493,20 @@ void Campaign::SendCaptureRequest(Clock::time_point now) {
 }
 
 // Until the camera's board pose is recorded (by the handler); a failed measurement or
-// none within the capture timeout retries the request.
+// none within the capture timeout retries. An active campaign retries from the target: the
+// robot may have left it (one stray robot_target_t made it hold, not settled, and retrying
+// only the capture then cost the pose); sending the same target to a robot still settled
+// there changes nothing.
 void Campaign::WaitForMeasurement(Clock::time_point now) {
+  const Phase retry_from =
+      options_.mode == CampaignMode::kActive ? Phase::kSendTarget : Phase::kSendRequest;
   if (failed_attempt_) {
-    Retry(Phase::kSendRequest, *failed_attempt_, now);
+    Retry(retry_from, *failed_attempt_, now);
   } else if (Seconds(now - phase_start_) > options_.capture_timeout_s) {
     const std::string hint = camera_heard_ ? ""
                                            : " (no camera status heard at all: is "
                                              "h4cam running?)";
-    Retry(Phase::kSendRequest,
+    Retry(retry_from,
           fmt::format("no measurement after {:.1f} s{}", options_.capture_timeout_s, hint), now);
   }
 }

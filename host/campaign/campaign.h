@@ -2,7 +2,8 @@
 // IV.A): for each planned pose, send the robot target, wait until the robot has settled,
 // request an averaged camera measurement, pair it with the joint reading of the same moment
 // and append the row to the dataset durably. Retries measurements flagged moved / partial /
-// no board and timeouts, then skips and lists the pose. Three modes:
+// no board, unpaired ones and timeouts (active mode: from the target, sent again, and the
+// robot settled again), then skips and lists the pose. Three modes:
 //   active  - drives the robot (H4_ROBOT_TARGET) and the camera (H4_CAPTURE_REQUEST);
 //   manual  - the operator moves the robot; a pose is taken when the robot has moved and
 //             settled again; only capture requests are sent;
@@ -25,11 +26,13 @@
 #include <h4msgs/camera_status_t.hpp>
 #include <h4msgs/joint_state_t.hpp>
 
+#include "host/campaign/clock_offset.h"
 #include "host/campaign/corners_journal.h"
 #include "host/campaign/dataset_journal.h"
 #include "host/campaign/measurement_pairing.h"
 #include "host/simulation/pose_plan.h"
 #include "messages/bus/lcm_bus.h"
+#include "messages/bus/warning_throttle.h"
 
 namespace h4::host {
 
@@ -121,6 +124,7 @@ class Campaign {
   enum class Phase { kWaitForDevices, kSendTarget, kSettling, kSendRequest, kMeasuring };
 
   void OnJointState(const h4msgs::joint_state_t& msg);
+  void OnCameraStatus(const h4msgs::camera_status_t& msg);
   void OnBoardPose(const h4msgs::board_pose_t& msg);
   void OnBoardCorners(const h4msgs::board_corners_t& msg);
   /// After pose `pose_id` (measured at `utime`) is recorded: its corners, if already here.
@@ -151,6 +155,17 @@ class Campaign {
   /// Logs which side is silent, at most every kSilentAfter_s while it stays so.
   void LogSilentSides(Clock::time_point now);
   bool IsPlanned(int64_t pose_id) const;
+  /// Logs `text` through `throttle` (at most once a second, as the bus does: a flood of bad
+  /// messages must not become a flood of log lines), saying how many were held back.
+  static void WarnThrottled(bus::WarningThrottle& throttle, const std::string& text);
+  /// " (camera status timestamps are 20.0 s ahead of ...: check NTP/chrony)" when the
+  /// camera's and the robot's clocks disagree by more than the pairing tolerance (their
+  /// utimes cannot pair then); "" otherwise.
+  std::string ClockSkewNote() const;
+  /// Warns, at most every 10 s (clock_warnings_), while ClockSkewNote() names a disagreement.
+  void WarnOfClockSkew();
+  /// Why no camera status was heard, when the bus dropped them as stale: their clock.
+  std::string StaleCameraNote() const;
   const PlannedPose& current() const { return plan_[pending_[next_]]; }
 
   bus::LcmBus& bus_;
@@ -189,6 +204,15 @@ class Campaign {
   JointHistory history_;
   std::vector<SkippedPose> skipped_;
   CampaignCounters counters_;
+
+  /// The camera's and the robot's clocks against this host's, from the utimes of their
+  /// heartbeats and joint states at arrival (active and manual modes: a replayed log's are
+  /// old by definition).
+  ClockOffset camera_clock_, robot_clock_;
+  /// One per kind of warning a message can cause.
+  bus::WarningThrottle joint_state_warnings_, unexpected_pose_warnings_, measurement_warnings_,
+      corners_warnings_;
+  bus::WarningThrottle clock_warnings_{std::chrono::seconds(10)};
 };
 
 }  // namespace h4::host

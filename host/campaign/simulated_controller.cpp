@@ -1,6 +1,7 @@
 // The simulated H4 controller; see simulated_controller.h.
 #include "host/campaign/simulated_controller.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -80,8 +81,12 @@ SimulatedController::SimulatedController(const SimulatedRobot& truth,
   q_home_ = ik.q;
   q_ = ik.q;
   q_target_ = ik.q;
+  q_from_ = ik.q;
   X_BE_ = X_BE_home;
   x_model_ = x_model;
+  x_home_model_ = x_model;
+  x_from_model_ = x_model;
+  x_target_model_ = x_model;
   // At rest at home from the start: settled with pose id -1.
   time_at_target_ = options_.settle_time;
 }
@@ -104,10 +109,17 @@ TargetResult SimulatedController::SetPoseTarget(int64_t pose_id, const EePose& x
                               "of the a priori model (leg {} has no inverse kinematics)",
                               x_B[0], x_B[1], x_B[2], x_B[3], legs));
   }
-  return SetJointTarget(pose_id, ik.q);
+  // The true robot at these joints is millimetres from the commanded pose: a start on its
+  // branch.
+  return SetTarget(pose_id, ik.q, EePoseFromTransform(X_ModelB_ * TransformFromEePose(x_B)));
 }
 
 TargetResult SimulatedController::SetJointTarget(int64_t pose_id, const JointVector& q_in) {
+  return SetTarget(pose_id, q_in, std::nullopt);
+}
+
+TargetResult SimulatedController::SetTarget(int64_t pose_id, const JointVector& q_in,
+                                            const std::optional<EePose>& seed_model) {
   if (!q_in.allFinite()) {
     return Refuse(pose_id, TargetStatus::kInvalid, "joint target is not finite");
   }
@@ -122,24 +134,33 @@ TargetResult SimulatedController::SetJointTarget(int64_t pose_id, const JointVec
                                 i + 1, q[i], from_home[i], q_home_[i], options_.joint_range));
     }
   }
-  RigidTransform X_BE;
-  if (!TrueEePose(q, &X_BE)) {
+  EePose x_target_model;
+  // The commanded pose is the nearer start; where the a priori robot misses it by too much
+  // for Newton's method (near the theta singularity, tenths of a radian), home followed
+  // along the joints is the start on the branch.
+  const bool solved = (seed_model && TruePoseFrom(q, *seed_model, &x_target_model)) ||
+                      TruePoseFromHome(q, &x_target_model);
+  if (!solved) {
     return Refuse(pose_id, TargetStatus::kUnreachable,
                   "the true robot has no pose at joints " + FormatJoints(q));
   }
-  return Accept(pose_id, q);
+  return Accept(pose_id, q, x_target_model);
 }
 
 TargetResult SimulatedController::RejectTarget(int64_t pose_id, const std::string& reason) {
   return Refuse(pose_id, TargetStatus::kInvalid, reason);
 }
 
-TargetResult SimulatedController::Accept(int64_t pose_id, const JointVector& q) {
+TargetResult SimulatedController::Accept(int64_t pose_id, const JointVector& q,
+                                         const EePose& x_target_model) {
   pose_id_ = pose_id;
   const bool same_target =
       !refused_ && WrappedDifference(q, q_target_).cwiseAbs().maxCoeff() <= kSameTargetTolerance;
   if (!same_target) {
+    q_from_ = q_;
+    x_from_model_ = x_model_;
     q_target_ = q;
+    x_target_model_ = x_target_model;
     time_at_target_ = 0.0;
   }
   refused_ = false;
@@ -155,6 +176,9 @@ TargetResult SimulatedController::Refuse(int64_t pose_id, TargetStatus status,
   pose_id_ = pose_id;
   refused_ = true;
   q_target_ = q_;
+  q_from_ = q_;
+  x_from_model_ = x_model_;
+  x_target_model_ = x_model_;
   time_at_target_ = 0.0;
   TargetResult result;
   result.status = status;
@@ -175,18 +199,28 @@ void SimulatedController::Step(double dt_s) {
   if (travel >= distance) {
     q_ = q_target_;
     time_at_target_ = dt_s - distance / options_.joint_speed;
-  } else {
-    for (int i = 0; i < 4; ++i) q_[i] = WrapAngle(q_[i] + delta[i] * (travel / distance));
+    SetCurrentPose(x_target_model_);  // solved on its branch when the target was accepted
+    return;
   }
-  RigidTransform X_BE;
-  if (TrueEePose(q_, &X_BE)) {
-    X_BE_ = X_BE;
-    x_model_ = EePoseFromTransform(X_ModelB_ * X_BE);
+  for (int i = 0; i < 4; ++i) q_[i] = WrapAngle(q_[i] + delta[i] * (travel / distance));
+  // Start from the pose as far between the motion's ends as the joints are.
+  const double total = WrappedDifference(q_target_, q_from_).cwiseAbs().maxCoeff();
+  const double done = total > 0.0 ? 1.0 - (distance - travel) / total : 1.0;
+  EePose seed = x_from_model_ + done * (x_target_model_ - x_from_model_);
+  seed[3] = x_from_model_[3] + done * WrapAngle(x_target_model_[3] - x_from_model_[3]);
+  EePose x_model;
+  if (TruePoseFrom(q_, seed, &x_model)) {
+    SetCurrentPose(x_model);
   } else {
     // Between two assemblable targets the straight joint path should stay assemblable; if
     // not, the board pose freezes at the last solved pose rather than becoming NaN.
     ++fk_failures_;
   }
+}
+
+void SimulatedController::SetCurrentPose(const EePose& x_model) {
+  x_model_ = x_model;
+  X_BE_ = X_ModelB_.inverse() * TransformFromEePose(x_model);
 }
 
 bool SimulatedController::settled() const {
@@ -207,10 +241,26 @@ RigidTransform SimulatedController::true_X_CT() const {
   return truth_.X_BC.inverse() * X_BE_ * truth_.X_TE.inverse();
 }
 
-bool SimulatedController::TrueEePose(const JointVector& q, RigidTransform* X_BE) const {
-  const FkResult fk = ForwardKinematics(*true_model_, q, x_model_);
+bool SimulatedController::TruePoseFrom(const JointVector& q, const EePose& seed,
+                                       EePose* x_model) const {
+  FkOptions options;
+  options.retry_from_centre = false;  // the centre may lie on another branch
+  const FkResult fk = ForwardKinematics(*true_model_, q, seed, options);
   if (!fk.ok()) return false;
-  *X_BE = X_ModelB_.inverse() * TransformFromEePose(fk.x);
+  *x_model = fk.x;
+  return true;
+}
+
+bool SimulatedController::TruePoseFromHome(const JointVector& q, EePose* x_model) const {
+  const JointVector delta = WrappedDifference(q, q_home_);
+  // Steps of at most 0.01 rad: each pose a few millimetres from the last.
+  const int steps = std::max(1, static_cast<int>(std::ceil(delta.cwiseAbs().maxCoeff() / 0.01)));
+  EePose x = x_home_model_;
+  for (int k = 1; k <= steps; ++k) {
+    const JointVector q_k = q_home_ + (static_cast<double>(k) / steps) * delta;
+    if (!TruePoseFrom(q_k, x, &x)) return false;
+  }
+  *x_model = x;
   return true;
 }
 

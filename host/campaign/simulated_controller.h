@@ -3,10 +3,19 @@
 // as a real controller would, or joints), moves the TRUE robot's joints toward them at a
 // finite speed, reports "settled" after a dwell at the target, and gives the true board pose
 // X_CT = inv(X_BC) * X_BE * inv(X_TE) (paper eq. (6)) from the true forward kinematics.
+//
+// The forward kinematics has several solutions for one set of joints (assembly modes); the
+// one the robot is in must not depend on the path there (issue 27 point 11: continued from
+// step to step along a plan, it left its branch and the board's yaw drifted by tens of
+// degrees). So each target's pose is solved once, when it is accepted, from a start on the
+// right branch: the commanded pose for a pose target (the true robot misses it by
+// millimetres), the home pose followed along the straight joint line from home for a joint
+// target. While moving, each step starts from the pose between the motion's two ends.
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -99,10 +108,19 @@ class SimulatedController {
   int64_t fk_failures() const { return fk_failures_; }
 
  private:
-  TargetResult Accept(int64_t pose_id, const JointVector& q);
+  /// The joint target q_in, whose true pose is sought from `seed_model` (model frame) when
+  /// given, else by continuation from home.
+  TargetResult SetTarget(int64_t pose_id, const JointVector& q_in,
+                         const std::optional<EePose>& seed_model);
+  TargetResult Accept(int64_t pose_id, const JointVector& q, const EePose& x_target_model);
   TargetResult Refuse(int64_t pose_id, TargetStatus status, const std::string& reason);
-  // True forward kinematics at q (warm-started at the current pose): false when it fails.
-  bool TrueEePose(const JointVector& q, RigidTransform* X_BE) const;
+  /// True forward kinematics at q from `seed` (model frame); false when it fails.
+  bool TruePoseFrom(const JointVector& q, const EePose& seed, EePose* x_model) const;
+  /// The true pose at q followed from home along the straight joint line: a function of q
+  /// alone (the joint range keeps every target within reach of home).
+  bool TruePoseFromHome(const JointVector& q, EePose* x_model) const;
+  /// Sets the current pose from x_model_.
+  void SetCurrentPose(const EePose& x_model);
 
   SimulatedRobot truth_;
   std::unique_ptr<KinematicModel> true_model_;
@@ -113,7 +131,12 @@ class SimulatedController {
   JointVector q_ = JointVector::Zero();
   JointVector q_target_ = JointVector::Zero();
   RigidTransform X_BE_;
-  EePose x_model_ = EePose::Zero();  // true pose in the model's base frame (FK warm start)
+  EePose x_model_ = EePose::Zero();  // true pose in the model's base frame
+  EePose x_home_model_ = EePose::Zero();
+  // The motion under way: from x_from_model_ at q_from_ to x_target_model_ at q_target_.
+  JointVector q_from_ = JointVector::Zero();
+  EePose x_from_model_ = EePose::Zero();
+  EePose x_target_model_ = EePose::Zero();
   int64_t pose_id_ = -1;
   bool refused_ = false;         // the last target was refused: hold, never settled
   double time_at_target_ = 0.0;  // s at rest at the target

@@ -33,9 +33,7 @@ double ReducedChi2(const VerdictInputs& in) {
 int PosesNeeded(const VerdictInputs& in, const VerdictOptions& options) {
   const double residuals_per_pose =
       in.poses_in_fit > 0 ? static_cast<double>(in.residuals) / in.poses_in_fit : 6.0;
-  const double for_parameters =
-      options.min_residuals_per_parameter * in.free_parameters / std::max(1.0, residuals_per_pose);
-  return std::max(options.min_poses, static_cast<int>(std::ceil(for_parameters)));
+  return MinimumPosesInFit(in.free_parameters, residuals_per_pose, options);
 }
 
 std::optional<VerdictCase> TooFewPoses(const VerdictInputs& in, const VerdictOptions& options) {
@@ -190,6 +188,13 @@ std::vector<std::pair<std::string, double>> Figures(const VerdictInputs& in) {
 constexpr EnumNames<Verdict, Verdict::kTooFewPoses> kVerdictCodes = {
     "good", "model_cannot_describe", "inconsistent_with_apriori", "not_identifiable",
     "too_few_poses"};
+
+int MinimumPosesInFit(int free_parameters, double residuals_per_pose,
+                      const VerdictOptions& options) {
+  const double for_parameters =
+      options.min_residuals_per_parameter * free_parameters / std::max(1.0, residuals_per_pose);
+  return std::max(options.min_poses, static_cast<int>(std::ceil(for_parameters)));
+}
 
 const char* VerdictCode(Verdict verdict) {
   return kVerdictCodes.NameOf(verdict, "not_identifiable");

@@ -70,6 +70,12 @@ struct VerdictOptions {
   bool IsValid(std::string* why) const;
 };
 
+/// The fewest poses a fit of `free_parameters` needs not to be judged too_few_poses, with
+/// `residuals_per_pose` residuals each (6: a board pose): options.min_poses, or three
+/// residuals per free parameter when that is more.
+int MinimumPosesInFit(int free_parameters, double residuals_per_pose = 6.0,
+                      const VerdictOptions& options = VerdictOptions{});
+
 /// Everything the verdict is decided from.
 struct VerdictInputs {
   ModelKind model = ModelKind::k12;

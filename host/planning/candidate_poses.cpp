@@ -103,10 +103,11 @@ CandidateVerdict CandidateFilter::CheckView(const EePose& x_B) const {
   if (cos_tilt < std::cos(options_.max_tilt)) return CandidateVerdict::kTilt;
   const double margin = options_.image_margin_px;
   // Every corner, not only the outer four: the lens distortion bends the board's edges, so
-  // an edge's middle can leave the image while its ends stay inside.
+  // an edge's middle can leave the image while its ends stay inside. A corner past the lens
+  // model's fold projects back inside the image though the lens never shows it there.
   for (const Eigen::Vector3d& p_TQ : corners_T_) {
     Eigen::Vector2d uv;
-    if (!camera_.Project(X_CT * p_TQ, &uv)) return CandidateVerdict::kOutOfImage;
+    if (!camera_.ProjectVisible(X_CT * p_TQ, &uv)) return CandidateVerdict::kOutOfImage;
     // Pixel centres run from 0 to width - 1 (common/formats/README.md).
     if (uv.x() < margin || uv.y() < margin || uv.x() > camera_.width() - 1 - margin ||
         uv.y() > camera_.height() - 1 - margin) {

@@ -6,7 +6,9 @@
 #include <stdexcept>
 
 #include <Eigen/Cholesky>
+#include <spdlog/fmt/fmt.h>
 
+#include "common/units.h"
 #include "host/identification/identifiability.h"
 #include "host/identification/identification.h"
 #include "host/simulation/dataset_simulator.h"
@@ -28,9 +30,13 @@ std::vector<DatasetRow> NoiseFreeRows(const RobotDescription& robot,
   // predicts (residuals zero, Jacobian at the a priori).
   SimulatedDataset data = SimulateDataset(SimulatedRobot::FromDescription(robot), plan, options);
   if (!data.unreachable.empty()) {
-    throw std::runtime_error("pose planning: pose " + std::to_string(data.unreachable.front()) +
-                             " of the " + std::to_string(poses_B.size()) +
-                             " is out of the a priori robot's reach");
+    // Named by where it is: the index into poses_B (candidates, then evaluation poses)
+    // means nothing to the user (it read "pose 1926 of the 2006").
+    const EePose& x = poses_B[static_cast<size_t>(data.unreachable.front() - 1)];
+    throw std::runtime_error(fmt::format(
+        "pose planning: the pose X={:.1f} Y={:.1f} Z={:.1f} mm theta={:.1f} deg is out of the a "
+        "priori robot's reach",
+        x[0] * 1e3, x[1] * 1e3, x[2] * 1e3, DegreesFromRadians(x[3])));
   }
   return std::move(data.rows);
 }

@@ -1,9 +1,36 @@
 // Pose planning end to end (pose_planner.h).
 #include "host/planning/pose_planner.h"
 
+#include <algorithm>
 #include <stdexcept>
 
+#include <spdlog/fmt/fmt.h>
+
+#include "host/identification/verdict.h"
+#include "host/simulation/dataset_simulator.h"
+#include "host/simulation/true_robot.h"
+
 namespace h4::host {
+namespace {
+
+// The grid poses the a priori robot reaches, by the rule the information model applies
+// (SimulateDataset's inverse kinematics); the others' ids go to *unreachable.
+PosePlan ReachableGridPoses(const RobotDescription& robot, std::vector<int64_t>* unreachable) {
+  const PosePlan grid = GridPosePlan();
+  DatasetOptions options;
+  options.noise = NoiseOptions{0.0, 0.0, 0.0};
+  options.valid_count = 0;
+  *unreachable = SimulateDataset(SimulatedRobot::FromDescription(robot), grid, options).unreachable;
+  PosePlan reachable;
+  for (const PlannedPose& pose : grid) {
+    if (std::find(unreachable->begin(), unreachable->end(), pose.pose_id) == unreachable->end()) {
+      reachable.push_back(pose);
+    }
+  }
+  return reachable;
+}
+
+}  // namespace
 
 PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraModel& camera,
                                     const BoardModel& board,
@@ -14,7 +41,12 @@ PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraM
     throw std::invalid_argument("pose planning: no candidate pose (" +
                                 problem.candidates.Summary() + ")");
   }
-  problem.grid = GridPosePlan();
+  problem.grid = ReachableGridPoses(robot, &problem.unreachable_grid_ids);
+  if (problem.grid.empty()) {
+    throw std::runtime_error(
+        "pose planning: none of the paper's 81 grid poses, over which the accuracy is "
+        "predicted, is within the a priori robot's reach: check robot.yaml's lengths");
+  }
   std::vector<EePose> poses_B;
   for (const CandidatePose& pose : problem.candidates.poses) poses_B.push_back(pose.x_B);
   for (const PlannedPose& pose : problem.grid) {
@@ -77,9 +109,25 @@ PlannedCampaign PlanCampaign(const PlanningProblem& problem, const DesignOptions
   return campaign;
 }
 
+int MinimumPlannedPoses(const PlanningProblem& problem) {
+  const int free_parameters = problem.info.parameter_count();
+  return std::max(MinimumPosesInFit(free_parameters), (free_parameters + 5) / 6);
+}
+
+void CheckPlannedPoseCount(const PlanningProblem& problem, int pose_count) {
+  const int needed = MinimumPlannedPoses(problem);
+  if (pose_count >= needed) return;
+  throw std::invalid_argument(fmt::format(
+      "{} poses are too few: Model {} needs at least {} to identify its {} free parameters and "
+      "test the fit against the camera noise (identify's verdict would be too_few_poses); "
+      "plan {} or more",
+      pose_count, ToString(problem.info.model), needed, problem.info.parameter_count(), needed));
+}
+
 double GridPredictedPositionRms(const PlanningProblem& problem, int n, uint64_t seed) {
+  const int grid_size = static_cast<int>(problem.grid_indices.size());
   std::vector<int> chosen;
-  for (int k : SeededSubset(static_cast<int>(problem.grid_indices.size()), n, seed)) {
+  for (int k : SeededSubset(grid_size, std::clamp(n, 0, grid_size), seed)) {
     chosen.push_back(problem.grid_indices[static_cast<size_t>(k)]);
   }
   return PredictedPositionRms(problem.info, InformationMatrix(problem.info, chosen),

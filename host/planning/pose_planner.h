@@ -26,15 +26,20 @@ struct PlanningProblemOptions {
 
 struct PlanningProblem {
   CandidateSet candidates;
-  PosePlan grid;  ///< the paper's 81 poses (GridPosePlan)
+  /// The paper's 81 poses (GridPosePlan) that the a priori robot reaches: the accuracy is
+  /// predicted over them.
+  PosePlan grid;
+  /// Pose ids (1..81) of the grid poses out of the a priori robot's reach, left out of grid.
+  std::vector<int64_t> unreachable_grid_ids;
   /// Poses 0 .. candidates.poses.size() - 1 are the candidates, the rest the grid's.
   InformationModel info;
   std::vector<int> grid_indices;  ///< indices of the grid poses in info
   int candidate_count() const { return static_cast<int>(candidates.poses.size()); }
 };
 
-/// Throws std::invalid_argument (bad options, no candidates) or std::runtime_error (a grid
-/// pose out of the a priori robot's reach).
+/// Throws std::invalid_argument (bad options, no candidates) or std::runtime_error (no grid
+/// pose within the a priori robot's reach). Grid poses out of reach are left out and listed
+/// in unreachable_grid_ids (a robot shorter than the paper's does not reach its corners).
 PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraModel& camera,
                                     const BoardModel& board, const PlanningProblemOptions& options);
 
@@ -54,8 +59,17 @@ PlannedCampaign PlanCampaign(const PlanningProblem& problem, const DesignOptions
                              int64_t first_pose_id = 1,
                              PlanCriterion criterion = PlanCriterion::kDOptimal);
 
+/// The fewest poses a campaign planned for `problem` may have: below it `h4cal identify`
+/// calls the fit too_few_poses (verdict.h: the least poses in a fit, and three residuals per
+/// free parameter), and a design with fewer residuals than free parameters predicts nothing.
+int MinimumPlannedPoses(const PlanningProblem& problem);
+
+/// Throws std::invalid_argument, saying how many poses the model needs, when `pose_count` is
+/// below MinimumPlannedPoses(problem).
+void CheckPlannedPoseCount(const PlanningProblem& problem, int pose_count);
+
 /// The same prediction for n grid poses drawn with `seed` (n = 71: the paper's calibration
-/// poses, 10 held out).
+/// poses, 10 held out; at most the reachable grid poses).
 double GridPredictedPositionRms(const PlanningProblem& problem, int n, uint64_t seed);
 
 }  // namespace h4::host

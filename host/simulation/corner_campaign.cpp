@@ -42,7 +42,7 @@ CornerCampaign SimulateCornerCampaign(const SimulatedRobot& robot, const PosePla
     for (int id = 0; id < board.corner_count(); ++id) {
       const Eigen::Vector3d& p_TQ = board.corners()[static_cast<size_t>(id)];
       Eigen::Vector2d uv;
-      if (!camera.Project(row.X_CT * p_TQ, &uv) || !InImage(uv, true_camera)) continue;
+      if (!camera.ProjectVisible(row.X_CT * p_TQ, &uv) || !InImage(uv, true_camera)) continue;
       uv += options.sigma_px * Eigen::Vector2d(normal(rng), normal(rng));
       seen.push_back({row.pose_id, TagIdOf(board, id), id, uv.x(), uv.y(), options.sigma_px});
       pose.p_TQ.push_back(p_TQ);

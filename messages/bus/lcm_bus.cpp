@@ -1,6 +1,7 @@
 // The LCM adapter shared by both programs; see lcm_bus.h.
 #include "messages/bus/lcm_bus.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <stdexcept>
 #include <utility>
@@ -71,9 +72,14 @@ bool LcmBus::authenticates(const std::string& channel) const {
 bool LcmBus::Authentic(const std::string& channel, const void* data, uint32_t* size) {
   if (!authenticates(channel)) return true;
   size_t message_size = 0;
-  const AuthVerdict verdict = auth_->Open(channel, data, *size, NowUtime(), &message_size);
+  int64_t sender_utime = 0;
+  const int64_t now_utime = NowUtime();
+  const AuthVerdict verdict =
+      auth_->Open(channel, data, *size, now_utime, &message_size, &sender_utime);
   if (verdict != AuthVerdict::kAccepted) {
-    OnAuthFailure(channel, *size, verdict);
+    OnAuthFailure(
+        channel, *size, verdict,
+        verdict == AuthVerdict::kStale ? std::optional<int64_t>(sender_utime) : std::nullopt);
     return false;
   }
   *size = static_cast<uint32_t>(message_size);
@@ -125,15 +131,43 @@ int64_t LcmBus::auth_failures(AuthVerdict verdict) const {
   return it == auth_failures_by_verdict_.end() ? 0 : it->second;
 }
 
-void LcmBus::OnAuthFailure(const std::string& channel, uint32_t size, AuthVerdict verdict) {
+int64_t LcmBus::stale_messages(const std::string& channel) const {
+  const auto it = auth_failures_by_channel_.find(channel);
+  return it == auth_failures_by_channel_.end() ? 0 : it->second.stale;
+}
+
+std::optional<double> LcmBus::stale_clock_offset_s(const std::string& channel) const {
+  const auto it = auth_failures_by_channel_.find(channel);
+  return it == auth_failures_by_channel_.end() ? std::nullopt : it->second.stale_offset_s;
+}
+
+double LcmBus::max_clock_offset_s() const {
+  return auth_ != nullptr ? auth_->options().max_clock_offset_s : 0.0;
+}
+
+void LcmBus::OnAuthFailure(const std::string& channel, uint32_t size, AuthVerdict verdict,
+                           std::optional<int64_t> sender_utime) {
   ++auth_failures_;
   ++auth_failures_by_verdict_[verdict];
   ChannelFailures& failures = auth_failures_by_channel_[channel];
   ++failures.count;
+  std::string clock;
+  if (sender_utime) {
+    // An authentic message refused for its time alone: the sender's clock is off (or the
+    // message is a late replay; a clock off stays so message after message).
+    ++failures.stale;
+    const double offset_s =
+        (static_cast<double>(*sender_utime) - static_cast<double>(NowUtime())) * 1e-6;
+    failures.stale_offset_s = offset_s;
+    clock = fmt::format(
+        ": sealed {:.1f} s {} this host's clock (window {:.0f} s): check "
+        "NTP/chrony on both hosts",
+        std::abs(offset_s), offset_s >= 0 ? "ahead of" : "behind", max_clock_offset_s());
+  }
   int64_t suppressed = 0;
   if (!failures.throttle.Allow(WarningThrottle::Clock::now(), &suppressed)) return;
-  spdlog::warn("lcm: dropped a message of {} bytes on {}: {} ({} on {} so far{})", size, channel,
-               ToString(verdict), failures.count, channel,
+  spdlog::warn("lcm: dropped a message of {} bytes on {}: {}{} ({} on {} so far{})", size, channel,
+               ToString(verdict), clock, failures.count, channel,
                suppressed > 0 ? fmt::format(", {} not logged", suppressed) : std::string());
 }
 

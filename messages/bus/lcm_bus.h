@@ -137,6 +137,13 @@ class LcmBus {
   int64_t auth_failures() const { return auth_failures_; }
   int64_t auth_failures(const std::string& channel) const;
   int64_t auth_failures(AuthVerdict verdict) const;
+  /// Authentic messages of `channel` dropped as stale, and how far ahead of this host's
+  /// clock (s, negative: behind) the last one was sealed: a sender whose clock is off by
+  /// more than AuthOptions::max_clock_offset_s has every message dropped so.
+  int64_t stale_messages(const std::string& channel) const;
+  std::optional<double> stale_clock_offset_s(const std::string& channel) const;
+  /// The authentication's clock window, s (0 without authentication).
+  double max_clock_offset_s() const;
 
  private:
   using RawHandler = std::function<void(const void* data, uint32_t size)>;
@@ -166,7 +173,9 @@ class LcmBus {
   /// True when the message may be decoded: `channel` is not authenticated, or the message
   /// is authentic (`*size` then excludes the trailer). Otherwise counted, logged, false.
   bool Authentic(const std::string& channel, const void* data, uint32_t* size);
-  void OnAuthFailure(const std::string& channel, uint32_t size, AuthVerdict verdict);
+  /// `sender_utime`: the sealed utime of a message whose MAC verified (else nullopt).
+  void OnAuthFailure(const std::string& channel, uint32_t size, AuthVerdict verdict,
+                     std::optional<int64_t> sender_utime);
   void OnDecodeFailure(const std::string& channel, const char* type, uint32_t size,
                        const std::string& why);
   void OnPublishFailure(const std::string& channel);
@@ -174,6 +183,8 @@ class LcmBus {
   struct ChannelFailures {
     int64_t count = 0;
     WarningThrottle throttle;
+    int64_t stale = 0;                     ///< of them, kStale
+    std::optional<double> stale_offset_s;  ///< the last stale one's sealed utime - now, s
   };
 
   std::string url_;

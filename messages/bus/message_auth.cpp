@@ -143,7 +143,8 @@ bool MessageAuthenticator::Fresh(int64_t utime, int64_t now_utime) const {
 }
 
 AuthVerdict MessageAuthenticator::Open(const std::string& channel, const void* data, size_t size,
-                                       int64_t now_utime, size_t* message_size) {
+                                       int64_t now_utime, size_t* message_size,
+                                       int64_t* sender_utime) {
   const auto* bytes = static_cast<const uint8_t*>(data);
   if (size < kAuthTrailerBytes) return AuthVerdict::kUnauthenticated;
   const size_t body_size = size - kAuthTrailerBytes;
@@ -155,6 +156,7 @@ AuthVerdict MessageAuthenticator::Open(const std::string& channel, const void* d
   const HmacSha256Digest mac = Mac(channel, bytes, body_size, trailer);
   if (!ConstantTimeEqual(mac.data(), trailer + kMacOffset, mac.size())) return AuthVerdict::kForged;
   const auto utime = static_cast<int64_t>(GetU64(trailer + kUtimeOffset));
+  if (sender_utime != nullptr) *sender_utime = utime;
   if (!Fresh(utime, now_utime)) return AuthVerdict::kStale;
   if (!guard_.Accept(GetU64(trailer + kSenderOffset), GetU64(trailer + kSequenceOffset),
                      now_utime)) {

@@ -83,11 +83,15 @@ class MessageAuthenticator {
 
   /// Checks a received message of `size` bytes at `data` on `channel` against the
   /// receiver's clock `now_utime`; when kAccepted, `*message_size` is the size of the
-  /// encoded message before the trailer. Only an accepted message changes the state.
+  /// encoded message before the trailer. Only an accepted message changes the state. When
+  /// the MAC verifies (accepted, stale or replayed) and `sender_utime` is given, it receives
+  /// the utime the sender sealed the message with: a stale message's tells how far the
+  /// sender's clock is off.
   AuthVerdict Open(const std::string& channel, const void* data, size_t size, int64_t now_utime,
-                   size_t* message_size);
+                   size_t* message_size, int64_t* sender_utime = nullptr);
 
   uint64_t sender_id() const { return sender_id_; }
+  const AuthOptions& options() const { return options_; }
 
  private:
   HmacSha256Digest Mac(const std::string& channel, const uint8_t* message, size_t size,

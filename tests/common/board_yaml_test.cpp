@@ -51,11 +51,11 @@ TEST(BoardYaml, OptionalKeysTakeTheirDefaults) {
   EXPECT_EQ(grid.cols, 4);
   EXPECT_EQ(grid.rows, 3);
   const AprilGridSpec other = std::get<AprilGridSpec>(
-      ParseBoardYaml("target_type: aprilgrid\ntagFamily: tagStandard41h12\ntagCols: 4\ntagRows: 3\n"
-                     "tagSize: 0.05\ntagSpacing: 0.3\nfirstId: 100\n",
+      ParseBoardYaml("target_type: aprilgrid\ntagFamily: tag25h9\ntagCols: 4\ntagRows: 3\n"
+                     "tagSize: 0.05\ntagSpacing: 0.3\nfirstId: 20\n",
                      "b.yaml"));
-  EXPECT_EQ(other.tag_family, "tagStandard41h12");
-  EXPECT_EQ(other.first_id, 100);
+  EXPECT_EQ(other.tag_family, "tag25h9");
+  EXPECT_EQ(other.first_id, 20);
 }
 
 // A target file as Kalibr's documentation writes it: no h4cam key, so Kalibr's design.
@@ -105,17 +105,17 @@ TEST(BoardYaml, ReadsACheckerboard) {
 }
 
 TEST(BoardYaml, FamiliesAreThoseAprilTagShips) {
-  for (const std::string& family : AprilTagFamilies()) {
-    EXPECT_TRUE(std::filesystem::exists("/usr/include/apriltag/" + family + ".h") ||
+  for (const AprilTagFamilyInfo& family : AprilTagFamilies()) {
+    EXPECT_TRUE(std::filesystem::exists("/usr/include/apriltag/" + family.name + ".h") ||
                 !std::filesystem::exists("/usr/include/apriltag"))
-        << family;
+        << family.name;
   }
 }
 
 TEST(BoardYaml, RoundTripIsExact) {
   AprilGridSpec grid;
-  grid.tag_family = "tag25h9";
-  grid.cols = 7;
+  grid.tag_family = "tag25h9";  // 35 codes: ids 12 to 31
+  grid.cols = 4;
   grid.rows = 5;
   grid.tag_size = 0.1 / 3;
   grid.tag_spacing = 0.3;
@@ -184,6 +184,27 @@ TEST(BoardYamlErrors, UnknownTagFamily) {
   const std::string text = ReplacedOnce(kAprilGrid, "tag36h11", "tag36h12");
   EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(text, "b.yaml"); }, "b.yaml", 2, "tagFamily",
                         "unknown tag family 'tag36h12', expected one of: tag36h11"));
+}
+
+// Issue 27 point 4: plan accepted boards h4cam cannot measure: a family AprilTag ships but
+// h4cam does not detect, and ids past the family's codes (make-board and render refused them).
+TEST(BoardYamlErrors, FamiliesAndIdsH4camCannotDetectAreRefused) {
+  const std::string circle = ReplacedOnce(kAprilGrid, "tag36h11", "tagCircle21h7");
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(circle, "b.yaml"); }, "b.yaml", 2, "tagFamily",
+                        "unknown tag family 'tagCircle21h7', expected one of: tag36h11, "
+                        "tag25h9, tag16h5 (the families h4cam detects)"));
+  // tag36h11 has 587 codes: 36 tags from 552 end at 587.
+  const std::string past = ReplacedOnce(kAprilGrid, "firstId: 0", "firstId: 552");
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(past, "b.yaml"); }, "b.yaml", 7, "firstId",
+                        "the grid's ids run from 552 to 587, past the 587 codes of tag36h11 "
+                        "(ids 0 to 586)"));
+  const auto last = std::get<AprilGridSpec>(
+      ParseBoardYaml(ReplacedOnce(kAprilGrid, "firstId: 0", "firstId: 551"), "b.yaml"));
+  EXPECT_EQ(last.first_id, 551);
+  // tag16h5 has 30 codes: a 6 x 6 grid needs 36, even from id 0.
+  const std::string small = ReplacedOnce(kAprilGrid, "tag36h11", "tag16h5");
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(small, "b.yaml"); }, "b.yaml", 7, "firstId",
+                        "past the 30 codes of tag16h5"));
 }
 
 TEST(BoardYamlErrors, NonPositiveCountsAndSizes) {
@@ -267,7 +288,11 @@ TEST(BoardYamlErrors, CountsAndSizesAboveTheLimitsNameTheField) {
                        "b.yaml");
       },
       "b.yaml", 3, "targetRows", "[3, 200]"));
-  EXPECT_NO_THROW(ParseBoardYaml(ReplacedOnce(kAprilGrid, "tagRows: 6", "tagRows: 200"), "b.yaml"));
+  // 200 rows of 2 tags: 400 ids, within tag36h11's 587.
+  EXPECT_NO_THROW(
+      ParseBoardYaml(ReplacedOnce(ReplacedOnce(kAprilGrid, "tagRows: 6", "tagRows: 200"),
+                                  "tagCols: 6", "tagCols: 2"),
+                     "b.yaml"));
 }
 
 }  // namespace

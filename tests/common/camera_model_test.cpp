@@ -172,6 +172,47 @@ TEST(CameraModelTest, EquidistantUndistortionRefusesPixelsBeyondAFold) {
   EXPECT_FALSE(camera.NormalizedFromPixel(pixel_at(fold) + Eigen::Vector2d(0.5, 0), &xn));
 }
 
+// Issue 27 point 3: `plan` took corners past a lens's fold for corners in the image. The
+// radial-tangential model folds where d(r g(r^2))/dr reaches 0: k1 = -5 alone at
+// r = 1/sqrt(15) (14.5 deg); before the fix only the equidistant model had a field limit.
+TEST(CameraModelTest, RadTanFieldEndsWhereTheRadialMapFolds) {
+  CameraIntrinsics folding = Camera(5);
+  folding.distortion.setZero();
+  folding.distortion[0] = -5.0;
+  const CameraModel camera(folding);
+  const double fold = std::atan(1 / std::sqrt(15.0));
+  EXPECT_NEAR(camera.max_field_angle(), fold, 1e-9);
+  // Twice the fold's angle: the polynomial sends it back inside the image, near the centre.
+  const Eigen::Vector3d past_fold(std::tan(2 * fold), 0, 1);
+  Eigen::Vector2d uv;
+  ASSERT_TRUE(camera.Project(past_fold, &uv));
+  EXPECT_GT(uv.x(), 0);
+  EXPECT_LT(uv.x(), camera.width() - 1);
+  EXPECT_FALSE(camera.InValidField(past_fold));
+  EXPECT_FALSE(camera.ProjectVisible(past_fold, &uv));
+  const Eigen::Vector3d inside(std::tan(0.9 * fold), 0, 1);
+  EXPECT_TRUE(camera.InValidField(inside));
+  EXPECT_TRUE(camera.ProjectVisible(inside, &uv));
+  EXPECT_FALSE(camera.InValidField(Eigen::Vector3d(0, 0, -1)));  // behind the camera
+}
+
+TEST(CameraModelTest, EquidistantFieldEndsAtTheFoldAndAnUndistortedLensSeesTheHalfSpace) {
+  CameraIntrinsics folding = Fisheye();
+  folding.distortion = Eigen::Vector4d(-30, 0, 0, 0);  // issue 27: folds at about 6 deg
+  const CameraModel fisheye(folding);
+  const double fold = std::sqrt(1 / 90.0);
+  EXPECT_NEAR(fisheye.max_field_angle(), fold, 1e-9);
+  EXPECT_TRUE(fisheye.InValidField(Eigen::Vector3d(std::tan(0.99 * fold), 0, 1)));
+  EXPECT_FALSE(fisheye.InValidField(Eigen::Vector3d(0, std::tan(1.01 * fold), 1)));
+  const CameraModel pinhole(Camera(0));
+  EXPECT_DOUBLE_EQ(pinhole.max_field_angle(), std::numbers::pi / 2);
+  EXPECT_TRUE(pinhole.InValidField(Eigen::Vector3d(1e6, 1e6, 1e-3)));
+  // An ordinary lens (k1 -0.3, k2 0.1) never folds.
+  CameraIntrinsics ordinary = Camera(5);
+  ordinary.distortion << -0.3, 0.1, 0.001, -0.001, 0.0;
+  EXPECT_DOUBLE_EQ(CameraModel(ordinary).max_field_angle(), std::numbers::pi / 2);
+}
+
 TEST(CameraModelTest, UndistortionInvertsDistortionAcrossTheImage) {
   const CameraModel camera(Camera(8));
   for (double u = 0; u <= 1023; u += 170.5) {

@@ -10,6 +10,7 @@
 
 #include "common/board/board_model.h"
 #include "common/camera/camera_model.h"
+#include "common/formats/board_yaml.h"
 #include "firmware/render/paper_scenes.h"
 
 namespace h4::cam {
@@ -66,6 +67,16 @@ TEST(AprilTagDetectorTest, UnknownFamilyIsAnError) {
   const AprilTagDetector detector(options);
   EXPECT_FALSE(detector.ok());
   EXPECT_NE(detector.error().find("tag99h1"), std::string::npos);
+}
+
+// The board reader (common) refuses families and ids h4cam cannot detect from its own
+// table; it must be libapriltag's.
+TEST(AprilTagDetectorTest, TheBoardReadersFamiliesAreThoseH4camCreatesWithTheirCodes) {
+  for (const AprilTagFamilyInfo& family : AprilTagFamilies()) {
+    const TagFamilyPtr created = CreateTagFamily(family.name);
+    ASSERT_NE(created, nullptr) << family.name;
+    EXPECT_EQ(static_cast<int>(created->ncodes), family.codes) << family.name;
+  }
 }
 
 TEST(AprilTagDetectorTest, WideBorderFamilyMovesEveryBitOneCellIn) {

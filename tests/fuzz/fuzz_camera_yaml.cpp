@@ -1,6 +1,10 @@
 // Fuzz target: the camera intrinsics reader (OpenCV FileStorage YAML and Kalibr camchain,
 // as a whole file and as camera cam1 of it); what it accepts must stay within the size
-// limits and write (as OpenCV YAML) and read back with the same values.
+// limits, write (as OpenCV YAML) and read back with the same values, and give a camera
+// model whose valid field (where a projection decides visibility) is an angle in [0, pi/2].
+#include <numbers>
+
+#include "common/camera/camera_model.h"
 #include "common/formats/camera_yaml.h"
 #include "tests/fuzz/fuzz_support.h"
 
@@ -18,6 +22,12 @@ void CheckAccepted(const h4::CameraIntrinsics& camera) {
                     back.distortion == camera.distortion &&
                     back.avg_reprojection_error == camera.avg_reprojection_error,
                 "camera YAML round trip keeps the values");
+  // Computed once in the constructor by a bounded scan, whatever the coefficients (issue 27
+  // point 3: a lens that folds at 6 deg).
+  const CameraModel model(camera);
+  const double field = model.max_field_angle();
+  fuzz::Require(field >= 0 && field <= std::numbers::pi / 2,
+                "the camera model's valid field is an angle in [0, pi/2]");
 }
 
 }  // namespace

@@ -15,12 +15,15 @@
 #include <map>
 #include <random>
 #include <set>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <h4msgs/camera_status_t.hpp>
 #include <h4msgs/capture_request_t.hpp>
 #include <h4msgs/robot_target_t.hpp>
 #include <sched.h>
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 #include <sys/mount.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -58,6 +61,13 @@ class ScriptedCell {
                                              if (Lost()) return;
                                              pose_id_ = t.pose_id;
                                              target_time_ = Clock::now();
+                                             // As h4cal sim-robot: an unknown target type is
+                                             // refused; the robot holds, never settled, until
+                                             // a target it understands comes.
+                                             holding_ = t.target_type !=
+                                                            h4msgs::robot_target_t::TARGET_POSE &&
+                                                        t.target_type !=
+                                                            h4msgs::robot_target_t::TARGET_JOINTS;
                                            });
     bus_.Subscribe<h4msgs::capture_request_t>(
         channels::kCaptureRequest, [this](const h4msgs::capture_request_t& r) {
@@ -92,7 +102,7 @@ class ScriptedCell {
   static double Depth(int64_t pose_id) { return 0.5 + 0.001 * static_cast<double>(pose_id); }
 
   void Step() {
-    const bool settled = pose_id_ >= 0 && !never_settles.count(pose_id_) &&
+    const bool settled = pose_id_ >= 0 && !never_settles.count(pose_id_) && !holding_ &&
                          Clock::now() - target_time_ > settle_delay;
     h4msgs::joint_state_t js{};
     js.utime = NowUtime() + robot_clock_offset_us;
@@ -112,7 +122,7 @@ class ScriptedCell {
     }
     if (!silent_camera && !Lost()) {
       h4msgs::camera_status_t status{};
-      status.utime = NowUtime();
+      status.utime = NowUtime() + camera_clock_offset_us;
       status.state = h4msgs::camera_status_t::STATE_IDLE;
       bus_.Publish(channels::kCameraStatus, status);
     }
@@ -127,7 +137,7 @@ class ScriptedCell {
       const int attempt = attempts_[id]++;
       h4msgs::board_pose_t m{};
       // A real camera stamps the first frame of the group (the start of its averaging).
-      m.utime = stamp_first_frame ? request.received_utime : NowUtime();
+      m.utime = (stamp_first_frame ? request.received_utime : NowUtime()) + camera_clock_offset_us;
       m.pose_id = id;
       m.translation[2] = Depth(id);
       m.quaternion[0] = 1.0;
@@ -157,6 +167,7 @@ class ScriptedCell {
   double loss = 0.0;                  ///< probability that any one message, either way, is lost
   double reorder = 0.0;               ///< probability that a joint state arrives after the next one
   int64_t robot_clock_offset_us = 0;  ///< added to the robot's utimes (a clock jump)
+  int64_t camera_clock_offset_us = 0;  ///< added to the camera's utimes (a clock set wrong)
   std::function<int8_t(int64_t, int)> camera_status;
   bool send_corners = false;         ///< an OK answer is followed by its board_corners_t
   bool corners_before_pose = false;  ///< ... or preceded (reordered)
@@ -164,6 +175,7 @@ class ScriptedCell {
  private:
   bus::LcmBus& bus_;
   int64_t pose_id_ = -1;
+  bool holding_ = false;  ///< the last target was refused
   Clock::time_point target_time_{};
   struct Request {
     int64_t pose_id;
@@ -1118,6 +1130,129 @@ TEST_F(CampaignTest, WithoutAuthenticationTheSameAttackerGetsItsPosesRecorded) {
   });
   EXPECT_GT(forged, 0) << "the attacker's depth of 0.5 m became a row";
   EXPECT_GT(std::count(cell.requests.begin(), cell.requests.end(), 77), 0);
+}
+
+// Issue 27 point 10: one stray robot_target_t of an unknown type (5) during a capture made
+// the robot hold, not settled; collect retried only the capture, never paired it, and
+// skipped the pose. The retry sends the target again and waits for the robot to settle.
+TEST_F(CampaignTest, AStrayTargetDuringACaptureCostsARetryNotThePose) {
+  bus::LcmBus bus("memq://");
+  // The camera answers 300 ms after the request, stamped then: the robot's last settled
+  // reading before the stray target is out of the 0.2 s pairing tolerance.
+  ScriptedCell cell(bus, std::chrono::milliseconds(300));
+  DatasetJournal journal(path_);
+  CampaignOptions options = FastOptions();
+  options.capture_timeout_s = 2.0;
+  Campaign campaign(bus, Plan(3), journal, options);
+  bool injected = false;
+  Run(bus, campaign, &cell, 20.0, [&] {
+    if (injected || std::count(cell.requests.begin(), cell.requests.end(), 2) == 0) return;
+    h4msgs::robot_target_t stray{};
+    stray.utime = NowUtime();
+    stray.pose_id = 2;
+    stray.target_type = 5;
+    bus.Publish(channels::kRobotTarget, stray);
+    injected = true;
+  });
+  ASSERT_TRUE(injected);
+  ASSERT_TRUE(campaign.finished());
+  EXPECT_TRUE(campaign.skipped().empty()) << campaign.skipped()[0].reason;
+  EXPECT_EQ(ReadDatasetCsv(path_).size(), 3u);
+  // Pose 2's target: sent, the stray one, sent again.
+  EXPECT_GE(std::count(cell.targets.begin(), cell.targets.end(), 2), 3);
+}
+
+// Issue 27 point 12: with the camera's clock 20 s ahead every pose was skipped "no settled
+// joint reading within 0.200 s" and nothing named the clocks.
+TEST_F(CampaignTest, ACameraClockAheadOfTheRobotsIsNamedInTheSkipReason) {
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  cell.camera_clock_offset_us = 20'000'000;
+  DatasetJournal journal(path_);
+  Campaign campaign(bus, Plan(2), journal, FastOptions(0));
+  Run(bus, campaign, &cell);
+  ASSERT_EQ(campaign.skipped().size(), 2u);
+  for (const SkippedPose& s : campaign.skipped()) {
+    EXPECT_NE(s.reason.find("camera status timestamps are 20.0 s ahead of this host's clock"),
+              std::string::npos)
+        << s.reason;
+    EXPECT_NE(s.reason.find("check NTP/chrony"), std::string::npos) << s.reason;
+  }
+}
+
+// ... and with authentication and the camera 40 s ahead every status was dropped as stale
+// and the campaign ended "no camera status (is h4cam running?)".
+TEST_F(CampaignTest, CameraStatusesDroppedAsStaleAreNamedAsAClockOffset) {
+  bus::LcmBus bus("memq://", bus::WireLimits{}, CampaignKey());
+  ScriptedCell cell(bus);
+  cell.silent_camera = true;  // its statuses come from the camera below, sealed 40 s ahead
+  bus::MessageAuthenticator camera(CampaignKey().key, CampaignKey().options);
+  DatasetJournal journal(path_);
+  Campaign campaign(bus, Plan(2), journal, FastOptions());
+  std::string error;
+  try {
+    Run(bus, campaign, &cell, 20.0, [&] {
+      const int64_t camera_utime = NowUtime() + 40'000'000;
+      h4msgs::camera_status_t status{};
+      status.utime = camera_utime;
+      status.state = h4msgs::camera_status_t::STATE_IDLE;
+      const std::vector<uint8_t> bytes = bus::wire_bytes::Encode(status);
+      const std::vector<uint8_t> sealed =
+          camera.Seal(channels::kCameraStatus, bytes.data(), bytes.size(), camera_utime);
+      bus.lcm().publish(channels::kCameraStatus, sealed.data(),
+                        static_cast<unsigned>(sealed.size()));
+    });
+  } catch (const std::runtime_error& e) {
+    error = e.what();
+  }
+  EXPECT_NE(error.find("camera status timestamps are 40.0 s ahead of this host's clock"),
+            std::string::npos)
+      << error;
+  EXPECT_NE(error.find("check NTP/chrony"), std::string::npos) << error;
+  EXPECT_GT(bus.stale_messages(channels::kCameraStatus), 0);
+}
+
+// Issue 27 point 14: without a key, a 15 s flood of wrong board poses gave 23 679 log lines:
+// the campaign's own warnings were not throttled, the bus's were.
+TEST_F(CampaignTest, AFloodOfForeignMeasurementsIsLoggedAtMostOnceASecond) {
+  std::ostringstream log;
+  const auto sink = std::make_shared<spdlog::sinks::ostream_sink_mt>(log);
+  spdlog::default_logger()->sinks().push_back(sink);
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  DatasetJournal journal(path_);
+  Campaign campaign(bus, Plan(2), journal, FastOptions());
+  int sent = 0;
+  Run(bus, campaign, &cell, 20.0, [&] {
+    for (int k = 0; k < 20; ++k, ++sent) {
+      bus.Publish(channels::kBoardPose, ForeignBoardPose(1000 + sent));  // not planned
+      h4msgs::board_pose_t behind = ForeignBoardPose(1);
+      behind.translation[2] = -0.5;  // impossible
+      bus.Publish(channels::kBoardPose, behind);
+      h4msgs::joint_state_t three_joints{};
+      three_joints.utime = NowUtime();
+      three_joints.joint_count = 3;
+      three_joints.position = {0.0, 0.0, 0.0};
+      bus.Publish(channels::kJointState, three_joints);
+    }
+  });
+  spdlog::default_logger()->sinks().pop_back();
+  ASSERT_TRUE(campaign.finished());
+  ASSERT_GE(sent, 200);
+  const std::string text = log.str();
+  const auto lines_with = [&text](const std::string& what) {
+    size_t count = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) {
+      ++count;
+    }
+    return count;
+  };
+  // The campaign lasts well under 20 s: a line a second of each kind, and the first.
+  EXPECT_LE(lines_with("ignored a measurement of pose"), 21u) << text.substr(0, 2000);
+  EXPECT_LE(lines_with("ignored a measurement: "), 21u);
+  EXPECT_LE(lines_with("ignored a joint state"), 21u);
+  EXPECT_GE(lines_with("ignored a measurement of pose"), 1u);
+  EXPECT_GE(campaign.counters().unexpected_pose_ids, sent);
 }
 
 }  // namespace

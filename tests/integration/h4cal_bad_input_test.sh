@@ -165,4 +165,19 @@ expect_error "collect --auth-key mode 644" "open.key: auth key: mode 0644" \
 expect_error "collect --auth-key of 16 bytes" "short.key: auth key: 16 bytes; expected 32" \
   "$h4cal" collect --out "$dir/c.csv" --lcm-url memq:// --auth-key "$dir/short.key"
 [ ! -e "$dir/c.csv" ] || fail "collect made a dataset with a refused key"
+# Issue 27 point 4: plan accepted one pose (exit 0, "inf mm" predicted for 40 free
+# parameters) and boards h4cam cannot measure (a family it does not detect, ids past the
+# family's codes).
+boards=$(cd "$(dirname "$0")/../../boards" && pwd)
+plan_inputs=(--robot "$robot" --camera "$boards/sim_camera_1024x768.yaml" --step 0.1)
+expect_error "plan --count 1" "1 poses are too few: Model 31 needs at least 20" \
+  "$h4cal" plan "${plan_inputs[@]}" --board "$boards/aprilgrid_6x6_30mm.yaml" --count 1 \
+  --out "$dir/plan1.csv"
+[ ! -e "$dir/plan1.csv" ] || fail "plan wrote a plan of one pose"
+sed 's/^tagFamily: .*/tagFamily: tagCircle21h7/' "$boards/aprilgrid_6x6_30mm.yaml" > "$dir/circle.yaml"
+expect_error "plan on tagCircle21h7" "circle.yaml:.*tagCircle21h7.*families h4cam detects" \
+  "$h4cal" plan "${plan_inputs[@]}" --board "$dir/circle.yaml" --out "$dir/plan.csv"
+sed 's/^firstId: .*/firstId: 560/' "$boards/aprilgrid_6x6_30mm.yaml" > "$dir/past_ids.yaml"
+expect_error "plan on ids past tag36h11" "past_ids.yaml:.*past the 587 codes of tag36h11" \
+  "$h4cal" plan "${plan_inputs[@]}" --board "$dir/past_ids.yaml" --out "$dir/plan.csv"
 echo "PASS"

@@ -178,5 +178,54 @@ TEST(PoseDesign, AskingMorePosesThanCandidatesThrows) {
                std::invalid_argument);
 }
 
+// Issue 27 point 4: `plan --count 1` exited 0 predicting "inf mm" for Model 31's 40 free
+// parameters. A count below what identify needs is refused, saying how many.
+TEST(PosePlanner, FewerPosesThanIdentifyNeedsAreRefused) {
+  const PlanningProblem& problem = CoarseProblem();
+  ASSERT_EQ(problem.info.model, ModelKind::k31);
+  const int needed = MinimumPlannedPoses(problem);
+  EXPECT_EQ(needed, 20);  // VerdictOptions::min_poses; 3 x 40 residuals / 6 is 20 too
+  try {
+    CheckPlannedPoseCount(problem, 1);
+    ADD_FAILURE() << "one pose accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("1 poses are too few: Model 31 needs at least 20 to "
+                                         "identify its " +
+                                         std::to_string(problem.info.parameter_count()) +
+                                         " free parameters"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(CheckPlannedPoseCount(problem, needed - 1), std::invalid_argument);
+  EXPECT_NO_THROW(CheckPlannedPoseCount(problem, needed));
+}
+
+// ... and with robot.yaml's forearm as long as the arm, plan failed on a grid pose the robot
+// cannot reach, named "pose 1926 of the 2006" (an index into candidates and grid). The grid
+// poses out of reach are left out of the prediction and listed.
+TEST(PosePlanner, GridPosesOutOfTheRobotsReachAreLeftOutAndListed) {
+  RobotDescription robot = PaperAprioriRobot();
+  robot.model12.forearm = robot.model12.arm;
+  PlanningProblemOptions options;
+  options.candidates.position_step = 0.1;
+  const PlanningProblem problem = MakePlanningProblem(
+      robot, CameraModel(ReadCameraYaml(H4_SOURCE_DIR "/boards/sim_camera_1024x768.yaml")),
+      BoardModel(ReadBoardYaml(H4_SOURCE_DIR "/boards/aprilgrid_6x6_30mm.yaml")), options);
+  EXPECT_FALSE(problem.unreachable_grid_ids.empty());
+  EXPECT_EQ(problem.grid.size() + problem.unreachable_grid_ids.size(), 81u);
+  EXPECT_EQ(problem.grid_indices.size(), problem.grid.size());
+  for (const PlannedPose& pose : problem.grid) {
+    EXPECT_EQ(std::count(problem.unreachable_grid_ids.begin(), problem.unreachable_grid_ids.end(),
+                         pose.pose_id),
+              0);
+  }
+  // The prediction over the reachable grid poses is finite for a design of 25 candidates.
+  ASSERT_GE(problem.candidate_count(), 25) << problem.candidates.Summary();
+  DesignOptions design;
+  design.pose_count = 25;
+  EXPECT_TRUE(std::isfinite(PlanCampaign(problem, design).predicted_position_rms));
+  EXPECT_TRUE(std::isfinite(GridPredictedPositionRms(problem, 71, 1)));  // capped at the grid
+}
+
 }  // namespace
 }  // namespace h4::host
