@@ -96,7 +96,7 @@ std::optional<Eigen::MatrixXd> BoardPoseByIntrinsics(const CameraIntrinsics& cam
   CalibrationViewFit view{{}, X_CT};
   for (const Eigen::Vector3d& p : p_TQ) {
     Eigen::Vector2d uv;
-    if (!model.Project(X_CT * p, &uv)) continue;
+    if (!model.ProjectVisible(X_CT * p, &uv)) continue;
     if (uv.x() < -0.5 || uv.y() < -0.5 || uv.x() > camera.width - 0.5 ||
         uv.y() > camera.height - 0.5)
       continue;

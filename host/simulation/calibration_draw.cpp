@@ -34,7 +34,7 @@ Eigen::MatrixXd ChessboardCalibrationCovariance(const CameraIntrinsics& camera) 
       for (int col = 0; col < 9; ++col) {
         const Eigen::Vector3d p_TQ(0.025 * (col - 0.5), 0.025 * (row - 0.5), 0.0);
         Eigen::Vector2d uv;
-        if (!model.Project(view.X_CT * p_TQ, &uv)) continue;
+        if (!model.ProjectVisible(view.X_CT * p_TQ, &uv)) continue;
         if (uv.x() < 0 || uv.y() < 0 || uv.x() > camera.width - 1 || uv.y() > camera.height - 1)
           continue;
         view.corners.p_TQ.push_back(p_TQ);
