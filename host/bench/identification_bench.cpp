@@ -8,16 +8,24 @@
 //    (loose), this project's LM, NLopt alone to the minimum, and Ceres (an analytic
 //    CostFunction wrapping the same residuals and Jacobian);
 //  - the forward kinematics of the 81 grid poses with a perturbed Model 31 (what the
-//    measurement-space stage and the validation solve per evaluation).
+//    measurement-space stage and the validation solve per evaluation);
+//  - the corner path (`identify --corners`) for Model 31 on the 81 poses x the legacy 6x6
+//    board's 144 corners, camera file with the typical-mix error, from the pose path's
+//    Model 31 result: corner fits, poses measured again, cross-validation (CPU time).
 #include <memory>
 #include <string>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 
+#include "common/board/board_model.h"
+#include "common/formats/board_yaml.h"
+#include "common/formats/camera_yaml.h"
+#include "host/identification/corner_identification.h"
 #include "host/identification/identification.h"
 #include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/model31.h"
+#include "host/simulation/corner_campaign.h"
 #include "host/simulation/dataset_simulator.h"
 #include "host/simulation/paper_scenario.h"
 #include "host/simulation/pose_plan.h"
@@ -255,6 +263,48 @@ void BM_MeasurementStageCeresModel31(benchmark::State& state) {
 BENCHMARK(BM_MeasurementStageCeresModel12)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MeasurementStageCeresModel31)->Unit(benchmark::kMillisecond);
 #endif
+
+// The corner path's inputs: a corner-level campaign through the true camera, poses solved
+// with the typical-error file, and the pose path's Model 31 from Model 12.
+struct CornerProblem {
+  std::vector<DatasetRow> rows;
+  std::vector<PoseCorners> corners;
+  CameraIntrinsics file_camera;
+  IdentificationOutcome pose_path;
+};
+
+const CornerProblem& GetCornerProblem() {
+  static const CornerProblem problem = [] {
+    const std::string boards = std::string(H4_SOURCE_DIR) + "/boards/";
+    const CameraIntrinsics true_camera = ReadCameraYaml(boards + "sim_camera_1024x768.yaml");
+    const CameraIntrinsics file_camera =
+        ReadCameraYaml(boards + "sim_camera_1024x768_typical_error.yaml");
+    const BoardModel board(ReadBoardYaml(boards + "aprilgrid_6x6_30mm.yaml"));
+    const SimulatedRobot truth =
+        MakeTrueRobot(PaperAprioriRobot(), TrueGeometry::kPerturbedModel31, {.seed = 1});
+    const CornerCampaign campaign =
+        SimulateCornerCampaign(truth, GridPosePlan(), board, true_camera, file_camera, {});
+    const IdentificationOutcome m12 =
+        IdentifyRobot(PaperAprioriRobot(), ModelKind::k12, campaign.rows, {});
+    return CornerProblem{
+        campaign.rows, GroupCornersByRow(campaign.rows, campaign.corners, board, 0.05),
+        file_camera,
+        IdentifyModel31FromModel12(PaperAprioriRobot(), m12.result, campaign.rows, {})};
+  }();
+  return problem;
+}
+
+void BM_CornerPathModel31(benchmark::State& state) {
+  const CornerProblem& p = GetCornerProblem();
+  const AprioriModel apriori = AprioriModelOf(PaperAprioriRobot(), ModelKind::k31);
+  for (auto _ : state) {
+    const CornerPathOutcome path = IdentifyOnCorners(apriori, ModelKind::k31, p.pose_path, p.rows,
+                                                     p.corners, p.file_camera, {}, {});
+    if (!path.fit.ok) state.SkipWithError(path.fit.message.c_str());
+    benchmark::DoNotOptimize(path);
+  }
+}
+BENCHMARK(BM_CornerPathModel31)->Unit(benchmark::kMillisecond);
 
 BENCHMARK(BM_IdentifyModel12)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_IdentifyModel31)->Unit(benchmark::kMillisecond);
