@@ -99,8 +99,9 @@ void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed
   const std::string dir = std::string(H4_SOURCE_DIR) + "/boards/";
   const CameraIntrinsics true_camera = ReadCameraYaml(dir + "sim_camera_1024x768.yaml");
   static const Eigen::MatrixXd calibration = ChessboardCalibrationCovariance(true_camera);
-  CameraIntrinsics file_camera = error.drawn ? DrawnFromCovariance(true_camera, calibration, 1000 + seed)
-                                             : WithError(true_camera, error);
+  CameraIntrinsics file_camera = error.drawn
+                                     ? DrawnFromCovariance(true_camera, calibration, 1000 + seed)
+                                     : WithError(true_camera, error);
   // The typical mix's file claims its own looser calibration (its error about one sigma);
   // the others a 25-view chessboard calibration's.
   file_camera.intrinsics_covariance =
@@ -108,9 +109,9 @@ void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed
           ? *ReadCameraYaml(dir + "sim_camera_1024x768_typical_error.yaml").intrinsics_covariance
           : calibration;
   const BoardModel board(ReadBoardYaml(dir + "aprilgrid_6x6_30mm.yaml"));
-  const CornerCampaign campaign =
-      SimulateCornerCampaign(truth, GridPosePlan(), board, true_camera, file_camera,
-                             {.sigma_px = options.sigma_px, .sigma_q = options.sigma_q, .seed = seed});
+  const CornerCampaign campaign = SimulateCornerCampaign(
+      truth, GridPosePlan(), board, true_camera, file_camera,
+      {.sigma_px = options.sigma_px, .sigma_q = options.sigma_q, .seed = seed});
   const RobotDescription apriori = PaperAprioriRobot();
   std::vector<EePose> grid;
   for (const PlannedPose& p : GridPosePlan()) grid.push_back(p.x);
@@ -122,6 +123,16 @@ void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed
   const IdentificationOutcome m31 =
       IdentifyModel31FromModel12(apriori, m12.result, campaign.rows, id_options);
   const TrueAccuracy pose = TrueAccuracyOfResult(m31.result, truth, grid);
+  // A pose path that fails (a start the fit cannot leave, `inconsistent_with_apriori`) is no
+  // start for the corner path: the row is named and left out of the means (the whole robot
+  // when it is the exact camera's, whose RMS the ratios divide by).
+  const bool wrong_start =
+      m31.result.verdict && m31.result.verdict->code == "inconsistent_with_apriori";
+  if (!m31.summary.usable || wrong_start || !(pose.position_rms_m > 0)) {
+    std::printf("| %-20s | %s | not usable: left out of the means | | | | | | | | |\n", error.name,
+                m31.result.verdict ? m31.result.verdict->code.c_str() : "-");
+    return;
+  }
   const double start = CpuSeconds();
   const CornerPathOutcome path =
       IdentifyOnCorners(AprioriModelOf(apriori, ModelKind::k31), ModelKind::k31, m31, campaign.rows,
@@ -134,6 +145,7 @@ void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed
     return k < c.parameters.size() && c.parameters[k].std ? *c.parameters[k].std : NAN;
   };
   if (&error == &CameraErrors().front()) g_exact_pose_rms = pose.position_rms_m;
+  if (!(g_exact_pose_rms > 0)) return;  // the exact camera's pose path failed on this robot
   RatioTally& tally = g_tally[static_cast<size_t>(&error - &CameraErrors().front())];
   tally.log_pose += std::log(pose.position_rms_m / g_exact_pose_rms);
   tally.log_corner += std::log(corner.position_rms_m / g_exact_pose_rms);
@@ -146,7 +158,8 @@ void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed
       error.name, m31.result.verdict ? m31.result.verdict->code.c_str() : "-",
       1e3 * pose.position_rms_m, pose.z_scale_ppm, 1e3 * pose_pred, 1e3 * corner.position_rms_m,
       corner.z_scale_ppm, 1e3 * corner_pred, 1e6 * sigma(0) / true_camera.K(0, 0), sigma(2),
-      100 * sigma(4) / std::abs(true_camera.distortion[0]), 1e6 * path.fit.joint_noise.sigma_q, cpu);
+      100 * sigma(4) / std::abs(true_camera.distortion[0]), 1e6 * path.fit.joint_noise.sigma_q,
+      cpu);
   std::fflush(stdout);
 }
 
@@ -163,7 +176,8 @@ void Run(const StudyOptions& options) {
         100 * sigma[4] / std::abs(camera.distortion[0]));
   }
   std::printf(
-      "prior %s, corner noise %.3g px, encoder noise %.3g rad, paper grid (81 poses), legacy 6x6 board\n\n"
+      "prior %s, corner noise %.3g px, encoder noise %.3g rad, paper grid (81 poses), legacy 6x6 "
+      "board\n\n"
       "| camera file error | pose-path verdict | pose path TRUE RMS mm (Z scale) | pose path "
       "predicted mm | corner path TRUE RMS mm (Z scale) | corner path predicted mm | sigma fx | "
       "sigma cx | sigma k1 | joint noise seen | corner path CPU |\n"
@@ -174,10 +188,12 @@ void Run(const StudyOptions& options) {
     const SimulatedRobot truth =
         MakeTrueRobot(PaperAprioriRobot(), TrueGeometry::kPerturbedModel31, Prior(options, seed));
     std::printf("| **robot %llu** | | | | | | | | | | |\n", static_cast<unsigned long long>(seed));
+    g_exact_pose_rms = 0;
     for (const CameraError& error : CameraErrors()) RunOne(truth, error, seed, options);
   }
-  std::printf("\nGeometric mean over the robots of TRUE RMS / the exact camera's pose-path RMS:\n\n"
-              "| camera file error | pose path | corner path |\n|---|---|---|\n");
+  std::printf(
+      "\nGeometric mean over the robots of TRUE RMS / the exact camera's pose-path RMS:\n\n"
+      "| camera file error | pose path | corner path |\n|---|---|---|\n");
   for (size_t k = 0; k < CameraErrors().size(); ++k) {
     const RatioTally& t = g_tally[k];
     std::printf("| %s | %.2f | %.2f |\n", CameraErrors()[k].name, std::exp(t.log_pose / t.robots),
@@ -209,7 +225,7 @@ StudyOptions Parse(int argc, char** argv) {
     } else {
       throw std::invalid_argument(
           "unknown option " + arg +
-           " (--robots N --first-seed S --prior simulate|wide --sigma-px P --sigma-q RAD)");
+          " (--robots N --first-seed S --prior simulate|wide --sigma-px P --sigma-q RAD)");
     }
   }
   if (options.robots < 1 || !(options.sigma_px > 0) || !(options.sigma_q >= 0))
