@@ -75,7 +75,8 @@ std::optional<Eigen::MatrixXd> BoardPositionRows(const SolutionToSummarise& s,
 void AddCameraFileShare(const SolutionToSummarise& s, const IdentificationCost& cost,
                         const SolutionJacobian& at_solution, Uncertainty* u,
                         IdentificationResult* result) {
-  const std::optional<double> without = PredictedRobotAccuracy(s.model, s.p, s.calib, *u);
+  const std::optional<double> without = PredictedRobotAccuracy(
+      s.model, s.p, s.calib, *u, s.options.board_size_sigma.value_or(0.0));
   const CameraShare share =
       AddCameraFileUncertainty(s.p, at_solution.J, cost, s.calib, *s.options.camera_file, u);
   if (!share.added) {
