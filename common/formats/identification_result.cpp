@@ -200,11 +200,8 @@ void RequireConsistentCovariance(const JsonValue& field, const Eigen::MatrixXd& 
   }
 }
 
-// `parameter_covariance`: n x n numbers in the order of `parameters`.
-void ReadCovariance(const JsonValue& root, IdentificationResult* result) {
-  if (!root.HasNonNull("parameter_covariance")) return;
-  const JsonValue field = root["parameter_covariance"];
-  const size_t n = result->parameters.size();
+// n rows of n numbers.
+Eigen::MatrixXd ReadSquareMatrix(const JsonValue& field, size_t n) {
   field.ArraySize(n);
   Eigen::MatrixXd C(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
   for (size_t i = 0; i < n; ++i) {
@@ -213,8 +210,37 @@ void ReadCovariance(const JsonValue& root, IdentificationResult* result) {
       C(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = row[j];
     }
   }
+  return C;
+}
+
+// `parameter_covariance`: n x n numbers in the order of `parameters`.
+void ReadCovariance(const JsonValue& root, IdentificationResult* result) {
+  if (!root.HasNonNull("parameter_covariance")) return;
+  const JsonValue field = root["parameter_covariance"];
+  const size_t n = result->parameters.size();
+  const Eigen::MatrixXd C = ReadSquareMatrix(field, n);
   RequireConsistentCovariance(field, C, StdOrZero(*result));
   result->parameter_covariance = C;
+}
+
+// `parameter_covariance_camera_exact`: like `parameter_covariance`, which it needs beside
+// it; knowing the camera exactly can only shrink a variance, so its diagonal is at most
+// std^2 (zero where there is no std).
+void ReadCameraExactCovariance(const JsonValue& root, IdentificationResult* result) {
+  if (!root.HasNonNull("parameter_covariance_camera_exact")) return;
+  const JsonValue field = root["parameter_covariance_camera_exact"];
+  if (!result->parameter_covariance) field.Fail("expected parameter_covariance beside it");
+  const Eigen::MatrixXd C = ReadSquareMatrix(field, result->parameters.size());
+  const Eigen::VectorXd std_full = StdOrZero(*result);
+  Eigen::VectorXd std_exact = C.diagonal().cwiseMax(0.0).cwiseSqrt();
+  for (Eigen::Index i = 0; i < C.rows(); ++i) {
+    if (std_exact[i] > std_full[i] * (1.0 + 1e-6)) {
+      field.At(static_cast<size_t>(i))
+          .Fail("expected a variance at most std^2 (the camera known exactly cannot widen it)");
+    }
+  }
+  RequireConsistentCovariance(field, C, std_exact);
+  result->parameter_covariance_camera_exact = C;
 }
 
 void ReadExtras(const JsonValue& root, IdentificationResult* result) {
@@ -243,6 +269,7 @@ void ReadExtras(const JsonValue& root, IdentificationResult* result) {
   }
   ReadJudgement(root, result);
   ReadCovariance(root, result);
+  ReadCameraExactCovariance(root, result);
   if (root.HasNonNull("camera")) result->camera = ReadResultCamera(root["camera"]);
 }
 
@@ -310,17 +337,20 @@ void WriteJudgement(const IdentificationResult& result, Ordered* root) {
   }
 }
 
-Ordered Covariance(const IdentificationResult& result) {
-  if (!result.parameter_covariance) return nullptr;
-  const Eigen::MatrixXd& C = *result.parameter_covariance;
+// A covariance over `parameters` (`key` names it in errors), or null.
+Ordered Covariance(const IdentificationResult& result, const std::optional<Eigen::MatrixXd>& matrix,
+                   const char* key) {
+  if (!matrix) return nullptr;
+  const Eigen::MatrixXd& C = *matrix;
   const Eigen::Index n = static_cast<Eigen::Index>(result.parameters.size());
   if (C.rows() != n || C.cols() != n) {
-    throw std::invalid_argument("parameter_covariance: expected one row and column per parameter");
+    throw std::invalid_argument(std::string(key) +
+                                ": expected one row and column per parameter");
   }
   Ordered rows = Ordered::array();
   for (Eigen::Index i = 0; i < n; ++i) {
     const Eigen::VectorXd row = C.row(i).transpose();
-    rows.push_back(Numbers(row.data(), static_cast<size_t>(n), "parameter_covariance"));
+    rows.push_back(Numbers(row.data(), static_cast<size_t>(n), key));
   }
   return rows;
 }
@@ -405,7 +435,11 @@ std::string FormatIdentificationResult(const IdentificationResult& result) {
       NumberOrNull(result.predicted_robot_accuracy_m, "predicted_robot_accuracy_m");
   root["log"] = result.log;
   WriteJudgement(result, &root);
-  root["parameter_covariance"] = Covariance(result);
+  root["parameter_covariance"] =
+      Covariance(result, result.parameter_covariance, "parameter_covariance");
+  root["parameter_covariance_camera_exact"] =
+      Covariance(result, result.parameter_covariance_camera_exact,
+                 "parameter_covariance_camera_exact");
   root["camera"] = result.camera ? ResultCameraJson(*result.camera) : Ordered(nullptr);
   return root.dump(2) + "\n";
 }

@@ -100,6 +100,12 @@ struct IdentificationResult {
   /// chi-square when it exceeds 1); a fixed parameter's row and column are zero. Absent in
   /// results written before it, or when the covariance could not be computed.
   std::optional<Eigen::MatrixXd> parameter_covariance;
+  /// `parameter_covariance_camera_exact`: the same covariance had the camera's intrinsics
+  /// been exact: on the pose path before the camera file's share was added (`identify
+  /// --camera`), on the corner path conditioned on the refined intrinsics. What the two
+  /// differ by is the camera model's share (the report's accuracy map shows it). Absent when
+  /// no camera uncertainty entered the covariance, and in older results.
+  std::optional<Eigen::MatrixXd> parameter_covariance_camera_exact;
   /// `camera`: the intrinsics the corner path refined with the robot (result_camera.h);
   /// absent on the pose path and in older results.
   std::optional<ResultCamera> camera;
@@ -117,7 +123,8 @@ struct IdentificationResult {
 /// kMaxRobotSize_m); every `fixed` entry names a parameter with status "fixed"; RMS values >= 0;
 /// pose ids integers; `parameter_covariance`, when given, n x n for n parameters, symmetric,
 /// positive semi-definite, its diagonal the square of each `std` (relative 1e-6) and zero for a
-/// parameter without one. The extra keys may be absent or null. The writer writes every key (absent
+/// parameter without one; `parameter_covariance_camera_exact` only beside it, n x n,
+/// symmetric, positive semi-definite, its diagonal at most `std` squared. The extra keys may be absent or null. The writer writes every key (absent
 /// optionals as null, std as null for fixed parameters), shortest round-trip numbers, and throws
 /// std::invalid_argument on a non-finite number (JSON has no NaN).
 IdentificationResult ReadIdentificationResult(const std::string& path);

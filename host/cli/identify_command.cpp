@@ -376,6 +376,9 @@ void RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription
   files.robot_path = options.robot_path;
   files.data_path = refit_path;
   (model == ModelKind::k12 ? files.result12_path : files.result31_path) = options.out_path;
+  files.corners_path = options.corners_path;  // the camera section's residual map
+  files.board_path = options.board_path;
+  files.camera_path = options.camera_path;
   const ValidationInputs inputs = LoadValidationInputs(files);
   const ValidationReport report = Validate(inputs);
   spdlog::info("wrote {}", WriteHtmlReport(options.report_dir, inputs, report, command_line));

@@ -9,6 +9,9 @@
 #include <spdlog/fmt/fmt.h>
 
 #include "common/cli/shared_options.h"
+#include "common/formats/board_yaml.h"
+#include "common/formats/camera_yaml.h"
+#include "common/formats/corners_csv.h"
 #include "common/formats/poses_csv.h"
 #include "common/formats/robot_yaml.h"
 #include "common/units.h"
@@ -79,6 +82,22 @@ void LoadSquareRuns(const ValidationFileOptions& o, const std::string& result12_
   }
 }
 
+// The corners with their board and camera, all three or none.
+void LoadCorners(const ValidationFileOptions& o, ValidationInputs* in) {
+  const int given = static_cast<int>(!o.corners_path.empty()) +
+                    static_cast<int>(!o.board_path.empty()) +
+                    static_cast<int>(!o.camera_path.empty());
+  if (given == 0) return;
+  if (given != 3) {
+    throw std::invalid_argument(
+        "--corners, --board and --camera go together: the corners h4cam measured, its board "
+        "and the camera file it measured with");
+  }
+  in->corners = ReadCornersCsv(o.corners_path);
+  in->board.emplace(ReadBoardYaml(o.board_path));
+  in->camera = ReadCameraYaml(o.camera_path);
+}
+
 }  // namespace
 
 void AddValidationFileOptions(CLI::App* command, ValidationFileOptions* o) {
@@ -110,6 +129,14 @@ void AddValidationFileOptions(CLI::App* command, ValidationFileOptions* o) {
                    "LABEL controller (e.g. \"a priori=sq_apriori.csv\"); needs --result12 for "
                    "the camera and board placement")
       ->take_all();
+  h4::cli::AddInputFileOption(command, "--corners", &o->corners_path,
+                              "Corners CSV measured with the dataset's poses (h4cal collect, "
+                              "h4cam measure --corners-out): the report's corner residual map; "
+                              "needs --board and --camera");
+  h4::cli::AddBoardOption(command, &o->board_path);
+  h4::cli::AddCameraOption(command, &o->camera_path,
+                           "Camera YAML h4cam measured with the corners (OpenCV, or Kalibr's "
+                           "camchain.yaml#camN)");
 }
 
 std::pair<std::string, std::string> SplitSquareMeasured(const std::string& value) {
@@ -141,6 +168,7 @@ ValidationInputs LoadValidationInputs(const ValidationFileOptions& o) {
     throw std::invalid_argument("give an identification result: --result12 and/or --result31");
   }
   if (!truth.empty()) in.truth = ReadTruthYaml(truth);
+  LoadCorners(o, &in);
   std::vector<std::string> runs = o.straightness_paths;
   if (runs.empty() && !o.sim_dir.empty()) {
     for (int k = 1; fs::exists(fs::path(o.sim_dir) / fmt::format("straightness_{}.csv", k)); ++k) {

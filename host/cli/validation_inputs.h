@@ -28,6 +28,11 @@ struct ValidationFileOptions {
   /// --square-measured LABEL=DATASET, repeatable: a dataset collected along the plan by the
   /// LABEL controller (e.g. "a priori=sq_apriori.csv").
   std::vector<std::string> square_measured;
+  /// --corners, --board, --camera: the corners h4cam measured with the dataset's poses
+  /// (identify --corners' files), for the report's corner residual map.
+  std::string corners_path;
+  std::string board_path;
+  std::string camera_path;
 };
 
 /// Splits "LABEL=DATASET" at its first '='; throws std::invalid_argument when either part

@@ -251,6 +251,24 @@ std::vector<PoseCorners> CornersOfRows(const std::vector<DatasetRow>& all,
   return out;
 }
 
+// The covariance of the free parameters had the camera block been exact: the Schur
+// complement C_rr - C_rc C_cc^-1 C_cr (the Gaussian conditional on the intrinsics), in the
+// free parameters' order with the camera rows zero. Empty without a free intrinsic.
+std::optional<Eigen::MatrixXd> ConditionedOnCamera(const ParameterVector& p, const Uncertainty& u) {
+  std::vector<Eigen::Index> robot, camera;
+  for (size_t f = 0; f < u.free_indices.size(); ++f) {
+    (u.free_indices[f] >= p.camera_offset() ? camera : robot).push_back(static_cast<Eigen::Index>(f));
+  }
+  if (camera.empty()) return std::nullopt;
+  const Eigen::MatrixXd C_rr = u.covariance(robot, robot);
+  const Eigen::MatrixXd C_rc = u.covariance(robot, camera);
+  const Eigen::MatrixXd C_cc = u.covariance(camera, camera);
+  const Eigen::MatrixXd conditioned = C_rr - C_rc * C_cc.ldlt().solve(C_rc.transpose());
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(u.covariance.rows(), u.covariance.cols());
+  out(robot, robot) = 0.5 * (conditioned + conditioned.transpose());
+  return out;
+}
+
 // The corner fit's values, sigmas and covariance in place of the pose-path refit's (the
 // corner fit is the efficient estimate); the refit's verdict, cross-validation and pose
 // lists stay: they judge the same campaign on the re-measured poses.
@@ -262,6 +280,8 @@ void ApplyCornerFit(const CornerFitOutcome& fit, const KinematicModel& model,
   const Uncertainty& u = fit.uncertainty;
   const Eigen::Index n = static_cast<Eigen::Index>(result.parameters.size());
   Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n, n);
+  const std::optional<Eigen::MatrixXd> conditioned = ConditionedOnCamera(p, u);
+  Eigen::MatrixXd C_camera_exact = Eigen::MatrixXd::Zero(n, n);
   std::vector<Eigen::Index> free_row(static_cast<size_t>(p.size()), -1);
   for (size_t f = 0; f < u.free_indices.size(); ++f) {
     free_row[static_cast<size_t>(u.free_indices[f])] = static_cast<Eigen::Index>(f);
@@ -278,10 +298,14 @@ void ApplyCornerFit(const CornerFitOutcome& fit, const KinematicModel& model,
     for (Eigen::Index b = 0; b < n; ++b) {
       const Eigen::Index fb =
           free_row[static_cast<size_t>(p.IndexOf(result.parameters[static_cast<size_t>(b)].name))];
-      if (fb >= 0) C(a, b) = 0.5 * (u.covariance(fa, fb) + u.covariance(fb, fa));
+      if (fb < 0) continue;
+      C(a, b) = 0.5 * (u.covariance(fa, fb) + u.covariance(fb, fa));
+      if (conditioned) C_camera_exact(a, b) = (*conditioned)(fa, fb);
     }
   }
   result.parameter_covariance = C;
+  result.parameter_covariance_camera_exact.reset();
+  if (conditioned) result.parameter_covariance_camera_exact = C_camera_exact;
   result.X_BC = p.X_BC();
   result.X_TE = p.X_TE();
   outcome->parameters = WithoutCameraBlock(p, model);

@@ -72,7 +72,8 @@ std::optional<Eigen::MatrixXd> BoardPositionRows(const SolutionToSummarise& s,
 
 // The camera file's intrinsics_covariance in the covariance (camera_file_uncertainty.h),
 // with the predicted accuracy it had without it in the log.
-void AddCameraFileShare(const SolutionToSummarise& s, const IdentificationCost& cost,
+// True when the share was added.
+bool AddCameraFileShare(const SolutionToSummarise& s, const IdentificationCost& cost,
                         const SolutionJacobian& at_solution, Uncertainty* u,
                         IdentificationResult* result) {
   const std::optional<double> without = PredictedRobotAccuracy(
@@ -83,12 +84,13 @@ void AddCameraFileShare(const SolutionToSummarise& s, const IdentificationCost& 
     result->log.push_back(
         "camera file: no intrinsics_covariance (or no pose it could be propagated to): the "
         "covariance assumes the intrinsics exact");
-    return;
+    return false;
   }
   result->log.push_back(fmt::format(
       "camera file: its intrinsics_covariance, shared by all {} poses, is in the covariance "
       "(predicted robot accuracy {:.4f} mm without it)",
       share.poses, 1e3 * without.value_or(NAN)));
+  return true;
 }
 
 // Covariance figures: condition number, correlations, the chi2 line, and the position
@@ -132,19 +134,30 @@ void FillParameterRows(const SolutionToSummarise& s, const Uncertainty& u,
 // The covariance of the free parameters spread over every parameter in the result's order
 // (common/formats/README.md `parameter_covariance`): zero rows and columns for fixed ones,
 // symmetrised against the rounding of the inverse.
-void FillParameterCovariance(const SolutionToSummarise& s, const Uncertainty& u,
-                             IdentificationResult* result) {
-  result->parameter_covariance.reset();
-  if (!u.ok) return;
+Eigen::MatrixXd OverEveryParameter(const SolutionToSummarise& s, const std::vector<int>& free,
+                                   const Eigen::MatrixXd& covariance) {
   const Eigen::Index n = s.p.size();
   Eigen::MatrixXd C = Eigen::MatrixXd::Zero(n, n);
-  for (size_t a = 0; a < u.free_indices.size(); ++a) {
-    for (size_t b = 0; b < u.free_indices.size(); ++b) {
+  for (size_t a = 0; a < free.size(); ++a) {
+    for (size_t b = 0; b < free.size(); ++b) {
       const auto ia = static_cast<Eigen::Index>(a), ib = static_cast<Eigen::Index>(b);
-      C(u.free_indices[a], u.free_indices[b]) = 0.5 * (u.covariance(ia, ib) + u.covariance(ib, ia));
+      C(free[a], free[b]) = 0.5 * (covariance(ia, ib) + covariance(ib, ia));
     }
   }
-  result->parameter_covariance = C;
+  return C;
+}
+
+void FillParameterCovariance(const SolutionToSummarise& s, const Uncertainty& u,
+                             const std::optional<Eigen::MatrixXd>& camera_exact,
+                             IdentificationResult* result) {
+  result->parameter_covariance.reset();
+  result->parameter_covariance_camera_exact.reset();
+  if (!u.ok) return;
+  result->parameter_covariance = OverEveryParameter(s, u.free_indices, u.covariance);
+  if (camera_exact) {
+    result->parameter_covariance_camera_exact =
+        OverEveryParameter(s, u.free_indices, *camera_exact);
+  }
 }
 
 // Joint residuals on the calibration and held-out poses, and the held-out board pose error
@@ -190,18 +203,23 @@ void SummariseSolution(const SolutionToSummarise& s, IdentificationOutcome* out)
   result.X_TE = s.p.X_TE();
   IdentificationCost cost(s.options.estimator, s.model, s.calib, s.options.cost);
   const std::optional<SolutionJacobian> at_solution = EstimatorAtSolution(s, &cost, &result.log);
+  std::optional<Eigen::MatrixXd> camera_exact;  ///< the covariance before the file's share
   if (at_solution) {
     out->uncertainty = ComputeUncertainty(s.p, at_solution->r, at_solution->J,
                                           s.options.estimator == CostKind::kMeasurement,
                                           s.options.correlation_threshold);
     RecheckIdentifiability(s, at_solution->J, &result.log);
-    if (out->uncertainty.ok && s.options.camera_file)
-      AddCameraFileShare(s, cost, *at_solution, &out->uncertainty, &result);
+    if (out->uncertainty.ok && s.options.camera_file) {
+      const Eigen::MatrixXd before = out->uncertainty.covariance;
+      if (AddCameraFileShare(s, cost, *at_solution, &out->uncertainty, &result)) {
+        camera_exact = before;
+      }
+    }
     if (out->uncertainty.ok)
       FillCovarianceFigures(s, cost, at_solution->J, out->uncertainty, &result);
   }
   FillParameterRows(s, out->uncertainty, &result);
-  FillParameterCovariance(s, out->uncertainty, &result);
+  FillParameterCovariance(s, out->uncertainty, camera_exact, &result);
   FillResidualFigures(s, &result);
   FillPoseLists(s, &result);
 }

@@ -11,6 +11,7 @@
 
 #include "common/formats/file_output.h"
 #include "common/text/markup_escape.h"
+#include "host/report/report_camera.h"
 #include "host/report/report_figures.h"
 #include "host/report/report_tables.h"
 #include "host/report/report_verdict.h"
@@ -69,6 +70,7 @@ struct DrawnFigures {
   std::string residuals, histograms, straightness, square, measured_square;
   std::string accuracy_map;  ///< of the last identified model that has one
   std::string accuracy_map_label;
+  std::string corner_residuals;  ///< empty without corners
 };
 
 DrawnFigures DrawFigures(const ValidationInputs& in, const ValidationReport& report) {
@@ -86,6 +88,7 @@ DrawnFigures DrawFigures(const ValidationInputs& in, const ValidationReport& rep
     f.accuracy_map = AccuracyMapFigure(*v.accuracy_map, v.label);
     f.accuracy_map_label = v.label;
   }
+  if (report.corner_residuals) f.corner_residuals = CornerResidualFigure(*report.corner_residuals);
   return f;
 }
 
@@ -109,6 +112,50 @@ std::string AccuracyMapSection(const ValidationReport& report, const DrawnFigure
          AccuracyMapTable(report);
 }
 
+// The camera section: refined intrinsics, where the model misfits, its share of the map;
+// one line when the report knows nothing of the camera.
+std::string CameraSection(const ValidationInputs& in, const ValidationReport& report,
+                          const DrawnFigures& f) {
+  const std::string refined = RefinedIntrinsicsTable(in);
+  const std::string share = CameraShareTable(report);
+  if (refined.empty() && share.empty() && !report.corner_residuals) {
+    return NotComputed(
+        "the results come from the pose path, which takes the camera file's intrinsics as "
+        "exact, and no corners were given: identify --corners --board --camera refines the "
+        "intrinsics with the robot; validate --corners --board --camera maps the corner "
+        "residuals");
+  }
+  std::string html =
+      "<p>Every board pose is measured through the camera file's intrinsics; an error in them "
+      "is shared by every pose, so residuals against the same camera do not show it "
+      "(common/README.md, \"The camera file's uncertainty\").</p>\n<h3>Intrinsics</h3>\n";
+  html += refined.empty() ? NotComputed("no result comes from the corner path (identify "
+                                        "--corners): the camera file's intrinsics were taken "
+                                        "as given")
+                          : refined;
+  html += "<h3>Where the camera model misfits</h3>\n";
+  if (report.corner_residuals) {
+    html += Figure(f.corner_residuals,
+                   "Each corner measured by the camera against its prediction from the "
+                   "joint readings, binned over the image. A model that fits leaves noise "
+                   "alike everywhere; a pattern (arrows turning about the centre, growing "
+                   "towards the edges, or all one way) is the camera model's misfit.") +
+            CornerResidualSummary(*report.corner_residuals);
+  } else {
+    html += NotComputed("no corners given (--corners, --board, --camera)");
+  }
+  html += "<h3>The camera model's share of the accuracy map</h3>\n";
+  html += share.empty()
+              ? NotComputed("no result says how much the camera's uncertainty adds (its "
+                            "parameter_covariance_camera_exact: the corner path, or identify "
+                            "--camera with a file that has an intrinsics_covariance)")
+              : "<p>The accuracy map's predicted 1-sigma position error, the same with the "
+                "intrinsics known exactly, and the camera model's share (per pose, the root "
+                "of the difference of the variances).</p>\n" +
+                    share;
+  return html;
+}
+
 // Everything after the verdict, in order.
 Sections DetailSections(const ValidationInputs& in, const ValidationReport& report,
                         const DrawnFigures& f) {
@@ -120,6 +167,7 @@ Sections DetailSections(const ValidationInputs& in, const ValidationReport& repo
   sections.Add("table3", "Table 3: joint residuals on the held-out poses", Table3(report));
   sections.Add("positioning", "Positioning error", PositioningTable(report));
   sections.Add("accuracy-map", "Accuracy map", AccuracyMapSection(report, f));
+  sections.Add("camera", "Camera model", CameraSection(in, report, f));
   sections.Add("residuals", "Residuals per pose and joint",
                Figure(f.residuals, "Held-out poses, before and after calibration."));
   sections.Add("histograms", "Residual histograms",

@@ -1,7 +1,7 @@
 // The calibration report: one self-contained HTML file (inline CSS and SVG figures, no
 // script, nothing fetched) with the parameter tables, the identifiability summary, the
 // analogues of the paper's Tables 2, 3 and 4, the square path (simulated and/or measured by
-// the camera), the 4-DoF check and the
+// the camera), the 4-DoF check, the camera model (report_camera.h) and the
 // figures; on the paper scenario, the paper's published numbers beside ours.
 #pragma once
 
@@ -14,7 +14,7 @@ namespace h4::host {
 /// The ids of the page's sections, in order (tests check that each is present).
 inline constexpr const char* kReportSections[] = {
     "verdict",      "summary",     "parameters",  "identifiability", "table2",
-    "table3",       "positioning", "accuracy-map", "residuals",   "histograms",      "table4",
+    "table3",       "positioning", "accuracy-map", "camera", "residuals",   "histograms",      "table4",
     "straightness", "square",      "square-plot", "four-dof",        "notes"};
 
 /// The section of the square paths measured by the camera: present only when the report

@@ -270,4 +270,39 @@ std::string AccuracyMapFigure(const AccuracyMap& map, const std::string& label) 
   return RenderSvg(gp.str(), 300 * static_cast<int>(levels), 280 * static_cast<int>(thetas));
 }
 
+std::string CornerResidualFigure(const CornerResidualMap& map) {
+  const double cell_w = static_cast<double>(map.width) / map.columns;
+  const double cell_h = static_cast<double>(map.height) / map.rows;
+  double largest_mean = 0.0, largest_rms = 0.0;
+  for (const CornerResidualCell& cell : map.cells) {
+    largest_mean = std::max(largest_mean, cell.mean_px.norm());
+    largest_rms = std::max(largest_rms, cell.rms_px);
+  }
+  const double scale = largest_mean > 0.0 ? 0.9 * std::min(cell_w, cell_h) / largest_mean : 1.0;
+  std::ostringstream cells, arrows;
+  for (const CornerResidualCell& cell : map.cells) {
+    if (cell.corners == 0) continue;
+    const double u = (cell.column + 0.5) * cell_w, v = (cell.row + 0.5) * cell_h;
+    cells << fmt::format("{:.6g} {:.6g} {:.6g} {:.6g} {:.6g}\n", u, v, 0.5 * cell_w, 0.5 * cell_h,
+                         cell.rms_px);
+    arrows << fmt::format("{:.6g} {:.6g} {:.6g} {:.6g}\n", u, v, scale * cell.mean_px.x(),
+                          scale * cell.mean_px.y());
+  }
+  std::ostringstream gp;
+  gp << Block("cells", cells.str()) << Block("arrows", arrows.str());
+  gp << fmt::format(
+      "set title 'Corner residuals over the image: colour, RMS per axis (px); arrows, the "
+      "cell mean x {:.0f}'\n",
+      scale);
+  gp << fmt::format("set xrange [0:{0}]\nset yrange [{1}:0]\nset size ratio -1\n", map.width,
+                    map.height);
+  gp << fmt::format("set cbrange [0:{:.6g}]\nset palette rgbformulae 22,13,-31\n",
+                    std::max(largest_rms, 1e-9));
+  gp << "unset key\nset xlabel 'u (px)'\nset ylabel 'v (px)'\nset cblabel 'px'\n";
+  gp << "plot $cells using 1:2:3:4:5 with boxxyerror fs solid 1.0 noborder lc palette, "
+        "$arrows using 1:2:3:4 with vectors head filled size screen 0.008,20 lw 1.5 lc rgb "
+        "'black'\n";
+  return RenderSvg(gp.str(), 760, 600);
+}
+
 }  // namespace h4::host

@@ -20,5 +20,9 @@ std::string MeasuredSquareFigure(const SquarePlan& plan, const ValidationReport&
 /// The accuracy map of one model: a panel per Z level (columns) and theta (rows), each
 /// grid pose a square coloured by its predicted 1-sigma position error, one colour scale.
 std::string AccuracyMapFigure(const AccuracyMap& map, const std::string& label);
+/// The corner residual map over the image: each cell coloured by its residual RMS, an
+/// arrow from its centre along its mean residual (measured - predicted), scaled up so that
+/// the largest spans most of a cell (the scale in the title). Image axes, v down.
+std::string CornerResidualFigure(const CornerResidualMap& map);
 
 }  // namespace h4::host

@@ -12,6 +12,7 @@
 #include "common/robot/parameter_names.h"
 #include "common/text/markup_escape.h"
 #include "common/units.h"
+#include "host/report/html_table.h"
 #include "host/report/paper_numbers.h"
 #include "host/simulation/paper_scenario.h"
 
@@ -22,21 +23,6 @@ std::string Sci(double v) { return fmt::format("{:.1e}", v); }
 std::string Mm(double v) { return fmt::format("{:.2f}", v * 1e3); }
 std::string Deg(double rad, int decimals) {
   return fmt::format("{:.{}f}", DegreesFromRadians(rad), decimals);
-}
-
-// A row: first cell a header, then the cells.
-std::string Row(const std::string& head, const std::vector<std::string>& cells,
-                const std::string& css_class = "") {
-  std::string row = css_class.empty() ? "<tr>" : "<tr class=\"" + css_class + "\">";
-  row += "<th>" + head + "</th>";
-  for (const auto& c : cells) row += "<td>" + c + "</td>";
-  return row + "</tr>\n";
-}
-
-std::string Header(const std::vector<std::string>& cells) {
-  std::string row = "<tr>";
-  for (const auto& c : cells) row += "<th>" + c + "</th>";
-  return row + "</tr>\n";
 }
 
 std::vector<std::string> Sci4(const std::array<double, 4>& v) {

@@ -232,8 +232,39 @@ ModelValidation ValidateCandidate(const ValidationInputs& in, const Candidate& c
   if (true_model != nullptr && c.model->kind() == ModelKind::k12) {
     v.square = RunSquare(*c.model, {true_model, in.truth->robot.X_ModelB()}, in.square);
   }
-  if (c.result != nullptr) v.accuracy_map = AccuracyMapOfResult(*c.result, in.apriori.assembly);
+  if (c.result != nullptr) {
+    v.accuracy_map = AccuracyMapOfResult(*c.result, in.apriori.assembly);
+    if (c.result->parameter_covariance_camera_exact) {
+      IdentificationResult camera_exact = *c.result;
+      camera_exact.parameter_covariance = c.result->parameter_covariance_camera_exact;
+      v.accuracy_map_camera_exact = AccuracyMapOfResult(camera_exact, in.apriori.assembly);
+    }
+  }
   return v;
+}
+
+// The corner residual map of the result that best knows the camera: one whose intrinsics
+// the corner path refined (Model 31 before 12), else a pose-path result through the file.
+std::optional<CornerResidualMap> CornerResidualsOf(const ValidationInputs& in,
+                                                   std::vector<std::string>* notes) {
+  if (in.corners.empty()) {
+    notes->push_back(
+        "no corners given (--corners, --board, --camera): the camera section has no residual "
+        "map");
+    return std::nullopt;
+  }
+  if (!in.board || !in.camera) {
+    throw std::invalid_argument("the corners need their board and camera file (--board, --camera)");
+  }
+  const IdentificationResult* chosen = nullptr;
+  for (const auto* r : {&in.result31, &in.result12}) {
+    if (chosen == nullptr && r->has_value() && (*r)->camera) chosen = &**r;
+  }
+  for (const auto* r : {&in.result31, &in.result12}) {
+    if (chosen == nullptr && r->has_value()) chosen = &**r;
+  }
+  return ComputeCornerResidualMap(*chosen, in.apriori.assembly, in.rows, in.corners, *in.board,
+                                  *in.camera);
 }
 
 }  // namespace
@@ -254,6 +285,7 @@ ValidationReport Validate(const ValidationInputs& in) {
     report.models.push_back(ValidateCandidate(in, c, held, true_model.get()));
   }
   NoteMissingAccuracyMaps(report, &report.notes);
+  report.corner_residuals = CornerResidualsOf(in, &report.notes);
   const Candidate& apriori = candidates.front();
   report.apriori_all = PositioningErrorOf(*apriori.model, apriori.X_BC, apriori.X_TE, in.rows);
   report.prior = AnalyzeRotationAxis(in.rows, in.apriori.X_BC, in.apriori.X_TE);

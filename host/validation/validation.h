@@ -10,6 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "common/board/board_model.h"
+#include "common/camera/camera_intrinsics.h"
+#include "common/formats/corners_csv.h"
 #include "common/formats/dataset_csv.h"
 #include "common/formats/identification_result.h"
 #include "common/formats/joints_csv.h"
@@ -17,6 +20,7 @@
 #include "host/identification/prior_analysis.h"
 #include "host/simulation/truth_file.h"
 #include "host/validation/accuracy_map.h"
+#include "host/validation/corner_residual_map.h"
 #include "host/validation/joint_residuals.h"
 #include "host/validation/measured_square.h"
 #include "host/validation/square_path.h"
@@ -43,6 +47,12 @@ struct ValidationInputs {
   SquareOptions square;                              ///< the simulated square
   std::optional<SquarePlan> square_plan;             ///< commanded points of the measured runs
   std::vector<MeasuredSquareInput> square_measured;  ///< needs square_plan and result12
+  /// The corners the camera measured with the dataset's poses, on `board`, through `camera`
+  /// (the camera file h4cam measured with): the report's corner residual map. All three or
+  /// none.
+  std::vector<CornerObservation> corners;
+  std::optional<BoardModel> board;
+  std::optional<CameraIntrinsics> camera;
 };
 
 /// One row of the Table 3 / Table 4 analogues: a priori, Model 12 or Model 31.
@@ -55,6 +65,10 @@ struct ModelValidation {
   std::optional<SquareRun> square;            ///< Model 12 controllers with a truth only
   /// Identified models whose result has a parameter covariance (accuracy_map.h).
   std::optional<AccuracyMap> accuracy_map;
+  /// The same map had the camera's intrinsics been exact (the result's
+  /// `parameter_covariance_camera_exact`): what the two differ by is the camera model's
+  /// share. Empty when the result does not say (no camera uncertainty entered it).
+  std::optional<AccuracyMap> accuracy_map_camera_exact;
 };
 
 struct ValidationReport {
@@ -67,6 +81,9 @@ struct ValidationReport {
   bool paper_scenario = false;
   /// The measured square runs, in the order given; placement from the Model 12 result.
   std::vector<MeasuredSquareRun> measured_squares;
+  /// Where the camera model misfits, from the result whose camera the corner path refined
+  /// (Model 31 first), else from a pose-path result through the camera file; with corners.
+  std::optional<CornerResidualMap> corner_residuals;
   std::vector<std::string> notes;  ///< what was not computed and why
   /// Straightness improvement in percent for model m (index into models) and run r.
   double StraightnessImprovementPercent(size_t m, size_t r) const;
@@ -76,7 +93,8 @@ struct ValidationReport {
 /// model, a result whose held-out poses are missing from the dataset, no held-out pose, a
 /// square the robot cannot follow, a ruler run where forward kinematics fails, measured
 /// square runs without their plan or without a Model 12 result (their placement), or with
-/// a side of fewer than 2 measured points.
+/// a side of fewer than 2 measured points, corners without their board or camera, or
+/// corners that belong to no pose of the dataset.
 ValidationReport Validate(const ValidationInputs& inputs);
 
 /// True when `apriori` and `truth` are the paper's Table 2 rows (a priori, "Identified").

@@ -213,6 +213,40 @@ TEST(IdentificationResultErrors, ACovarianceThatDisagreesWithTheSigmasNamesTheFi
                         "parameter_covariance", "array of 3"));
 }
 
+// The covariance with exact intrinsics (the camera model's share is the difference): read
+// back exactly; refused without parameter_covariance, with a variance above std^2 (knowing
+// the camera cannot widen one), or when not symmetric, each naming the field.
+TEST(IdentificationResult, CameraExactCovarianceRoundTripsAndIsBoundedByTheSigmas) {
+  IdentificationResult r = ResultWithCovariance(-0.6);
+  Eigen::MatrixXd exact = 0.5 * *r.parameter_covariance;
+  r.parameter_covariance_camera_exact = exact;
+  const std::string text = FormatIdentificationResult(r);
+  const IdentificationResult b = ParseIdentificationResult(text, "result.json");
+  ASSERT_TRUE(b.parameter_covariance_camera_exact.has_value());
+  EXPECT_EQ(*b.parameter_covariance_camera_exact, exact);
+  EXPECT_FALSE(ParseIdentificationResult(kResult, "old.json")
+                   .parameter_covariance_camera_exact.has_value());
+
+  const auto fails = [](const IdentificationResult& bad, const std::string& field,
+                        const std::string& expected) {
+    return FailsWith([&] { ParseIdentificationResult(FormatIdentificationResult(bad), "r.json"); },
+                     "r.json", 0, field, expected);
+  };
+  IdentificationResult wide = r;
+  (*wide.parameter_covariance_camera_exact)(1, 1) = 1.01 * (*r.parameter_covariance)(1, 1);
+  EXPECT_TRUE(fails(wide, "parameter_covariance_camera_exact[1]", "at most std^2"));
+  IdentificationResult fixed_row = r;
+  (*fixed_row.parameter_covariance_camera_exact)(2, 2) = 1e-12;
+  EXPECT_TRUE(fails(fixed_row, "parameter_covariance_camera_exact[2]", "at most std^2"));
+  IdentificationResult skew = r;
+  (*skew.parameter_covariance_camera_exact)(1, 0) *= 0.5;
+  EXPECT_TRUE(fails(skew, "parameter_covariance_camera_exact[1][0]", "symmetric"));
+  IdentificationResult alone = r;
+  alone.parameter_covariance.reset();
+  for (ResultParameter& p : alone.parameters) p.std.reset();
+  EXPECT_TRUE(fails(alone, "parameter_covariance_camera_exact", "parameter_covariance beside"));
+}
+
 TEST(IdentificationResult, WritesKeysInFormatsMdOrderAndNullStdForFixed) {
   const std::string text = FormatIdentificationResult(FullResult());
   size_t last = 0;

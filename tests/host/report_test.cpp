@@ -6,9 +6,16 @@
 
 #include <gtest/gtest.h>
 
+#include <spdlog/fmt/fmt.h>
+
+#include "common/formats/board_yaml.h"
+#include "common/formats/camera_yaml.h"
+#include "host/identification/camera_parameters.h"
 #include "host/report/gnuplot_svg.h"
 #include "host/report/html_report.h"
 #include "host/report/report_tables.h"
+#include "host/simulation/corner_campaign.h"
+#include "host/simulation/pose_plan.h"
 #include "tests/host/validation_test_helpers.h"
 
 namespace h4::host {
@@ -18,6 +25,21 @@ int Count(const std::string& text, const std::string& what) {
   int n = 0;
   for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
   return n;
+}
+
+// The page's text of section `id` (empty when absent).
+std::string SectionText(const std::string& html, const std::string& id) {
+  const size_t start = html.find("<section id=\"" + id + "\">");
+  if (start == std::string::npos) return "";
+  return html.substr(start, html.find("</section>", start) - start);
+}
+
+// "Not computed" outside the camera section, which says it once when the report knows
+// nothing of the camera (no corner path, no corners).
+int NotComputedOutsideCamera(const std::string& html) {
+  const std::string camera = SectionText(html, "camera");
+  EXPECT_EQ(Count(camera, "Not computed"), 1) << camera;
+  return Count(html, "Not computed") - Count(camera, "Not computed");
 }
 
 TEST(Report, HoldsEverySectionAndFigureAndIsSelfContained) {
@@ -30,7 +52,7 @@ TEST(Report, HoldsEverySectionAndFigureAndIsSelfContained) {
   }
   // Accuracy map, residuals, histograms, straightness, square.
   EXPECT_EQ(Count(html, "<svg"), 5);
-  EXPECT_EQ(Count(html, "Not computed"), 0);
+  EXPECT_EQ(NotComputedOutsideCamera(html), 0);
   EXPECT_EQ(Count(html, "<script"), 0);
   EXPECT_FALSE(std::regex_search(html, std::regex("(src|href)=\"https?:")));
   EXPECT_EQ(html.find("nan"), std::string::npos);
@@ -73,7 +95,7 @@ TEST(Report, WithoutTruthOrRulerRunsSaysWhatIsMissing) {
   EXPECT_FALSE(report.paper_scenario);
   const std::string html = FormatHtmlReport(in, report, "test");
   EXPECT_EQ(Count(html, "<svg"), 3);
-  EXPECT_EQ(Count(html, "Not computed"), 4);
+  EXPECT_EQ(NotComputedOutsideCamera(html), 4);
   EXPECT_EQ(html.find("(paper)"), std::string::npos);
 }
 
@@ -95,7 +117,7 @@ TEST(Report, MeasuredSquareRunsAddTheirRowsAndFigure) {
             std::string::npos);
   // Residuals, histograms, straightness, square, measured square.
   EXPECT_EQ(Count(html, "<svg"), 6);
-  EXPECT_EQ(Count(html, "Not computed"), 0);
+  EXPECT_EQ(NotComputedOutsideCamera(html), 0);
   EXPECT_NE(html.find("<th>a &lt;priori&gt; (measured)</th>"), std::string::npos);
   EXPECT_NE(html.find("<th>Model 12 (measured)</th>"), std::string::npos);
   EXPECT_EQ(html.find("<priori>"), std::string::npos);
@@ -114,6 +136,73 @@ TEST(Report, MeasuredSquareRunsWithoutTruthStillFillTheSquareSection) {
   EXPECT_EQ(html.substr(square, end - square).find("Not computed"), std::string::npos);
   EXPECT_NE(html.find(std::string("<section id=\"") + kMeasuredSquareSection + "\">"),
             std::string::npos);
+}
+
+// With corners, a refined camera and the camera-exact covariance, the camera section has its
+// three parts: the intrinsics table (file, refined, sigma), the residual map's figure and
+// summary (corners with 1e-6 px noise through the true robot and camera: nothing left), and the
+// camera's share of the accuracy map (here half the variance: share = exact).
+TEST(Report, TheCameraSectionShowsIntrinsicsResidualsAndTheCamerasShare) {
+  if (!GnuplotAvailable()) GTEST_SKIP() << "gnuplot missing: run scripts/setup";
+  const SimulatedRobot truth = PaperTruth();
+  const BoardModel board(ReadBoardYaml(std::string(H4_SOURCE_DIR) +
+                                       "/boards/aprilgrid_6x6_30mm.yaml"));
+  const CameraIntrinsics camera =
+      ReadCameraYaml(std::string(H4_SOURCE_DIR) + "/boards/sim_camera_1024x768.yaml");
+  const CornerCampaign campaign = SimulateCornerCampaign(
+      truth, GridPosePlan(), board, camera, camera,
+      {.sigma_px = 1e-6, .sigma_q = 0.0, .seed = 3, .valid_count = 10});
+  ValidationInputs in = PaperValidationInputs();
+  in.rows = campaign.rows;
+  std::vector<int64_t> valid;
+  for (const DatasetRow& row : campaign.rows) {
+    if (row.set == PoseSet::kValid) valid.push_back(row.pose_id);
+  }
+  in.result12 = PerfectModel12Result(truth, valid);
+  in.result12->parameter_covariance_camera_exact = 0.5 * *in.result12->parameter_covariance;
+  ResultCamera refined;
+  refined.distortion_model = ToString(camera.distortion_model);
+  refined.width = camera.width;
+  refined.height = camera.height;
+  const std::vector<std::string> names = CameraParameterNames(camera);
+  const Eigen::VectorXd values = CameraParameterValues(camera);
+  for (size_t k = 0; k < names.size(); ++k) {
+    const double v = values[static_cast<Eigen::Index>(k)];
+    refined.parameters.push_back({names[k], v, k == 0 ? v + 0.8 : v,
+                                  k < 4 ? std::optional<double>(0.2) : std::nullopt,
+                                  k < 4 ? "" : "the corners cannot tell it"});
+  }
+  in.result12->camera = refined;
+  in.corners = campaign.corners;
+  in.board = board;
+  in.camera = camera;
+
+  const ValidationReport report = Validate(in);
+  ASSERT_TRUE(report.corner_residuals.has_value());
+  EXPECT_TRUE(report.corner_residuals->refined_camera);
+  EXPECT_EQ(report.corner_residuals->corners, static_cast<int>(campaign.corners.size()));
+  EXPECT_LT(report.corner_residuals->rms_px, 1e-4);
+  ASSERT_TRUE(report.models.back().accuracy_map_camera_exact.has_value());
+  const std::string html = FormatHtmlReport(in, report, "test");
+  const std::string section = SectionText(html, "camera");
+  EXPECT_EQ(Count(section, "Not computed"), 0) << section;
+  EXPECT_EQ(Count(section, "<svg"), 1);
+  EXPECT_NE(section.find("<th>camera.fx</th><td>817.800</td><td>817.000</td>"), std::string::npos)
+      << section;
+  EXPECT_NE(section.find("<td>-0.800</td><td>0.200</td><td>-4.0</td>"), std::string::npos);
+  EXPECT_NE(section.find("kept: the corners cannot tell it"), std::string::npos);
+  const AccuracyMap& full = *report.models.back().accuracy_map;
+  const double median_mm = 1e3 * full.MedianPositionSigma();
+  EXPECT_NE(section.find(fmt::format("<td>{:.4f}</td><td>{:.4f}</td><td>{:.4f}</td>", median_mm,
+                                     1e3 * full.MaxPositionSigma(), median_mm / std::sqrt(2.0))),
+            std::string::npos)
+      << section;
+  EXPECT_EQ(html.find("nan"), std::string::npos);
+
+  // The camera file's model must be the result's.
+  in.camera->distortion_model = DistortionModel::kEquidistant;
+  in.camera->distortion = Eigen::VectorXd::Zero(4);
+  EXPECT_TRUE(ValidateRefuses(in, "is not the camera file's"));
 }
 
 }  // namespace

@@ -22,6 +22,7 @@
 #include "host/simulation/corner_campaign.h"
 #include "host/simulation/paper_scenario.h"
 #include "host/simulation/pose_plan.h"
+#include "host/validation/corner_residual_map.h"
 #include "host/validation/true_accuracy.h"
 
 namespace h4::host {
@@ -225,7 +226,74 @@ TEST(CameraFileUncertainty, ThePosePathsPredictionCarriesTheFilesCovariance) {
                 k, 1e3 * truth_of.position_rms_m, 1e3 * predicted, 1e3 * predicted_plain);
     EXPECT_GT(predicted, 0.5 * truth_of.position_rms_m);
     EXPECT_GT(predicted, 1.5 * predicted_plain);
+    // The covariance with exact intrinsics, kept beside it, is the plain fit's.
+    ASSERT_TRUE(with_file.result.parameter_covariance_camera_exact.has_value());
+    ASSERT_TRUE(plain.result.parameter_covariance.has_value());
+    const Eigen::MatrixXd& exact = *with_file.result.parameter_covariance_camera_exact;
+    EXPECT_LT((exact - *plain.result.parameter_covariance).norm(),
+              1e-6 * plain.result.parameter_covariance->norm());
+    EXPECT_FALSE(plain.result.parameter_covariance_camera_exact.has_value());
   }
+}
+
+// The report's corner residual map (host/validation/corner_residual_map.h) shows the camera
+// file's error as a pattern that grows towards the image's edges when a pose-path result
+// predicts the corners through the typical-mix file (cell means several times the refined
+// camera's, larger residuals towards the edges), and noise alike everywhere, near the
+// simulated 0.05 px, once the corner path has refined the intrinsics. The corner path's
+// result says how much of its accuracy map is the camera's (the conditional covariance is
+// smaller, never larger).
+TEST(CornerResidualMap, ShowsTheFilesErrorAndNotTheRefinedCameras) {
+  const SimulatedRobot truth = Robot(71);
+  const BoardModel board = LegacyBoard();
+  const CameraIntrinsics file = TypicalMixFile(TrueCamera());
+  const CornerCampaign campaign = SimulateCornerCampaign(truth, GridPosePlan(), board, TrueCamera(),
+                                                         file, {.seed = 73});
+  const RobotDescription apriori = PaperAprioriRobot();
+  IdentificationOptions options;
+  const IdentificationOutcome m12 = IdentifyRobot(apriori, ModelKind::k12, campaign.rows, options);
+  const IdentificationOutcome m31 =
+      IdentifyModel31FromModel12(apriori, m12.result, campaign.rows, options);
+  const CornerPathOutcome path = IdentifyOnCorners(
+      AprioriModelOf(apriori, ModelKind::k31), ModelKind::k31, m31, campaign.rows,
+      GroupCornersByRow(campaign.rows, campaign.corners, board, 0.05), file, options,
+      CornerOptions(false));
+  ASSERT_TRUE(path.fit.ok) << path.fit.message;
+
+  const CornerResidualMap through_file = ComputeCornerResidualMap(
+      m31.result, apriori.assembly, campaign.rows, campaign.corners, board, file);
+  const CornerResidualMap refined = ComputeCornerResidualMap(
+      path.outcome.result, apriori.assembly, campaign.rows, campaign.corners, board, file);
+  const auto largest_mean = [](const CornerResidualMap& map) {
+    double largest = 0;
+    for (const CornerResidualCell& cell : map.cells) {
+      if (cell.corners >= 20) largest = std::max(largest, cell.mean_px.norm());
+    }
+    return largest;
+  };
+  std::printf("corner residual RMS: through the file %.3f px (inner %.3f, outer %.3f, largest "
+              "cell mean %.3f), refined %.3f px (inner %.3f, outer %.3f, largest cell mean "
+              "%.3f)\n",
+              through_file.rms_px, through_file.inner_rms_px, through_file.outer_rms_px,
+              largest_mean(through_file), refined.rms_px, refined.inner_rms_px,
+              refined.outer_rms_px, largest_mean(refined));
+  EXPECT_FALSE(through_file.refined_camera);
+  EXPECT_TRUE(refined.refined_camera);
+  EXPECT_GT(refined.corners, 70 * 12);
+  // The robot and X_BC absorb most of the file's error (why no pose-path figure shows it);
+  // what is left is a pattern far above the RMS's own spread (about 1 % on 10 000 corners).
+  EXPECT_GT(through_file.rms_px, 1.2 * refined.rms_px);
+  EXPECT_GT(through_file.outer_rms_px, 1.15 * through_file.inner_rms_px);
+  EXPECT_GT(largest_mean(through_file), 3.0 * largest_mean(refined));
+  EXPECT_NEAR(refined.rms_px, 0.05, 0.005);
+  EXPECT_LT(refined.outer_rms_px, 1.1 * refined.inner_rms_px);
+
+  const IdentificationResult& result = path.outcome.result;
+  ASSERT_TRUE(result.parameter_covariance_camera_exact.has_value());
+  const Eigen::VectorXd full = result.parameter_covariance->diagonal();
+  const Eigen::VectorXd exact = result.parameter_covariance_camera_exact->diagonal();
+  EXPECT_TRUE((exact.array() <= full.array() * (1 + 1e-9) + 1e-30).all());
+  EXPECT_LT(exact.sum(), full.sum());
 }
 
 // The encoder noise the corner residuals show is the simulated one (joint_noise.h), and none

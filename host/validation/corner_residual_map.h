@@ -1,0 +1,67 @@
+// Where the camera model misfits (the report's camera section, after mrcal's residual
+// maps): every board corner the camera measured, predicted from the pose's joint readings
+// through the identified robot, X_BC, X_TE and the camera (common/README.md "Identification
+// from corners", the corner residual r_jQ without its weight), binned over the image. A
+// model that fits leaves noise in every cell; a wrong camera model leaves a pattern: mean
+// residuals that turn about the centre (focal length, distortion) or shift one way
+// (principal point), growing towards the edges.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "common/board/board_model.h"
+#include "common/camera/camera_intrinsics.h"
+#include "common/formats/corners_csv.h"
+#include "common/formats/dataset_csv.h"
+#include "common/formats/identification_result.h"
+#include "common/robot/robot_description.h"
+
+namespace h4::host {
+
+/// One cell of the image grid.
+struct CornerResidualCell {
+  int column = 0;
+  int row = 0;
+  int corners = 0;
+  Eigen::Vector2d mean_px = Eigen::Vector2d::Zero();  ///< measured - predicted, px
+  double rms_px = 0.0;                                ///< per-axis RMS of the residuals
+};
+
+struct CornerResidualMap {
+  /// Which intrinsics predicted the corners: the corner path's refined ones, or the camera
+  /// file's (a pose-path result).
+  bool refined_camera = false;
+  ModelKind model = ModelKind::k12;  ///< the result that predicted them
+  int width = 0;                     ///< image, px
+  int height = 0;
+  int columns = 0;  ///< grid cells across and down
+  int rows = 0;
+  std::vector<CornerResidualCell> cells;  ///< row-major, every cell (empty ones have 0 corners)
+  int poses = 0;                          ///< with corners, predicted
+  int poses_left_out = 0;                 ///< rejected by the result, or forward kinematics failed
+  int corners = 0;
+  double rms_px = 0.0;  ///< per-axis RMS over every corner
+  /// Per-axis RMS of the corners within half the half-diagonal of the image centre, and
+  /// beyond it: a camera model that misfits grows towards the edges.
+  double inner_rms_px = 0.0;
+  double outer_rms_px = 0.0;
+};
+
+/// The map of `result` (its model rebuilt with `assembly`) on the dataset `rows` and their
+/// `observed` corners on `board`. `file_camera` gives the camera model, size and skew, and
+/// the intrinsics unless the result carries refined ones (its `camera` key). Poses the
+/// result rejected are left out. Throws std::invalid_argument when the result's camera
+/// does not match the file's (model, size), when no corner belongs to a dataset row, or on
+/// a grid under 1 x 1.
+CornerResidualMap ComputeCornerResidualMap(const IdentificationResult& result,
+                                           const Assembly& assembly,
+                                           const std::vector<DatasetRow>& rows,
+                                           const std::vector<CornerObservation>& observed,
+                                           const BoardModel& board,
+                                           const CameraIntrinsics& file_camera, int columns = 16,
+                                           int grid_rows = 12);
+
+}  // namespace h4::host
