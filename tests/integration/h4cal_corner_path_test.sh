@@ -44,6 +44,21 @@ grep -q '"name": "camera.fx"' "$dir/corner31.json" || fail "no camera key in the
 grep -q "818.2255" "$dir/corner31.json" || fail "the file's value is not recorded"
 grep -q '^camera_matrix' "$dir/refined.yaml" || fail "--camera-out wrote no camera YAML"
 
+# The report's camera section (host/report/report_camera.h): the corner path's report has
+# the refined intrinsics beside the file's, the corner residual map and the camera's share
+# of the accuracy map; a pose-path result given the corners maps them through the file.
+camera_section() { sed -n '/<section id="camera">/,/<\/section>/p' "$1/report.html"; }
+run corner31_report 0 --model 31 --from "$dir/r12.json" --corners "$dir/sim/corners.csv" \
+  --board "$board" --camera "$file_camera" --report-dir "$dir/corner_report"
+camera_section "$dir/corner_report" > "$dir/corner_camera.html"
+grep -q '<th>camera.fx</th><td>818.226</td>' "$dir/corner_camera.html" ||
+  fail "the corner path's report has no intrinsics table"
+[ "$(grep -c '<svg' "$dir/corner_camera.html")" -eq 1 ] || fail "no corner residual map"
+grep -q 'through the Model 31 result and the intrinsics the corner path refined' "$dir/corner_camera.html" ||
+  fail "the residual map does not use the refined camera"
+grep -q "camera's share: median" "$dir/corner_camera.html" || fail "no camera share table"
+! grep -q "Not computed" "$dir/corner_camera.html" || fail "the camera section is incomplete"
+
 # --camera-fixed keeps every intrinsic: the corner path then cannot repair the file.
 run fixed31 3 --model 31 --from "$dir/r12.json" --corners "$dir/sim/corners.csv" \
   --board "$board" --camera "$file_camera" --camera-fixed
@@ -68,6 +83,19 @@ without=$(predicted "$dir/pose31.txt")
 with=$(predicted "$dir/posecam31.txt")
 awk -v a="$with" -v b="$without" 'BEGIN { exit !(a > 1.5 * b && b > 0) }' \
   || fail "predicted robot accuracy with the file's covariance $with mm, without $without mm"
+"$h4cal" validate --robot "$dir/sim/robot.yaml" --data "$dir/sim/dataset.csv" \
+  --result31 "$dir/posecam31.json" --corners "$dir/sim/corners.csv" --board "$board" \
+  --camera "$file_camera" --report-dir "$dir/pose_report" > "$dir/pose_report.txt" 2>&1 ||
+  fail "validate with corners: $(tail -2 "$dir/pose_report.txt")"
+camera_section "$dir/pose_report" > "$dir/pose_camera.html"
+grep -q "the camera file's intrinsics (a pose-path result)" "$dir/pose_camera.html" ||
+  fail "the pose path's residual map does not say it is through the file"
+grep -q "camera's share: median" "$dir/pose_camera.html" || fail "no camera share on the pose path"
+"$h4cal" validate --robot "$dir/sim/robot.yaml" --data "$dir/sim/dataset.csv" \
+  --result31 "$dir/posecam31.json" --corners "$dir/sim/corners.csv" > "$dir/alone.txt" 2>&1 &&
+  fail "--corners without --board and --camera was accepted"
+grep -q -- "--corners, --board and --camera go together" "$dir/alone.txt" ||
+  fail "--corners alone: $(tail -1 "$dir/alone.txt")"
 # A board whose printed size is known to 0.1 % (h4camSizeSigma): no pose can check a uniform
 # scale, so its tolerance enters the predicted robot accuracy and the verdict says so.
 { cat "$board"; echo "h4camSizeSigma: 0.001"; } > "$dir/board_tolerance.yaml"
