@@ -43,6 +43,30 @@ bool Spawn(const std::vector<std::string>& command, pid_t* pid) {
   return posix_spawn(pid, args[0].c_str(), nullptr, nullptr, argv.data(), environ) == 0;
 }
 
+// The spawned service, killed and reaped when the test leaves by any path (a failed
+// assertion must not leave it running: it would outlive the test and hold its output).
+class SpawnedProcess {
+ public:
+  SpawnedProcess() = default;
+  SpawnedProcess(const SpawnedProcess&) = delete;
+  SpawnedProcess& operator=(const SpawnedProcess&) = delete;
+  ~SpawnedProcess() {
+    if (pid_ <= 0) return;
+    kill(pid_, SIGKILL);
+    waitpid(pid_, nullptr, 0);
+  }
+  pid_t* pid() { return &pid_; }
+  /// Waits for the exit; the process is then no longer ours to kill.
+  bool Wait(int* status) {
+    const bool reaped = waitpid(pid_, status, 0) == pid_;
+    pid_ = 0;
+    return reaped;
+  }
+
+ private:
+  pid_t pid_ = 0;
+};
+
 // Runs inside the namespace (started by the test below through scripts/in-private-netns).
 TEST(CameraServiceProcessTest, ChildInNamespace) {
   if (!test::InPrivateNamespace()) GTEST_SKIP() << "only inside scripts/in-private-netns";
@@ -64,12 +88,12 @@ TEST(CameraServiceProcessTest, ChildInNamespace) {
   bus.Subscribe<h4msgs::camera_status_t>(
       channels::kCameraStatus, [&](const h4msgs::camera_status_t& m) { statuses.push_back(m); });
 
-  pid_t pid = 0;
+  SpawnedProcess service;
   // The processed preset, as a camera module delivers its frames (sRGB-like response,
   // defocus, gradient, shot noise), with the depth tolerance below.
   ASSERT_TRUE(Spawn({binary, "run", "--source", "sim", "--sim-preset", "processed", "--board",
                      board, "--camera", camera, "--lcm-url", kUrl, "--camera-id", "proc-cam"},
-                    &pid));
+                    service.pid()));
 
   // Wait for the first heartbeat: the service is up and subscribed.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
@@ -96,9 +120,9 @@ TEST(CameraServiceProcessTest, ChildInNamespace) {
   EXPECT_EQ(poses[0].status, int8_t{h4msgs::board_pose_t::STATUS_OK});
   EXPECT_LT(std::abs(poses[0].translation[2] - X_CT.translation().z()), 0.1e-3);
 
-  kill(pid, SIGTERM);
+  kill(*service.pid(), SIGTERM);
   int status = 0;
-  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(service.Wait(&status));
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 0);
   bus.Handle(std::chrono::milliseconds(200));
@@ -109,8 +133,9 @@ TEST(CameraServiceProcessTest, ChildInNamespace) {
   // The default libcamera source on this machine (no camera): a STATE_ERROR status naming
   // the cause goes out before the non-zero exit.
   statuses.clear();
-  ASSERT_TRUE(Spawn({binary, "run", "--lcm-url", kUrl}, &pid));
-  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  SpawnedProcess without_camera;
+  ASSERT_TRUE(Spawn({binary, "run", "--lcm-url", kUrl}, without_camera.pid()));
+  ASSERT_TRUE(without_camera.Wait(&status));
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_NE(WEXITSTATUS(status), 0);
   bus.Handle(std::chrono::milliseconds(200));

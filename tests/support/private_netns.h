@@ -6,10 +6,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include "tests/support/program_command.h"
 
@@ -31,16 +34,21 @@ inline void RunChildTestInPrivateNamespace(const std::string& child_test, int ti
   }
   ASSERT_TRUE(WIFEXITED(check) && WEXITSTATUS(check) == 0) << netns << " --check failed";
   const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
-  const std::string command = netns + " env H4_IN_NETNS=1 timeout " + std::to_string(timeout_s) +
-                              " " + ProgramCommand(self) + " --gtest_filter=" + child_test +
-                              " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  ASSERT_NE(pipe, nullptr);
-  std::string output;
-  char buffer[256];
-  while (fgets(buffer, sizeof buffer, pipe) != nullptr) output += buffer;
-  const int status = pclose(pipe);
-  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << output;
+  // The output goes to a file, not a pipe: a process the child started and left running
+  // (after a failed assertion) would hold a pipe open and hang the read past any timeout.
+  const std::filesystem::path log = std::filesystem::temp_directory_path() /
+                                    ("h4_netns_child_" + std::to_string(getpid()) + ".log");
+  const std::string command = netns + " env H4_IN_NETNS=1 timeout -k 5 " +
+                              std::to_string(timeout_s) + " " + ProgramCommand(self) +
+                              " --gtest_filter=" + child_test + " > " + log.string() + " 2>&1";
+  const int status = std::system(command.c_str());
+  std::ifstream in(log);
+  const std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::filesystem::remove(log);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
+      << "exit " << (WIFEXITED(status) ? WEXITSTATUS(status) : -1)
+      << (WIFEXITED(status) && WEXITSTATUS(status) == 124 ? " (timed out)" : "") << ":\n"
+      << output;
   EXPECT_NE(output.find("[       OK ] " + child_test), std::string::npos)
       << "the child test did not run or did not pass:\n"
       << output;
