@@ -4,6 +4,7 @@
 // --identify DIR it then identifies Models 12 and 31, validates and writes the report.
 #include <atomic>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <thread>
@@ -21,6 +22,7 @@
 #include "common/formats/robot_yaml.h"
 #include "host/campaign/campaign.h"
 #include "host/cli/commands.h"
+#include "host/cli/identification_print.h"
 #include "host/cli/progress.h"
 #include "host/cli/robot_source.h"
 #include "host/cli/stop_signal.h"
@@ -112,8 +114,10 @@ std::optional<bus::BusAuth> CollectAuth(const CollectOptions& options, bool from
   return bus::BusAuthFromKeyFile(options.auth_key_path, auth_options);
 }
 
-/// Model 12, then Model 31 from it (paper IV.C), validation and the report, in `dir`.
-void IdentifyAndReport(const CollectOptions& options, const std::string& command_line) {
+/// Model 12, then Model 31 from it (paper IV.C), validation and the report, in `dir`; each
+/// result printed as `identify` prints it, verdict first. True when a model's verdict is
+/// good (else the campaign exits 3, as `identify` does).
+bool IdentifyAndReport(const CollectOptions& options, const std::string& command_line) {
   namespace fs = std::filesystem;
   fs::create_directories(options.identify_dir);
   const RobotDescription robot = ReadRobotYaml(options.robot_path);
@@ -123,11 +127,13 @@ void IdentifyAndReport(const CollectOptions& options, const std::string& command
   const std::string result31 = (fs::path(options.identify_dir) / "result31.json").string();
   const IdentificationOutcome m12 = IdentifyRobot(robot, ModelKind::k12, rows, id_options);
   WriteIdentificationResult(result12, m12.result);
-  spdlog::info("Model 12: {} -> {}", m12.summary.message, result12);
+  PrintHeadline(m12);
+  spdlog::info("Model 12 result written to {}", result12);
   if (!m12.summary.usable) throw std::runtime_error("Model 12 identification not usable");
   const IdentificationOutcome m31 = IdentifyModel31FromModel12(robot, m12.result, rows, id_options);
   WriteIdentificationResult(result31, m31.result);
-  spdlog::info("Model 31: {} -> {}", m31.summary.message, result31);
+  PrintHeadline(m31);
+  spdlog::info("Model 31 result written to {}", result31);
   ValidationFileOptions files;
   files.robot_path = options.robot_path;
   files.data_path = options.out_path;
@@ -137,6 +143,16 @@ void IdentifyAndReport(const CollectOptions& options, const std::string& command
   const ValidationReport report = Validate(inputs);
   std::fputs(FormatValidationText(report).c_str(), stdout);
   spdlog::info("wrote {}", WriteHtmlReport(options.identify_dir, inputs, report, command_line));
+  PrintAccuracyMapLine(report.models.back());
+  const bool good12 = m12.verdict == Verdict::kGood;
+  const bool good31 = m31.summary.usable && m31.verdict == Verdict::kGood;
+  if (good31 || good12) {
+    std::printf("collect: the Model %s result is good: %s\n", good31 ? "31" : "12",
+                (good31 ? result31 : result12).c_str());
+  } else {
+    std::printf("collect: no model's verdict is good (see the verdicts above)\n");
+  }
+  return good12 || good31;
 }
 
 /// Steps the campaign and drains the bus until the campaign ends, the log ends (from_log)
@@ -246,7 +262,9 @@ void Run(CollectOptions options, const std::string& command_line) {
     SetExitCode(h4::cli::kExitInterrupted);
     return;
   }
-  if (!options.identify_dir.empty()) IdentifyAndReport(options, command_line);
+  if (!options.identify_dir.empty() && !IdentifyAndReport(options, command_line)) {
+    SetExitCode(h4::cli::kExitNothingUsable);
+  }
   if (!campaign.finished() || !campaign.skipped().empty()) SetExitCode(h4::cli::kExitNothingUsable);
 }
 
@@ -304,8 +322,10 @@ void DeclareCollectCommand(CLI::App* command) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command->add_option("--identify", options->identify_dir,
-                      "After the campaign: identify Models 12 and 31, validate, and write "
-                      "DIR/result12.json, DIR/result31.json, DIR/report.html (needs --robot)");
+                      "After the campaign: identify Models 12 and 31 (each printed with its "
+                      "verdict, as identify prints it; exit 3 when neither is good), validate, "
+                      "and write DIR/result12.json, DIR/result31.json, DIR/report.html (needs "
+                      "--robot)");
   h4::cli::AddRobotOption(command, &options->robot_path, "A priori robot.yaml (for --identify)");
   command->footer(
       "Exit codes: 0 every pose recorded, 3 some poses skipped (listed), 130 interrupted "
