@@ -1,12 +1,14 @@
 // `h4cal export`: the identified parameters for the robot's controller, in the robot.yaml
 // keys of common/formats/README.md (the control law reads model12: h, arm, forearm, R, d, alpha, q0
 // and the assembly signs). A Model 31 result exports its own model31: block (the model12 block the
-// format requires then comes from the a priori --robot).
+// format requires then comes from the a priori --robot). A result whose verdict is not good is
+// exported with a warning and exit 3.
 #include <memory>
 #include <stdexcept>
 
 #include <spdlog/spdlog.h>
 
+#include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
 #include "common/cli/subcommand.h"
 #include "common/formats/file_output.h"
@@ -25,6 +27,15 @@ struct ExportOptions {
   std::string robot_path;
   std::string out_path;
 };
+
+// A result the verdict does not call good is written (the user may want it) but not
+// silently: the verdict and its advice are repeated, and the exit is 3 as identify's was.
+void WarnUnlessGood(const IdentificationResult& result, const std::string& path) {
+  if (!result.verdict || result.verdict->code == "good") return;
+  spdlog::warn("{}: its verdict is {}, not good: {} Export the result whose verdict is good.",
+               path, result.verdict->code, result.verdict->text);
+  SetExitCode(h4::cli::kExitNothingUsable);
+}
 
 void Run(const ExportOptions& options) {
   RequireOutputIsNotAnInput({"--out", options.out_path},
@@ -59,6 +70,7 @@ void Run(const ExportOptions& options) {
   WriteFileAtomically(options.out_path, header + FormatRobotYaml(out, "identified"));
   spdlog::info("wrote the Model {} controller parameters to {}", ToString(result.model),
                options.out_path);
+  WarnUnlessGood(result, options.result_path);
 }
 
 }  // namespace

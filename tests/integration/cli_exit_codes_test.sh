@@ -104,5 +104,11 @@ swapped "$h4cal" identify --robot sim/robot.yaml --data result12.json --out r.js
 "$h4cal" export --result result12.json --out controller.yaml 2> /dev/null || fail "export"
 grep -q "identified camera pose in base" controller.yaml || fail "export: $(head -3 controller.yaml)"
 ! grep -q "a priori" controller.yaml || fail "export labels values a priori: $(grep 'a priori' controller.yaml)"
+# A result whose verdict is not good is exported with its verdict repeated and exit 3.
+sed 's/"code": "[a-z_]*"/"code": "model_cannot_describe"/' result12.json > bad12.json
+grep -q '"code": "model_cannot_describe"' bad12.json || fail "no verdict code to change in result12.json"
+c=$(code "$h4cal" export --result bad12.json --out bad_controller.yaml)
+[ "$c" -eq 3 ] && [ -s bad_controller.yaml ] || fail "export of a not-good result exited $c"
+grep -q "its verdict is model_cannot_describe, not good" out.txt || fail "export did not warn: $(cat out.txt)"
 echo "PASS: --version on both; render 3 behind / off the image; measure 3 with no board, 0 with" \
   "one; swapped --robot / --data named as such; new and old option spellings; export labels"
