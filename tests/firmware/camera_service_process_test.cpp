@@ -96,7 +96,8 @@ TEST(CameraServiceProcessTest, ChildInNamespace) {
                     service.pid()));
 
   // Wait for the first heartbeat: the service is up and subscribed.
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::seconds(20 * test::kEmulationTimeScale);
   while (statuses.empty() && std::chrono::steady_clock::now() < deadline) {
     bus.Handle(std::chrono::milliseconds(100));
   }
@@ -147,7 +148,8 @@ TEST(CameraServiceProcessTest, ChildInNamespace) {
 TEST(CameraServiceProcessTest, RunAnswersACaptureRequestOverUdpmAndStopsOnSigterm) {
   const std::string binary = H4_BINARY_DIR "/firmware/h4cam";
   if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
-  test::RunChildTestInPrivateNamespace("CameraServiceProcessTest.ChildInNamespace", 60);
+  test::RunChildTestInPrivateNamespace("CameraServiceProcessTest.ChildInNamespace",
+                                       60 * test::kEmulationTimeScale);
 }
 
 }  // namespace

@@ -12,6 +12,16 @@ namespace h4::test {
 // tests/CMakeLists.txt): the host kernel may have no binfmt_misc entry for aarch64 (a
 // fresh machine or a chroot has none), and then exec'ing an aarch64 program fails, or a
 // shell reads it as a script.
+/// Deadlines of tests that wait on a program they started are multiplied by this: 1
+/// natively; under the cross build's emulator the camera's image code runs about 5x slower
+/// (h4cam run's capture test: 3.2 s natively, 16 s under qemu-aarch64 on the same idle
+/// machine), and about twice that again on a loaded one.
+#ifdef H4_TEST_EMULATOR
+inline constexpr int kEmulationTimeScale = 6;
+#else
+inline constexpr int kEmulationTimeScale = 1;
+#endif
+
 inline std::vector<std::string> ProgramArgv(const std::vector<std::string>& command) {
   std::vector<std::string> argv;
 #ifdef H4_TEST_EMULATOR
