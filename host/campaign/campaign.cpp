@@ -95,6 +95,15 @@ void Campaign::OnJointState(const h4msgs::joint_state_t& msg) {
                                                      counters_.impossible_values));
     return;
   }
+  if (options_.mode != CampaignMode::kPassive &&
+      robot_staleness_.Stale(reading.utime, NowUtime())) {
+    ++counters_.stale_joint_states;
+    WarnThrottled(joint_state_warnings_,
+                  fmt::format("ignored a joint state stamped over 2 s before the robot's latest "
+                              "ones (replayed or held back; {} so far)",
+                              counters_.stale_joint_states));
+    return;
+  }
   joints_heard_ = true;
   if (options_.mode != CampaignMode::kPassive) robot_clock_.Add(reading.utime, NowUtime());
   history_.Add(reading);

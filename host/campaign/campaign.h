@@ -30,6 +30,7 @@
 #include "host/campaign/corners_journal.h"
 #include "host/campaign/dataset_journal.h"
 #include "host/campaign/measurement_pairing.h"
+#include "host/campaign/stale_filter.h"
 #include "host/simulation/pose_plan.h"
 #include "messages/bus/lcm_bus.h"
 #include "messages/bus/warning_throttle.h"
@@ -75,6 +76,7 @@ struct CampaignCounters {
   int64_t nonphysical_covariances = 0;  ///< measurements whose sigmas no camera reaches
   int64_t unexpected_pose_ids = 0;      ///< measurements of a pose not planned or not awaited
   int64_t duplicates = 0;               ///< measurements of a pose already recorded
+  int64_t stale_joint_states = 0;       ///< joint states far older than the robot's latest
   int64_t unpaired = 0;                 ///< measurements with no settled joint reading in tolerance
   int64_t retries = 0;                  ///< attempts repeated (timeouts, moved, partial, ...)
   int64_t board_corners = 0;            ///< board_corners_t messages heard
@@ -209,6 +211,7 @@ class Campaign {
   /// heartbeats and joint states at arrival (active and manual modes: a replayed log's are
   /// old by definition).
   ClockOffset camera_clock_, robot_clock_;
+  StaleMessageFilter robot_staleness_;  ///< joint states far behind the robot's latest
   /// One per kind of warning a message can cause.
   bus::WarningThrottle joint_state_warnings_, unexpected_pose_warnings_, measurement_warnings_,
       corners_warnings_;

@@ -96,11 +96,13 @@ void PrintSummary(const Campaign& campaign, const DatasetJournal& journal,
   std::printf(
       "  messages: %lld joint states, %lld board poses; not used: %lld impossible, "
       "%lld non-physical covariance, %lld unexpected pose id, %lld duplicate, "
-      "%lld unpaired, %lld undecodable, %lld not authentic; %lld retries\n",
+      "%lld stale joint states, %lld unpaired, %lld undecodable, %lld not authentic; "
+      "%lld retries\n",
       static_cast<long long>(c.joint_states), static_cast<long long>(c.board_poses),
       static_cast<long long>(c.impossible_values),
       static_cast<long long>(c.nonphysical_covariances),
       static_cast<long long>(c.unexpected_pose_ids), static_cast<long long>(c.duplicates),
+      static_cast<long long>(c.stale_joint_states),
       static_cast<long long>(c.unpaired), static_cast<long long>(bus.decode_failures()),
       static_cast<long long>(bus.auth_failures()), static_cast<long long>(c.retries));
   if (interrupted) std::printf("  run the same command again to resume\n");

@@ -29,7 +29,7 @@ rm -f "$out/dataset.csv" "$out/dataset.corners.csv"
 
 # The plan: the first POSES poses of the grid, as the a priori robot reaches them.
 "$h4cal" simulate --paper --out-dir "$out/sim" > /dev/null 2>&1
-cut -d, -f1-5 "$out/sim/dataset.csv" | head -n $((poses + 1)) > "$out/joints.csv"
+cut -d, -f1,3-6 "$out/sim/dataset.csv" | head -n $((poses + 1)) > "$out/joints.csv"
 "$h4cal" fk --robot "$out/sim/robot.yaml" --joints "$out/joints.csv" --out "$out/fk.csv" 2> /dev/null
 cut -d, -f1-5 "$out/fk.csv" > "$out/plan.csv"
 # Recorded traffic the flood makes foreign: a short clean campaign of 3 poses.
