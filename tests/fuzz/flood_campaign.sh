@@ -25,14 +25,14 @@ while [ $# -gt 0 ]; do
 done
 export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0"
 mkdir -p "$out"
-rm -f "$out/dataset.csv" "$out/dataset.corners.csv"
+rm -f "$out/dataset.csv" "$out/dataset.corners.csv" "$out/warmup_dataset.csv" \
+  "$out/warmup_dataset.corners.csv"
 
 # The plan: the first POSES poses of the grid, as the a priori robot reaches them.
 "$h4cal" simulate --paper --out-dir "$out/sim" > /dev/null 2>&1
 cut -d, -f1,3-6 "$out/sim/dataset.csv" | head -n $((poses + 1)) > "$out/joints.csv"
 "$h4cal" fk --robot "$out/sim/robot.yaml" --joints "$out/joints.csv" --out "$out/fk.csv" 2> /dev/null
 cut -d, -f1-5 "$out/fk.csv" > "$out/plan.csv"
-# Recorded traffic the flood makes foreign: a short clean campaign of 3 poses.
 key=()
 if [ $auth -eq 1 ]; then
   head -c 48 /dev/urandom > "$out/key" && chmod 600 "$out/key"
@@ -49,11 +49,14 @@ pids+=($!)
   --camera "$root/boards/sim_camera_1024x768.yaml" --camera-id sim-camera "${key[@]}" \
   > "$out/h4cam.log" 2>&1 &
 pids+=($!)
+# Recorded traffic the flood makes foreign: a short clean campaign of 3 poses.
+rm -f "$out/traffic.lcmlog"
 lcm-logger --quiet -f "$out/traffic.lcmlog" > /dev/null 2>&1 &
-pids+=($!)
+logger=$!
 head -n 4 "$out/plan.csv" > "$out/warmup.csv"
 "$h4cal" collect --plan "$out/warmup.csv" --out "$out/warmup_dataset.csv" "${key[@]}" \
   > "$out/warmup.log" 2>&1
+kill -INT $logger; wait $logger || true  # the whole log on disk before the flood reads it
 
 # The flood starts with the campaign and lasts SECONDS.
 python3 "$root/tests/fuzz/bus_flood.py" "$out/traffic.lcmlog" --rate "$rate" \
