@@ -44,10 +44,12 @@ std::string RefinedRows(const ResultCamera& camera) {
 // (a sigma not finite) is left out.
 std::vector<double> SharePerPoint(const AccuracyMap& full, const AccuracyMap& exact) {
   std::vector<double> share;
-  size_t k = 0;
+  size_t next = 0;  // both lists are in the grid's order
   for (const AccuracyMapPoint& point : full.points) {
+    size_t k = next;
     while (k < exact.points.size() && exact.points[k].x != point.x) ++k;
-    if (k == exact.points.size()) break;
+    if (k == exact.points.size()) continue;  // not in the camera-exact map
+    next = k + 1;
     const double a = point.position_sigma_m, b = exact.points[k].position_sigma_m;
     share.push_back(std::sqrt(std::max(0.0, a * a - b * b)));
   }

@@ -13,6 +13,7 @@
 #include "host/identification/camera_parameters.h"
 #include "host/report/gnuplot_svg.h"
 #include "host/report/html_report.h"
+#include "host/report/report_camera.h"
 #include "host/report/report_tables.h"
 #include "host/simulation/corner_campaign.h"
 #include "host/simulation/pose_plan.h"
@@ -198,6 +199,20 @@ TEST(Report, TheCameraSectionShowsIntrinsicsResidualsAndTheCamerasShare) {
             std::string::npos)
       << section;
   EXPECT_EQ(html.find("nan"), std::string::npos);
+
+  // A pose the camera-exact map left out (its sigma not finite) costs only its own share,
+  // not the poses after it: the largest share is still the full map's over sqrt(2).
+  ValidationReport gap = report;
+  AccuracyMap& exact = *gap.models.back().accuracy_map_camera_exact;
+  exact.points.erase(exact.points.begin());
+  double largest_mm = 0;
+  for (size_t k = 1; k < full.points.size(); ++k) {
+    largest_mm = std::max(largest_mm, 1e3 * full.points[k].position_sigma_m);
+  }
+  const std::string share_table = CameraShareTable(gap);
+  EXPECT_NE(share_table.find(fmt::format("<td>{:.4f}</td></tr>", largest_mm / std::sqrt(2.0))),
+            std::string::npos)
+      << share_table;
 
   // The camera file's model must be the result's.
   in.camera->distortion_model = DistortionModel::kEquidistant;
