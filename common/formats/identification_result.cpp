@@ -127,6 +127,13 @@ ResultVerdict ReadVerdict(const JsonValue& object) {
   return verdict;
 }
 
+// A non-negative number of at most `limit`.
+double NonNegativeAtMost(const JsonValue& field, double limit, const char* what) {
+  const double value = field.NonNegativeNumber();
+  if (!(value <= limit)) field.Fail(std::string("expected ") + what);
+  return value;
+}
+
 // The verdict, the rejected poses with their scores and the provenance: extra keys that
 // results written before them lack.
 void ReadJudgement(const JsonValue& root, IdentificationResult* result) {
@@ -146,6 +153,12 @@ void ReadJudgement(const JsonValue& root, IdentificationResult* result) {
         static_cast<int>(object["folds"].Integer()), static_cast<int>(object["poses"].Integer()),
         object["position_rms_m"].NonNegativeNumber(),
         object["rotation_rms_rad"].NonNegativeNumber(), object["reduced_chi2"].NonNegativeNumber()};
+  }
+  if (root.HasNonNull("camera_error_floor")) {
+    const JsonValue object = root["camera_error_floor"];
+    result->camera_error_floor = CameraErrorFloor{
+        NonNegativeAtMost(object["rotation_rad"], 2.0 * std::numbers::pi, "at most 2 pi rad"),
+        NonNegativeAtMost(object["translation_m"], kMaxRobotSize_m, "at most 10 m")};
   }
   if (root.HasNonNull("provenance")) {
     const JsonValue object = root["provenance"];
@@ -327,6 +340,14 @@ void WriteJudgement(const IdentificationResult& result, Ordered* root) {
         {"reduced_chi2", Number(cv.reduced_chi2, "cross_validation.reduced_chi2")}};
   } else {
     (*root)["cross_validation"] = nullptr;
+  }
+  if (result.camera_error_floor) {
+    const CameraErrorFloor& floor = *result.camera_error_floor;
+    (*root)["camera_error_floor"] = {
+        {"rotation_rad", Number(floor.rotation_rad, "camera_error_floor.rotation_rad")},
+        {"translation_m", Number(floor.translation_m, "camera_error_floor.translation_m")}};
+  } else {
+    (*root)["camera_error_floor"] = nullptr;
   }
   if (result.provenance) {
     (*root)["provenance"] = {{"h4cal_version", result.provenance->h4cal_version},

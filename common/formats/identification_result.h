@@ -69,6 +69,16 @@ struct CrossValidationFigures {
   double reduced_chi2 = 0.0;  ///< of the held-out residuals normalised by the covariance
 };
 
+/// `camera_error_floor`: the board pose error the calibration's residuals show beyond the
+/// camera's stated covariance, one standard deviation per axis added in quadrature to each
+/// pose's stated sigma_r and sigma_t (0 when the stated sigmas explain the residuals). An
+/// unchanged robot's fresh poses show the same, so `h4cal check` allows for it
+/// (drift_check.h).
+struct CameraErrorFloor {
+  double rotation_rad = 0.0;
+  double translation_m = 0.0;
+};
+
 struct IdentificationResult {
   ModelKind model = ModelKind::k12;  ///< "12" or "31" in the file
   std::vector<ResultParameter> parameters;
@@ -95,6 +105,7 @@ struct IdentificationResult {
   std::vector<RejectedPose> rejected_details;           ///< one per rejected pose
   std::optional<ResultProvenance> provenance;
   std::optional<CrossValidationFigures> cross_validation;
+  std::optional<CameraErrorFloor> camera_error_floor;  ///< absent in older results
   /// `parameter_covariance`: n x n over `parameters` in their order, SI units (m^2, m rad,
   /// rad^2), the covariance whose diagonal gives each `std` (scaled by the reduced
   /// chi-square when it exceeds 1); a fixed parameter's row and column are zero. Absent in
@@ -124,7 +135,8 @@ struct IdentificationResult {
 /// pose ids integers; `parameter_covariance`, when given, n x n for n parameters, symmetric,
 /// positive semi-definite, its diagonal the square of each `std` (relative 1e-6) and zero for a
 /// parameter without one; `parameter_covariance_camera_exact` only beside it, n x n,
-/// symmetric, positive semi-definite, its diagonal at most `std` squared. The extra keys may be absent or null. The writer writes every key (absent
+/// symmetric, positive semi-definite, its diagonal at most `std` squared;
+/// `camera_error_floor`'s rotation within 2 pi and translation within kMaxRobotSize_m, both >= 0. The extra keys may be absent or null. The writer writes every key (absent
 /// optionals as null, std as null for fixed parameters), shortest round-trip numbers, and throws
 /// std::invalid_argument on a non-finite number (JSON has no NaN).
 IdentificationResult ReadIdentificationResult(const std::string& path);

@@ -7,9 +7,14 @@
 // predicted error (RMS Mahalanobis over the check poses), and counts the verdicts.
 //
 //   h4_check_study [--robots R] [--seeds S] [--drift-sigmas 3] [--check-poses grid|planned]
-//                  [--without-covariance 1] [--source-dir DIR]
+//                  [--without-covariance 1] [--stated-sigma-fraction R,T]
+//                  [--stated-camera-covariance 1] [--source-dir DIR]
 // --without-covariance 1: check as against results written before parameter_covariance
 // (their sigmas alone); the drift is still sized with the full covariance.
+// --stated-sigma-fraction R,T: the camera states R times the rotation noise and T times the
+// translation noise (an optimistic pose covariance, as the rendered camera's); with
+// --stated-camera-covariance 1 the check ignores the result's camera_error_floor (as
+// `h4cal check --stated-camera-covariance`).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -35,6 +40,8 @@ struct StudyOptions {
   double drift_sigmas = 3.0;
   bool planned_check_poses = false;  ///< 5 poses from the planner (else 5 grid poses)
   bool without_covariance = false;   ///< results as before parameter_covariance (sigmas)
+  double stated_fraction_r = 1.0, stated_fraction_t = 1.0;  ///< stated sigma / true noise
+  bool stated_camera_covariance = false;  ///< check without the camera_error_floor
   std::string source_dir = H4_SOURCE_DIR;
 };
 
@@ -55,6 +62,13 @@ StudyOptions ParseOptions(int argc, char** argv) {
       options.planned_check_poses = value == "planned";
     } else if (flag == "--without-covariance") {  // VALUE: 1 or 0
       options.without_covariance = value == "1";
+    } else if (flag == "--stated-sigma-fraction") {  // R,T
+      const size_t comma = value.find(',');
+      if (comma == std::string::npos) throw std::invalid_argument("--stated-sigma-fraction R,T");
+      options.stated_fraction_r = std::stod(value.substr(0, comma));
+      options.stated_fraction_t = std::stod(value.substr(comma + 1));
+    } else if (flag == "--stated-camera-covariance") {  // VALUE: 1 or 0
+      options.stated_camera_covariance = value == "1";
     } else if (flag == "--source-dir") {
       options.source_dir = value;
     } else {
@@ -106,9 +120,14 @@ void PrintTally(const StudyOptions& study, const Tally& tally, double seconds) {
   std::printf("| %d | %d (%.1f %%) | %d (%.1f %%) |\n", tally.trials, tally.unchanged_passed,
               100.0 * tally.unchanged_passed / std::max(tally.trials, 1), tally.drifted_flagged,
               100.0 * tally.drifted_flagged / std::max(tally.trials, 1));
-  std::printf("%d unusable identifications; %d robots x %d seeds, %s check poses, %.0f s\n",
-              tally.unusable, study.robots, study.seeds,
-              study.planned_check_poses ? "planned" : "grid", seconds);
+  std::printf(
+      "%d unusable identifications; %d robots x %d seeds, %s check poses; stated sigmas %.3g x "
+      "the rotation noise, %.3g x the translation noise, checked %s; %.0f s\n",
+      tally.unusable, study.robots, study.seeds, study.planned_check_poses ? "planned" : "grid",
+      study.stated_fraction_r, study.stated_fraction_t,
+      study.stated_camera_covariance ? "against the stated covariance alone"
+                                     : "with the result's camera_error_floor",
+      seconds);
 }
 
 void Run(const StudyOptions& study) {
@@ -120,6 +139,12 @@ void Run(const StudyOptions& study) {
       study.planned_check_poses ? PlannedCheckPoses(study.source_dir) : GridCheckPoses();
   options.drift_sigmas = study.drift_sigmas;
   options.without_covariance = study.without_covariance;
+  if (study.stated_fraction_r != 1.0 || study.stated_fraction_t != 1.0) {
+    options.stated_noise = NoiseOptions{options.noise.sigma_t * study.stated_fraction_t,
+                                        options.noise.sigma_r * study.stated_fraction_r,
+                                        options.noise.sigma_q};
+  }
+  options.stated_camera_covariance = study.stated_camera_covariance;
   Tally tally;
   for (int robot = 1; robot <= study.robots; ++robot) {
     const SimulatedRobot truth = MakeTrueRobot(apriori, TrueGeometry::kPerturbedModel31,

@@ -26,6 +26,8 @@ struct CheckCommandOptions {
   DriftCheckOptions check;
   /// Judge against the measurement noise alone, ignoring the result's uncertainty.
   bool no_parameter_sigmas = false;
+  /// Judge against the camera's stated pose covariance, without the result's factor.
+  bool stated_camera_covariance = false;
 };
 
 void PrintPoses(const DriftCheckResult& check) {
@@ -43,7 +45,8 @@ void Run(const CheckCommandOptions& o) {
       o.robot_path.empty() ? Assembly{} : ReadRobotYaml(o.robot_path).assembly;
   const std::vector<DatasetRow> rows = ReadDatasetCsv(o.data_path);
   const DriftCheckResult check =
-      CheckResultForDrift(result, assembly, rows, o.check, !o.no_parameter_sigmas);
+      CheckResultForDrift(result, assembly, rows, o.check, !o.no_parameter_sigmas,
+                          !o.stated_camera_covariance);
   std::printf("check of %s against %s (Model %s), %zu poses:\n", o.data_path.c_str(),
               o.result_path.c_str(), ToString(result.model), rows.size());
   if (check.evaluable) PrintPoses(check);
@@ -70,11 +73,15 @@ void DeclareCheckCommand(CLI::App* command) {
   command->add_flag("--no-parameter-sigmas", options->no_parameter_sigmas,
                     "Ignore the result's parameter uncertainty: judge against the measurement "
                     "noise alone");
+  command->add_flag("--stated-camera-covariance", options->stated_camera_covariance,
+                    "Judge against the camera's stated pose covariance, without the result's "
+                    "camera_error_floor (the error the calibration showed beyond it)");
   command->footer(
       "Per pose: d^2 = e^T S^-1 e of the board pose error e in measurement sigmas (the dataset's "
-      "sigma_t / sigma_r, else 0.2 mm / 0.03 deg) with S = I + J C J^T, C the result's "
-      "parameter_covariance (its sigmas alone for an older result); chi-square(6) for an "
-      "unchanged robot.");
+      "sigma_t / sigma_r, else 0.2 mm / 0.03 deg) with S = D + J C J^T, C the result's "
+      "parameter_covariance (its sigmas alone for an older result) and D = I plus the result's "
+      "camera_error_floor (per axis, rotation and translation) in those sigmas, squared (I for "
+      "an older result); chi-square(6) for an unchanged robot.");
   h4::cli::RunWhenParsed(command, options, [](const CheckCommandOptions& parsed) {
     std::string why;
     if (!parsed.check.IsValid(&why)) throw std::invalid_argument("check: " + why);

@@ -16,6 +16,7 @@
 
 #include "common/timing/clock.h"
 #include "common/units.h"
+#include "host/identification/camera_error_floor.h"
 #include "host/identification/identified_robot.h"
 #include "host/identification/outlier_limit.h"
 #include "host/identification/solution_summary.h"
@@ -345,6 +346,7 @@ void JudgeSolution(const KinematicModel& model, const ParameterVector& apriori,
   if (out->verdict == Verdict::kGood)
     out->result.verdict->text += BoardScaleNote(options.board_size_sigma);
   out->result.rejected_details = state.rejected_details;
+  out->result.camera_error_floor = CameraErrorFloorAt(model, state.p, state.rows, options.cost);
 }
 
 }  // namespace

@@ -18,6 +18,9 @@ bool CheckTrialOptions::IsValid(std::string* why) const {
   if (calibration_plan.empty()) return fail("calibration_plan is empty");
   if (check_plan.empty()) return fail("check_plan is empty");
   if (!(drift_sigmas >= 0.0)) return fail("drift_sigmas must be >= 0");
+  if (stated_noise && !(stated_noise->sigma_t > 0.0 && stated_noise->sigma_r > 0.0)) {
+    return fail("stated_noise sigmas must be positive");
+  }
   return check.IsValid(why);
 }
 
@@ -34,24 +37,36 @@ SimulatedRobot WithJointOffsetMoved(SimulatedRobot robot, int joint, double chan
   return robot;
 }
 
+// The sigmas the rows state: the stated noise's, else the noise's own.
+const NoiseOptions& StatedNoise(const CheckTrialOptions& options) {
+  return options.stated_noise ? *options.stated_noise : options.noise;
+}
+
+std::vector<DatasetRow> WithStatedSigmas(std::vector<DatasetRow> rows, const NoiseOptions& stated) {
+  for (DatasetRow& row : rows) {
+    row.sigma_t = stated.sigma_t;
+    row.sigma_r = stated.sigma_r;
+  }
+  return rows;
+}
+
+// A campaign's rows: the options' noise, the camera's stated sigmas.
 std::vector<DatasetRow> SimulateRows(const SimulatedRobot& robot, const PosePlan& plan,
-                                     const NoiseOptions& noise, uint64_t seed, int valid_count) {
+                                     const CheckTrialOptions& trial, uint64_t seed) {
   DatasetOptions options;
-  options.noise = noise;
+  options.noise = trial.noise;
   options.seed = seed;
-  options.valid_count = valid_count;
-  return SimulateDataset(robot, plan, options).rows;
+  options.valid_count = 0;
+  return WithStatedSigmas(SimulateDataset(robot, plan, options).rows, StatedNoise(trial));
 }
 
 // The noise-free check rows, with the sigmas the noisy ones carry (the check's weights).
 std::vector<DatasetRow> NoiseFreeRows(const SimulatedRobot& robot, const PosePlan& plan,
-                                      const NoiseOptions& noise) {
-  std::vector<DatasetRow> rows = SimulateRows(robot, plan, NoiseOptions{0.0, 0.0, 0.0}, 1, 0);
-  for (DatasetRow& row : rows) {
-    row.sigma_t = noise.sigma_t;
-    row.sigma_r = noise.sigma_r;
-  }
-  return rows;
+                                      const CheckTrialOptions& trial) {
+  DatasetOptions options;
+  options.noise = NoiseOptions{0.0, 0.0, 0.0};
+  options.valid_count = 0;
+  return WithStatedSigmas(SimulateDataset(robot, plan, options).rows, StatedNoise(trial));
 }
 
 // `h4cal identify` twice, as the demo on the grid: Model 12, then Model 31 from it; the
@@ -74,10 +89,10 @@ double JointOffsetChangeFor(double sigmas, const IdentificationResult& result,
                             const CheckTrialOptions& options) {
   constexpr double kProbe = 1e-5;  // rad: far below 3 sigma, far above rounding
   const DriftCheckResult before = CheckResultForDrift(
-      result, assembly, NoiseFreeRows(truth, options.check_plan, options.noise), options.check);
+      result, assembly, NoiseFreeRows(truth, options.check_plan, options), options.check);
   const DriftCheckResult after = CheckResultForDrift(
       result, assembly,
-      NoiseFreeRows(WithJointOffsetMoved(truth, joint, kProbe), options.check_plan, options.noise),
+      NoiseFreeRows(WithJointOffsetMoved(truth, joint, kProbe), options.check_plan, options),
       options.check);
   if (!before.evaluable || !after.evaluable || before.poses.size() != after.poses.size()) {
     return NAN;
@@ -99,7 +114,7 @@ CheckTrialOutcome RunCheckTrial(const RobotDescription& apriori, const Simulated
   if (!options.IsValid(&why)) throw std::invalid_argument("check trial: " + why);
   CheckTrialOutcome outcome;
   const std::optional<IdentificationResult> result = IdentifyAsTheCliDoes(
-      apriori, SimulateRows(truth, options.calibration_plan, options.noise, seed, 0),
+      apriori, SimulateRows(truth, options.calibration_plan, options, seed),
       options.identification);
   if (!result) {
     outcome.message = "identification unusable";
@@ -120,14 +135,17 @@ CheckTrialOutcome RunCheckTrial(const RobotDescription& apriori, const Simulated
   // The drift is sized with the full covariance; the check may see the sigmas alone.
   IdentificationResult checked = *result;
   if (options.without_covariance) checked.parameter_covariance.reset();
-  outcome.unchanged = CheckResultForDrift(
-      checked, apriori.assembly,
-      SimulateRows(truth, options.check_plan, options.noise, check_seed, 0), options.check);
+  const bool camera_floor = !options.stated_camera_covariance;
+  outcome.unchanged =
+      CheckResultForDrift(checked, apriori.assembly,
+                          SimulateRows(truth, options.check_plan, options, check_seed),
+                          options.check, true, camera_floor);
   const SimulatedRobot drifted =
       WithJointOffsetMoved(truth, outcome.drifted_joint, outcome.joint_offset_change);
-  outcome.drifted = CheckResultForDrift(
-      checked, apriori.assembly,
-      SimulateRows(drifted, options.check_plan, options.noise, check_seed + 1, 0), options.check);
+  outcome.drifted =
+      CheckResultForDrift(checked, apriori.assembly,
+                          SimulateRows(drifted, options.check_plan, options, check_seed + 1),
+                          options.check, true, camera_floor);
   return outcome;
 }
 

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "host/identification/identification.h"
@@ -26,6 +27,12 @@ struct CheckTrialOptions {
   IdentificationOptions identification;  ///< `h4cal identify`'s defaults
   DriftCheckOptions check;               ///< `h4cal check`'s defaults
   NoiseOptions noise;                    ///< `h4cal simulate`'s noise
+  /// The sigmas the camera states (the rows' sigma_t, sigma_r) when they are not the noise's:
+  /// smaller ones model a camera whose pose covariance is optimistic, as a rendered or real
+  /// camera's covariance from its corner noise alone is. Absent: the noise's own.
+  std::optional<NoiseOptions> stated_noise;
+  /// Check against the stated covariance, ignoring the result's camera_error_floor.
+  bool stated_camera_covariance = false;
   /// Check as against a result written before `parameter_covariance` (its sigmas alone):
   /// to measure what the covariance adds.
   bool without_covariance = false;

@@ -7,6 +7,7 @@
 #include <Eigen/Cholesky>
 #include <spdlog/fmt/fmt.h>
 
+#include "common/units.h"
 #include "host/identification/identified_robot.h"
 
 namespace h4::host {
@@ -41,6 +42,32 @@ double ChiSquareEvenDofTail(int dof, double x) {
   return std::min(1.0, sum);
 }
 
+// What the measurement's share of S was, in words.
+std::string CameraFloorNote(const std::optional<CameraErrorFloor>& floor) {
+  if (!floor) {
+    return "\n(judged against the camera's stated pose covariance alone, without a "
+           "camera_error_floor: a result written before that key has none, identify again to "
+           "learn it from the calibration)";
+  }
+  if (floor->rotation_rad == 0.0 && floor->translation_m == 0.0) return "";
+  return fmt::format(
+      "\n(allowing for the camera's error beyond its stated covariance, as the calibration "
+      "found it: {:.4f} deg and {:.4f} mm per axis, the result's camera_error_floor)",
+      DegreesFromRadians(floor->rotation_rad), floor->translation_m * 1e3);
+}
+
+// D: the measurement's covariance in the pose's stated sigmas, with the camera's error floor.
+Eigen::Matrix<double, 6, 6> MeasurementCovariance(const std::optional<CameraErrorFloor>& floor,
+                                                  double rotation_weight,
+                                                  double translation_weight) {
+  Eigen::Matrix<double, 6, 1> d = Eigen::Matrix<double, 6, 1>::Ones();
+  if (floor) {
+    d.head<3>().array() += std::pow(floor->rotation_rad * rotation_weight, 2);
+    d.tail<3>().array() += std::pow(floor->translation_m * translation_weight, 2);
+  }
+  return d.asDiagonal();
+}
+
 }  // namespace
 
 double ChiSquareUpperQuantileEvenDof(int dof, double tail_probability) {
@@ -64,6 +91,7 @@ std::string DriftCheckResult::Summary() const {
              drift ? "DRIFT: the robot no longer matches the result"
                    : "the robot matches the result",
              flagged, poses.size(), pose_threshold, chi2, dof, total_threshold) +
+         CameraFloorNote(camera_floor) +
          (with_correlations ? ""
                             : "\n(the result has no parameter_covariance: its sigmas were used "
                               "without their correlations, which widens what is allowed)");
@@ -72,7 +100,8 @@ std::string DriftCheckResult::Summary() const {
 DriftCheckResult CheckForDrift(const KinematicModel& model, const ParameterVector& p,
                                const Eigen::MatrixXd& parameter_covariance,
                                const std::vector<DatasetRow>& rows,
-                               const DriftCheckOptions& options) {
+                               const DriftCheckOptions& options,
+                               const std::optional<CameraErrorFloor>& camera_floor) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("drift check options: " + why);
   if (rows.empty()) throw std::invalid_argument("drift check: no pose to check");
@@ -82,6 +111,7 @@ DriftCheckResult CheckForDrift(const KinematicModel& model, const ParameterVecto
   }
   const int n = static_cast<int>(rows.size());
   DriftCheckResult result;
+  result.camera_floor = camera_floor;
   result.dof = 6 * n;
   result.pose_threshold = ChiSquareUpperQuantileEvenDof(6, options.pose_false_alarm / n);
   result.total_threshold = ChiSquareUpperQuantileEvenDof(result.dof, options.total_false_alarm);
@@ -101,8 +131,10 @@ DriftCheckResult CheckForDrift(const KinematicModel& model, const ParameterVecto
     PoseCheck check;
     check.pose_id = rows[static_cast<size_t>(j)].pose_id;
     check.error = r_j;
+    const DatasetRow& row = rows[static_cast<size_t>(j)];
     check.predicted_covariance =
-        Eigen::Matrix<double, 6, 6>::Identity() + J_j * parameter_covariance * J_j.transpose();
+        MeasurementCovariance(camera_floor, cost.RotationWeight(row), cost.TranslationWeight(row)) +
+        J_j * parameter_covariance * J_j.transpose();
     check.mahalanobis2 = r_j.dot(check.predicted_covariance.ldlt().solve(r_j));
     // NaN compares false with every threshold and would pass as a match: a d^2 that is not
     // a finite number means the result cannot judge this pose.
@@ -130,14 +162,16 @@ DriftCheckResult CheckForDrift(const KinematicModel& model, const ParameterVecto
 DriftCheckResult CheckResultForDrift(const IdentificationResult& result, const Assembly& assembly,
                                      const std::vector<DatasetRow>& rows,
                                      const DriftCheckOptions& options,
-                                     bool use_parameter_uncertainty) {
+                                     bool use_parameter_uncertainty, bool use_camera_floor) {
   const IdentifiedRobot robot = RebuildFromResult(result, assembly);
   const ParameterVector p(*robot.model, robot.X_BC, robot.X_TE);
   bool with_correlations = true;
   const Eigen::MatrixXd C = use_parameter_uncertainty
                                 ? ResultCovarianceFor(result, p, &with_correlations)
                                 : Eigen::MatrixXd::Zero(p.size(), p.size());
-  DriftCheckResult check = CheckForDrift(*robot.model, p, C, rows, options);
+  const std::optional<CameraErrorFloor> camera_floor =
+      use_camera_floor ? result.camera_error_floor : std::nullopt;
+  DriftCheckResult check = CheckForDrift(*robot.model, p, C, rows, options, camera_floor);
   check.with_correlations = with_correlations;
   return check;
 }

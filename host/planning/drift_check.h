@@ -6,13 +6,19 @@
 // result's parameter covariance C (`parameter_covariance`, common/formats/README.md)
 // propagated through the pose's Jacobian J. A result written before that key gives only
 // its sigmas: C is then their diagonal, which ignores the correlations and mostly widens
-// what is allowed. Under an unchanged robot d^2 = e^T S^-1 e is chi-square with 6 degrees of
+// what is allowed. The measurement's own part is the camera's stated covariance plus the
+// result's `camera_error_floor` (f_r, f_t per axis): a camera whose stated covariance misses
+// part of its error left that misfit in the calibration, and an unchanged robot's fresh
+// poses show the same, so I becomes D = diag(1 + (f_r / sigma_r)^2 x3, 1 + (f_t / sigma_t)^2 x3)
+// in the pose's stated sigmas.
+// Under an unchanged robot d^2 = e^T S^-1 e is chi-square with 6 degrees of
 // freedom per pose and their sum chi-square with 6 n; a pose is flagged above the per-pose quantile
 // (Bonferroni over the poses), and the robot has drifted when a pose is flagged or the sum exceeds
 // its quantile.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -44,7 +50,7 @@ struct PoseCheck {
   bool flagged = false;
   /// e: measured minus predicted board pose (rotation, translation) in measurement sigmas.
   Eigen::Matrix<double, 6, 1> error = Eigen::Matrix<double, 6, 1>::Zero();
-  /// S = I + J C J^T, e's covariance under an unchanged robot (measurement sigmas squared).
+  /// S = D + J C J^T, e's covariance under an unchanged robot (measurement sigmas squared).
   Eigen::Matrix<double, 6, 6> predicted_covariance = Eigen::Matrix<double, 6, 6>::Identity();
 };
 
@@ -58,25 +64,30 @@ struct DriftCheckResult {
   bool drift = false;
   std::string message;
   bool with_correlations = true;  ///< false: C was the diagonal of the sigmas (older result)
+  /// The floor D was built from; absent: none was used (older result, or asked), D = I.
+  std::optional<CameraErrorFloor> camera_floor;
   std::string Summary() const;
 };
 
 /// p: the result's parameters; parameter_covariance: n x n over p's parameters in p's
-/// order, SI (zero rows for fixed ones; all zero: judge by the measurement noise alone).
-/// Throws std::invalid_argument on invalid options, empty rows or a covariance of the
-/// wrong size.
+/// order, SI (zero rows for fixed ones; all zero: judge by the measurement noise alone);
+/// camera_floor: the floor in D (D = I when absent). Throws std::invalid_argument on invalid options,
+/// empty rows or a covariance of the wrong size.
 DriftCheckResult CheckForDrift(const KinematicModel& model, const ParameterVector& p,
                                const Eigen::MatrixXd& parameter_covariance,
                                const std::vector<DatasetRow>& rows,
-                               const DriftCheckOptions& options = DriftCheckOptions{});
+                               const DriftCheckOptions& options = DriftCheckOptions{},
+                               const std::optional<CameraErrorFloor>& camera_floor = {});
 
 /// `h4cal check`: rebuilds the result's model with `assembly`, and checks the rows against
 /// it with its covariance (ResultCovarianceFor, identified_robot.h; zero with
-/// use_parameter_uncertainty false).
+/// use_parameter_uncertainty false) and its camera_error_floor (none with use_camera_floor
+/// false: the camera's stated covariance as it is).
 DriftCheckResult CheckResultForDrift(const IdentificationResult& result, const Assembly& assembly,
                                      const std::vector<DatasetRow>& rows,
                                      const DriftCheckOptions& options = DriftCheckOptions{},
-                                     bool use_parameter_uncertainty = true);
+                                     bool use_parameter_uncertainty = true,
+                                     bool use_camera_floor = true);
 
 /// Upper tail quantile of chi-square with an even number of degrees of freedom: the x with
 /// P(X > x) = tail_probability.

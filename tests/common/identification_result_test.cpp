@@ -150,6 +150,29 @@ TEST(IdentificationResult, VerdictRejectedPosesAndProvenanceRoundTrip) {
   EXPECT_EQ(b.cross_validation->reduced_chi2, 1.1);
 }
 
+TEST(IdentificationResult, CameraErrorFloorRoundTripsAndAbsentReadsAsAbsent) {
+  IdentificationResult r = FullResult();
+  r.camera_error_floor = CameraErrorFloor{5.1e-4, 2.25e-5};
+  const IdentificationResult b =
+      ParseIdentificationResult(FormatIdentificationResult(r), "result.json");
+  ASSERT_TRUE(b.camera_error_floor.has_value());
+  EXPECT_EQ(b.camera_error_floor->rotation_rad, 5.1e-4);
+  EXPECT_EQ(b.camera_error_floor->translation_m, 2.25e-5);
+  EXPECT_FALSE(ParseIdentificationResult(kResult, "old.json").camera_error_floor.has_value());
+}
+
+TEST(IdentificationResultErrors, ANegativeOrHugeCameraErrorFloorNamesTheField) {
+  IdentificationResult r = FullResult();
+  r.camera_error_floor = CameraErrorFloor{1e-4, -1e-6};
+  EXPECT_TRUE(
+      FailsWith([&] { ParseIdentificationResult(FormatIdentificationResult(r), "r.json"); },
+                "r.json", 0, "camera_error_floor.translation_m", "non-negative"));
+  r.camera_error_floor = CameraErrorFloor{7.0, 1e-6};
+  EXPECT_TRUE(
+      FailsWith([&] { ParseIdentificationResult(FormatIdentificationResult(r), "r.json"); },
+                "r.json", 0, "camera_error_floor.rotation_rad", "at most 2 pi"));
+}
+
 TEST(IdentificationResult, OlderResultsWithoutAVerdictStillRead) {
   const IdentificationResult r = ParseIdentificationResult(kResult, "old.json");
   EXPECT_FALSE(r.verdict.has_value());

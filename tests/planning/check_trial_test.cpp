@@ -62,6 +62,34 @@ TEST(CheckTrial, A0SigmaDriftIsNotFlagged) {
   EXPECT_LE(tally.drifted_flagged, 1);
 }
 
+// A camera whose stated pose covariance is optimistic, as the live demo's rendered camera's
+// is (its covariance holds the corner noise alone): the rows state a quarter of the rotation
+// noise and half the translation noise. The calibration's residuals show it; the check
+// allows for it (the result's camera_error_floor) and still flags a 3-sigma drift.
+CheckTrialOptions OptimisticCameraOptions() {
+  CheckTrialOptions options = FastTrialOptions();
+  options.stated_noise = NoiseOptions{options.noise.sigma_t / 2.0, options.noise.sigma_r / 4.0,
+                                      options.noise.sigma_q};
+  return options;
+}
+
+TEST(CheckTrial, AnOptimisticCameraCovarianceIsAllowedForAndADriftStillFlagged) {
+  const Tally tally = RunTrials(OptimisticCameraOptions());
+  EXPECT_EQ(tally.trials, kTrials);
+  EXPECT_LE(tally.unchanged_flagged, 1);
+  EXPECT_GE(tally.drifted_flagged, kTrials - 1);
+}
+
+// Judged by the stated covariance alone (what `h4cal check` did before the factor), the same
+// unchanged robots are flagged most of the time: the trials above can tell the difference.
+TEST(CheckTrial, TheStatedOptimisticCovarianceAloneCriesDrift) {
+  CheckTrialOptions options = OptimisticCameraOptions();
+  options.stated_camera_covariance = true;
+  options.drift_sigmas = 0.0;
+  const Tally tally = RunTrials(options);
+  EXPECT_GE(tally.unchanged_flagged, kTrials / 2);
+}
+
 TEST(CheckTrial, InvalidOptionsAreRefused) {
   CheckTrialOptions options = FastTrialOptions();
   options.check_plan.clear();
