@@ -50,8 +50,10 @@ struct CollectOptions {
   std::string controller_path;
 };
 
-/// The paper's control law (IV.D, the square): Model 12 inverse kinematics with the
-/// parameters of an a priori robot.yaml or of a Model 12 result.
+/// The paper's control law (IV.D, the square): inverse kinematics with the parameters of a
+/// robot.yaml (a priori, or h4cal export's) or of a result, Model 12 or Model 31: the robot
+/// is driven by whichever model the verdict found accurate. A Model 31 model takes the
+/// planned poses in its own base frame B31.
 CampaignOptions::ControlLaw LoadControlLaw(const std::string& path) {
   RobotSourceOptions source;
   const bool is_result = std::filesystem::path(path).extension() == ".json";
@@ -60,9 +62,8 @@ CampaignOptions::ControlLaw LoadControlLaw(const std::string& path) {
   std::shared_ptr<IdentifiedRobot> robot;
   if (is_result) {  // read once: checked, then rebuilt
     const IdentificationResult result = ReadIdentificationResult(path);
-    RequireModel12Result(result, path, "the control law (paper IV.D)");
     robot = std::make_shared<IdentifiedRobot>(RebuildFromResult(result));
-    description = "Model 12 result " + path;
+    description = ModelLabel(result.model) + " result " + path;
   } else {
     robot = std::make_shared<IdentifiedRobot>(LoadRobot(source, &description));
   }

@@ -5,6 +5,7 @@
 #include "common/formats/identification_result.h"
 #include "common/formats/robot_yaml.h"
 #include "host/kinematics/model12.h"
+#include "host/kinematics/model31.h"
 
 namespace h4::host::cli {
 
@@ -35,12 +36,11 @@ IdentifiedRobot LoadRobot(const RobotSourceOptions& options, std::string* descri
   }
   const RobotDescription robot = ReadRobotYaml(options.robot_path);
   if (robot.model31) {
-    // A Model 31 export (h4cal export) carries the a priori model12 block the format
-    // requires; using it would put every pose ~0.1 m off without a word.
-    throw std::invalid_argument(
-        options.robot_path +
-        ": has a model31 block, and --robot uses the model12 block only (in a Model 31 "
-        "export it is the a priori); give the Model 31 identification result with --result");
+    // A Model 31 export (h4cal export): its model31 block is the robot, and its X_BC the
+    // camera in B31; the model12 block beside it is only the a priori the format requires.
+    if (description) *description = "Model 31 of " + options.robot_path;
+    return IdentifiedRobot{std::make_unique<Model31>(*robot.model31, robot.assembly), robot.X_BC,
+                           robot.X_TE};
   }
   if (description) *description = "a priori Model 12 of " + options.robot_path;
   return IdentifiedRobot{std::make_unique<Model12>(robot.model12, robot.assembly), robot.X_BC,

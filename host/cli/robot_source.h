@@ -1,5 +1,6 @@
-// The robot a command works with: an identification result (--result) or an a priori
-// robot.yaml (--robot, its Model 12), as one model with its X_BC and X_TE.
+// The robot a command works with: an identification result (--result) or a robot.yaml
+// (--robot: its Model 12, or the model31 block of a Model 31 export), as one model with its
+// X_BC and X_TE.
 #pragma once
 
 #include <string>
@@ -19,8 +20,9 @@ struct RobotSourceOptions {
 /// Adds --result / --robot (exactly one required) to a subcommand.
 void AddRobotSourceOptions(CLI::App* command, RobotSourceOptions* options);
 
-/// Loads the robot; throws with the file's name on any problem, and refuses a --robot
-/// file with a model31 block (its model12 block is not the robot it describes).
+/// Loads the robot; throws with the file's name on any problem. A --robot file with a
+/// model31 block (h4cal export of a Model 31 result) is that Model 31, never its model12
+/// block (the a priori the format requires beside it).
 IdentifiedRobot LoadRobot(const RobotSourceOptions& options, std::string* description);
 
 }  // namespace h4::host::cli

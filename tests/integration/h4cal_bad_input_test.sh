@@ -148,13 +148,32 @@ printf 'pose_id,X,Y,Z,theta\n1,1e308,0,-0.45,0\n' > "$dir/huge.csv"
 expect_error "ik X 1e308" "huge.csv:2: field 'X'" \
   "$h4cal" ik --robot "$robot" --poses "$dir/huge.csv" --out "$dir/j.csv"
 
-# fk --robot on a Model 31 export would use its a priori model12 block: refused.
+# fk --robot on a Model 31 export uses its model31 block, never the a priori model12 block
+# beside it: the same poses as fk of the result itself (to the export's digits).
 "$h4cal" identify --robot "$robot" --data "$dir/sim/dataset.csv" --model 31 \
   --from "$dir/r12.json" --out "$dir/r31from12.json" > /dev/null 2>&1 || fail "identify 31 --from"
 "$h4cal" export --result "$dir/r31from12.json" --robot "$robot" --out "$dir/c31.yaml" \
   > /dev/null 2>&1 || fail "export 31"
-expect_error "fk --robot on a Model 31 export" "c31.yaml: has a model31 block" \
-  "$h4cal" fk --robot "$dir/c31.yaml" --joints "$dir/joints.csv" --out "$dir/fk31.csv"
+python3 - "$dir/sim/dataset.csv" "$dir/joints31.csv" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))[:5]
+with open(sys.argv[2], "w") as out:
+    out.write("pose_id,q1,q2,q3,q4\n")
+    for r in rows:
+        out.write(",".join([r["pose_id"], r["q1"], r["q2"], r["q3"], r["q4"]]) + "\n")
+PY
+"$h4cal" fk --robot "$dir/c31.yaml" --joints "$dir/joints31.csv" --out "$dir/fk31_export.csv" \
+  > /dev/null 2>&1 || fail "fk --robot on a Model 31 export"
+"$h4cal" fk --result "$dir/r31from12.json" --assembly-from "$robot" --joints "$dir/joints31.csv" \
+  --out "$dir/fk31_result.csv" > /dev/null 2>&1 || fail "fk --result of Model 31"
+python3 - "$dir/fk31_export.csv" "$dir/fk31_result.csv" <<'PY' || fail "fk of a Model 31 export differs from fk of its result"
+import csv, sys
+a, b = (list(csv.DictReader(open(p))) for p in sys.argv[1:3])
+assert len(a) == len(b) == 5, (len(a), len(b))
+for ra, rb in zip(a, b):
+    for key in ("X", "Y", "Z"):
+        assert abs(float(ra[key]) - float(rb[key])) < 1e-9, (key, ra, rb)
+PY
 
 # Authenticated messages: a key file group or others can read, or a short one, is refused
 # naming the file, before any dataset is made.
