@@ -21,6 +21,7 @@
 #include "common/formats/poses_csv.h"
 #include "common/formats/robot_yaml.h"
 #include "host/campaign/campaign.h"
+#include "host/campaign/control_law.h"
 #include "host/cli/commands.h"
 #include "host/cli/identification_print.h"
 #include "host/cli/progress.h"
@@ -28,6 +29,7 @@
 #include "host/cli/stop_signal.h"
 #include "host/cli/validation_inputs.h"
 #include "host/identification/identification.h"
+#include "host/kinematics/model31.h"
 #include "host/report/html_report.h"
 #include "messages/bus/lcm_bus.h"
 #include "messages/channels.h"
@@ -50,32 +52,40 @@ struct CollectOptions {
   std::string controller_path;
 };
 
+/// The a priori Model 12 a Model 31 control law maps the planned poses through: the
+/// export's own model12 block, else --robot's.
+std::optional<Model12Parameters> AprioriModel12For(const std::string& controller_path,
+                                                   const std::string& robot_path) {
+  if (std::filesystem::path(controller_path).extension() != ".json") {
+    return ReadRobotYaml(controller_path).model12;
+  }
+  if (robot_path.empty()) return std::nullopt;
+  return ReadRobotYaml(robot_path).model12;
+}
+
 /// The paper's control law (IV.D, the square): inverse kinematics with the parameters of a
 /// robot.yaml (a priori, or h4cal export's) or of a result, Model 12 or Model 31: the robot
-/// is driven by whichever model the verdict found accurate. A Model 31 model takes the
-/// planned poses in its own base frame B31.
-CampaignOptions::ControlLaw LoadControlLaw(const std::string& path) {
+/// is driven by whichever model the verdict found accurate. The planned poses are in B; a
+/// Model 31 takes them in its own base frame B31 (origin at P_1), through the a priori
+/// robot's nominal X_B31B (common/README.md, "Model 31").
+CampaignOptions::ControlLaw LoadControlLaw(const std::string& path, const std::string& robot_path) {
   RobotSourceOptions source;
   const bool is_result = std::filesystem::path(path).extension() == ".json";
   (is_result ? source.result_path : source.robot_path) = path;
+  source.assembly_robot_path = is_result ? robot_path : "";
   std::string description;
-  std::shared_ptr<IdentifiedRobot> robot;
-  if (is_result) {  // read once: checked, then rebuilt
-    const IdentificationResult result = ReadIdentificationResult(path);
-    robot = std::make_shared<IdentifiedRobot>(RebuildFromResult(result));
-    description = ModelLabel(result.model) + " result " + path;
-  } else {
-    robot = std::make_shared<IdentifiedRobot>(LoadRobot(source, &description));
+  IdentifiedRobot robot = LoadRobot(source, &description);
+  std::optional<RigidTransform> X_B31B;
+  if (robot.model->kind() == ModelKind::k31) {
+    const std::optional<Model12Parameters> apriori = AprioriModel12For(path, robot_path);
+    if (!apriori) {
+      throw std::invalid_argument(path + ": a Model 31 control law needs --robot robot.yaml, the "
+                                         "a priori robot whose frame B the planned poses are in");
+    }
+    X_B31B = NominalX_B31B(*apriori);
   }
   spdlog::info("targets sent as joints from the inverse kinematics of {}", description);
-  return [robot](const EePose& x_B, std::string* why) -> std::optional<JointVector> {
-    const IkResult ik = robot->model->InverseKinematics(x_B);
-    if (!ik.ok()) {
-      *why = "inverse kinematics out of reach";
-      return std::nullopt;
-    }
-    return ik.q;
-  };
+  return InverseKinematicsControlLaw(std::move(robot.model), X_B31B);
 }
 
 /// LCM's file:// provider, as fast as the log can be read (speed=0): the same messages in
@@ -218,7 +228,7 @@ void Run(CollectOptions options, const std::string& command_line) {
           "--controller drives the robot: not with --manual, --passive "
           "or --from-log");
     }
-    options.campaign.control_law = LoadControlLaw(options.controller_path);
+    options.campaign.control_law = LoadControlLaw(options.controller_path, options.robot_path);
   }
   options.campaign.mode = (options.passive || from_log) ? CampaignMode::kPassive
                           : options.manual              ? CampaignMode::kManual
@@ -295,9 +305,10 @@ void DeclareCollectCommand(CLI::App* command) {
       "Rebuild the dataset from an lcm-logger file (LCM's file:// provider)");
   h4::cli::AddInputFileOption(
       command, "--controller", &options->controller_path,
-      "Send joint targets from the Model 12 inverse kinematics of this robot.yaml or Model 12 "
-      "result.json (the paper's control law, e.g. for the square path; default: pose targets, "
-      "the robot's own controller)");
+      "Send joint targets from the inverse kinematics of this robot.yaml, h4cal export's "
+      "controller.yaml or result.json, Model 12 or 31 (the paper's control law, e.g. for the "
+      "square path; a Model 31 result needs --robot; default: pose targets, the robot's own "
+      "controller)");
   h4::cli::AddLcmUrlOption(command, &options->lcm_url);
   h4::cli::AddAuthKeyOption(command, &options->auth_key_path, "off");
   h4::cli::AddFramesOption(command, &options->campaign.frame_count,
@@ -329,7 +340,7 @@ void DeclareCollectCommand(CLI::App* command) {
                       "verdict, as identify prints it; exit 3 when neither is good), validate, "
                       "and write DIR/result12.json, DIR/result31.json, DIR/report.html (needs "
                       "--robot)");
-  h4::cli::AddRobotOption(command, &options->robot_path, "A priori robot.yaml (for --identify)");
+  h4::cli::AddRobotOption(command, &options->robot_path, "A priori robot.yaml (for --identify, and the assembly and frame B of a --controller result)");
   command->footer(
       "Exit codes: 0 every pose recorded, 3 some poses skipped (listed), 130 interrupted "
       "(run again to resume), 1 error.");

@@ -1,6 +1,7 @@
 // `h4cal square-plan`: the commanded points of the square-path validation (paper IV.D) as a
 // poses CSV (common/formats/README.md: pose_id,X,Y,Z,theta in B), for `h4cal collect --plan
-// --controller` to drive a real robot through with the Model 12 IK control law. The points are
+// --controller` to drive a real robot through with the IK control law of the model found accurate
+// (Model 12, or Model 31 with --robot: host/campaign/control_law.h). The points are
 // those of the simulated square (host/validation/square_path.h, SquarePoints), so `h4cal validate
 // --square-plan --square-measured` compares the measured path with the same square.
 #include <cmath>
@@ -88,7 +89,8 @@ void DeclareSquarePlanCommand(CLI::App* command) {
   command->footer(
       "Writes 4 * points-per-side rows in path order: corner (-,-) to (+,-), (+,-) to (+,+), "
       "(+,+) to (-,+), (-,+) to (-,-) in the X-Y plane of B. Measure it with h4cal collect "
-      "--plan OUT --controller result12.json|robot.yaml, then h4cal validate --square-plan OUT "
+      "--plan OUT --controller result.json|controller.yaml [--robot robot.yaml for a Model 31 "
+      "result], then h4cal validate --square-plan OUT "
       "--square-measured LABEL=DATASET.");
   h4::cli::RunWhenParsed(command, options, Run);
 }
