@@ -151,10 +151,10 @@ TEST(Report, EveryPoseInTheFitLeadsWithTheCrossValidatedRmsAndSaysInSample) {
   EXPECT_EQ(summary.find("held-out poses"), std::string::npos) << summary;
   const size_t headline = summary.find(
       "<tr><th>Model 12 board pose error, 10-fold cross-validated (held-out) RMS over 81 poses "
-      "(mm / deg)</th><td>1.8734 / 0.1203</td></tr>");
+      "(mm / deg)</th><td>1.8734 / 0.1203</td>");
   const size_t in_sample = summary.find(
       "<tr><th>Model 12 positioning error, in-sample (81 poses, none held out of the fit) "
-      "(RMS, mm / deg)</th><td>0.0000 / 0.0000</td></tr>");
+      "(RMS, mm / deg)</th><td>0.0000 / 0.0000</td>");
   ASSERT_NE(headline, std::string::npos) << summary;
   ASSERT_NE(in_sample, std::string::npos) << summary;
   EXPECT_LT(headline, in_sample) << "the held-out figure first";
