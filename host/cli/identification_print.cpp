@@ -43,22 +43,25 @@ void PrintHeadline(const IdentificationOutcome& outcome) {
   if (r.condition_number) std::printf("  condition number (scaled): %.3g\n", *r.condition_number);
   for (const FixedParameter& f : r.fixed)
     std::printf("  fixed %s: %s\n", f.name.c_str(), f.reason.c_str());
-  std::printf("  joint residual RMS (deg) calib: %.4f %.4f %.4f %.4f\n",
+  std::printf("  joint residual RMS (deg), in-sample (calibration poses): %.4f %.4f %.4f %.4f\n",
               DegreesFromRadians(r.calib_rms_rad[0]), DegreesFromRadians(r.calib_rms_rad[1]),
               DegreesFromRadians(r.calib_rms_rad[2]), DegreesFromRadians(r.calib_rms_rad[3]));
   if (!r.valid_poses.empty()) {
-    std::printf("  joint residual RMS (deg) valid: %.4f %.4f %.4f %.4f\n",
-                DegreesFromRadians(r.valid_rms_rad[0]), DegreesFromRadians(r.valid_rms_rad[1]),
-                DegreesFromRadians(r.valid_rms_rad[2]), DegreesFromRadians(r.valid_rms_rad[3]));
+    std::printf(
+        "  joint residual RMS (deg), held out (%zu poses not in the fit): %.4f %.4f %.4f %.4f\n",
+        r.valid_poses.size(), DegreesFromRadians(r.valid_rms_rad[0]),
+        DegreesFromRadians(r.valid_rms_rad[1]), DegreesFromRadians(r.valid_rms_rad[2]),
+        DegreesFromRadians(r.valid_rms_rad[3]));
   }
   if (r.valid_position_rms_m && r.valid_rotation_rms_rad) {
-    std::printf("  held-out board pose vs measured: %.4f mm, %.4f deg RMS\n",
-                1e3 * *r.valid_position_rms_m, DegreesFromRadians(*r.valid_rotation_rms_rad));
+    std::printf("  board pose error, held out (%zu poses not in the fit): %.4f mm, %.4f deg RMS\n",
+                r.valid_poses.size(), 1e3 * *r.valid_position_rms_m,
+                DegreesFromRadians(*r.valid_rotation_rms_rad));
   }
   if (r.cross_validation) {
     std::printf(
-        "  held-out (%d-fold cross-validation, %d poses): %.4f mm, %.4f deg RMS, "
-        "normalised chi-square / dof %.3g\n",
+        "  board pose error, %d-fold cross-validated (held-out) RMS over %d poses: %.4f mm, "
+        "%.4f deg, normalised chi-square / dof %.3g\n",
         r.cross_validation->folds, r.cross_validation->poses,
         1e3 * r.cross_validation->position_rms_m,
         DegreesFromRadians(r.cross_validation->rotation_rms_rad), r.cross_validation->reduced_chi2);

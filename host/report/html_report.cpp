@@ -164,12 +164,13 @@ Sections DetailSections(const ValidationInputs& in, const ValidationReport& repo
   sections.Add("parameters", "Parameters", ParameterTables(in));
   sections.Add("identifiability", "Identifiability", IdentifiabilityTable(in));
   sections.Add("table2", "Table 2: Model 12 parameters", Table2(in, report));
-  sections.Add("table3", "Table 3: joint residuals on the held-out poses", Table3(report));
+  const std::string poses = EvaluatedPosesLabel(report);
+  sections.Add("table3", "Table 3: joint residuals, " + poses, Table3(report));
   sections.Add("positioning", "Positioning error", PositioningTable(report));
   sections.Add("accuracy-map", "Accuracy map", AccuracyMapSection(report, f));
   sections.Add("camera", "Camera model", CameraSection(in, report, f));
   sections.Add("residuals", "Residuals per pose and joint",
-               Figure(f.residuals, "Held-out poses, before and after calibration."));
+               Figure(f.residuals, "Each pose, " + poses + ", before and after calibration."));
   sections.Add("histograms", "Residual histograms",
                Figure(f.histograms, "All joints, every pose of the dataset."));
   sections.Add("table4", "Table 4: straightness",

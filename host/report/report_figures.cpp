@@ -45,12 +45,11 @@ std::string ResidualsFigure(const ValidationReport& report) {
     }
     gp << Block(fmt::format("r{}", m), body.str());
   }
-  gp << fmt::format(
-      "set multiplot layout 1,{} title 'Joint residuals on the held-out poses "
-      "(measured - model)'\n",
-      n);
-  gp << "set grid\nset key top right font ',10'\nset xlabel 'held-out pose'\n"
-        "set ylabel 'residual (deg)'\n";
+  gp << fmt::format("set multiplot layout 1,{} title 'Joint residuals, {} (measured - model)'\n", n,
+                    GnuplotText(EvaluatedPosesLabel(report)));
+  gp << "set grid\nset key top right font ',10'\nset xlabel '"
+     << (report.in_sample ? "pose (every one in-sample)" : "held-out pose")
+     << "'\nset ylabel 'residual (deg)'\n";
   for (size_t m = 0; m < n; ++m) {
     gp << "set title " << Quoted(report.models[m].label) << "\n";
     gp << "plot ";

@@ -1,6 +1,7 @@
-// The report's figures, as inline SVG drawn by gnuplot: joint residuals per held-out pose
-// and joint (before / after), residual histograms, the straightness runs' distances to
-// their fitted lines, and the square path commanded vs reached (simulated) or measured.
+// The report's figures, as inline SVG drawn by gnuplot: joint residuals per evaluated pose
+// (held out, or in-sample) and joint (before / after), residual histograms, the
+// straightness runs' distances to their fitted lines, and the square path commanded vs
+// reached (simulated) or measured.
 #pragma once
 
 #include <string>

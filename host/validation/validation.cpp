@@ -1,6 +1,7 @@
 // Validate(): the paper's IV.D experiments from files already read (see validation.h).
 #include "host/validation/validation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <stdexcept>
@@ -22,10 +23,23 @@ void CheckModel(const std::optional<IdentificationResult>& result, ModelKind exp
   }
 }
 
+// Whether any of `rows` was a calibration pose of a given result: figures on it are then
+// in-sample, whatever the dataset's set column says.
+bool AnyInAFit(const ValidationInputs& in, const std::vector<DatasetRow>& rows) {
+  for (const auto* result : {&in.result12, &in.result31}) {
+    if (!*result) continue;
+    const std::vector<int64_t>& calib = (*result)->calib_poses;
+    for (const DatasetRow& row : rows) {
+      if (std::find(calib.begin(), calib.end(), row.pose_id) != calib.end()) return true;
+    }
+  }
+  return false;
+}
+
 // The held-out rows: those the result lists as "valid", else the dataset's set column, else
-// (a result cross-validated on every pose) every row, with a note saying so.
-std::vector<DatasetRow> HeldOutRows(const ValidationInputs& in, std::vector<int64_t>* ids,
-                                    std::vector<std::string>* notes) {
+// (a result cross-validated on every pose) every row. Rows that were in a fit make the
+// report in-sample, with a note saying so.
+std::vector<DatasetRow> HeldOutRows(const ValidationInputs& in, ValidationReport* report) {
   const IdentificationResult* result = in.result12 ? &*in.result12 : nullptr;
   if (!result && in.result31) result = &*in.result31;
   std::vector<DatasetRow> held;
@@ -57,14 +71,19 @@ std::vector<DatasetRow> HeldOutRows(const ValidationInputs& in, std::vector<int6
   }
   if (held.empty()) {
     // Every pose was in the fit and k-fold cross-validation gave the held-out figures
-    // (the result's cross_validation, in the verdict section): the tables below are then
-    // over every pose, in-sample.
+    // (each model's cross_validation): the tables below are then over every pose, in-sample.
     held = in.rows;
-    notes->push_back(
-        "every pose was in the fit (held-out figures by k-fold cross-validation, in the verdict "
-        "section): Table 3 and the positioning error are over every pose, in-sample");
+    report->in_sample = true;
+    report->notes.push_back(
+        "every pose was in the fit: Table 3 and the positioning error are over every pose, "
+        "in-sample; the held-out figures are the k-fold cross-validated ones (summary, verdict)");
+  } else if (AnyInAFit(in, held)) {
+    report->in_sample = true;
+    report->notes.push_back(
+        "the poses marked for validation were in a result's fit (its calib_poses): Table 3 and "
+        "the positioning error on them are in-sample");
   }
-  for (const DatasetRow& row : held) ids->push_back(row.pose_id);
+  for (const DatasetRow& row : held) report->heldout_ids.push_back(row.pose_id);
   return held;
 }
 
@@ -102,6 +121,16 @@ std::vector<MeasuredSquareRun> MeasuredSquares(const ValidationInputs& in) {
 }
 
 }  // namespace
+
+std::string EvaluatedPosesLabel(const ValidationReport& report) {
+  const size_t n = report.heldout_ids.size();
+  return report.in_sample ? fmt::format("in-sample ({} poses, none held out of the fit)", n)
+                          : fmt::format("held out ({} poses not in the fit)", n);
+}
+
+std::string CrossValidatedLabel(const CrossValidationFigures& cv) {
+  return fmt::format("{}-fold cross-validated (held-out) RMS over {} poses", cv.folds, cv.poses);
+}
 
 bool IsPaperScenario(const RobotDescription& apriori, const SimulationTruth& truth) {
   return !truth.robot.model31 && SameModel12(apriori.model12, kPaperAprioriModel12) &&
@@ -233,6 +262,7 @@ ModelValidation ValidateCandidate(const ValidationInputs& in, const Candidate& c
     v.square = RunSquare(*c.model, {true_model, in.truth->robot.X_ModelB()}, in.square);
   }
   if (c.result != nullptr) {
+    v.cross_validation = c.result->cross_validation;
     v.accuracy_map = AccuracyMapOfResult(*c.result, in.apriori.assembly);
     if (c.result->parameter_covariance_camera_exact) {
       IdentificationResult camera_exact = *c.result;
@@ -275,7 +305,7 @@ ValidationReport Validate(const ValidationInputs& in) {
   // The measured squares first: their input errors need no kinematics to be found.
   report.measured_squares = MeasuredSquares(in);
   NoteMeasuredSquareGaps(report.measured_squares, &report.notes);
-  const std::vector<DatasetRow> held = HeldOutRows(in, &report.heldout_ids, &report.notes);
+  const std::vector<DatasetRow> held = HeldOutRows(in, &report);
   const std::vector<Candidate> candidates = CandidatesToValidate(in, &report.notes);
   const std::unique_ptr<KinematicModel> true_model = TrueModel(in, &report);
   if (in.straightness.empty()) {

@@ -58,9 +58,12 @@ struct ValidationInputs {
 /// One row of the Table 3 / Table 4 analogues: a priori, Model 12 or Model 31.
 struct ModelValidation {
   std::string label;                          ///< "a priori", "Model 12", "Model 31"
-  JointResidualStats heldout;                 ///< Table 3 on the held-out poses
+  JointResidualStats heldout;                 ///< Table 3 on the evaluated poses (see in_sample)
   JointResidualStats all;                     ///< every dataset row (histograms)
-  PositioningError positioning;               ///< FK of the readings vs measured pose, held out
+  PositioningError positioning;               ///< FK of the readings vs measured pose, evaluated
+  /// The result's k-fold cross-validated (held-out) board pose error: with every pose in the
+  /// fit, the only held-out accuracy there is. Empty for the a priori and older results.
+  std::optional<CrossValidationFigures> cross_validation;
   std::vector<StraightnessRun> straightness;  ///< one per ruler run
   std::optional<SquareRun> square;            ///< Model 12 controllers with a truth only
   /// Identified models whose result has a parameter covariance (accuracy_map.h).
@@ -73,7 +76,12 @@ struct ModelValidation {
 
 struct ValidationReport {
   std::vector<ModelValidation> models;  ///< a priori first, then 12, then 31 when given
-  std::vector<int64_t> heldout_ids;     ///< pose ids used for Table 3
+  /// Pose ids Table 3 and the positioning error are computed on: the held-out poses, or
+  /// every pose when the fit held none out (then `in_sample`).
+  std::vector<int64_t> heldout_ids;
+  /// The poses of heldout_ids were in a result's fit: their figures are in-sample, not a
+  /// validation; the held-out accuracy is then each model's cross_validation.
+  bool in_sample = false;
   PositioningError apriori_all;         ///< a priori positioning error over every row
   PriorAnalysis prior;                  ///< 4-DoF check (rotation axis spread)
   bool has_truth = false;               ///< a truth file was given (simulation)
@@ -96,6 +104,13 @@ struct ValidationReport {
 /// a side of fewer than 2 measured points, corners without their board or camera, or
 /// corners that belong to no pose of the dataset.
 ValidationReport Validate(const ValidationInputs& inputs);
+
+/// The poses Table 3 and the positioning error are on, as every output labels them:
+/// "held out (10 poses not in the fit)" or "in-sample (81 poses, none held out of the fit)".
+std::string EvaluatedPosesLabel(const ValidationReport& report);
+
+/// "10-fold cross-validated (held-out) RMS over 81 poses".
+std::string CrossValidatedLabel(const CrossValidationFigures& cv);
 
 /// True when `apriori` and `truth` are the paper's Table 2 rows (a priori, "Identified").
 bool IsPaperScenario(const RobotDescription& apriori, const SimulationTruth& truth);

@@ -1,6 +1,8 @@
 // Tests of the HTML report (host/report): every section and figure is present, the page is
 // self-contained (no script, nothing fetched), the paper's numbers stand beside ours on the
 // paper scenario, text is escaped, and measured square runs bring their rows and figure.
+#include <algorithm>
+#include <cctype>
 #include <regex>
 #include <string>
 
@@ -137,6 +139,52 @@ TEST(Report, MeasuredSquareRunsWithoutTruthStillFillTheSquareSection) {
   EXPECT_EQ(html.substr(square, end - square).find("Not computed"), std::string::npos);
   EXPECT_NE(html.find(std::string("<section id=\"") + kMeasuredSquareSection + "\">"),
             std::string::npos);
+}
+
+// Every pose in the fit (identify's default): no pose is held out, so the summary must not
+// say so; its headline is the cross-validated RMS, and the figures on the dataset's poses
+// are labelled in-sample.
+TEST(Report, EveryPoseInTheFitLeadsWithTheCrossValidatedRmsAndSaysInSample) {
+  const ValidationInputs in = EveryPoseInTheFit();
+  const std::string summary = SummaryTable(in, Validate(in));
+  EXPECT_EQ(summary.find("held out for validation"), std::string::npos) << summary;
+  EXPECT_EQ(summary.find("held-out poses"), std::string::npos) << summary;
+  const size_t headline = summary.find(
+      "<tr><th>Model 12 board pose error, 10-fold cross-validated (held-out) RMS over 81 poses "
+      "(mm / deg)</th><td>1.8734 / 0.1203</td>");
+  const size_t in_sample = summary.find(
+      "<tr><th>Model 12 positioning error, in-sample (81 poses, none held out of the fit) "
+      "(RMS, mm / deg)</th><td>0.0000 / 0.0000</td>");
+  ASSERT_NE(headline, std::string::npos) << summary;
+  ASSERT_NE(in_sample, std::string::npos) << summary;
+  EXPECT_LT(headline, in_sample) << "the held-out figure first";
+}
+
+// A real held-out set says how many poses the fit did not see, in RMS with 4 decimals.
+TEST(Report, HeldOutPosesAreLabelledNotInTheFit) {
+  const ValidationInputs in = PaperValidationInputs();
+  const std::string summary = SummaryTable(in, Validate(in));
+  EXPECT_NE(summary.find("<tr><th>Model 12 positioning error, held out (10 poses not in the fit) "
+                         "(RMS, mm / deg)</th><td>0.0000 / 0.0000</td>"),
+            std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("<tr><th>a priori positioning error, every pose (RMS, mm / deg)</th>"),
+            std::string::npos)
+      << summary;
+  EXPECT_EQ(summary.find("in-sample"), std::string::npos) << summary;
+}
+
+// No part of the page (titles, tables, plots, captions) calls in-sample poses held out.
+TEST(Report, EveryPoseInTheFitIsInSampleOnTheWholePage) {
+  if (!GnuplotAvailable()) GTEST_SKIP() << "gnuplot missing: run scripts/setup";
+  const ValidationInputs in = EveryPoseInTheFit();
+  std::string html = FormatHtmlReport(in, Validate(in), "test");
+  std::transform(html.begin(), html.end(), html.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  EXPECT_EQ(Count(html, "held-out pose"), 0);
+  EXPECT_EQ(Count(html, "held out for validation"), 0);
+  // Summary, Table 3 (title, contents, text), positioning, residual plot (title, caption).
+  EXPECT_GE(Count(html, "in-sample (81 poses, none held out of the fit)"), 7);
 }
 
 // With corners, a refined camera and the camera-exact covariance, the camera section has its

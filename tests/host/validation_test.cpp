@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "host/cli/validation_inputs.h"
 #include "host/kinematics/model12.h"
 #include "host/simulation/paper_scenario.h"
 #include "host/validation/joint_residuals.h"
@@ -140,6 +141,68 @@ TEST(Validate, PerfectResultRemovesTheErrorsOnThePaperScenario) {
   EXPECT_LT(report.models[1].square->rms, 1e-9);
   EXPECT_TRUE(report.prior.ok) << report.prior.message;
   EXPECT_LT(report.prior.axis_spread_deg, 1e-3);
+}
+
+// Every pose in the fit: Table 3 and the positioning error are over every pose, marked
+// in-sample, and each model carries its result's cross-validated (held-out) figures.
+TEST(Validate, EveryPoseInTheFitIsInSampleWithTheCrossValidatedFigures) {
+  const ValidationReport report = Validate(EveryPoseInTheFit());
+  EXPECT_TRUE(report.in_sample);
+  EXPECT_EQ(report.heldout_ids.size(), 81u);
+  EXPECT_EQ(EvaluatedPosesLabel(report), "in-sample (81 poses, none held out of the fit)");
+  ASSERT_TRUE(report.models[1].cross_validation.has_value());
+  EXPECT_DOUBLE_EQ(report.models[1].cross_validation->position_rms_m, 1.8734e-3);
+  EXPECT_FALSE(report.models[0].cross_validation.has_value()) << "the a priori was not fitted";
+}
+
+// Poses a dataset marks valid but the result fitted (its calib_poses) are in-sample too.
+TEST(Validate, ValidRowsTheResultFittedAreInSample) {
+  ValidationInputs in = PaperValidationInputs();
+  in.result12->valid_poses.clear();
+  in.result12->cross_validation = CrossValidationFigures{10, 81, 1e-3, 1e-4, 1.0};
+  for (const DatasetRow& row : in.rows) in.result12->calib_poses.push_back(row.pose_id);
+  const ValidationReport report = Validate(in);
+  EXPECT_EQ(report.heldout_ids.size(), 10u);
+  EXPECT_TRUE(report.in_sample);
+  EXPECT_EQ(EvaluatedPosesLabel(report), "in-sample (10 poses, none held out of the fit)");
+}
+
+TEST(Validate, HeldOutPosesAreNotInSample) {
+  const ValidationReport report = Validate(PaperValidationInputs());
+  EXPECT_FALSE(report.in_sample);
+  EXPECT_EQ(EvaluatedPosesLabel(report), "held out (10 poses not in the fit)");
+}
+
+// validate's console with every pose in the fit: the Table 3 and positioning figures are
+// in-sample and say so; the held-out accuracy is the cross-validated RMS; no "held out".
+TEST(ValidateText, EveryPoseInTheFitIsInSampleBesideTheCrossValidatedRms) {
+  const std::string text = cli::FormatValidationText(Validate(EveryPoseInTheFit()));
+  EXPECT_NE(text.find("Table 3: joint residuals, in-sample (81 poses, none held out of the "
+                      "fit) (deg, measured - model)"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("  Model 12   in-sample (81 poses, none held out of the fit): 0.0000 "
+                      "mm, 0.0000 deg\n"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("  Model 12   10-fold cross-validated (held-out) RMS over 81 poses: "
+                      "1.8734 mm, 0.1203 deg\n"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("held out:"), std::string::npos) << text;
+  EXPECT_EQ(text.find("held-out poses"), std::string::npos) << text;
+  EXPECT_EQ(text.find("(mean)"), std::string::npos) << "accuracy in RMS: " << text;
+}
+
+TEST(ValidateText, HeldOutPosesAreCountedAsNotInTheFit) {
+  const std::string text = cli::FormatValidationText(Validate(PaperValidationInputs()));
+  EXPECT_NE(text.find("Table 3: joint residuals, held out (10 poses not in the fit)"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("  Model 12   held out (10 poses not in the fit): 0.0000 mm, 0.0000 deg\n"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("in-sample"), std::string::npos) << text;
 }
 
 TEST(Validate, RejectsAResultOfTheOtherModel) {

@@ -33,7 +33,7 @@ contents_line=$(grep -n '<nav id="contents">' "$html" | cut -d: -f1)
 summary_line=$(grep -n '<section id="summary">' "$html" | cut -d: -f1)
 [ -n "$contents_line" ] && [ "$verdict_line" -lt "$contents_line" ] &&
   [ "$contents_line" -lt "$summary_line" ] || fail "report order: verdict, contents, details"
-grep -q "a priori positioning error, every pose (mean, mm / deg)" "$html" ||
+grep -q "a priori positioning error, every pose (RMS, mm / deg)" "$html" ||
   fail "the summary's angles are not in deg"
 grep -q "<tr><th>alpha1</th><td>deg</td>" "$html" && grep -q "<tr><th>h</th><td>mm</td>" "$html" ||
   fail "the parameter table is not in mm and deg"
@@ -64,6 +64,32 @@ grep -q "Table 3" "$dir/validate.txt" || fail "validate printed no Table 3"
 grep -q "Accuracy map, Model 31: predicted 1-sigma position error median" "$dir/validate.txt" ||
   fail "validate printed no accuracy map line"
 [ -s "$dir/validate/report.html" ] || fail "validate --report wrote no report.html"
+
+# A real held-out set is labelled as one, in RMS.
+grep -q "Model 31 positioning error, held out (10 poses not in the fit) (RMS, mm / deg)" "$html" ||
+  fail "the summary does not say the 10 held-out poses were not in the fit"
+
+# Every pose in the fit (identify's default): identify, validate and the report call the
+# figures on the dataset's poses in-sample, never held out, beside the cross-validated RMS.
+all=$dir/all
+"$h4cal" simulate --truth 12 --validation 0 --out-dir "$all" > /dev/null 2>&1 ||
+  fail "simulate --validation 0"
+"$h4cal" identify --robot "$all/robot.yaml" --data "$all/dataset.csv" --model 12 \
+  --out "$all/result12.json" > "$all/identify.txt" 2>&1 || fail "identify, every pose in the fit"
+grep -q "board pose error, 10-fold cross-validated (held-out) RMS over 81 poses" \
+  "$all/identify.txt" || fail "identify: no cross-validated RMS: $(cat "$all/identify.txt")"
+"$h4cal" validate --sim-dir "$all" --report "$all/report" > "$all/validate.txt" 2>&1 ||
+  fail "validate, every pose in the fit: $(cat "$all/validate.txt")"
+grep -q "Table 3: joint residuals, in-sample (81 poses, none held out of the fit)" "$all/validate.txt" ||
+  fail "validate: Table 3 not labelled in-sample: $(cat "$all/validate.txt")"
+grep -q "Model 12   10-fold cross-validated (held-out) RMS over 81 poses: " "$all/validate.txt" ||
+  fail "validate: no cross-validated RMS"
+! grep -Eq "held out:|held-out poses|\(mean\)" "$all/validate.txt" ||
+  fail "validate calls in-sample figures held out, or a mean an accuracy"
+! grep -Eiq "held out for validation|held-out pose" "$all/report/report.html" ||
+  fail "the report calls in-sample poses held out"
+grep -q "<th>Model 12 board pose error, 10-fold cross-validated (held-out) RMS over 81 poses" \
+  "$all/report/report.html" || fail "the report's summary has no cross-validated headline"
 
 # Controller export: Model 12 in robot.yaml keys; Model 31 its own block.
 "$h4cal" export --result "$sim/result12.json" --out "$dir/controller12.yaml" 2>/dev/null ||
