@@ -28,6 +28,7 @@ th, td { border: 1px solid #ccc; padding: 0.25em 0.6em; text-align: right; }
 th:first-child { text-align: left; } tr.paper { background: #fff6dd; }
 tr.fixed { color: #777; } tr.measured { background: #eef6ff; } figure { margin: 1em 0; } figure svg { max-width: 100%; height: auto; }
 code { background: #f3f3f3; padding: 0 0.2em; } .note { color: #a33; }
+.not-applicable { color: #555; font-style: italic; }
 .verdict-good { background: #e6f6e6; padding: 0.5em; } .verdict-bad { background: #fde8e8; padding: 0.5em; }
 )";
 
@@ -56,8 +57,10 @@ std::string Figure(const std::string& svg, const std::string& caption) {
   return "<figure>\n" + svg + "\n<figcaption>" + caption + "</figcaption>\n</figure>\n";
 }
 
+// A section that does not apply to these inputs: said in neutral words (nothing is wrong),
+// with what would fill it.
 std::string NotComputed(const std::string& why) {
-  return "<p class=\"note\">Not computed: " + MarkupEscape(why) + "</p>\n";
+  return "<p class=\"not-applicable\">Not computed: " + MarkupEscape(why) + "</p>\n";
 }
 
 }  // namespace
@@ -174,18 +177,20 @@ Sections DetailSections(const ValidationInputs& in, const ValidationReport& repo
   sections.Add("histograms", "Residual histograms",
                Figure(f.histograms, "All joints, every pose of the dataset."));
   sections.Add("table4", "Table 4: straightness",
-               f.has_straightness ? Table4(report) : NotComputed("no ruler run given"));
+               f.has_straightness ? Table4(report) : NotComputed("optional: no ruler run given (the paper's straightness test, "
+                                             "validate --straightness)"));
   sections.Add("straightness", "Straightness runs",
                f.has_straightness ? Figure(f.straightness, "Distance to the fitted line.")
-                                  : NotComputed("no ruler run given"));
+                                  : NotComputed("optional: no ruler run given"));
   sections.Add("square", "Square path",
                f.has_square || f.has_measured
                    ? SquareTable(in, report)
-                   : NotComputed("needs the true robot (simulation truth file) or square "
-                                 "runs measured on the robot (--square-measured)"));
+                   : NotComputed("optional: needs square runs measured on the robot "
+                                 "(--square-measured), or the true robot of a simulation"));
   sections.Add("square-plot", "Square path plot",
                f.has_square ? Figure(f.square, "Commanded and reached paths in the X-Y plane.")
-                            : NotComputed("needs the true robot (simulation truth file)"));
+                            : NotComputed("drawn for a simulation only: needs the true "
+                                          "robot (its truth file)"));
   if (f.has_measured) {
     sections.Add(kMeasuredSquareSection, "Square path measured by the camera",
                  Figure(f.measured_square,

@@ -11,12 +11,60 @@
 namespace h4::host {
 namespace {
 
+// A verdict figure as a technician reads it: its name in words, its value in mm, deg, % or
+// a plain number. The result keeps the SI key (common/formats/README.md), shown on hover.
+struct ReadableFigure {
+  std::string label;
+  std::string value;
+};
+
+ReadableFigure Readable(const std::string& key, double value) {
+  const auto count = [&](const char* label) { return ReadableFigure{label, fmt::format("{:.0f}", value)}; };
+  if (key == "poses_given") return count("poses in the dataset");
+  if (key == "poses_in_fit") return count("poses in the fit");
+  if (key == "poses_rejected") return count("poses rejected as outliers");
+  if (key == "poses_out_of_reach") return count("poses out of the model's reach");
+  if (key == "free_parameters") return count("parameters identified");
+  if (key == "dof") return count("degrees of freedom of the fit");
+  if (key == "chi2") return {"chi-square of the fit", fmt::format("{:.1f}", value)};
+  if (key == "reduced_chi2") {
+    return {"chi-square / degrees of freedom (1: the misfit the camera's noise predicts)",
+            fmt::format("{:.3g}", value)};
+  }
+  if (key == "chi2_upper_tail_probability") {
+    return {"probability of so large a chi-square from the camera's noise alone",
+            value < 1e-6 ? std::string("below 1e-6") : fmt::format("{:.3g}", value)};
+  }
+  if (key == "condition_number") {
+    return {"condition number of the scaled identification Jacobian", fmt::format("{:.3g}", value)};
+  }
+  if (key == "position_misfit_m") {
+    return {"board position misfit, RMS over the poses in the fit (mm)", fmt::format("{:.4f}", value * 1e3)};
+  }
+  if (key == "unexplained_position_misfit_m") {
+    return {"misfit beyond what the camera's noise explains (mm)", fmt::format("{:.4f}", value * 1e3)};
+  }
+  if (key == "largest_relative_length_change") {
+    return {"largest length change from the a priori robot (%)", fmt::format("{:.2f}", value * 100.0)};
+  }
+  if (key == "largest_angle_change_rad") {
+    return {"largest angle change from the a priori robot (deg)",
+            fmt::format("{:.3f}", DegreesFromRadians(value))};
+  }
+  if (key == "dataset_sigmas") {
+    return {"pose covariance from the dataset's sigma columns", value != 0.0 ? "yes" : "no (defaults)"};
+  }
+  return {key, fmt::format("{:.4g}", value)};  // a figure this report does not know yet
+}
+
 std::string FiguresTable(const ResultVerdict& verdict) {
   std::ostringstream t;
-  t << "<table class=\"verdict-figures\">\n<tr><th>figure</th><th>value</th></tr>\n";
-  for (const auto& [name, value] : verdict.figures) {
-    t << "<tr><th>" << MarkupEscape(name) << "</th><td>" << fmt::format("{:.4g}", value)
-      << "</td></tr>\n";
+  t << "<table class=\"verdict-figures\">\n<tr><th>what the verdict was decided from</th>"
+       "<th>value</th></tr>\n";
+  for (const auto& [key, value] : verdict.figures) {
+    const ReadableFigure figure = Readable(key, value);
+    t << "<tr><th title=\"" << MarkupEscape(key) << "\">" << MarkupEscape(figure.label)
+      << "</th><td>" << MarkupEscape(figure.value) << "</td></tr>\n";
   }
   return t.str() + "</table>\n";
 }

@@ -100,6 +100,10 @@ TEST(Report, WithoutTruthOrRulerRunsSaysWhatIsMissing) {
   EXPECT_EQ(Count(html, "<svg"), 3);
   EXPECT_EQ(NotComputedOutsideCamera(html), 4);
   EXPECT_EQ(html.find("(paper)"), std::string::npos);
+  // Sections that do not apply say so in neutral words, not as an error (red notes).
+  EXPECT_EQ(Count(html, "<p class=\"not-applicable\">Not computed: "), 5);
+  EXPECT_EQ(Count(html, "<p class=\"note\">Not computed"), 0);
+  EXPECT_NE(html.find("optional: no ruler run given"), std::string::npos);
 }
 
 TEST(Report, MeasuredSquareRunsAddTheirRowsAndFigure) {

@@ -28,12 +28,30 @@ TEST(ReportVerdict, ListsVerdictFiguresRejectedPosesAndProvenanceEscaped) {
   const std::string html = VerdictSection(WithVerdicts());
   EXPECT_NE(html.find("model_cannot_describe"), std::string::npos);
   EXPECT_NE(html.find("Use Model 31 &lt;now&gt;."), std::string::npos);
-  EXPECT_NE(html.find("reduced_chi2"), std::string::npos);
+  EXPECT_NE(html.find("title=\"reduced_chi2\""), std::string::npos);
   EXPECT_NE(html.find("<tr><th>17</th><td>912</td><td>held-out chi-square 912</td></tr>"),
             std::string::npos)
       << html;
   EXPECT_NE(html.find("h4cal 0.1.0 on 2026-11-23T20:01:02Z"), std::string::npos);
   EXPECT_NE(html.find("10-fold cross-validation"), std::string::npos);
+}
+
+// The figures in words and in mm, deg or %, not the result's SI keys (kept on hover).
+TEST(ReportVerdict, FiguresReadInWordsAndMillimetresNotJsonKeys) {
+  ValidationInputs in = WithVerdicts();
+  in.result12->verdict->figures = {{"position_misfit_m", 1.48e-5},
+                                   {"chi2_upper_tail_probability", 1.135e-171},
+                                   {"largest_angle_change_rad", 0.0123},
+                                   {"a_future_figure", 2.5}};
+  const std::string html = VerdictSection(in);
+  EXPECT_NE(html.find("board position misfit, RMS over the poses in the fit (mm)</th><td>0.0148<"),
+            std::string::npos)
+      << html;
+  EXPECT_NE(html.find("from the camera's noise alone</th><td>below 1e-6<"), std::string::npos);
+  EXPECT_NE(html.find("(deg)</th><td>0.705<"), std::string::npos) << html;
+  EXPECT_EQ(html.find(">position_misfit_m<"), std::string::npos) << html;
+  EXPECT_EQ(html.find("1.135e-171"), std::string::npos);
+  EXPECT_NE(html.find(">a_future_figure</th><td>2.5<"), std::string::npos);  // unknown: as is
 }
 
 TEST(ReportVerdict, AResultWithoutAVerdictSaysSo) {
