@@ -1,7 +1,8 @@
 // The robot side of a calibration campaign on LCM, for any controller behind the
 // Controller interface (docs/robot-bridge.md): takes H4_ROBOT_TARGET, calls the controller,
-// and publishes H4_JOINT_STATE at a steady rate with the pose id of the last target and
-// the settled flag. Uses only LCM and the generated h4msgs types, as an integrator's
+// answers each target on H4_TARGET_STATUS (accepted, or refused with the controller's
+// reason), and publishes H4_JOINT_STATE at a steady rate with the pose id of the last target
+// and the settled flag. Uses only LCM and the generated h4msgs types, as an integrator's
 // bridge would.
 #pragma once
 
@@ -44,6 +45,8 @@ class RobotBridge {
   static void OnTargetMessage(const lcm::ReceiveBuffer*, const std::string&,
                               const h4msgs::robot_target_t* target, RobotBridge* bridge);
   void OnTarget(const h4msgs::robot_target_t* target);
+  /// Publishes the answer to the target of `pose_id` on H4_TARGET_STATUS.
+  void Answer(int64_t pose_id, int8_t status, const std::string& why);
 
   lcm::LCM& lcm_;
   Controller& controller_;

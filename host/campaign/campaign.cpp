@@ -15,6 +15,7 @@
 #include "common/text/enum_names.h"
 #include "common/timing/clock.h"
 #include "common/units.h"
+#include "host/campaign/target_status.h"
 #include "messages/channels.h"
 
 namespace h4::host {
@@ -31,9 +32,15 @@ Campaign::Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal,
                    CampaignOptions options)
     : bus_(bus), plan_(std::move(plan)), journal_(journal), options_(options) {
   for (size_t i = 0; i < plan_.size(); ++i) {
-    if (journal_.Contains(plan_[i].pose_id)) continue;
+    const int64_t id = plan_[i].pose_id;
+    if (journal_.Contains(id)) continue;
+    const auto unreachable = options_.unreachable.find(id);
+    if (options_.mode == CampaignMode::kActive && unreachable != options_.unreachable.end()) {
+      skipped_.push_back({id, "not sent: " + unreachable->second});
+      continue;
+    }
     pending_.push_back(i);
-    history_.Track(plan_[i].pose_id);
+    history_.Track(id);
   }
   for (const DatasetRow& row : journal_.rows()) {
     if (!IsPlanned(row.pose_id)) {
@@ -43,13 +50,17 @@ Campaign::Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal,
   }
   bus_.Subscribe<h4msgs::joint_state_t>(
       channels::kJointState, [this](const h4msgs::joint_state_t& m) { OnJointState(m); });
+  bus_.Subscribe<h4msgs::target_status_t>(
+      channels::kTargetStatus, [this](const h4msgs::target_status_t& m) { OnTargetStatus(m); });
   bus_.Subscribe<h4msgs::board_pose_t>(channels::kBoardPose,
                                        [this](const h4msgs::board_pose_t& m) { OnBoardPose(m); });
   bus_.Subscribe<h4msgs::camera_status_t>(
       channels::kCameraStatus, [this](const h4msgs::camera_status_t& m) { OnCameraStatus(m); });
-  spdlog::info("campaign ({} mode): {} poses planned, {} already in {}, {} to measure",
-               ModeName(options_.mode), plan_.size(), plan_.size() - pending_.size(),
-               journal_.path(), pending_.size());
+  spdlog::info("campaign ({} mode): {} poses planned, {} already in {}, {}{} to measure",
+               ModeName(options_.mode), plan_.size(),
+               plan_.size() - pending_.size() - skipped_.size(), journal_.path(),
+               skipped_.empty() ? "" : fmt::format("{} out of reach (not sent), ", skipped_.size()),
+               pending_.size());
 }
 
 Campaign::Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal,
@@ -116,6 +127,17 @@ void Campaign::OnJointState(const h4msgs::joint_state_t& msg) {
     if (!reading.settled) moved_since_capture_ = true;
     if (reading.settled && moved_since_capture_) settled_seen_ = true;
   }
+}
+
+// Only while the robot is awaited at the current pose: a refusal of another pose id is an
+// answer to an earlier target (or another campaign's), and a robot that answers nothing
+// keeps today's behaviour, the settle timeout.
+void Campaign::OnTargetStatus(const h4msgs::target_status_t& msg) {
+  if (options_.mode != CampaignMode::kActive || finished() || phase_ != Phase::kSettling ||
+      msg.pose_id != current().pose_id) {
+    return;
+  }
+  if (std::optional<std::string> refusal = DescribeRefusal(msg)) refusal_ = std::move(refusal);
 }
 
 bool Campaign::Record(const h4msgs::board_pose_t& msg, std::optional<int64_t> joint_pose_id,
@@ -293,6 +315,7 @@ void Campaign::NextPose() {
   settled_seen_ = false;
   moved_since_capture_ = false;
   failed_attempt_.reset();
+  refusal_.reset();
   recorded_current_ = false;
 }
 
@@ -332,6 +355,13 @@ void Campaign::RetryUnsettled(Clock::time_point now) {
       "dataset {} keeps its {} row(s): run the same command again to resume",
       unsettled_in_a_row_.size(), fmt::join(unsettled_in_a_row_, ", "), options_.retries + 1,
       options_.settle_timeout_s, journal_.path(), journal_.rows().size()));
+}
+
+void Campaign::SkipRefused() {
+  const int64_t pose_id = current().pose_id;
+  spdlog::warn("pose {} refused by the robot: {}; skipped", pose_id, *refusal_);
+  skipped_.push_back({pose_id, "refused by the robot: " + *refusal_});
+  NextPose();
 }
 
 std::string Campaign::ClockSkewNote() const {
@@ -469,9 +499,13 @@ void Campaign::SendTarget(Clock::time_point now) {
   phase_start_ = now;
 }
 
-// Until the robot reports settled at the target; the target is sent again while the
-// robot has not taken it, and the pose retried when it never settles.
+// Until the robot reports settled at the target, or refuses it; the target is sent again
+// while the robot has not taken it, and the pose retried when it never settles.
 void Campaign::WaitForSettled(Clock::time_point now) {
+  if (refusal_) {
+    SkipRefused();
+    return;
+  }
   if (settled_seen_) {
     unsettled_in_a_row_.clear();
     phase_ = Phase::kSendRequest;

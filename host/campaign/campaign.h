@@ -3,7 +3,8 @@
 // request an averaged camera measurement, pair it with the joint reading of the same moment
 // and append the row to the dataset durably. Retries measurements flagged moved / partial /
 // no board, unpaired ones and timeouts (active mode: from the target, sent again, and the
-// robot settled again), then skips and lists the pose. Three modes:
+// robot settled again), then skips and lists the pose. A target the robot refuses
+// (H4_TARGET_STATUS) is skipped at once with the robot's reason. Three modes:
 //   active  - drives the robot (H4_ROBOT_TARGET) and the camera (H4_CAPTURE_REQUEST);
 //   manual  - the operator moves the robot; a pose is taken when the robot has moved and
 //             settled again; only capture requests are sent;
@@ -25,6 +26,7 @@
 #include <h4msgs/board_pose_t.hpp>
 #include <h4msgs/camera_status_t.hpp>
 #include <h4msgs/joint_state_t.hpp>
+#include <h4msgs/target_status_t.hpp>
 
 #include "host/campaign/clock_offset.h"
 #include "host/campaign/corners_journal.h"
@@ -61,6 +63,9 @@ struct CampaignOptions {
   /// unreachable: the pose is skipped with `why`.
   using ControlLaw = std::function<std::optional<JointVector>(const EePose& x_B, std::string* why)>;
   ControlLaw control_law;
+  /// Active mode: poses known before the robot moves to be out of its reach (pose id ->
+  /// why; `collect --robot`'s check of the plan): skipped with the reason, no target sent.
+  std::map<int64_t, std::string> unreachable;
 };
 
 struct SkippedPose {
@@ -87,8 +92,8 @@ class Campaign {
  public:
   using Clock = std::chrono::steady_clock;
 
-  /// Subscribes to H4_JOINT_STATE, H4_BOARD_POSE and H4_CAMERA_STATUS on `bus`. Poses of
-  /// `plan` already in `journal` (a resumed campaign) are not measured again.
+  /// Subscribes to H4_JOINT_STATE, H4_TARGET_STATUS, H4_BOARD_POSE and H4_CAMERA_STATUS on
+  /// `bus`. Poses of `plan` already in `journal` (a resumed campaign) are not measured again.
   Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal, CampaignOptions options);
   /// Also subscribes to H4_BOARD_CORNERS and appends the corners of each pose recorded by
   /// this campaign to `corners` (paired by pose id and the pose's utime, whichever comes
@@ -126,6 +131,8 @@ class Campaign {
   enum class Phase { kWaitForDevices, kSendTarget, kSettling, kSendRequest, kMeasuring };
 
   void OnJointState(const h4msgs::joint_state_t& msg);
+  /// Active mode: a refusal of the awaited target ends its wait (acted on by Step()).
+  void OnTargetStatus(const h4msgs::target_status_t& msg);
   void OnCameraStatus(const h4msgs::camera_status_t& msg);
   void OnBoardPose(const h4msgs::board_pose_t& msg);
   void OnBoardCorners(const h4msgs::board_corners_t& msg);
@@ -141,6 +148,9 @@ class Campaign {
   /// The robot did not settle at the current pose in time: Retry, and stop the campaign
   /// (throw) once max_unsettled_in_a_row poses in a row were skipped so.
   void RetryUnsettled(Clock::time_point now);
+  /// The robot refused the current target: skips the pose with its reason, no retry (the
+  /// same target would be refused again).
+  void SkipRefused();
   /// One Step() in each phase of the state machine.
   void WaitForDevices(Clock::time_point now);
   void SendTarget(Clock::time_point now);
@@ -184,6 +194,7 @@ class Campaign {
   bool settled_seen_ = false;                  ///< the robot reported settled at the current pose
   bool moved_since_capture_ = false;           ///< manual mode: the operator moved the robot
   std::optional<std::string> failed_attempt_;  ///< set by a handler, acted on by Step()
+  std::optional<std::string> refusal_;  ///< the robot refused the current target: why
   bool recorded_current_ = false;              ///< set by a handler, acted on by Step()
   bool camera_heard_ = false;
   bool joints_heard_ = false;

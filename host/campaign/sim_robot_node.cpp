@@ -10,12 +10,23 @@
 
 #include "common/timing/clock.h"
 #include "common/timing/periodic_schedule.h"
+#include "host/campaign/target_status.h"
 #include "messages/channels.h"
 
 namespace h4::host {
 namespace {
 
 constexpr int kMaxConsecutiveBusFailures = 10;
+
+// The controller's verdicts are sent as they are: the same order as the wire's codes.
+static_assert(static_cast<int8_t>(TargetStatus::kAccepted) ==
+              h4msgs::target_status_t::STATUS_ACCEPTED);
+static_assert(static_cast<int8_t>(TargetStatus::kUnreachable) ==
+              h4msgs::target_status_t::STATUS_UNREACHABLE);
+static_assert(static_cast<int8_t>(TargetStatus::kOutsideLimits) ==
+              h4msgs::target_status_t::STATUS_OUTSIDE_LIMITS);
+static_assert(static_cast<int8_t>(TargetStatus::kInvalid) ==
+              h4msgs::target_status_t::STATUS_INVALID);
 
 }  // namespace
 
@@ -43,12 +54,17 @@ void SimRobotNode::OnTarget(const h4msgs::robot_target_t& target) {
         target.pose_id,
         JointVector(target.joints[0], target.joints[1], target.joints[2], target.joints[3]));
   } else {
-    // Not a target the controller understands: hold and never settle for this id, like
-    // any refused target, so the campaign times out on it.
+    // Not a target the controller understands: refused like any other (hold, never settle
+    // for this id), and the campaign skips it with this reason.
     result = controller_.RejectTarget(target.pose_id,
                                       "unknown target_type " + std::to_string(target.target_type) +
                                           " (expected TARGET_POSE 0 or TARGET_JOINTS 1)");
   }
+  // Every target is answered, a resent one too: a lost refusal costs the campaign one
+  // settle timeout at most, until it sends the target again.
+  bus_.Publish(channels::kTargetStatus,
+               MakeTargetStatus(NowUtime(), target.pose_id, static_cast<int8_t>(result.status),
+                                result.reason));
   if (!result.ok()) {
     ++targets_refused_;
     spdlog::warn("sim-robot: target for pose {} refused ({}): {}; holding, not settled",

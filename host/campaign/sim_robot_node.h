@@ -1,5 +1,6 @@
 // The bus side of `h4cal sim-robot`: a SimulatedController wired to LCM. Receives
-// H4_ROBOT_TARGET, and at a fixed rate steps the motion on the wall clock and publishes
+// H4_ROBOT_TARGET and answers each target on H4_TARGET_STATUS (accepted, or refused with the
+// controller's reason), and at a fixed rate steps the motion on the wall clock and publishes
 // H4_JOINT_STATE (noisy encoder readings, settled flag) and H4_SIM_BOARD_TRUTH (the true
 // X_CT that `h4cam run --source sim` renders, also while moving).
 #pragma once

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <thread>
 
@@ -24,6 +25,7 @@
 #include "host/campaign/control_law.h"
 #include "host/cli/commands.h"
 #include "host/cli/identification_print.h"
+#include "host/cli/plan_reach.h"
 #include "host/cli/progress.h"
 #include "host/cli/robot_source.h"
 #include "host/cli/stop_signal.h"
@@ -50,6 +52,8 @@ struct CollectOptions {
   std::string identify_dir;
   std::string robot_path;
   std::string controller_path;
+  std::string joint_range_deg;  ///< "MIN,MAX" for the plan's check, empty: no limit
+  bool dry_run = false;         ///< check the plan, move nothing
 };
 
 /// The a priori Model 12 a Model 31 control law maps the planned poses through: the
@@ -86,6 +90,34 @@ CampaignOptions::ControlLaw LoadControlLaw(const std::string& path, const std::s
   }
   spdlog::info("targets sent as joints from the inverse kinematics of {}", description);
   return InverseKinematicsControlLaw(std::move(robot.model), X_B31B);
+}
+
+/// With --robot, names the poses of `plan` the a priori robot cannot take, before it moves;
+/// an active campaign then skips them without sending their target (the robot would refuse
+/// them, or wait out the settle timeout at them). False for --dry-run: the check was all.
+bool CheckPlanBeforeMoving(CollectOptions* options, const PosePlan& plan) {
+  if (options->robot_path.empty()) {
+    if (options->dry_run || !options->joint_range_deg.empty()) {
+      throw std::invalid_argument(
+          "--dry-run and --joint-range-deg check the plan against the a priori robot: give "
+          "--robot robot.yaml");
+    }
+    if (options->campaign.mode == CampaignMode::kActive) {
+      spdlog::info("the plan is not checked against the robot's reach: give --robot robot.yaml");
+    }
+    return true;
+  }
+  // A passive campaign moves nothing: what the robot was sent is in the log already.
+  if (options->campaign.mode == CampaignMode::kPassive && !options->dry_run) return true;
+  const std::map<int64_t, std::string> unreachable = CheckPlanReach(
+      ReadRobotYaml(options->robot_path), plan, ParseJointRange(options->joint_range_deg));
+  options->campaign.unreachable = unreachable;
+  if (!options->dry_run) return true;
+  std::printf("collect --dry-run: %zu of %zu planned poses out of the a priori robot's reach%s\n",
+              unreachable.size(), plan.size(), unreachable.empty() ? "" : " (not sent):");
+  for (const auto& [pose_id, why] : unreachable) std::printf("  %s\n", why.c_str());
+  if (!unreachable.empty()) SetExitCode(h4::cli::kExitNothingUsable);
+  return false;
 }
 
 /// LCM's file:// provider, as fast as the log can be read (speed=0): the same messages in
@@ -244,6 +276,7 @@ void Run(CollectOptions options, const std::string& command_line) {
                             {{"--out", options.out_path},
                              {"--plan", options.plan_path},
                              {"--from-log", options.from_log}});
+  if (!CheckPlanBeforeMoving(&options, plan)) return;
 
   // Before the dataset is locked: a stop signal from then on must end the campaign as an
   // interruption (130, resumable), not kill it with the default action (the
@@ -340,10 +373,19 @@ void DeclareCollectCommand(CLI::App* command) {
                       "verdict, as identify prints it; exit 3 when neither is good), validate, "
                       "and write DIR/result12.json, DIR/result31.json, DIR/report.html (needs "
                       "--robot)");
-  h4::cli::AddRobotOption(command, &options->robot_path, "A priori robot.yaml (for --identify, and the assembly and frame B of a --controller result)");
+  h4::cli::AddRobotOption(command, &options->robot_path,
+                          "A priori robot.yaml: the plan is checked against its reach before "
+                          "the robot moves (poses it cannot take are named and not sent); "
+                          "needed by --identify, and by --controller with a Model 31 result "
+                          "(its frame B)");
+  AddJointRangeOption(command, &options->joint_range_deg);
+  command->add_flag("--dry-run", options->dry_run,
+                    "Check the plan against --robot's reach (and --joint-range-deg), print the "
+                    "poses out of reach and stop: nothing sent, nothing written (exit 3 when "
+                    "some are out of reach)");
   command->footer(
-      "Exit codes: 0 every pose recorded, 3 some poses skipped (listed), 130 interrupted "
-      "(run again to resume), 1 error.");
+      "Exit codes: 0 every pose recorded, 3 some poses skipped (listed) or, with --dry-run, "
+      "out of reach, 130 interrupted (run again to resume), 1 error.");
   // Run takes its options by value (it fills the campaign's control law and mode): named
   // through a lambda, since in a unity batch other files' Run overloads are in scope too.
   RunWithCommandLineWhenParsed(

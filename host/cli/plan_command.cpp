@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <stdexcept>
 
 #include <spdlog/fmt/fmt.h>
@@ -24,6 +23,7 @@
 #include "common/formats/robot_yaml.h"
 #include "common/units.h"
 #include "host/cli/commands.h"
+#include "host/cli/plan_reach.h"
 #include "host/planning/pose_planner.h"
 
 namespace h4::host::cli {
@@ -50,22 +50,6 @@ struct PlanCommandOptions {
   std::vector<int> curve_n = {10, 15, 20, 25, 30, 40, 50, 60, 71};
 };
 
-// "MIN,MAX" in degrees as a range in rad; throws naming the option on anything else.
-Eigen::Vector2d ParseJointRange(const std::string& text) {
-  char* end = nullptr;
-  const double low = std::strtod(text.c_str(), &end);
-  if (end == text.c_str() || *end != ',') {
-    throw std::invalid_argument("--joint-range-deg \"" + text + "\": expected MIN,MAX in degrees");
-  }
-  const char* at = end + 1;
-  const double high = std::strtod(at, &end);
-  if (end == at || *end != '\0' || !(low < high) || !std::isfinite(low) || !std::isfinite(high)) {
-    throw std::invalid_argument("--joint-range-deg \"" + text +
-                                "\": expected MIN,MAX in degrees with MIN < MAX");
-  }
-  return {RadiansFromDegrees(low), RadiansFromDegrees(high)};
-}
-
 PlanningProblemOptions ProblemOptions(const PlanCommandOptions& o) {
   PlanningProblemOptions options;
   options.model = *ParseModelKind(o.model);  // CLI11 checked the text
@@ -75,9 +59,7 @@ PlanningProblemOptions ProblemOptions(const PlanCommandOptions& o) {
   options.candidates.max_depth = o.max_depth;
   options.candidates.position_step = o.step;
   options.candidates.max_theta_gain = o.max_theta_gain;
-  if (!o.joint_range_deg.empty()) {
-    options.candidates.joint_range = ParseJointRange(o.joint_range_deg);
-  }
+  options.candidates.joint_range = ParseJointRange(o.joint_range_deg);
   return options;
 }
 
@@ -160,8 +142,7 @@ void Run(const PlanCommandOptions& o) {
 
 // The options of the candidate poses (CandidateOptions): which poses the plan may use.
 void AddCandidateOptions(CLI::App* command, PlanCommandOptions* options) {
-  command->add_option("--joint-range-deg", options->joint_range_deg,
-                      "MIN,MAX joint range (encoder values, deg) every joint must stay in");
+  AddJointRangeOption(command, &options->joint_range_deg);
   command
       ->add_option("--margin-px", options->margin_px,
                    "Board corners at least this far inside the image, px")

@@ -11,6 +11,7 @@
 #include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/measurement_chain.h"
 #include "host/kinematics/model12.h"
+#include "host/planning/reach_check.h"
 
 namespace h4::host {
 
@@ -74,19 +75,15 @@ CandidateFilter::CandidateFilter(const RobotDescription& robot, const CameraMode
 CandidateVerdict CandidateFilter::Check(const EePose& x_B, JointVector* joints) const {
   // Poses live in B, Model 12's base: the a priori Model 12 decides reachability (the
   // nominal Model 31 is the same geometry).
+  // The robot's controller decides by the same computation (reach_check.h).
   const Model12 model(robot_.model12, robot_.assembly);
-  const IkResult ik = model.InverseKinematics(x_B);
-  if (!ik.ok()) return CandidateVerdict::kUnreachable;
-  if (options_.joint_range) {
-    const Eigen::Vector2d& range = *options_.joint_range;
-    if ((ik.q.array() < range[0]).any() || (ik.q.array() > range[1]).any()) {
-      return CandidateVerdict::kJointRange;
-    }
-  }
-  if (joints) *joints = ik.q;
+  const ReachResult reach = CheckReach(model, x_B, options_.joint_range);
+  if (reach.verdict == ReachVerdict::kUnreachable) return CandidateVerdict::kUnreachable;
+  if (reach.verdict == ReachVerdict::kJointRange) return CandidateVerdict::kJointRange;
+  if (joints) *joints = reach.q;
   const CandidateVerdict view = CheckView(x_B);
   if (view != CandidateVerdict::kOk) return view;
-  if (!(ThetaJointGain(model, ik.q, x_B) <= options_.max_theta_gain)) {
+  if (!(ThetaJointGain(model, reach.q, x_B) <= options_.max_theta_gain)) {
     return CandidateVerdict::kNearSingular;
   }
   return CandidateVerdict::kOk;

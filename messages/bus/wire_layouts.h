@@ -15,6 +15,7 @@
 #include "h4msgs/joint_state_t.hpp"
 #include "h4msgs/robot_target_t.hpp"
 #include "h4msgs/sim_board_truth_t.hpp"
+#include "h4msgs/target_status_t.hpp"
 
 #include "messages/bus/wire_check.h"
 
@@ -112,6 +113,13 @@ inline std::vector<WireField> WireFieldsOf<h4msgs::sim_board_truth_t>() {
   using namespace wire;
   return std::vector<WireField>({Int64("utime"), Int64("pose_id"), Doubles("translation", 3),
                                  Doubles("quaternion", 4), Int8("settled")});
+}
+
+template <>
+inline std::vector<WireField> WireFieldsOf<h4msgs::target_status_t>() {
+  using namespace wire;
+  return std::vector<WireField>(
+      {Int64("utime"), Int64("pose_id"), Int8("status"), String("reason")});
 }
 
 }  // namespace h4::bus

@@ -59,6 +59,7 @@ const FuzzedType kFuzzedTypes[] = {
     TypeOn<h4msgs::robot_target_t>(h4::channels::kRobotTarget),
     TypeOn<h4msgs::sim_board_truth_t>(h4::channels::kSimBoardTruth),
     TypeOn<h4msgs::board_corners_t>(h4::channels::kBoardCorners),
+    TypeOn<h4msgs::target_status_t>(h4::channels::kTargetStatus),
 };
 
 // One bus for the whole run: LCM's set-up is far slower than one message.

@@ -21,6 +21,7 @@
 #include <h4msgs/camera_status_t.hpp>
 #include <h4msgs/capture_request_t.hpp>
 #include <h4msgs/robot_target_t.hpp>
+#include <h4msgs/target_status_t.hpp>
 #include <sched.h>
 #include <spdlog/sinks/ostream_sink.h>
 #include <spdlog/spdlog.h>
@@ -68,6 +69,7 @@ class ScriptedCell {
                                                             h4msgs::robot_target_t::TARGET_POSE &&
                                                         t.target_type !=
                                                             h4msgs::robot_target_t::TARGET_JOINTS;
+                                             Answer(t.pose_id);
                                            });
     bus_.Subscribe<h4msgs::capture_request_t>(
         channels::kCaptureRequest, [this](const h4msgs::capture_request_t& r) {
@@ -102,6 +104,10 @@ class ScriptedCell {
   static double Depth(int64_t pose_id) { return 0.5 + 0.001 * static_cast<double>(pose_id); }
 
   void Step() {
+    for (const h4msgs::target_status_t& answer : answers_) {
+      bus_.Publish(channels::kTargetStatus, answer);
+    }
+    answers_.clear();
     const bool settled = pose_id_ >= 0 && !never_settles.count(pose_id_) && !holding_ &&
                          Clock::now() - target_time_ > settle_delay;
     h4msgs::joint_state_t js{};
@@ -156,6 +162,10 @@ class ScriptedCell {
   std::vector<double> target_q1;
   std::vector<int64_t> requests;
   std::set<int64_t> never_settles;
+  /// Targets refused as the simulated robot refuses them: held, never settled, and answered
+  /// on H4_TARGET_STATUS with the reason (under answer_id's pose id when it returns one).
+  std::set<int64_t> refuses;
+  std::function<int64_t(int64_t)> answer_id;
   bool silent_camera = false;
   bool answer_requests = true;
   int targets_to_drop = 0;  ///< targets "lost" before the robot takes one
@@ -176,6 +186,18 @@ class ScriptedCell {
   bus::LcmBus& bus_;
   int64_t pose_id_ = -1;
   bool holding_ = false;  ///< the last target was refused
+  std::vector<h4msgs::target_status_t> answers_;  ///< published at the next Step()
+
+  void Answer(int64_t pose_id) {
+    if (!refuses.count(pose_id)) return;
+    holding_ = true;
+    h4msgs::target_status_t answer{};
+    answer.utime = NowUtime();
+    answer.pose_id = answer_id ? answer_id(pose_id) : pose_id;
+    answer.status = h4msgs::target_status_t::STATUS_UNREACHABLE;
+    answer.reason = "leg 2 has no inverse kinematics\x1b[2J";
+    answers_.push_back(answer);
+  }
   Clock::time_point target_time_{};
   struct Request {
     int64_t pose_id;
@@ -337,6 +359,77 @@ TEST_F(CampaignTest, SkipsAPoseWhereTheRobotNeverSettlesAndResendsItsTarget) {
   EXPECT_NE(campaign.skipped()[0].reason.find("not settled"), std::string::npos)
       << campaign.skipped()[0].reason;
   EXPECT_EQ(std::count(cell.targets.begin(), cell.targets.end(), 2), 3);
+  EXPECT_EQ(ReadDatasetCsv(path_).size(), 2u);
+}
+
+// A robot that refuses a target says so on H4_TARGET_STATUS: the pose is skipped at once
+// with the robot's reason (not after the settle timeout and its retries, 245 s for 25 poses
+// in issue 26), and the terminal never sees the reason's control characters.
+TEST_F(CampaignTest, ARefusedTargetIsSkippedAtOnceWithTheRobotsReason) {
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  cell.refuses = {2};
+  DatasetJournal journal(path_);
+  CampaignOptions options = FastOptions();
+  options.settle_timeout_s = 60.0;  // longer than Run()'s deadline: a wait would fail here
+  Campaign campaign(bus, Plan(3), journal, options);
+  Run(bus, campaign, &cell);
+  ASSERT_TRUE(campaign.finished());
+  ASSERT_EQ(campaign.skipped().size(), 1u);
+  EXPECT_EQ(campaign.skipped()[0].pose_id, 2);
+  EXPECT_EQ(campaign.skipped()[0].reason,
+            "refused by the robot: unreachable: leg 2 has no inverse kinematics?[2J");
+  EXPECT_EQ(std::count(cell.targets.begin(), cell.targets.end(), 2), 1) << "no retry";
+  EXPECT_EQ(campaign.counters().retries, 0);
+  EXPECT_EQ(ReadDatasetCsv(path_).size(), 2u);
+}
+
+// A refusal is not a stuck robot: refused poses in a row do not stop the campaign, and an
+// answer under another pose id (an earlier target's, another campaign's) is not this pose's.
+TEST_F(CampaignTest, RefusalsDoNotStopTheCampaignAndOnlyTheAwaitedPoseIdCounts) {
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  cell.refuses = {1, 2, 3, 4};
+  DatasetJournal journal(path_);
+  CampaignOptions options = FastOptions(0);
+  options.max_unsettled_in_a_row = 3;
+  Campaign campaign(bus, Plan(4), journal, options);
+  Run(bus, campaign, &cell);
+  ASSERT_TRUE(campaign.finished());
+  ASSERT_EQ(campaign.skipped().size(), 4u);
+  for (const SkippedPose& s : campaign.skipped()) {
+    EXPECT_NE(s.reason.find("refused by the robot: unreachable"), std::string::npos) << s.reason;
+  }
+
+  fs::remove(path_);
+  bus::LcmBus bus2("memq://");
+  ScriptedCell misdirected(bus2);
+  misdirected.refuses = {2};
+  misdirected.answer_id = [](int64_t pose_id) { return pose_id + 10; };
+  DatasetJournal journal2(path_);
+  Campaign campaign2(bus2, Plan(3), journal2, FastOptions(0));
+  Run(bus2, campaign2, &misdirected);
+  ASSERT_EQ(campaign2.skipped().size(), 1u);
+  EXPECT_NE(campaign2.skipped()[0].reason.find("not settled"), std::string::npos)
+      << campaign2.skipped()[0].reason;
+}
+
+// Poses the plan's check found out of the a priori robot's reach (collect --robot) are
+// skipped with its reason before the robot moves: no target, no wait.
+TEST_F(CampaignTest, PosesKnownToBeOutOfReachAreSkippedWithoutATarget) {
+  bus::LcmBus bus("memq://");
+  ScriptedCell cell(bus);
+  DatasetJournal journal(path_);
+  CampaignOptions options = FastOptions();
+  options.unreachable = {{2, "pose 2 (...): leg 3 out of reach"}};
+  Campaign campaign(bus, Plan(3), journal, options);
+  Run(bus, campaign, &cell);
+  ASSERT_TRUE(campaign.finished());
+  EXPECT_EQ(cell.targets, (std::vector<int64_t>{1, 3}));
+  ASSERT_EQ(campaign.skipped().size(), 1u);
+  EXPECT_EQ(campaign.skipped()[0].pose_id, 2);
+  EXPECT_EQ(campaign.skipped()[0].reason, "not sent: pose 2 (...): leg 3 out of reach");
+  EXPECT_EQ(campaign.done_count(), 3);
   EXPECT_EQ(ReadDatasetCsv(path_).size(), 2u);
 }
 

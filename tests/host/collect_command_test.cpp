@@ -28,6 +28,8 @@
 #include <unistd.h>
 
 #include "common/formats/dataset_csv.h"
+#include "common/formats/robot_yaml.h"
+#include "host/simulation/paper_scenario.h"
 #include "messages/channels.h"
 #include "tests/support/test_dir.h"
 
@@ -289,6 +291,38 @@ TEST_F(CollectCommandTest, KilledAtRandomPointsAndResumedWritesTheSameDatasetAsO
   ASSERT_EQ(RunProgram(Collect("--from-log " + log_), &output), 0) << output;
   EXPECT_EQ(LogOrDatasetText(out_), LogOrDatasetText(reference));
   EXPECT_GT(killed, 0) << "no run was killed: nothing was tested";
+}
+
+// Issue 26: the plan is checked against the a priori robot before the robot moves. --dry-run
+// names each pose out of reach by id, X, Y, Z and theta, touches neither the bus nor the
+// dataset, and exits 3; a plan within reach passes with 0.
+TEST_F(CollectCommandTest, DryRunNamesThePosesTheAprioriRobotCannotTake) {
+  const std::string robot = (dir_ / "robot.yaml").string();
+  WriteRobotYaml(robot, PaperAprioriRobot());
+  std::string output;
+  EXPECT_EQ(RunProgram(Collect("--robot " + robot + " --dry-run"), &output), 0) << output;
+  EXPECT_NE(output.find("0 of 3 planned poses out of the a priori robot's reach"),
+            std::string::npos)
+      << output;
+  {
+    std::ofstream plan(plan_, std::ios::app);
+    plan << "4,0.0,0.0,-1.5,0\n";  // a metre below the workspace
+  }
+  EXPECT_EQ(RunProgram(Collect("--robot " + robot + " --dry-run"), &output), 3) << output;
+  EXPECT_NE(output.find("1 of 4 planned poses out of the a priori robot's reach"),
+            std::string::npos)
+      << output;
+  EXPECT_NE(output.find("pose 4 (X 0.0, Y 0.0, Z -1500.0 mm, theta 0.0 deg): legs 1, 2, 3, 4 "
+                        "out of reach"),
+            std::string::npos)
+      << output;
+  EXPECT_FALSE(fs::exists(out_)) << "a dry run writes nothing";
+  // A joint range the plan's joints leave: named by joint.
+  EXPECT_EQ(RunProgram(Collect("--robot " + robot + " --dry-run --joint-range-deg 0,1"), &output),
+            3)
+      << output;
+  EXPECT_NE(output.find("outside the joint range 0.0..1.0 deg"), std::string::npos) << output;
+  EXPECT_NE(RunProgram(Collect("--dry-run"), &output), 0) << "--dry-run needs --robot";
 }
 
 }  // namespace

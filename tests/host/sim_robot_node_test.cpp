@@ -1,6 +1,7 @@
 // Tests of the simulated controller on real LCM traffic (the in-process memq:// provider):
 // joint states and board truths at the rate, a target published on the bus reached and
-// settled under its pose id, refused targets, and garbage counted rather than fatal.
+// settled under its pose id, refused targets (answered with the reason on H4_TARGET_STATUS),
+// and garbage counted rather than fatal.
 #include "host/campaign/sim_robot_node.h"
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <h4msgs/target_status_t.hpp>
 
 #include "common/geometry/rotation.h"
 #include "host/kinematics/model12.h"
@@ -36,6 +38,9 @@ class SimRobotNodeTest : public ::testing::Test {
     bus_.Subscribe<h4msgs::sim_board_truth_t>(
         channels::kSimBoardTruth,
         [this](const h4msgs::sim_board_truth_t& m) { truths_.push_back(m); });
+    bus_.Subscribe<h4msgs::target_status_t>(
+        channels::kTargetStatus,
+        [this](const h4msgs::target_status_t& m) { answers_.push_back(m); });
   }
   static SimRobotNodeOptions NodeOptions() {
     SimRobotNodeOptions options;
@@ -61,6 +66,7 @@ class SimRobotNodeTest : public ::testing::Test {
   SimRobotNode node_;
   std::vector<h4msgs::joint_state_t> states_;
   std::vector<h4msgs::sim_board_truth_t> truths_;
+  std::vector<h4msgs::target_status_t> answers_;
 };
 
 // The rate itself is PeriodicSchedule's, tested on synthetic times (periodic_schedule_test):
@@ -165,6 +171,28 @@ TEST_F(SimRobotNodeTest, UnreachableTargetIsHeldUnsettledUnderItsPoseId) {
   }
   EXPECT_EQ(states_.back().pose_id, 20);
   EXPECT_LT(MaxWrappedJointDifference(controller_.true_joints(), controller_.home_joints()), 1e-15);
+}
+
+// The campaign learns of a refusal at once, with the controller's reason, instead of
+// waiting out its settle timeout; an accepted target is answered too.
+TEST_F(SimRobotNodeTest, EveryTargetIsAnsweredAndARefusalCarriesItsReason) {
+  PublishPoseTarget(20, EePose(0.0, 0.0, -1.5, 0.0));
+  node_.RunFor(Seconds(0.1));
+  PublishPoseTarget(21, EePose(0.02, -0.01, -0.45, 0.05));
+  node_.RunFor(Seconds(0.1));
+  Drain();
+  // Copies of lcm-gen's constants: EXPECT_EQ binds a reference, and they have no definition.
+  const int8_t unreachable = h4msgs::target_status_t::STATUS_UNREACHABLE;
+  const int8_t accepted = h4msgs::target_status_t::STATUS_ACCEPTED;
+  ASSERT_EQ(answers_.size(), 2u);
+  EXPECT_EQ(answers_[0].pose_id, 20);
+  EXPECT_EQ(answers_[0].status, unreachable);
+  EXPECT_NE(answers_[0].reason.find("out of reach of the a priori model"), std::string::npos)
+      << answers_[0].reason;
+  EXPECT_GT(answers_[0].utime, 0);
+  EXPECT_EQ(answers_[1].pose_id, 21);
+  EXPECT_EQ(answers_[1].status, accepted);
+  EXPECT_EQ(answers_[1].reason, "");
 }
 
 TEST_F(SimRobotNodeTest, GarbageOnTheTargetChannelIsCountedNotFatal) {

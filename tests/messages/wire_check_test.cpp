@@ -88,6 +88,11 @@ TEST(WireCheck, EveryLayoutAcceptsWhatTheGeneratedEncoderWrites) {
   EXPECT_TRUE(Accepted<h4msgs::robot_target_t>(Encode(h4msgs::robot_target_t{}), &why)) << why;
   EXPECT_TRUE(Accepted<h4msgs::sim_board_truth_t>(Encode(h4msgs::sim_board_truth_t{}), &why))
       << why;
+  h4msgs::target_status_t refusal{};
+  refusal.status = h4msgs::target_status_t::STATUS_UNREACHABLE;
+  refusal.reason = std::string(1000, 'x');
+  EXPECT_TRUE(Accepted<h4msgs::target_status_t>(Encode(h4msgs::target_status_t{}), &why)) << why;
+  EXPECT_TRUE(Accepted<h4msgs::target_status_t>(Encode(refusal), &why)) << why;
   // A board has more corners than a joint state has joints: the corners' own bound.
   for (int corners : {0, 1, 144, kMaxBoardCorners}) {
     EXPECT_TRUE(Accepted<h4msgs::board_corners_t>(Encode(SampleBoardCorners(corners)), &why))
