@@ -14,14 +14,15 @@ ControlLawFunction InverseKinematicsControlLaw(std::shared_ptr<const KinematicMo
         "a Model 31 control law needs X_B31B: the planned poses are in B, the model's in B31");
   }
   const bool in_b31 = model->kind() == ModelKind::k31;
-  return [model, X_B31B, in_b31](const EePose& x_B, std::string* why) -> std::optional<JointVector> {
-    const IkResult ik = model->InverseKinematics(in_b31 ? EePoseInB31(x_B, *X_B31B) : x_B);
-    if (!ik.ok()) {
-      *why = "inverse kinematics out of reach";
-      return std::nullopt;
-    }
-    return ik.q;
-  };
+  return
+      [model, X_B31B, in_b31](const EePose& x_B, std::string* why) -> std::optional<JointVector> {
+        const IkResult ik = model->InverseKinematics(in_b31 ? EePoseInB31(x_B, *X_B31B) : x_B);
+        if (!ik.ok()) {
+          *why = "inverse kinematics out of reach";
+          return std::nullopt;
+        }
+        return ik.q;
+      };
 }
 
 }  // namespace h4::host

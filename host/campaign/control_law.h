@@ -14,7 +14,8 @@
 namespace h4::host {
 
 /// Joints for a pose x_B in B, or nullopt with *why set (out of reach).
-using ControlLawFunction = std::function<std::optional<JointVector>(const EePose& x_B, std::string* why)>;
+using ControlLawFunction =
+    std::function<std::optional<JointVector>(const EePose& x_B, std::string* why)>;
 
 /// The inverse kinematics of `model` as a control law. A Model 31 takes poses in its own
 /// base frame B31 (origin at P_1, common/README.md "Model 31"): X_B31B maps the planned

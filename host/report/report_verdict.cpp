@@ -19,7 +19,9 @@ struct ReadableFigure {
 };
 
 ReadableFigure Readable(const std::string& key, double value) {
-  const auto count = [&](const char* label) { return ReadableFigure{label, fmt::format("{:.0f}", value)}; };
+  const auto count = [&](const char* label) {
+    return ReadableFigure{label, fmt::format("{:.0f}", value)};
+  };
   if (key == "poses_given") return count("poses in the dataset");
   if (key == "poses_in_fit") return count("poses in the fit");
   if (key == "poses_rejected") return count("poses rejected as outliers");
@@ -39,20 +41,24 @@ ReadableFigure Readable(const std::string& key, double value) {
     return {"condition number of the scaled identification Jacobian", fmt::format("{:.3g}", value)};
   }
   if (key == "position_misfit_m") {
-    return {"board position misfit, RMS over the poses in the fit (mm)", fmt::format("{:.4f}", value * 1e3)};
+    return {"board position misfit, RMS over the poses in the fit (mm)",
+            fmt::format("{:.4f}", value * 1e3)};
   }
   if (key == "unexplained_position_misfit_m") {
-    return {"misfit beyond what the camera's noise explains (mm)", fmt::format("{:.4f}", value * 1e3)};
+    return {"misfit beyond what the camera's noise explains (mm)",
+            fmt::format("{:.4f}", value * 1e3)};
   }
   if (key == "largest_relative_length_change") {
-    return {"largest length change from the a priori robot (%)", fmt::format("{:.2f}", value * 100.0)};
+    return {"largest length change from the a priori robot (%)",
+            fmt::format("{:.2f}", value * 100.0)};
   }
   if (key == "largest_angle_change_rad") {
     return {"largest angle change from the a priori robot (deg)",
             fmt::format("{:.3f}", DegreesFromRadians(value))};
   }
   if (key == "dataset_sigmas") {
-    return {"pose covariance from the dataset's sigma columns", value != 0.0 ? "yes" : "no (defaults)"};
+    return {"pose covariance from the dataset's sigma columns",
+            value != 0.0 ? "yes" : "no (defaults)"};
   }
   return {key, fmt::format("{:.4g}", value)};  // a figure this report does not know yet
 }
