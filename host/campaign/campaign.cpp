@@ -397,6 +397,24 @@ std::string Campaign::StaleCameraNote() const {
       DescribeClockOffset("camera status timestamps", *offset), bus_.max_clock_offset_s());
 }
 
+// A key on one end only (messages/README.md, "Authentication"): each end sees the other's
+// messages refused or read unchecked, and says which end lacks the key.
+std::string Campaign::KeyMismatchNote() const {
+  const int64_t refused = bus_.auth_failures(channels::kCameraStatus) +
+                          bus_.auth_failures(channels::kBoardPose);
+  if (refused > bus_.stale_messages(channels::kCameraStatus)) {
+    return fmt::format(
+        "the camera answers but its messages are not authenticated with this key ({} dropped): "
+        "give h4cam run the same --auth-key as collect, or neither",
+        refused);
+  }
+  if (bus_.unchecked_signed(channels::kCameraStatus) > 0) {
+    return "the camera signs its messages (h4cam run --auth-key) and refuses requests without "
+           "its key: give collect the same --auth-key, or neither";
+  }
+  return "";
+}
+
 void Campaign::NoteWhoWasHeard(Clock::time_point now) {
   if (first_step_ == Clock::time_point{}) first_step_ = now;
   last_step_ = now;
@@ -475,9 +493,11 @@ void Campaign::WaitForDevices(Clock::time_point now) {
                                       : "";
   if (!camera_heard_) {
     const std::string stale = StaleCameraNote();
+    const std::string key = KeyMismatchNote();
     silent += std::string(silent.empty() ? "" : "; ") +
-              (stale.empty() ? "no camera status on H4_CAMERA_STATUS (is h4cam running?)"
-                             : "no camera status accepted on H4_CAMERA_STATUS" + stale);
+              (!stale.empty() ? "no camera status accepted on H4_CAMERA_STATUS" + stale
+               : !key.empty() ? "no camera status accepted on H4_CAMERA_STATUS: " + key
+                              : "no camera status on H4_CAMERA_STATUS (is h4cam running?)");
   }
   throw std::runtime_error(fmt::format("nothing heard for {:.0f} s on {}: {}",
                                        options_.settle_timeout_s, bus_.url(), silent));
@@ -546,9 +566,11 @@ void Campaign::WaitForMeasurement(Clock::time_point now) {
   if (failed_attempt_) {
     Retry(retry_from, *failed_attempt_, now);
   } else if (Seconds(now - phase_start_) > options_.capture_timeout_s) {
-    const std::string hint = camera_heard_ ? ""
-                                           : " (no camera status heard at all: is "
-                                             "h4cam running?)";
+    const std::string key = KeyMismatchNote();
+    const std::string hint = !key.empty()     ? " (" + key + ")"
+                             : camera_heard_ ? ""
+                                             : " (no camera status heard at all: is h4cam "
+                                               "running?)";
     Retry(retry_from,
           fmt::format("no measurement after {:.1f} s{}", options_.capture_timeout_s, hint), now);
   }

@@ -178,6 +178,7 @@ class Campaign {
   void WarnOfClockSkew();
   /// Why no camera status was heard, when the bus dropped them as stale: their clock.
   std::string StaleCameraNote() const;
+  std::string KeyMismatchNote() const;
   const PlannedPose& current() const { return plan_[pending_[next_]]; }
 
   bus::LcmBus& bus_;

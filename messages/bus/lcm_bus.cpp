@@ -109,6 +109,11 @@ int64_t LcmBus::decode_failures(const std::string& channel) const {
   return it == decode_failures_by_channel_.end() ? 0 : it->second.count;
 }
 
+int64_t LcmBus::unchecked_signed(const std::string& channel) const {
+  const auto it = unchecked_signed_by_channel_.find(channel);
+  return it == unchecked_signed_by_channel_.end() ? 0 : it->second;
+}
+
 void LcmBus::OnDecodeFailure(const std::string& channel, const char* type, uint32_t size,
                              const std::string& why) {
   ++decode_failures_;

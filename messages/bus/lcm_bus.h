@@ -137,6 +137,10 @@ class LcmBus {
   int64_t auth_failures() const { return auth_failures_; }
   int64_t auth_failures(const std::string& channel) const;
   int64_t auth_failures(AuthVerdict verdict) const;
+  /// Messages of `channel` signed by a sender with a key and read here unchecked (this bus
+  /// has no key for it): the sender authenticates and this end does not, so what this end
+  /// publishes to it is refused there (a key on one end only).
+  int64_t unchecked_signed(const std::string& channel) const;
   /// Authentic messages of `channel` dropped as stale, and how far ahead of this host's
   /// clock (s, negative: behind) the last one was sealed: a sender whose clock is off by
   /// more than AuthOptions::max_clock_offset_s has every message dropped so.
@@ -166,6 +170,7 @@ class LcmBus {
     std::optional<Msg> msg = DecodeMessage<Msg>(data, size, limits_, why);
     if (!msg && !authenticates(channel) && HasAuthTrailer(data, size)) {
       msg = DecodeMessage<Msg>(data, size - kAuthTrailerBytes, limits_, why);
+      if (msg) ++unchecked_signed_by_channel_[channel];
     }
     return msg;
   }
@@ -195,6 +200,8 @@ class LcmBus {
   std::unique_ptr<MessageAuthenticator> auth_;  ///< null: no authentication (the default)
   std::map<std::string, ChannelFailures> decode_failures_by_channel_;
   std::map<std::string, ChannelFailures> auth_failures_by_channel_;
+  /// Counted by the const DecodeReceived, which the receive path calls.
+  mutable std::map<std::string, int64_t> unchecked_signed_by_channel_;
   std::map<AuthVerdict, int64_t> auth_failures_by_verdict_;
   int64_t auth_failures_ = 0;
   int64_t decode_failures_ = 0;

@@ -1342,6 +1342,56 @@ TEST_F(CampaignTest, CameraStatusesDroppedAsStaleAreNamedAsAClockOffset) {
   EXPECT_GT(bus.stale_messages(channels::kCameraStatus), 0);
 }
 
+// Issue 26 point 8: a key on one end only gave "no measurement after 10.0 s; retrying" or
+// "is h4cam running?", while the camera ran; each end now says which end lacks the key.
+// Camera statuses published raw, `sealed` by a camera with the key or plain without one.
+void PublishCameraStatus(bus::LcmBus& bus, bus::MessageAuthenticator* camera_key) {
+  h4msgs::camera_status_t status{};
+  status.utime = NowUtime();
+  status.state = h4msgs::camera_status_t::STATE_IDLE;
+  std::vector<uint8_t> bytes = bus::wire_bytes::Encode(status);
+  if (camera_key) {
+    bytes = camera_key->Seal(channels::kCameraStatus, bytes.data(), bytes.size(), status.utime);
+  }
+  bus.lcm().publish(channels::kCameraStatus, bytes.data(), static_cast<unsigned>(bytes.size()));
+}
+
+TEST_F(CampaignTest, AKeyOnTheCampaignOnlyIsNamedNotTakenForASilentCamera) {
+  bus::LcmBus bus("memq://", bus::WireLimits{}, CampaignKey());
+  ScriptedCell cell(bus);
+  cell.silent_camera = true;  // the camera below publishes without a key
+  DatasetJournal journal(path_);
+  Campaign campaign(bus, Plan(2), journal, FastOptions());
+  std::string error;
+  try {
+    Run(bus, campaign, &cell, 20.0, [&] { PublishCameraStatus(bus, nullptr); });
+  } catch (const std::runtime_error& e) {
+    error = e.what();
+  }
+  EXPECT_NE(error.find("the camera answers but its messages are not authenticated with this key"),
+            std::string::npos)
+      << error;
+  EXPECT_EQ(error.find("is h4cam running"), std::string::npos) << error;
+}
+
+TEST_F(CampaignTest, AKeyOnTheCameraOnlyIsNamedInTheSkipReason) {
+  bus::LcmBus bus("memq://");  // the campaign has no key
+  ScriptedCell cell(bus);
+  cell.silent_camera = true;  // the camera below signs its statuses and refuses our requests
+  bus::MessageAuthenticator camera(CampaignKey().key, CampaignKey().options);
+  DatasetJournal journal(path_);
+  Campaign campaign(bus, Plan(2), journal, FastOptions(0));
+  Run(bus, campaign, &cell, 20.0, [&] { PublishCameraStatus(bus, &camera); });
+  ASSERT_EQ(campaign.skipped().size(), 2u);
+  for (const SkippedPose& s : campaign.skipped()) {
+    EXPECT_NE(s.reason.find("the camera signs its messages (h4cam run --auth-key)"),
+              std::string::npos)
+        << s.reason;
+    EXPECT_NE(s.reason.find("give collect the same --auth-key"), std::string::npos) << s.reason;
+  }
+  EXPECT_GT(bus.unchecked_signed(channels::kCameraStatus), 0);
+}
+
 // Issue 27 point 14: without a key, a 15 s flood of wrong board poses gave 23 679 log lines:
 // the campaign's own warnings were not throttled, the bus's were.
 TEST_F(CampaignTest, AFloodOfForeignMeasurementsIsLoggedAtMostOnceASecond) {
