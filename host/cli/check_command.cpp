@@ -1,5 +1,5 @@
 // `h4cal check`: does the robot still match an identification result? Reads a short
-// verification campaign (a dataset CSV, e.g. 5 poses from `h4cal plan --poses 5` measured
+// verification campaign (a dataset CSV, e.g. 5 poses from `h4cal plan --count 5 --for-check` measured
 // with `h4cal collect --plan`), compares each measured board pose with the result's
 // prediction from the joints and flags the poses whose error exceeds what the measurement
 // noise and the result's uncertainty allow (host/planning/drift_check.h). Exit 3 on drift.

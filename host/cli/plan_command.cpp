@@ -48,6 +48,9 @@ struct PlanCommandOptions {
   double max_theta_gain = CandidateOptions{}.max_theta_gain;
   std::string curve_path;  ///< CSV of predicted accuracy against N, empty: none
   std::vector<int> curve_n = {10, 15, 20, 25, 30, 40, 50, 60, 71};
+  /// A verification campaign for `h4cal check` (a few poses): D-optimal, below the
+  /// identification's minimum, no accuracy predicted.
+  bool for_check = false;
 };
 
 PlanningProblemOptions ProblemOptions(const PlanCommandOptions& o) {
@@ -122,11 +125,25 @@ void Run(const PlanCommandOptions& o) {
         problem.unreachable_grid_ids.size(), fmt::join(problem.unreachable_grid_ids, ", "),
         problem.grid.size());
   }
-  CheckPlannedPoseCount(problem, o.pose_count);
+  if (!o.for_check) CheckPlannedPoseCount(problem, o.pose_count);
   DesignOptions design;
   design.pose_count = o.pose_count;
   design.seed = o.seed;
-  const PlannedCampaign campaign = PlanCampaign(problem, design, o.first_id, Criterion(o));
+  // A check compares a few poses with a result: the poses that tell the parameters apart
+  // best (D-optimal, as the check study measured: README "Planning the poses") also show a
+  // change of them best; they identify nothing on their own.
+  const PlannedCampaign campaign = PlanCampaign(
+      problem, design, o.first_id, o.for_check ? PlanCriterion::kDOptimal : Criterion(o));
+  if (o.for_check) {
+    WritePosesCsv(o.out_path, RowsFromPosePlan(campaign.plan));
+    std::printf(
+        "planned %zu poses for h4cal check (D-optimal; a verification campaign: they "
+        "identify nothing alone, so no accuracy is predicted)\n",
+        campaign.plan.size());
+    spdlog::info("wrote {} poses to {}: measure them with h4cal collect --plan, then h4cal check",
+                 campaign.plan.size(), o.out_path);
+    return;
+  }
   if (!std::isfinite(campaign.predicted_position_rms)) {
     throw std::runtime_error(fmt::format(
         "the {} planned poses do not determine the {} free parameters (the predicted error is "
@@ -199,6 +216,9 @@ void DeclarePlanCommand(CLI::App* command) {
   h4::cli::AddSeedOption(command, &options->seed, "Seed of the exchange's start");
   command->add_option("--first-id", options->first_id, "pose_id of the first pose")
       ->capture_default_str();
+  command->add_flag("--for-check", options->for_check,
+                    "Plan a verification campaign for h4cal check (e.g. --count 5): D-optimal, "
+                    "fewer poses than an identification needs, no accuracy predicted");
   AddCandidateOptions(command, options.get());
   command->add_option("--curve", options->curve_path,
                       "Also write the predicted accuracy against N (planned and grid) to this CSV");

@@ -193,6 +193,12 @@ expect_error "plan --count 1" "1 poses are too few: Model 31 needs at least 20" 
   "$h4cal" plan "${plan_inputs[@]}" --board "$boards/aprilgrid_6x6_30mm.yaml" --count 1 \
   --out "$dir/plan1.csv"
 [ ! -e "$dir/plan1.csv" ] || fail "plan wrote a plan of one pose"
+# ... while the 5 poses of a check campaign (issue 26: the walkthrough's check plan) are
+# planned with --for-check: 5 rows, and the refusal above names nothing else.
+"$h4cal" plan "${plan_inputs[@]}" --board "$boards/aprilgrid_6x6_30mm.yaml" --count 5 \
+  --for-check --out "$dir/check5.csv" > "$dir/check5.log" 2>&1 || fail "plan --for-check: $(tail -2 "$dir/check5.log")"
+[ "$(($(wc -l < "$dir/check5.csv") - 1))" -eq 5 ] || fail "plan --for-check did not write 5 poses"
+grep -q "for h4cal check" "$dir/check5.log" || fail "plan --for-check did not say what the poses are for"
 sed 's/^tagFamily: .*/tagFamily: tagCircle21h7/' "$boards/aprilgrid_6x6_30mm.yaml" > "$dir/circle.yaml"
 expect_error "plan on tagCircle21h7" "circle.yaml:.*tagCircle21h7.*families h4cam detects" \
   "$h4cal" plan "${plan_inputs[@]}" --board "$dir/circle.yaml" --out "$dir/plan.csv"
