@@ -11,6 +11,7 @@
 
 #include "common/formats/file_output.h"
 #include "common/text/markup_escape.h"
+#include "host/report/pose_residuals.h"
 #include "host/report/report_camera.h"
 #include "host/report/report_figures.h"
 #include "host/report/report_tables.h"
@@ -173,7 +174,8 @@ Sections DetailSections(const ValidationInputs& in, const ValidationReport& repo
   sections.Add("accuracy-map", "Accuracy map", AccuracyMapSection(report, f));
   sections.Add("camera", "Camera model", CameraSection(in, report, f));
   sections.Add("residuals", "Residuals per pose and joint",
-               Figure(f.residuals, "Each pose, " + poses + ", before and after calibration."));
+               Figure(f.residuals, "Each pose, " + poses + ", before and after calibration.") +
+                   PoseResidualsTable(report));
   sections.Add("histograms", "Residual histograms",
                Figure(f.histograms, "All joints, every pose of the dataset."));
   sections.Add("table4", "Table 4: straightness",
@@ -237,6 +239,8 @@ std::string WriteHtmlReport(const std::string& dir, const ValidationInputs& inpu
   std::filesystem::create_directories(dir);
   const std::string path = (std::filesystem::path(dir) / "report.html").string();
   WriteFileAtomically(path, html);
+  WriteFileAtomically((std::filesystem::path(dir) / "residuals.csv").string(),
+                      PoseResidualsCsv(report));
   for (const ModelValidation& v : report.models) {
     if (!v.accuracy_map) continue;
     WriteFileAtomically((std::filesystem::path(dir) / AccuracyMapFileName(v.accuracy_map->model))

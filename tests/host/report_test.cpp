@@ -3,6 +3,8 @@
 // paper scenario, text is escaped, and measured square runs bring their rows and figure.
 #include <algorithm>
 #include <cctype>
+#include <fstream>
+#include <iterator>
 #include <regex>
 #include <string>
 
@@ -15,6 +17,7 @@
 #include "host/identification/camera_parameters.h"
 #include "host/report/gnuplot_svg.h"
 #include "host/report/html_report.h"
+#include "host/report/pose_residuals.h"
 #include "host/report/report_camera.h"
 #include "host/report/report_tables.h"
 #include "host/simulation/corner_campaign.h"
@@ -87,6 +90,29 @@ TEST(Report, AResultWithoutCovarianceHasNoAccuracyMapAndSaysWhy) {
   EXPECT_NE(html.find("Model 12: no accuracy map (the result has no parameter_covariance"),
             std::string::npos);
   EXPECT_EQ(Count(html, "<svg"), 4);
+}
+
+// Issue 26 point 7: a per-pose residual table and residuals.csv (a Kalibr user looks for the
+// poses a model misfits); one CSV row per dataset pose, four columns per model.
+TEST(Report, ListsThePosesEachModelMisfitsMostAndWritesEveryResidual) {
+  const ValidationInputs in = PaperValidationInputs();
+  const ValidationReport report = Validate(in);
+  const std::string csv = PoseResidualsCsv(report);
+  ASSERT_EQ(report.models.size(), 2u);  // a priori and Model 12 on the paper scenario
+  EXPECT_EQ(csv.substr(0, csv.find('\n')),
+            "pose_id,evaluated,apriori_q1_deg,apriori_q2_deg,apriori_q3_deg,apriori_q4_deg,"
+            "model12_q1_deg,model12_q2_deg,model12_q3_deg,model12_q4_deg");
+  EXPECT_EQ(Count(csv, "\n"), static_cast<int>(in.rows.size()) + 1);
+  EXPECT_EQ(Count(csv, ",1,"), static_cast<int>(report.heldout_ids.size()));
+  const std::string table = PoseResidualsTable(report);
+  EXPECT_EQ(Count(table, "<tr><th>") - 1, 10) << table;  // a header, then the 10 worst poses
+  EXPECT_NE(table.find("The 10 poses Model 12 misfits most"), std::string::npos) << table;
+  if (!GnuplotAvailable()) GTEST_SKIP() << "gnuplot missing: run scripts/setup";
+  const std::string dir = ::testing::TempDir() + "/report_residuals";
+  WriteHtmlReport(dir, in, report, "test");
+  std::ifstream written(dir + "/residuals.csv");
+  const std::string text((std::istreambuf_iterator<char>(written)), {});
+  EXPECT_EQ(text, csv);
 }
 
 TEST(Report, WithoutTruthOrRulerRunsSaysWhatIsMissing) {
