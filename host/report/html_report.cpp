@@ -30,6 +30,7 @@ th:first-child { text-align: left; } tr.paper { background: #fff6dd; }
 tr.fixed { color: #777; } tr.measured { background: #eef6ff; } figure { margin: 1em 0; } figure svg { max-width: 100%; height: auto; }
 code { background: #f3f3f3; padding: 0 0.2em; } .note { color: #a33; }
 .not-applicable { color: #555; font-style: italic; }
+table.rejected td:last-child { text-align: left; }
 .verdict-good { background: #e6f6e6; padding: 0.5em; } .verdict-bad { background: #fde8e8; padding: 0.5em; }
 )";
 

@@ -1,7 +1,10 @@
 // The verdict section of the report; see report_verdict.h.
 #include "host/report/report_verdict.h"
 
+#include <algorithm>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include <spdlog/fmt/fmt.h>
 
@@ -63,11 +66,45 @@ ReadableFigure Readable(const std::string& key, double value) {
   return {key, fmt::format("{:.4g}", value)};  // a figure this report does not know yet
 }
 
+// The figures in the order the verdict reads them (the poses, the fit against the noise, the
+// misfit, the departures from the a priori, the conditioning), then any other; the file
+// keeps them in its own (alphabetical) order.
+std::vector<std::pair<std::string, double>> InReadingOrder(
+    const std::vector<std::pair<std::string, double>>& figures) {
+  static const std::vector<std::string> kOrder = {"poses_given",
+                                                  "poses_in_fit",
+                                                  "poses_rejected",
+                                                  "poses_out_of_reach",
+                                                  "free_parameters",
+                                                  "dataset_sigmas",
+                                                  "chi2",
+                                                  "dof",
+                                                  "reduced_chi2",
+                                                  "chi2_upper_tail_probability",
+                                                  "position_misfit_m",
+                                                  "unexplained_position_misfit_m",
+                                                  "largest_relative_length_change",
+                                                  "largest_angle_change_rad",
+                                                  "condition_number"};
+  std::vector<std::pair<std::string, double>> ordered;
+  for (const std::string& key : kOrder) {
+    for (const auto& figure : figures) {
+      if (figure.first == key) ordered.push_back(figure);
+    }
+  }
+  for (const auto& figure : figures) {
+    if (std::find(kOrder.begin(), kOrder.end(), figure.first) == kOrder.end()) {
+      ordered.push_back(figure);
+    }
+  }
+  return ordered;
+}
+
 std::string FiguresTable(const ResultVerdict& verdict) {
   std::ostringstream t;
   t << "<table class=\"verdict-figures\">\n<tr><th>what the verdict was decided from</th>"
        "<th>value</th></tr>\n";
-  for (const auto& [key, value] : verdict.figures) {
+  for (const auto& [key, value] : InReadingOrder(verdict.figures)) {
     const ReadableFigure figure = Readable(key, value);
     t << "<tr><th title=\"" << MarkupEscape(key) << "\">" << MarkupEscape(figure.label)
       << "</th><td>" << MarkupEscape(figure.value) << "</td></tr>\n";

@@ -52,6 +52,10 @@ TEST(ReportVerdict, FiguresReadInWordsAndMillimetresNotJsonKeys) {
   EXPECT_EQ(html.find(">position_misfit_m<"), std::string::npos) << html;
   EXPECT_EQ(html.find("1.135e-171"), std::string::npos);
   EXPECT_NE(html.find(">a_future_figure</th><td>2.5<"), std::string::npos);  // unknown: as is
+  // In reading order, not the file's alphabetical one; unknown figures last.
+  EXPECT_LT(html.find("probability of so large"), html.find("board position misfit"));
+  EXPECT_LT(html.find("board position misfit"), html.find("largest angle change"));
+  EXPECT_LT(html.find("largest angle change"), html.find("a_future_figure"));
 }
 
 TEST(ReportVerdict, AResultWithoutAVerdictSaysSo) {
