@@ -31,8 +31,7 @@ struct IdentifiedRobot {
 IdentifiedRobot RebuildFromResult(const IdentificationResult& result,
                                   const Assembly& assembly = Assembly{});
 
-/// The one check that a result is Model 12's (the --from start of Model 31, the control
-/// law): throws std::invalid_argument "SOURCE: USE needs a Model 12 result, this is Model
+/// The one check that a result is Model 12's (the --from start of Model 31): throws std::invalid_argument "SOURCE: USE needs a Model 12 result, this is Model
 /// 31" (without "SOURCE: " when source is empty).
 void RequireModel12Result(const IdentificationResult& result, const std::string& source,
                           const std::string& use);

@@ -211,7 +211,7 @@ std::string MeasuredSquareFigure(const SquarePlan& plan, const ValidationReport&
         "mm)'{}",
         m, kColours[m % 5], GnuplotText(r.label), r.run.rms * 1e3, sep);
   }
-  gp << "set multiplot layout 1,2 title 'Square path under the Model 12 IK control law, "
+  gp << "set multiplot layout 1,2 title 'Square path under the IK control law (Model 12 or 31), "
         "measured by the camera'\n"
         "set grid\nset key outside bottom center font ',10' noenhanced\n";
   gp << "set title 'path'\nset size ratio -1\n"

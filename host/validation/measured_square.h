@@ -1,6 +1,6 @@
 // The square path measured by the camera (paper IV.D, last experiment, on a real robot): the
 // plan of commanded points (`h4cal square-plan`, a common/formats/README.md poses CSV), the robot driven
-// through them by the Model 12 IK control law (`h4cal collect --plan --controller`), and the
+// through them by an IK control law, Model 12 or 31 (`h4cal collect --plan --controller`), and the
 // board measured at each point (a paired dataset CSV with the plan's pose ids). The measured
 // end-effector position is the translation of X_BE = X_BC * X_CT * X_TE (eq. (6)), with the
 // placement X_BC, X_TE of a Model 12 identification; the side errors are those of the
