@@ -6,6 +6,7 @@
 #include <string>
 
 #include "common/formats/csv_table.h"
+#include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
 #include "common/formats/yaml_map.h"
 
@@ -143,8 +144,25 @@ const AprilTagFamilyInfo* FindAprilTagFamily(const std::string& name) {
   return nullptr;
 }
 
+namespace {
+
+// A camera file (OpenCV's or Kalibr's) where a board was expected: the two YAML files of
+// h4cam's command lines are the easiest pair to swap.
+void RejectCameraFile(const YamlMap& root, const std::string& source_name) {
+  if (root.Has("target_type")) return;
+  for (const char* camera_key : {"camera_matrix", "image_width", "camera_model", "cam0"}) {
+    if (!root.Has(camera_key)) continue;
+    throw FormatError(source_name, 1, "",
+                      "this looks like a camera file, not a board YAML (were --board and --camera "
+                      "swapped?)");
+  }
+}
+
+}  // namespace
+
 BoardSpec ParseBoardYaml(const std::string& text, const std::string& source_name) {
   const YamlMap root(LoadYaml(text, source_name), source_name, "", 0);
+  RejectCameraFile(root, source_name);
   root.RejectCaseVariants({"target_type", "tagFamily", "tagCols", "tagRows", "tagSize",
                            "tagSpacing", "firstId", kLayoutKey, "targetCols", "targetRows",
                            "colSpacingMeters", "rowSpacingMeters", kSizeSigmaKey});

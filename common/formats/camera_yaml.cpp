@@ -9,6 +9,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "common/formats/csv_table.h"
+#include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
 #include "common/formats/yaml_map.h"
 
@@ -303,6 +304,11 @@ CameraIntrinsics ParseCameraYaml(const std::string& text, const std::string& sou
                                  const std::string& kalibr_camera) {
   const YAML::Node document = LoadYaml(WithoutOpenCvDirective(text), source_name);
   const YamlMap root(document, source_name, "", 0);
+  if (root.Has("target_type")) {
+    throw FormatError(source_name, 1, "",
+                      "this looks like a board file, not a camera YAML (were --board and --camera "
+                      "swapped?)");
+  }
   if (!kalibr_camera.empty() || LooksLikeKalibr(root)) {
     return ParseKalibrCamera(KalibrCameraBlock(root, document, kalibr_camera));
   }

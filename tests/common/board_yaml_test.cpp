@@ -129,8 +129,7 @@ TEST(BoardYaml, RoundTripIsExact) {
   EXPECT_EQ(back.first_id, grid.first_id);
   EXPECT_EQ(back.layout, grid.layout);
   grid.size_sigma = 2e-4;
-  EXPECT_EQ(std::get<AprilGridSpec>(ParseBoardYaml(FormatBoardYaml(grid), "mem")).size_sigma,
-            2e-4);
+  EXPECT_EQ(std::get<AprilGridSpec>(ParseBoardYaml(FormatBoardYaml(grid), "mem")).size_sigma, 2e-4);
   CheckerboardSpec chess;
   chess.cols = 11;
   chess.rows = 8;
@@ -152,8 +151,8 @@ TEST(BoardYamlErrors, SizeSigmaIsARelativeSigma) {
       "target_type: aprilgrid\ntagCols: 6\ntagRows: 6\ntagSize: 0.03\ntagSpacing: 0.25\n";
   EXPECT_EQ(BoardSizeSigma(ParseBoardYaml(grid + "h4camSizeSigma: 0.0005\n", "b.yaml")), 5e-4);
   EXPECT_FALSE(BoardSizeSigma(ParseBoardYaml(grid, "b.yaml")).has_value());
-  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(grid + "h4camSizeSigma: 0.5\n", "b.yaml"); },
-                        "b.yaml", 6, "h4camSizeSigma", "relative one-sigma in [0, 0.1]"));
+  EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(grid + "h4camSizeSigma: 0.5\n", "b.yaml"); }, "b.yaml",
+                        6, "h4camSizeSigma", "relative one-sigma in [0, 0.1]"));
   EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(grid + "h4camSizeSigma: -1e-4\n", "b.yaml"); },
                         "b.yaml", 6, "h4camSizeSigma", "relative one-sigma"));
 }
@@ -293,6 +292,21 @@ TEST(BoardYamlErrors, CountsAndSizesAboveTheLimitsNameTheField) {
       ParseBoardYaml(ReplacedOnce(ReplacedOnce(kAprilGrid, "tagRows: 6", "tagRows: 200"),
                                   "tagCols: 6", "tagCols: 2"),
                      "b.yaml"));
+}
+
+// --board and --camera swapped: one line that names the mix-up (issue 26 point 8), for
+// OpenCV's camera file and Kalibr's camchain.
+TEST(BoardYaml, ACameraFileGivenAsTheBoardSaysTheyWereSwapped) {
+  const std::string opencv_camera =
+      "%YAML:1.0\n---\nimage_width: 1024\nimage_height: 768\ncamera_matrix: !!opencv-matrix\n"
+      "  rows: 3\n  cols: 3\n  dt: d\n  data: [800, 0, 512, 0, 800, 384, 0, 0, 1]\n";
+  const std::string kalibr_camchain =
+      "cam0:\n  camera_model: pinhole\n  intrinsics: [800, 800, 512, 384]\n";
+  for (const std::string& text : {opencv_camera, kalibr_camchain}) {
+    EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(text, "camera.yaml"); }, "camera.yaml", 1, "",
+                          "this looks like a camera file, not a board YAML (were --board and "
+                          "--camera swapped?)"));
+  }
 }
 
 }  // namespace

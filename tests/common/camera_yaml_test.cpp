@@ -190,18 +190,16 @@ TEST(CameraYamlErrors, TheIntrinsicsCovarianceIsChecked) {
                         "c.yaml", 23, "intrinsics_covariance.data[0]", "variance in [0"));
   std::vector<double> asymmetric = DiagonalCovariance();
   asymmetric[1] = 0.01;
-  EXPECT_TRUE(
-      FailsWith([&] { ParseCameraYaml(kOpenCvFile + CovarianceKey(asymmetric), "c.yaml"); },
-                "c.yaml", 23, "intrinsics_covariance.data[9]", "symmetric"));
+  EXPECT_TRUE(FailsWith([&] { ParseCameraYaml(kOpenCvFile + CovarianceKey(asymmetric), "c.yaml"); },
+                        "c.yaml", 23, "intrinsics_covariance.data[9]", "symmetric"));
   std::vector<double> indefinite = DiagonalCovariance();
   // |rho| <= 1 pairwise, yet fx, fy, cx at correlations -1, -1, -1: not a covariance.
   const double s0 = 0.4, s1 = 0.4, s2 = 0.5;
   indefinite[1] = indefinite[9] = -s0 * s1;
   indefinite[2] = indefinite[18] = -s0 * s2;
   indefinite[11] = indefinite[19] = -s1 * s2;
-  EXPECT_TRUE(
-      FailsWith([&] { ParseCameraYaml(kOpenCvFile + CovarianceKey(indefinite), "c.yaml"); },
-                "c.yaml", 23, "intrinsics_covariance.data", "positive semi-definite"));
+  EXPECT_TRUE(FailsWith([&] { ParseCameraYaml(kOpenCvFile + CovarianceKey(indefinite), "c.yaml"); },
+                        "c.yaml", 23, "intrinsics_covariance.data", "positive semi-definite"));
 }
 
 // A 20000 x 20000 camera made `measure` and `render` run for minutes and take gigabytes:
@@ -411,6 +409,14 @@ TEST(CameraYaml, OpenCvReadsWhatTheWriterWrites) {
   EXPECT_EQ(static_cast<double>(fs["avg_reprojection_error"]), 0.0);
 }
 #endif
+
+// --board and --camera swapped: one line that names the mix-up (issue 26 point 8).
+TEST(CameraYaml, ABoardFileGivenAsTheCameraSaysTheyWereSwapped) {
+  EXPECT_TRUE(FailsWith(
+      [] { ParseCameraYaml("target_type: aprilgrid\ntagCols: 6\ntagRows: 6\n", "board.yaml"); },
+      "board.yaml", 1, "",
+      "this looks like a board file, not a camera YAML (were --board and --camera swapped?)"));
+}
 
 }  // namespace
 }  // namespace h4

@@ -92,6 +92,10 @@ swapped "$h4cal" ik --robot sim/robot.yaml --poses sim/robot.yaml --out j.csv
 expect="sim/dataset.csv:1: this looks like a dataset CSV, not a YAML file"
 swapped "$h4cam" measure --board "$board" --camera sim/dataset.csv --out m.csv near
 swapped "$h4cam" measure --board sim/dataset.csv --camera "$camera" --out m.csv near
+expect="$camera:1: this looks like a camera file, not a board YAML (were --board and --camera swapped?)"
+swapped "$h4cam" measure --board "$camera" --camera "$board" --out m.csv near
+expect="$board:1: this looks like a board file, not a camera YAML (were --board and --camera swapped?)"
+swapped "$h4cam" capture --source sim --board "$board" --camera "$board" --count 1 --out frames
 # The old spelling simulate --truth and the new --truth-model draw the same robot.
 "$h4cal" simulate --truth-model 12 --out-dir sim_new 2> /dev/null || fail "simulate --truth-model"
 cmp -s sim/truth.yaml sim_new/truth.yaml || fail "simulate --truth and --truth-model differ"
