@@ -1,10 +1,11 @@
 # Build-time half of cmake/H4ManPages.cmake: the man page of one program from its --help.
 #   cmake -DPROGRAM=path -DNAME=h4cal -DSUMMARY="what it is" -DHELP2MAN=path -DOUTPUT=h4cal.1
-#         -P H4ManPageGenerate.cmake
+#         -DSECTIONS=cmake/man/h4cal.h2m -P H4ManPageGenerate.cmake
 # help2man reads the program's --help and --version; the subcommands' --help (listed under
 # "Subcommands:" in the program's --help) go into a SUBCOMMANDS section through
-# help2man's --include file, so the page documents every option of every command.
-foreach(variable PROGRAM NAME SUMMARY HELP2MAN OUTPUT)
+# help2man's --include file, so the page documents every option of every command; SECTIONS
+# (help2man's include format) adds what --help does not say: EXIT STATUS, FILES, EXAMPLES.
+foreach(variable PROGRAM NAME SUMMARY HELP2MAN OUTPUT SECTIONS)
   if(NOT ${variable})
     message(FATAL_ERROR "H4ManPageGenerate: -D${variable}=... is required")
   endif()
@@ -46,6 +47,8 @@ foreach(subcommand IN LISTS subcommands)
   string(REGEX REPLACE "\n([.'])" "\n\\\\&\\1" sub_help "${sub_help}")
   string(APPEND include_text ".SS \"${NAME} ${subcommand}\"\n.nf\n${sub_help}\n.fi\n")
 endforeach()
+file(READ ${SECTIONS} sections_text)
+string(APPEND include_text "\n${sections_text}")
 get_filename_component(directory ${OUTPUT} DIRECTORY)
 file(MAKE_DIRECTORY ${directory})
 file(WRITE ${OUTPUT}.include "${include_text}")

@@ -18,12 +18,14 @@ function(h4_add_man_page target summary)
     return()
   endif()
   set(page ${PROJECT_BINARY_DIR}/man/${target}.1)
+  # EXIT STATUS, FILES and EXAMPLES, which --help does not carry: cmake/man/TARGET.h2m.
+  set(sections ${PROJECT_SOURCE_DIR}/cmake/man/${target}.h2m)
   add_custom_command(
     OUTPUT ${page}
     COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:${target}> -DNAME=${target} "-DSUMMARY=${summary}"
-            -DHELP2MAN=${H4_HELP2MAN} -DOUTPUT=${page}
+            -DHELP2MAN=${H4_HELP2MAN} -DOUTPUT=${page} -DSECTIONS=${sections}
             -P ${PROJECT_SOURCE_DIR}/cmake/H4ManPageGenerate.cmake
-    DEPENDS ${target} ${PROJECT_SOURCE_DIR}/cmake/H4ManPageGenerate.cmake
+    DEPENDS ${target} ${PROJECT_SOURCE_DIR}/cmake/H4ManPageGenerate.cmake ${sections}
     COMMENT "help2man: ${target}.1"
     VERBATIM)
   add_custom_target(${target}_man_page ALL DEPENDS ${page})

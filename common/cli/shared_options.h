@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "common/cli/board_lookup.h"
 #include "common/text/enum_names.h"
 
 namespace h4::cli {
@@ -50,9 +51,11 @@ CLI::Option* AddResultOption(CLI::App* command, Path* path,
   return AddInputFileOption(command, "--result", path, what);
 }
 
+/// --board FILE, or the name of an installed board (board_lookup.h).
 template <typename Path>
 CLI::Option* AddBoardOption(CLI::App* command, Path* path) {
-  return AddInputFileOption(command, "--board", path, "Board YAML");
+  return command->add_option("--board", *path, "Board YAML, or an installed board's name")
+      ->transform(ExistingBoardFile());
 }
 
 /// An existing file, or FILE#NAME naming one block of an existing FILE ("camchain.yaml#cam1",

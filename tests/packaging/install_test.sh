@@ -31,6 +31,9 @@ for name in h4cal h4cam; do
   page=$prefix/share/man/man1/$name.1
   [ -s "$page" ] || fail "no man page $page"
   grep -q "$version" "$page" || fail "$page does not carry the version $version"
+  for section in '"EXIT STATUS"' FILES EXAMPLES; do
+    grep -qx ".SH $section" "$page" || fail "$page has no $section section"
+  done
   commands=$(subcommands "$program")
   [ -n "$commands" ] || fail "$name --help lists no subcommand"
   for command in $commands; do
@@ -44,6 +47,12 @@ for file in share/h4cal/boards/aprilgrid_6x6_30mm.yaml share/h4cal/boards/sim_ca
   share/doc/h4cal/README.md share/doc/h4cal/common/formats/README.md share/doc/h4cal/messages/README.md; do
   [ -s "$prefix/$file" ] || fail "$file is not installed"
 done
+# The README's walkthrough names boards bare (--board aprilgrid_6x6_30mm.yaml): from any
+# folder, the installed programs find the installed board of that name.
+(cd "$scratch" && "$prefix/bin/h4cam" preview --source sim --board aprilgrid_6x6_30mm.yaml \
+  --camera "$prefix/share/h4cal/boards/sim_camera_1024x768.yaml" --count 1 > preview.log 2>&1) \
+  || { cat "$scratch/preview.log"; fail "h4cam preview --board aprilgrid_6x6_30mm.yaml"; }
+grep -q "board ok" "$scratch/preview.log" || fail "preview: $(cat "$scratch/preview.log")"
 echo "ok:   installed: --version on both, --help on $checked subcommands, man pages, boards, docs"
 
 if ! command -v dpkg-deb > /dev/null; then

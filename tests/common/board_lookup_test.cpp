@@ -1,0 +1,60 @@
+// A bare board name on a command line names an installed board (common/cli/board_lookup.h):
+// the README's walkthrough writes `--board aprilgrid_6x6_30mm.yaml` from any folder.
+#include "common/cli/board_lookup.h"
+
+#include <fstream>
+
+#include <CLI/CLI.hpp>
+#include <gtest/gtest.h>
+
+#include "tests/common/format_error_helpers.h"
+
+namespace h4::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+class BoardLookup : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    folder_ = fs::path(TempPath("boards"));
+    fs::create_directories(folder_);
+    std::ofstream(folder_ / "grid.yaml") << "target_type: aprilgrid\n";
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+  fs::path folder_;
+};
+
+TEST_F(BoardLookup, ABareNameIsFoundInTheInstalledFolderWithOrWithoutYaml) {
+  const std::string expected = (folder_ / "grid.yaml").string();
+  EXPECT_EQ(ResolveBoardPath("grid.yaml", {"/nonexistent", folder_}), expected);
+  EXPECT_EQ(ResolveBoardPath("grid", {folder_}), expected);
+  EXPECT_EQ(ResolveBoardPath("other.yaml", {folder_}), "");
+}
+
+TEST_F(BoardLookup, APathIsTakenAsItIs) {
+  EXPECT_EQ(ResolveBoardPath("./grid.yaml", {folder_}), "./grid.yaml");
+}
+
+TEST_F(BoardLookup, TheBoardOptionTakesTheInstalledBoardAndNamesWhereItLooked) {
+  CLI::App app;
+  std::string board;
+  app.add_option("--board", board)->transform(ExistingBoardFile({folder_}));
+  app.parse(std::vector<std::string>{"grid.yaml", "--board"});  // CLI11 parses in reverse
+  EXPECT_EQ(board, (folder_ / "grid.yaml").string());
+  try {
+    app.parse(std::vector<std::string>{"missing.yaml", "--board"});
+    FAIL() << "a board found nowhere was accepted";
+  } catch (const CLI::ValidationError& e) {
+    EXPECT_NE(std::string(e.what()).find(folder_.string()), std::string::npos) << e.what();
+  }
+}
+
+TEST(BoardLookupFolders, TheProgramsOwnPrefixComesFirst) {
+  const std::vector<fs::path> folders = InstalledBoardFolders();
+  ASSERT_FALSE(folders.empty());
+  EXPECT_EQ(folders.back(), fs::path("/usr/share/h4cam/boards"));
+}
+
+}  // namespace
+}  // namespace h4::cli
