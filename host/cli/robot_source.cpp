@@ -12,25 +12,29 @@ namespace h4::host::cli {
 void AddRobotSourceOptions(CLI::App* command, RobotSourceOptions* options) {
   auto* result = h4::cli::AddResultOption(command, &options->result_path,
                                           "Identification result JSON (h4cal identify --out)");
-  auto* robot = h4::cli::AddRobotOption(command, &options->robot_path,
-                                        "A priori robot.yaml (its Model 12 and X_BC, X_TE)");
-  result->excludes(robot);
-  robot->excludes(result);
-  h4::cli::AddInputFileOption(command, "--assembly-from", &options->assembly_robot_path,
-                              "robot.yaml whose assembly signs (bar, elbow) go with --result "
-                              "(default: the standard H4 assembly)")
-      ->needs(result);
+  // As in export and check: beside --result, --robot gives the assembly signs.
+  auto* robot = h4::cli::AddRobotOption(
+      command, &options->robot_path,
+      "A priori robot.yaml: alone, its Model 12 (or a Model 31 export's model31) with X_BC and "
+      "X_TE; with --result, the assembly signs (bar, elbow) that go with it (default: the "
+      "standard H4 assembly)");
+  // The old spelling of --robot beside --result (scripts keep running; not in --help).
+  h4::cli::AddInputFileOption(command, "--assembly-from", &options->assembly_robot_path, "")
+      ->needs(result)
+      ->excludes(robot)
+      ->group("");
 }
 
 IdentifiedRobot LoadRobot(const RobotSourceOptions& options, std::string* description) {
-  if (options.result_path.empty() == options.robot_path.empty()) {
-    throw std::invalid_argument("give exactly one of --result and --robot");
+  if (options.result_path.empty() && options.robot_path.empty()) {
+    throw std::invalid_argument("give --result (with --robot for its assembly signs) or --robot");
   }
   if (!options.result_path.empty()) {
     const IdentificationResult result = ReadIdentificationResult(options.result_path);
-    const Assembly assembly = options.assembly_robot_path.empty()
-                                  ? Assembly{}
-                                  : ReadRobotYaml(options.assembly_robot_path).assembly;
+    const std::string& assembly_path =
+        options.robot_path.empty() ? options.assembly_robot_path : options.robot_path;
+    const Assembly assembly =
+        assembly_path.empty() ? Assembly{} : ReadRobotYaml(assembly_path).assembly;
     if (description) *description = ModelLabel(result.model) + " result " + options.result_path;
     return RebuildFromResult(result, assembly);
   }

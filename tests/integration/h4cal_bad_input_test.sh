@@ -164,8 +164,14 @@ with open(sys.argv[2], "w") as out:
 PY
 "$h4cal" fk --robot "$dir/c31.yaml" --joints "$dir/joints31.csv" --out "$dir/fk31_export.csv" \
   > /dev/null 2>&1 || fail "fk --robot on a Model 31 export"
+# Assembly signs come from --robot beside --result, as in export and check (issue 26: one way
+# to give them); --assembly-from is the old spelling and gives the same.
+"$h4cal" fk --result "$dir/r31from12.json" --robot "$robot" --joints "$dir/joints31.csv" \
+  --out "$dir/fk31_result.csv" > /dev/null 2>&1 || fail "fk --result of Model 31 with --robot"
 "$h4cal" fk --result "$dir/r31from12.json" --assembly-from "$robot" --joints "$dir/joints31.csv" \
-  --out "$dir/fk31_result.csv" > /dev/null 2>&1 || fail "fk --result of Model 31"
+  --out "$dir/fk31_old.csv" > /dev/null 2>&1 || fail "fk --result --assembly-from"
+cmp -s "$dir/fk31_result.csv" "$dir/fk31_old.csv" || fail "fk --robot and --assembly-from differ"
+"$h4cal" fk --help | grep -q -- "--assembly-from" && fail "fk --help still shows --assembly-from"
 python3 - "$dir/fk31_export.csv" "$dir/fk31_result.csv" <<'PY' || fail "fk of a Model 31 export differs from fk of its result"
 import csv, sys
 a, b = (list(csv.DictReader(open(p))) for p in sys.argv[1:3])
