@@ -9,6 +9,7 @@
 
 #include "common/geometry/rotation.h"
 #include "common/text/enum_names.h"
+#include "common/units.h"
 #include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/measurement_chain.h"
 #include "host/kinematics/model12.h"
@@ -48,6 +49,9 @@ bool SimulatedControllerOptions::IsValid(std::string* why) const {
   }
   if (!(std::isfinite(joint_range) && joint_range > 0.0)) {
     return fail("joint range must be positive, got " + std::to_string(joint_range) + " rad");
+  }
+  if (joint_limits && !(joint_limits->allFinite() && (*joint_limits)[0] < (*joint_limits)[1])) {
+    return fail("joint limits must be finite with MIN < MAX");
   }
   if (!home.allFinite()) return fail("home pose is not finite");
   return true;
@@ -132,6 +136,15 @@ TargetResult SimulatedController::SetTarget(int64_t pose_id, const JointVector& 
                     fmt::format("joint {} target {:.4f} rad is {:.4f} rad from its home {:.4f} "
                                 "rad, beyond the joint range {:.4f} rad",
                                 i + 1, q[i], from_home[i], q_home_[i], options_.joint_range));
+    }
+    if (options_.joint_limits &&
+        (q[i] < (*options_.joint_limits)[0] || q[i] > (*options_.joint_limits)[1])) {
+      return Refuse(pose_id, TargetStatus::kOutsideLimits,
+                    fmt::format("joint {} target {:.1f} deg, outside the joint range "
+                                "{:.1f}..{:.1f} deg",
+                                i + 1, DegreesFromRadians(q[i]),
+                                DegreesFromRadians((*options_.joint_limits)[0]),
+                                DegreesFromRadians((*options_.joint_limits)[1])));
     }
   }
   EePose x_target_model;

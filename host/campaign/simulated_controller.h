@@ -33,6 +33,9 @@ struct SimulatedControllerOptions {
   /// Joint limits: a target whose joints differ (wrapped) from the home joints by more than
   /// this is refused, rad. The paper's 81-pose grid needs about 0.6 rad.
   double joint_range = 1.5;
+  /// The encoder range (MIN, MAX) every joint must stay in, rad, as `plan` and `collect
+  /// --joint-range-deg` state it (sim-robot --joint-range-deg); none: joint_range alone.
+  std::optional<Eigen::Vector2d> joint_limits;
   EePose home = EePose(0.0, 0.0, -0.45, 0.0);  ///< start pose in B (the workspace centre), m, rad
 
   /// False (and *why says which) when an option is out of range.
@@ -43,7 +46,7 @@ struct SimulatedControllerOptions {
 enum class TargetStatus {
   kAccepted,       ///< moving to it (or already there: a repeated target changes nothing)
   kUnreachable,    ///< the a priori IK has no solution, or the true robot cannot assemble
-  kOutsideLimits,  ///< the joints are beyond options.joint_range from home
+  kOutsideLimits,  ///< beyond options.joint_range from home, or outside options.joint_limits
   kInvalid,        ///< non-finite numbers
 };
 /// "accepted", "unreachable", "outside joint limits", "invalid".

@@ -18,6 +18,7 @@
 #include "host/campaign/sim_robot_node.h"
 #include "host/campaign/simulated_controller.h"
 #include "host/cli/commands.h"
+#include "host/cli/plan_reach.h"
 #include "host/cli/stop_signal.h"
 #include "host/simulation/paper_scenario.h"
 #include "host/simulation/true_robot.h"
@@ -33,6 +34,7 @@ struct SimRobotArgs {
   bool paper = false;
   uint64_t robot_seed = 1;
   SimulatedControllerOptions controller;
+  std::string joint_range_deg;  ///< --joint-range-deg MIN,MAX, as plan and collect take it
   SimRobotNodeOptions node;
   std::string lcm_url;
   double duration_s = 0.0;
@@ -80,8 +82,10 @@ Scenario LoadScenario(const SimRobotArgs& args) {
 
 void Run(const SimRobotArgs& args) {
   const Scenario scenario = LoadScenario(args);
+  SimulatedControllerOptions controller_options = args.controller;
+  controller_options.joint_limits = ParseJointRange(args.joint_range_deg);
   SimulatedController controller(scenario.truth, scenario.apriori.model12,
-                                 scenario.apriori.assembly, args.controller);
+                                 scenario.apriori.assembly, controller_options);
   bus::LcmBus bus(args.lcm_url);
   if (!bus.good()) throw std::runtime_error("sim-robot: " + bus.error());
   SimRobotNode node(bus, controller, args.node);
@@ -137,9 +141,13 @@ void DeclareSimRobotCommand(CLI::App* command) {
       ->capture_default_str();
   command
       ->add_option("--joint-range", args->controller.joint_range,
-                   "Joint limits: farthest a joint target may be from its home value, rad")
+                   "Joint limits: farthest a joint target may be from its home value, rad "
+                   "(before --joint-range-deg; kept for scripts)")
       ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+      ->group("");
+  // The same option, unit and meaning as plan's and collect's: the controller refuses what
+  // the plan was checked against.
+  AddJointRangeOption(command, &args->joint_range_deg);
   h4::cli::AddSeedOption(command, &args->node.seed, "Seed of the encoder noise");
   command
       ->add_option("--rate", args->node.rate_hz,

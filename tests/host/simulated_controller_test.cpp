@@ -324,6 +324,25 @@ TEST_F(SimulatedControllerTest, RepeatedTargetKeepsTheRobotSettled) {
   EXPECT_FALSE(controller_.settled());
 }
 
+// The encoder range in the unit and meaning plan and collect take (--joint-range-deg MIN,MAX):
+// the controller refuses what the plan was checked against (issue 26 point 9).
+TEST_F(SimulatedControllerTest, JointTargetOutsideTheEncoderRangeIsRefusedInDegrees) {
+  SimulatedControllerOptions options;
+  const JointVector home = controller_.home_joints();
+  options.joint_limits = Eigen::Vector2d(home.minCoeff() - 0.1, home.maxCoeff() + 0.1);
+  SimulatedController controller(truth_, apriori_.model12, apriori_.assembly, options);
+  JointVector q = home;
+  EXPECT_TRUE(controller.SetJointTarget(1, q).ok());
+  q[1] = home.maxCoeff() + 0.2;
+  const TargetResult result = controller.SetJointTarget(2, q);
+  EXPECT_EQ(result.status, TargetStatus::kOutsideLimits);
+  EXPECT_NE(result.reason.find("joint 2"), std::string::npos) << result.reason;
+  EXPECT_NE(result.reason.find(" deg"), std::string::npos) << result.reason;
+  options.joint_limits = Eigen::Vector2d(1.0, -1.0);
+  std::string why;
+  EXPECT_FALSE(options.IsValid(&why));
+}
+
 TEST_F(SimulatedControllerTest, EncoderNoiseHasTheConfiguredStandardDeviation) {
   SimulatedControllerOptions options;
   options.sigma_q = 3e-4;

@@ -8,7 +8,7 @@ set -uo pipefail
 
 help=$("$h4cal" sim-robot --help 2>&1) || fail "--help exited non-zero: $help"
 for option in --truth --robot --paper --robot-seed --joint-speed --settle-time --sigma-q \
-              --joint-range --seed --rate --status-period --lcm-url --duration; do
+              --joint-range-deg --seed --rate --status-period --lcm-url --duration; do
   grep -q -- "$option" <<< "$help" || fail "--help does not list $option"
 done
 
