@@ -8,6 +8,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "common/units.h"
 #include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/measurement_chain.h"
 #include "host/kinematics/model12.h"
@@ -30,13 +31,15 @@ bool CandidateOptions::IsValid(std::string* why) const {
   }
   if (theta.empty()) return fail("theta must hold at least one angle");
   for (double t : theta) {
-    if (!std::isfinite(t) || std::abs(t) > std::numbers::pi) return fail("theta must be within +-pi rad");
+    if (!std::isfinite(t) || std::abs(t) > std::numbers::pi)
+      return fail("theta must be within +-pi rad");
   }
   if (joint_range && (!joint_range->allFinite() || (*joint_range)[0] >= (*joint_range)[1])) {
     return fail("joint_range must be finite with min < max");
   }
   if (!(image_margin_px >= 0.0)) return fail("image_margin_px must be >= 0");
-  if (!(max_tilt > 0.0 && max_tilt < std::numbers::pi / 2)) return fail("max_tilt must be in (0, pi/2)");
+  if (!(max_tilt > 0.0 && max_tilt < std::numbers::pi / 2))
+    return fail("max_tilt must be in (0, pi/2)");
   if (!(max_theta_gain > 0.0)) return fail("max_theta_gain must be > 0");
   if (!(min_depth > 0.0 && max_depth > min_depth)) {
     return fail("depth range must satisfy 0 < min_depth < max_depth");
@@ -126,11 +129,12 @@ std::string CandidateSet::Summary() const {
 
 namespace {
 
-// The grid values along one axis: centre + k step for |k step| <= half extent.
+// The grid values along one axis: centre + k step for |k step| <= half extent, as designed
+// (to the nanometre, so plan.csv reads -0.15, not -0.15000000000000002).
 std::vector<double> AxisValues(double centre, double half_extent, double step) {
   const int steps = static_cast<int>(std::floor(half_extent / step + 1e-9));
   std::vector<double> values;
-  for (int k = -steps; k <= steps; ++k) values.push_back(centre + k * step);
+  for (int k = -steps; k <= steps; ++k) values.push_back(DesignedMetres(centre + k * step));
   return values;
 }
 

@@ -9,6 +9,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "common/units.h"
 #include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/measurement_chain.h"
 
@@ -41,7 +42,10 @@ std::vector<SquarePoint> SquarePoints(const SquareOptions& options) {
     const Eigen::Vector3d& b = corners[static_cast<size_t>((side + 1) % 4)];
     for (int k = 0; k < options.points_per_side; ++k) {
       const double s = static_cast<double>(k) / (options.points_per_side - 1);
-      points.push_back({a + s * (b - a), side});
+      // As designed, to the nanometre: square_plan.csv reads -0.01, not -0.009999999999999995.
+      const Eigen::Vector3d p =
+          (a + s * (b - a)).unaryExpr([](double v) { return DesignedMetres(v); });
+      points.push_back({p, side});
     }
   }
   return points;

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/formats/number_text.h"
 #include "host/cli/validation_inputs.h"
 #include "host/kinematics/model12.h"
 #include "host/simulation/paper_scenario.h"
@@ -223,6 +224,16 @@ TEST(Validate, RejectsAnUnreachableSquare) {
   ValidationInputs in = PaperValidationInputs();
   in.square.side = 1.5;
   EXPECT_THROW(Validate(in), std::invalid_argument);
+}
+
+// square_plan.csv holds the designed points: -0.01, not -0.009999999999999995 (issue 26).
+TEST(SquarePath, PointsAreTheDesignedValuesWrittenShort) {
+  for (const SquarePoint& point : SquarePoints(SquareOptions{})) {
+    for (int i = 0; i < 3; ++i) {
+      const std::string text = FormatDouble(point.p_B[i], "x");
+      EXPECT_LE(text.size(), 6u) << text;
+    }
+  }
 }
 
 }  // namespace

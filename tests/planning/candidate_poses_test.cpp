@@ -11,6 +11,7 @@
 
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
+#include "common/formats/number_text.h"
 #include "host/kinematics/model12.h"
 #include "host/simulation/paper_scenario.h"
 #include "tests/support/options_check.h"
@@ -57,6 +58,19 @@ TEST(CandidatePoses, EveryCandidateIsReachableAndShowsTheWholeBoard) {
     EXPECT_LT((ik.q - pose.q).norm(), 1e-12);
     EXPECT_TRUE(WholeBoardInImage(robot, camera, board, pose.x_B, options.image_margin_px))
         << pose.x_B.transpose();
+  }
+}
+
+// plan.csv holds the designed grid values: -0.15, not -0.15000000000000002 (issue 26).
+TEST(CandidatePoses, PositionsAreTheDesignedGridValuesWrittenShort) {
+  const CandidateSet set =
+      MakeCandidateSet(PaperAprioriRobot(), DemoCamera(), DemoBoard(), CandidateOptions{});
+  ASSERT_FALSE(set.poses.empty());
+  for (const CandidatePose& pose : set.poses) {
+    for (int i = 0; i < 3; ++i) {
+      const std::string text = FormatDouble(pose.x_B[i], "x");
+      EXPECT_LE(text.size(), 6u) << text;
+    }
   }
 }
 
