@@ -28,7 +28,8 @@ struct RenderArgs {
   std::string camera_path;
   std::vector<double> pose;  ///< x, y, z (m), qw, qx, qy, qz: X_CT
   int frames = 1;
-  std::string preset = "clean";  ///< clean | processed (render_options.h)
+  /// clean | processed (render_options.h); processed, as `capture` and `run --source sim`.
+  std::string preset = "processed";
   // Overrides of the preset's values, unset = the preset's (units: render_options.h).
   std::optional<double> blur_sigma_px, focus_distance, aperture_diameter;
   std::optional<double> illumination_gradient, illumination_gradient_direction_deg;

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <gtest/gtest.h>
 
+#include "firmware/cli/capture_command.h"
 #include "firmware/render/paper_scenes.h"
 
 namespace h4::cam {
@@ -49,8 +50,10 @@ TEST(RenderCommandTest, FlagsOverrideThePreset) {
   // Not overridden: the preset's.
   EXPECT_EQ(options.illumination_gradient, RenderOptions::Processed().illumination_gradient);
   EXPECT_EQ(options.full_well_electrons, RenderOptions::Processed().full_well_electrons);
-  // Default preset: clean.
-  EXPECT_EQ(RenderOptionsFromArgs(RenderArgs{}).response, ResponseCurve::kLinear);
+  // Default preset: processed, as `capture --sim-preset` and `run --sim-preset` (one default
+  // for every rendered image, issue 26 point 9).
+  EXPECT_EQ(RenderOptionsFromArgs(RenderArgs{}).response, RenderOptions::Processed().response);
+  EXPECT_EQ(RenderArgs{}.preset, CaptureArgs{}.sim_preset);
 }
 
 TEST(RenderCommandTest, BadValuesAreRejectedNamingTheOption) {
