@@ -368,7 +368,8 @@ void DeclareCollectCommand(CLI::App* command) {
                    "Max seconds between a measurement and its joint reading")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  command->add_option("--identify", options->identify_dir,
+  // --report-dir as in identify, validate and report (the old spelling --identify stays).
+  command->add_option("--report-dir,--identify", options->identify_dir,
                       "After the campaign: identify Models 12 and 31 (each printed with its "
                       "verdict, as identify prints it; exit 3 when neither is good), validate, "
                       "and write DIR/result12.json, DIR/result31.json, DIR/report.html (needs "

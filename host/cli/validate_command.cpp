@@ -45,7 +45,8 @@ void DeclareReportCommand(CLI::App* command) {
   const auto options = std::make_shared<ValidateOptions>();
   options->print_tables = false;
   AddValidationFileOptions(command, &options->files);
-  h4::cli::AddOutDirOption(command, &options->report_dir, "Folder of report.html", "--report-dir")
+  // --report-dir as in identify, validate and collect: one name for the report's folder.
+  command->add_option("--report-dir,--out-dir", options->report_dir, "Folder of report.html")
       ->required();
   RunWithCommandLineWhenParsed(command, options, Run);
 }

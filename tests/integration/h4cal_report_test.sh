@@ -16,7 +16,7 @@ done
   --out "$sim/result12.json" > /dev/null 2>&1 || fail "identify 12"
 "$h4cal" identify --robot "$sim/robot.yaml" --data "$sim/dataset.csv" --model 31 \
   --from "$sim/result12.json" --out "$sim/result31.json" > /dev/null 2>&1 || fail "identify 31"
-"$h4cal" report --sim-dir "$sim" --out-dir "$dir/report" 2> "$dir/report.log" ||
+"$h4cal" report --sim-dir "$sim" --report-dir "$dir/report" 2> "$dir/report.log" ||
   fail "report: $(cat "$dir/report.log")"
 html=$dir/report/report.html
 [ -s "$html" ] || fail "no report.html"
@@ -105,7 +105,7 @@ out=$("$h4cal" export --result "$sim/result31.json" --out "$dir/c.yaml" 2>&1)
 expect_error() {  # name, expected message, args...
   local name=$1 message=$2; shift 2
   local out
-  out=$("$h4cal" report "$@" --out-dir "$dir/bad_$name" 2>&1)
+  out=$("$h4cal" report "$@" --report-dir "$dir/bad_$name" 2>&1)
   [ $? -ne 0 ] || fail "$name: accepted"
   echo "$out" | grep -q "$message" || fail "$name: unclear message: $out"
   [ ! -e "$dir/bad_$name/report.html" ] || fail "$name: a report was written"

@@ -142,7 +142,7 @@ grep -q " 0 not authentic" from_log.log || fail "--from-log with the key dropped
 # collect --identify judges its results as identify does: a verdict for each model first,
 # exit 3 when none is good (twelve poses are too few, below).
 "$h4cal" collect --from-log campaign.lcmlog --plan plan.csv --out from_log_id.csv \
-  --auth-key h4.key --identify identified --robot sim/robot.yaml > from_log_id.log 2>&1 \
+  --auth-key h4.key --report-dir identified --robot sim/robot.yaml > from_log_id.log 2>&1 \
   && status=0 || status=$?
 [ $status -eq 3 ] || fail "collect --identify on 12 poses exited $status, expected 3"
 [ "$(grep -c '^VERDICT: too_few_poses' from_log_id.log)" -eq 2 ] ||
