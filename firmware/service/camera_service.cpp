@@ -8,6 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/text/enum_names.h"
+#include "firmware/service/measurement_summary.h"
 #include "messages/board_pose_status.h"
 
 namespace h4::cam {
@@ -223,8 +224,7 @@ h4msgs::board_pose_t CameraService::Finish(const Measurement& m, int64_t pose_id
   }
   corners_ = CornersMessage(m, msg);
   ++measurements_total_;
-  spdlog::info("pose {}: {}{}", pose_id, ToString(m.status),
-               m.message.empty() ? "" : " (" + m.message + ")");
+  spdlog::info("pose {}: {}", pose_id, MeasurementSummary(m));
   return msg;
 }
 
