@@ -34,7 +34,7 @@ std::vector<std::vector<double>> DataBlock(const std::string& script, const std:
   for (std::string line; std::getline(lines, line) && line != "EOD";) {
     std::istringstream fields(line);
     std::vector<double> row;
-    for (double v; fields >> v;) row.push_back(v);
+    for (std::string v; fields >> v;) row.push_back(std::stod(v));  // stod reads NaN
     rows.push_back(row);
   }
   return rows;
@@ -229,8 +229,8 @@ TEST(ReportFigures, TheBoardsCoverageOfTheImageShowsEveryPose) {
     EXPECT_GT(c[1], 0.0);
     EXPECT_LT(c[1], 768.0);
   }
-  EXPECT_NE(plot.script.find("title 'calibration pose'"), std::string::npos);
-  EXPECT_NE(plot.script.find("title 'held-out pose'"), std::string::npos);
+  EXPECT_NE(plot.script.find("title 'calibration pose (board outline)'"), std::string::npos);
+  EXPECT_NE(plot.script.find("title 'held-out pose (board outline)'"), std::string::npos);
 }
 
 }  // namespace
