@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include <spdlog/fmt/fmt.h>
 
@@ -73,9 +75,10 @@ namespace {
 struct DrawnFigures {
   bool has_straightness = false, has_square = false, has_measured = false;
   std::string residuals, histograms, straightness, square, measured_square;
-  std::string accuracy_map;  ///< of the last identified model that has one
-  std::string accuracy_map_label;
+  /// One per identified model that has one: its label and figure.
+  std::vector<std::pair<std::string, std::string>> accuracy_maps;
   std::string corner_residuals;  ///< empty without corners
+  std::string board_coverage;    ///< empty without the camera and board
 };
 
 DrawnFigures DrawFigures(const ValidationInputs& in, const ValidationReport& report) {
@@ -83,17 +86,25 @@ DrawnFigures DrawFigures(const ValidationInputs& in, const ValidationReport& rep
   f.has_straightness = !report.models.front().straightness.empty();
   for (const auto& v : report.models) f.has_square = f.has_square || v.square.has_value();
   f.has_measured = !report.measured_squares.empty() && in.square_plan.has_value();
-  f.residuals = ResidualsFigure(report);
-  f.histograms = HistogramFigure(report);
-  if (f.has_straightness) f.straightness = StraightnessFigure(report);
-  if (f.has_square) f.square = SquareFigure(report);
-  if (f.has_measured) f.measured_square = MeasuredSquareFigure(*in.square_plan, report);
+  f.residuals = DrawPlot(ResidualsPlot(report));
+  f.histograms = DrawPlot(HistogramPlot(report));
+  if (f.has_straightness) f.straightness = DrawPlot(StraightnessPlot(report));
+  if (f.has_square) f.square = DrawPlot(SquarePlot(report));
+  if (f.has_measured) f.measured_square = DrawPlot(MeasuredSquarePlot(*in.square_plan, report));
   for (const auto& v : report.models) {
     if (!v.accuracy_map) continue;
-    f.accuracy_map = AccuracyMapFigure(*v.accuracy_map, v.label);
-    f.accuracy_map_label = v.label;
+    f.accuracy_maps.emplace_back(
+        v.label, DrawPlot(AccuracyMapPlot(*v.accuracy_map, v.label, v.calibration_poses,
+                                          v.evaluated_poses)));
   }
-  if (report.corner_residuals) f.corner_residuals = CornerResidualFigure(*report.corner_residuals);
+  if (report.corner_residuals) {
+    f.corner_residuals = DrawPlot(CornerResidualPlot(*report.corner_residuals));
+  }
+  if (in.camera && in.board) {
+    const std::vector<int64_t> held_out =
+        report.in_sample ? std::vector<int64_t>{} : report.heldout_ids;
+    f.board_coverage = DrawPlot(BoardCoveragePlot(in.rows, held_out, *in.board, *in.camera));
+  }
   return f;
 }
 
@@ -103,18 +114,29 @@ std::string AccuracyMapFileName(ModelKind model) {
 
 // The accuracy map's figure and table, or why there is none.
 std::string AccuracyMapSection(const ValidationReport& report, const DrawnFigures& f) {
-  if (f.accuracy_map.empty()) {
+  if (f.accuracy_maps.empty()) {
     return NotComputed("no identified result with a parameter covariance (see the notes)");
+  }
+  // In-sample, every evaluated pose is a calibration one: no crosses.
+  const std::string poses = report.in_sample
+                                ? "circles, the poses the calibration used"
+                                : "circles, the poses the calibration used; crosses, the "
+                                  "held-out ones";
+  std::string figures;
+  for (const auto& [label, svg] : f.accuracy_maps) {
+    figures += Figure(svg, MarkupEscape(label) +
+                               ": each square a commanded pose of the grid, empty where out of "
+                               "reach; " +
+                               poses +
+                               " (where the model puts their joint readings). Each figure has "
+                               "its own colour scale.");
   }
   return "<p>The predicted one-sigma position error of the calibrated robot commanded "
          "through the identified model, from the uncertainty of its parameters, over its "
          "workspace: where it is high, the calibration holds less and more poses there help "
          "(<code>h4cal plan</code>). Written as CSV beside this page "
          "(<code>accuracy_map_model12.csv</code>, <code>accuracy_map_model31.csv</code>).</p>\n" +
-         Figure(f.accuracy_map, MarkupEscape(f.accuracy_map_label) +
-                                    ": each square a commanded pose; empty where out of "
-                                    "reach.") +
-         AccuracyMapTable(report);
+         figures + AccuracyMapTable(report);
 }
 
 // The camera section: refined intrinsics, where the model misfits, its share of the map;
@@ -128,15 +150,16 @@ std::string CameraSection(const ValidationInputs& in, const ValidationReport& re
         "the results come from the pose path, which takes the camera file's intrinsics as "
         "exact, and no corners were given: identify --corners --board --camera refines the "
         "intrinsics with the robot; validate --corners --board --camera maps the corner "
-        "residuals");
+        "residuals and draws where the board fell in the image");
   }
   std::string html =
       "<p>Every board pose is measured through the camera file's intrinsics; an error in them "
       "is shared by every pose, so residuals against the same camera do not show it "
       "(common/README.md, \"The camera file's uncertainty\").</p>\n<h3>Intrinsics</h3>\n";
-  html += refined.empty() ? NotComputed("no result comes from the corner path (identify "
-                                        "--corners): the camera file's intrinsics were taken "
-                                        "as given")
+  html += refined.empty() ? NotComputed(
+                                "no result comes from the corner path (identify "
+                                "--corners): the camera file's intrinsics were taken "
+                                "as given")
                           : refined;
   html += "<h3>Where the camera model misfits</h3>\n";
   if (report.corner_residuals) {
@@ -149,11 +172,21 @@ std::string CameraSection(const ValidationInputs& in, const ValidationReport& re
   } else {
     html += NotComputed("no corners given (--corners, --board, --camera)");
   }
+  html += "<h3>The board's coverage of the image</h3>\n";
+  html += f.board_coverage.empty()
+              ? NotComputed(
+                    "the camera file and board are not given (--corners, --board, "
+                    "--camera)")
+              : Figure(f.board_coverage,
+                       "Each pose's board, the rectangle around its corners, projected from "
+                       "its measured pose X_CT through the camera file: corners seen only "
+                       "near the centre leave the distortion at the edges unmeasured.");
   html += "<h3>The camera model's share of the accuracy map</h3>\n";
   html += share.empty()
-              ? NotComputed("no result says how much the camera's uncertainty adds (its "
-                            "parameter_covariance_camera_exact: the corner path, or identify "
-                            "--camera with a file that has an intrinsics_covariance)")
+              ? NotComputed(
+                    "no result says how much the camera's uncertainty adds (its "
+                    "parameter_covariance_camera_exact: the corner path, or identify "
+                    "--camera with a file that has an intrinsics_covariance)")
               : "<p>The accuracy map's predicted 1-sigma position error, the same with the "
                 "intrinsics known exactly, and the camera model's share (per pose, the root "
                 "of the difference of the variances).</p>\n" +
@@ -180,8 +213,10 @@ Sections DetailSections(const ValidationInputs& in, const ValidationReport& repo
   sections.Add("histograms", "Residual histograms",
                Figure(f.histograms, "All joints, every pose of the dataset."));
   sections.Add("table4", "Table 4: straightness",
-               f.has_straightness ? Table4(report) : NotComputed("optional: no ruler run given (the paper's straightness test, "
-                                             "validate --straightness)"));
+               f.has_straightness
+                   ? Table4(report)
+                   : NotComputed("optional: no ruler run given (the paper's straightness test, "
+                                 "validate --straightness)"));
   sections.Add("straightness", "Straightness runs",
                f.has_straightness ? Figure(f.straightness, "Distance to the fitted line.")
                                   : NotComputed("optional: no ruler run given"));
@@ -244,9 +279,9 @@ std::string WriteHtmlReport(const std::string& dir, const ValidationInputs& inpu
                       PoseResidualsCsv(report));
   for (const ModelValidation& v : report.models) {
     if (!v.accuracy_map) continue;
-    WriteFileAtomically((std::filesystem::path(dir) / AccuracyMapFileName(v.accuracy_map->model))
-                            .string(),
-                        AccuracyMapCsv(*v.accuracy_map));
+    WriteFileAtomically(
+        (std::filesystem::path(dir) / AccuracyMapFileName(v.accuracy_map->model)).string(),
+        AccuracyMapCsv(*v.accuracy_map));
   }
   return path;
 }

@@ -8,6 +8,8 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "common/board/board_model.h"
+#include "common/camera/camera_model.h"
 #include "common/units.h"
 #include "host/report/gnuplot_svg.h"
 
@@ -29,9 +31,104 @@ std::string GnuplotText(const std::string& s) {
   return out;
 }
 
+// Explicit ticks at the evaluated poses' ids when they are few enough to read; beyond, the
+// axis's own ticks (still pose ids).
+std::string PoseIdTics(const std::vector<int64_t>& ids) {
+  if (ids.empty() || ids.size() > 30) return "";
+  std::string tics;
+  for (int64_t id : ids) tics += fmt::format("{}'{}' {}", tics.empty() ? "" : ", ", id, id);
+  return "set xtics (" + tics + ") rotate by -90 font ',8'\n";
+}
+
+// Counts of values in equal bins across their own range [lo, lo + bins * width].
+struct ResidualHistogram {
+  double lo = 0.0;
+  double width = 1.0;
+  std::vector<int> counts;
+  double hi() const { return lo + width * static_cast<double>(counts.size()); }
+};
+
+// About the square root of the count of bins (5 to 25), so that a spread shows as a shape;
+// values all alike get a narrow range around them rather than a made-up one.
+ResidualHistogram HistogramOf(const std::vector<double>& values) {
+  ResidualHistogram h;
+  if (values.empty()) {
+    h.lo = -0.5;
+    h.counts.assign(1, 0);
+    return h;
+  }
+  const auto [min, max] = std::minmax_element(values.begin(), values.end());
+  const int bins =
+      std::clamp(static_cast<int>(std::sqrt(static_cast<double>(values.size()))), 5, 25);
+  double lo = *min, hi = *max;
+  if (hi - lo < 1e-12) {
+    const double pad = std::max(1e-9, 1e-3 * std::abs(lo));
+    lo -= pad;
+    hi += pad;
+  }
+  h.lo = lo;
+  h.width = (hi - lo) / bins;
+  h.counts.assign(static_cast<size_t>(bins), 0);
+  for (double v : values) {
+    const int b = std::clamp(static_cast<int>(std::floor((v - lo) / h.width)), 0, bins - 1);
+    ++h.counts[static_cast<size_t>(b)];
+  }
+  return h;
+}
+
+// The poses whose nearest Z level and theta are panel (t, l)'s, as X, Y from the map's
+// centre (mm); NaN when none, so that the panel's series still exists.
+std::string PosesInPanel(const AccuracyMap& map, const std::vector<EePose>& poses, size_t t,
+                         size_t l) {
+  const auto nearest = [](const std::vector<double>& values, double v) {
+    size_t best = 0;
+    for (size_t k = 1; k < values.size(); ++k) {
+      if (std::abs(values[k] - v) < std::abs(values[best] - v)) best = k;
+    }
+    return best;
+  };
+  std::string body;
+  for (const EePose& x : poses) {
+    if (nearest(map.options.z_offsets_m, x[2] - map.centre[2]) != l ||
+        nearest(map.options.theta_rad, x[3]) != t) {
+      continue;
+    }
+    body +=
+        fmt::format("{:.6g} {:.6g}\n", (x[0] - map.centre[0]) * 1e3, (x[1] - map.centre[1]) * 1e3);
+  }
+  return body.empty() ? "NaN NaN\n" : body;
+}
+
+// The board's outline in its own frame T: the rectangle around its corners (the printed
+// board's edge lies a margin beyond), sampled along each side so that the lens's distortion
+// shows as curved sides; closed.
+std::vector<Eigen::Vector3d> BoardOutline(const BoardModel& board) {
+  Eigen::Vector2d lo = board.corners().front().head<2>(), hi = lo;
+  for (const Eigen::Vector3d& p : board.corners()) {
+    lo = lo.cwiseMin(p.head<2>());
+    hi = hi.cwiseMax(p.head<2>());
+  }
+  const Eigen::Vector2d vertices[] = {lo, {hi.x(), lo.y()}, hi, {lo.x(), hi.y()}, lo};
+  std::vector<Eigen::Vector3d> outline;
+  const int steps = 8;
+  for (int side = 0; side < 4; ++side) {
+    for (int k = 0; k < steps; ++k) {
+      const Eigen::Vector2d p =
+          vertices[side] + (vertices[side + 1] - vertices[side]) * (static_cast<double>(k) / steps);
+      outline.emplace_back(p.x(), p.y(), 0.0);
+    }
+  }
+  outline.emplace_back(lo.x(), lo.y(), 0.0);
+  return outline;
+}
+
 }  // namespace
 
-std::string ResidualsFigure(const ValidationReport& report) {
+std::string DrawPlot(const GnuplotPlot& plot) {
+  return RenderSvg(plot.script, plot.width_px, plot.height_px);
+}
+
+GnuplotPlot ResidualsPlot(const ValidationReport& report) {
   std::ostringstream gp;
   const size_t n = report.models.size();
   for (size_t m = 0; m < n; ++m) {
@@ -39,7 +136,7 @@ std::string ResidualsFigure(const ValidationReport& report) {
     const auto& r = report.models[m].heldout;
     for (size_t k = 0; k < r.residuals.size(); ++k) {
       body << fmt::format(
-          "{} {:.6g} {:.6g} {:.6g} {:.6g}\n", k + 1, DegreesFromRadians(r.residuals[k][0]),
+          "{} {:.6g} {:.6g} {:.6g} {:.6g}\n", r.pose_ids[k], DegreesFromRadians(r.residuals[k][0]),
           DegreesFromRadians(r.residuals[k][1]), DegreesFromRadians(r.residuals[k][2]),
           DegreesFromRadians(r.residuals[k][3]));
     }
@@ -47,9 +144,10 @@ std::string ResidualsFigure(const ValidationReport& report) {
   }
   gp << fmt::format("set multiplot layout 1,{} title 'Joint residuals, {} (measured - model)'\n", n,
                     GnuplotText(EvaluatedPosesLabel(report)));
-  gp << "set grid\nset key top right font ',10'\nset xlabel '"
-     << (report.in_sample ? "pose (every one in-sample)" : "held-out pose")
-     << "'\nset ylabel 'residual (deg)'\n";
+  gp << "set grid\nset key outside below horizontal font ',10'\nset xlabel '"
+     << (report.in_sample ? "pose id (every one in-sample)" : "held-out pose id")
+     << "'\nset ylabel 'residual (deg)'\n"
+     << PoseIdTics(report.heldout_ids);
   for (size_t m = 0; m < n; ++m) {
     gp << "set title " << Quoted(report.models[m].label) << "\n";
     gp << "plot ";
@@ -59,57 +157,47 @@ std::string ResidualsFigure(const ValidationReport& report) {
     }
   }
   gp << "unset multiplot\n";
-  return RenderSvg(gp.str(), 360 * static_cast<int>(n), 380);
+  return GnuplotPlot{gp.str(), 360 * static_cast<int>(n), 400};
 }
 
-std::string HistogramFigure(const ValidationReport& report) {
-  // Identified models only: the a priori residuals are two orders larger.
-  double extent = 0.0;
-  for (size_t m = 1; m < report.models.size(); ++m) {
-    for (const auto& r : report.models[m].all.residuals) {
-      for (double v : r) extent = std::max(extent, std::abs(DegreesFromRadians(v)));
-    }
-  }
-  if (extent <= 0.0) extent = 1.0;
-  const int bins = 25;
-  const double width = 2.0 * extent / bins;
+GnuplotPlot HistogramPlot(const ValidationReport& report) {
+  // Each model on its own axis: the a priori residuals are orders larger than Model 12's,
+  // and Model 12's than Model 31's; a shared axis shows the smaller as one bar.
   std::ostringstream gp;
   const size_t n = report.models.size();
+  std::vector<ResidualHistogram> histograms;
   for (size_t m = 0; m < n; ++m) {
-    std::vector<int> counts(bins, 0);
-    double local_extent = 0.0;
+    std::vector<double> degrees;
     for (const auto& r : report.models[m].all.residuals) {
-      for (double v : r) local_extent = std::max(local_extent, std::abs(DegreesFromRadians(v)));
+      for (double v : r) degrees.push_back(DegreesFromRadians(v));
     }
-    const double w = m == 0 ? 2.0 * std::max(local_extent, 1e-9) / bins : width;
-    const double lo = m == 0 ? -std::max(local_extent, 1e-9) : -extent;
-    for (const auto& r : report.models[m].all.residuals) {
-      for (double v : r) {
-        const int b =
-            std::clamp(static_cast<int>(std::floor((DegreesFromRadians(v) - lo) / w)), 0, bins - 1);
-        ++counts[b];
-      }
-    }
+    histograms.push_back(HistogramOf(degrees));
     std::ostringstream body;
-    for (int b = 0; b < bins; ++b)
-      body << fmt::format("{:.6g} {}\n", lo + (b + 0.5) * w, counts[b]);
+    const ResidualHistogram& h = histograms.back();
+    for (size_t b = 0; b < h.counts.size(); ++b) {
+      body << fmt::format("{:.6g} {}\n", h.lo + (static_cast<double>(b) + 0.5) * h.width,
+                          h.counts[b]);
+    }
     gp << Block(fmt::format("h{}", m), body.str());
   }
   gp << fmt::format(
       "set multiplot layout 1,{} title 'Joint residuals, all joints, every pose "
-      "of the dataset'\n",
+      "of the dataset (each model on its own axis)'\n",
       n);
   gp << "set grid\nset style fill solid 0.6 border -1\nset xlabel 'residual (deg)'\n"
-        "set ylabel 'count'\nunset key\n";
+        "set ylabel 'count'\nunset key\nset xtics rotate by -30 font ',9'\n";
   for (size_t m = 0; m < n; ++m) {
+    const ResidualHistogram& h = histograms[m];
     gp << "set title " << Quoted(report.models[m].label) << "\n";
+    gp << fmt::format("set xrange [{:.6g}:{:.6g}]\nset boxwidth {:.6g} absolute\n", h.lo - h.width,
+                      h.hi() + h.width, h.width);
     gp << fmt::format("plot $h{} using 1:2 with boxes lc rgb '{}'\n", m, kColours[m % 5]);
   }
   gp << "unset multiplot\n";
-  return RenderSvg(gp.str(), 360 * static_cast<int>(n), 340);
+  return GnuplotPlot{gp.str(), 360 * static_cast<int>(n), 360};
 }
 
-std::string StraightnessFigure(const ValidationReport& report) {
+GnuplotPlot StraightnessPlot(const ValidationReport& report) {
   const size_t runs = report.models.front().straightness.size();
   std::ostringstream gp;
   for (size_t m = 0; m < report.models.size(); ++m) {
@@ -127,7 +215,7 @@ std::string StraightnessFigure(const ValidationReport& report) {
       "set multiplot layout 1,{} title 'Straightness: distance of the FK "
       "positions to their least-squares line'\n",
       runs);
-  gp << "set grid\nset key top left font ',10'\nset xlabel 'along the line (mm)'\n"
+  gp << "set grid\nset key outside below horizontal font ',10'\nset xlabel 'along the line (mm)'\n"
         "set ylabel 'distance to the line (mm)'\n";
   for (size_t r = 0; r < runs; ++r) {
     gp << fmt::format("set title 'direction {}'\nplot ", r + 1);
@@ -141,10 +229,10 @@ std::string StraightnessFigure(const ValidationReport& report) {
     }
   }
   gp << "unset multiplot\n";
-  return RenderSvg(gp.str(), 460 * static_cast<int>(runs), 380);
+  return GnuplotPlot{gp.str(), 460 * static_cast<int>(runs), 380};
 }
 
-std::string SquareFigure(const ValidationReport& report) {
+GnuplotPlot SquarePlot(const ValidationReport& report) {
   std::ostringstream gp;
   std::string plots;
   bool first = true;
@@ -174,10 +262,10 @@ std::string SquareFigure(const ValidationReport& report) {
         "set grid\nset size ratio -1\nset key outside bottom center font ',10'\n"
         "set xlabel 'X_B (mm)' noenhanced\nset ylabel 'Y_B (mm)' noenhanced\n";
   gp << "plot " << plots << "\n";
-  return RenderSvg(gp.str(), 620, 640);
+  return GnuplotPlot{gp.str(), 620, 640};
 }
 
-std::string MeasuredSquareFigure(const SquarePlan& plan, const ValidationReport& report) {
+GnuplotPlot MeasuredSquarePlot(const SquarePlan& plan, const ValidationReport& report) {
   std::ostringstream gp;
   std::ostringstream cmd;
   for (const auto& p : plan.commanded)
@@ -225,10 +313,12 @@ std::string MeasuredSquareFigure(const SquarePlan& plan, const ValidationReport&
   gp << fmt::format("set xtics {}\n", plan.options.points_per_side);
   gp << "plot " << distances << "\n";
   gp << "unset multiplot\n";
-  return RenderSvg(gp.str(), 1000, 560);
+  return GnuplotPlot{gp.str(), 1000, 560};
 }
 
-std::string AccuracyMapFigure(const AccuracyMap& map, const std::string& label) {
+GnuplotPlot AccuracyMapPlot(const AccuracyMap& map, const std::string& label,
+                            const std::vector<EePose>& calibration_poses,
+                            const std::vector<EePose>& held_out_poses) {
   const size_t levels = map.options.z_offsets_m.size();
   const size_t thetas = map.options.theta_rad.size();
   std::ostringstream gp;
@@ -245,31 +335,44 @@ std::string AccuracyMapFigure(const AccuracyMap& map, const std::string& label) 
       }
       if (body.str().empty()) body << "NaN NaN NaN\n";  // a panel out of reach stays empty
       gp << Block(fmt::format("m{}_{}", t, l), body.str());
+      gp << Block(fmt::format("c{}_{}", t, l), PosesInPanel(map, calibration_poses, t, l));
+      gp << Block(fmt::format("e{}_{}", t, l), PosesInPanel(map, held_out_poses, t, l));
     }
   }
   const double extent = map.options.half_extent_m * 1e3 + map.options.step_m * 1e3;
   gp << fmt::format(
-      "set multiplot layout {},{} title '{}: predicted 1-sigma position error (mm)'\n", thetas,
-      levels, GnuplotText(label));
-  gp << fmt::format("set xrange [{0}:{1}]\nset yrange [{0}:{1}]\nset size ratio -1\n",
-                    -extent, extent);
+      "set multiplot layout {},{} title '{}: predicted 1-sigma position error (mm); the "
+      "dataset''s poses in the panel of their nearest Z and theta'\n",
+      thetas, levels, GnuplotText(label));
+  gp << fmt::format("set xrange [{0}:{1}]\nset yrange [{0}:{1}]\nset size ratio -1\n", -extent,
+                    extent);
   gp << fmt::format("set cbrange [0:{:.6g}]\nset palette rgbformulae 22,13,-31\n",
                     std::max(map.MaxPositionSigma() * 1e3, 1e-9));
-  gp << "unset key\nset tics font ',8'\nset xlabel 'X - centre (mm)' font ',8'\n"
-        "set ylabel 'Y - centre (mm)' font ',8'\n";
+  gp << "set key outside below horizontal font ',8' samplen 1\nset tics font ',8'\n"
+        "set xlabel 'X - centre (mm)' font ',8'\nset ylabel 'Y - centre (mm)' font ',8'\n";
   for (size_t t = 0; t < thetas; ++t) {
     for (size_t l = 0; l < levels; ++l) {
       gp << fmt::format("set title 'Z {:+.0f} mm, theta {:+.0f} deg' font ',9'\n",
                         map.options.z_offsets_m[l] * 1e3,
                         DegreesFromRadians(map.options.theta_rad[t]));
-      gp << fmt::format("plot $m{}_{} using 1:2:3 with points pt 5 ps 1.3 lc palette\n", t, l);
+      gp << fmt::format(
+          "plot $m{0}_{1} using 1:2:3 with points pt 5 ps 1.3 lc palette notitle, $c{0}_{1} "
+          "using 1:2 with points pt 6 ps 0.9 lw 1.5 lc rgb 'black' title 'calibration pose'",
+          t, l);
+      if (!held_out_poses.empty()) {
+        gp << fmt::format(
+            ", $e{}_{} using 1:2 with points pt 2 ps 0.9 lw 1.5 lc rgb '#d62728' title "
+            "'held-out pose'",
+            t, l);
+      }
+      gp << "\n";
     }
   }
   gp << "unset multiplot\n";
-  return RenderSvg(gp.str(), 300 * static_cast<int>(levels), 280 * static_cast<int>(thetas));
+  return GnuplotPlot{gp.str(), 320 * static_cast<int>(levels), 320 * static_cast<int>(thetas)};
 }
 
-std::string CornerResidualFigure(const CornerResidualMap& map) {
+GnuplotPlot CornerResidualPlot(const CornerResidualMap& map) {
   const double cell_w = static_cast<double>(map.width) / map.columns;
   const double cell_h = static_cast<double>(map.height) / map.rows;
   double largest_mean = 0.0, largest_rms = 0.0;
@@ -301,7 +404,58 @@ std::string CornerResidualFigure(const CornerResidualMap& map) {
   gp << "plot $cells using 1:2:3:4:5 with boxxyerror fs solid 1.0 noborder lc palette, "
         "$arrows using 1:2:3:4 with vectors head filled size screen 0.008,20 lw 1.5 lc rgb "
         "'black'\n";
-  return RenderSvg(gp.str(), 760, 600);
+  return GnuplotPlot{gp.str(), 760, 600};
+}
+
+GnuplotPlot BoardCoveragePlot(const std::vector<DatasetRow>& rows,
+                              const std::vector<int64_t>& held_out_ids, const BoardModel& board,
+                              const CameraIntrinsics& camera) {
+  const CameraModel lens(camera);
+  const std::vector<Eigen::Vector3d> outline_T = BoardOutline(board);
+  Eigen::Vector3d lo_T = outline_T.front(), hi_T = lo_T;
+  for (const Eigen::Vector3d& p : outline_T) {
+    lo_T = lo_T.cwiseMin(p);
+    hi_T = hi_T.cwiseMax(p);
+  }
+  const Eigen::Vector3d centre_T = 0.5 * (lo_T + hi_T);
+  std::string outlines[2], centres[2];  // calibration, held out
+  for (const DatasetRow& row : rows) {
+    const bool held_out =
+        std::find(held_out_ids.begin(), held_out_ids.end(), row.pose_id) != held_out_ids.end();
+    Eigen::Vector2d uv;
+    if (!lens.Project(row.X_CT * centre_T, &uv)) continue;  // behind the camera
+    centres[held_out] += fmt::format("{:.6g} {:.6g}\n", uv.x(), uv.y());
+    for (const Eigen::Vector3d& p_TQ : outline_T) {
+      if (lens.Project(row.X_CT * p_TQ, &uv)) {
+        outlines[held_out] += fmt::format("{:.6g} {:.6g}\n", uv.x(), uv.y());
+      }
+    }
+    outlines[held_out] += "\n";  // a blank line ends one outline
+  }
+  std::ostringstream gp;
+  const char* names[] = {"calib", "valid"};
+  for (int s = 0; s < 2; ++s) {
+    gp << Block(fmt::format("{}_outlines", names[s]),
+                outlines[s].empty() ? "NaN NaN\n" : outlines[s]);
+    gp << Block(fmt::format("{}_centres", names[s]), centres[s].empty() ? "NaN NaN\n" : centres[s]);
+  }
+  gp << fmt::format(
+      "set title 'Where the board fell in the {}x{} image, every pose of the dataset'\n"
+      "set xrange [0:{}]\nset yrange [{}:0]\nset size ratio -1\nset grid\n"
+      "set key outside below horizontal font ',10'\nset xlabel 'u (px)'\nset ylabel 'v (px)'\n",
+      camera.width, camera.height, camera.width, camera.height);
+  gp << "plot $calib_outlines using 1:2 with lines lw 0.8 lc rgb '#1f77b4' title 'calibration "
+        "pose (board outline)', $calib_centres using 1:2 with points pt 7 ps 0.5 lc rgb "
+        "'#1f77b4' notitle";
+  if (!held_out_ids.empty()) {
+    gp << ", $valid_outlines using 1:2 with lines lw 1.2 dt 2 lc rgb '#d62728' title 'held-out "
+          "pose (board outline)', $valid_centres using 1:2 with points pt 7 ps 0.6 lc rgb "
+          "'#d62728' notitle";
+  }
+  gp << "\n";
+  const int width = 760;
+  return GnuplotPlot{gp.str(), width,
+                     std::max(300, width * camera.height / std::max(camera.width, 1) + 80)};
 }
 
 }  // namespace h4::host

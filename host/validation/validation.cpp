@@ -9,6 +9,7 @@
 #include <spdlog/fmt/fmt.h>
 
 #include "host/identification/identified_robot.h"
+#include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/model12.h"
 #include "host/simulation/paper_scenario.h"
 
@@ -205,8 +206,8 @@ std::vector<Candidate> CandidatesToValidate(const ValidationInputs& in,
   for (const auto* result : {&in.result12, &in.result31}) {
     if (!*result) continue;
     IdentifiedRobot robot = RebuildFromResult(**result, in.apriori.assembly);
-    candidates.push_back({ModelLabel((*result)->model), std::move(robot.model), robot.X_BC,
-                          robot.X_TE, &**result});
+    candidates.push_back(
+        {ModelLabel((*result)->model), std::move(robot.model), robot.X_BC, robot.X_TE, &**result});
   }
   return candidates;
 }
@@ -236,6 +237,34 @@ std::unique_ptr<KinematicModel> TrueModel(const ValidationInputs& in, Validation
   return nullptr;
 }
 
+// The rows in `result`'s fit: its calib_poses, or (a result that does not list them) the
+// rows not held out.
+std::vector<DatasetRow> FitRows(const std::vector<DatasetRow>& rows,
+                                const IdentificationResult& result,
+                                const std::vector<DatasetRow>& held) {
+  std::vector<DatasetRow> fit;
+  for (const DatasetRow& row : rows) {
+    const auto& calib = result.calib_poses;
+    const bool listed = std::find(calib.begin(), calib.end(), row.pose_id) != calib.end();
+    const bool is_held = std::any_of(held.begin(), held.end(),
+                                     [&](const DatasetRow& h) { return h.pose_id == row.pose_id; });
+    if (calib.empty() ? !is_held : listed) fit.push_back(row);
+  }
+  return fit;
+}
+
+// Where `model` puts each row: the forward kinematics of its joint readings, from the
+// workspace centre; rows where it fails are left out (they are in no figure of the map).
+std::vector<EePose> PosesOfRows(const KinematicModel& model, const std::vector<DatasetRow>& rows) {
+  std::vector<EePose> poses;
+  for (const DatasetRow& row : rows) {
+    const FkResult fk =
+        ForwardKinematics(model, JointVector(row.q[0], row.q[1], row.q[2], row.q[3]));
+    if (fk.ok()) poses.push_back(fk.x);
+  }
+  return poses;
+}
+
 // One candidate's figures: joint residuals (held-out and all poses), positioning error,
 // straightness runs and, for a Model 12 with the true robot known, the square path.
 ModelValidation ValidateCandidate(const ValidationInputs& in, const Candidate& c,
@@ -262,6 +291,8 @@ ModelValidation ValidateCandidate(const ValidationInputs& in, const Candidate& c
     v.square = RunSquare(*c.model, {true_model, in.truth->robot.X_ModelB()}, in.square);
   }
   if (c.result != nullptr) {
+    v.calibration_poses = PosesOfRows(*c.model, FitRows(in.rows, *c.result, held));
+    if (!AnyInAFit(in, held)) v.evaluated_poses = PosesOfRows(*c.model, held);
     v.cross_validation = c.result->cross_validation;
     v.accuracy_map = AccuracyMapOfResult(*c.result, in.apriori.assembly);
     if (c.result->parameter_covariance_camera_exact) {

@@ -57,10 +57,10 @@ struct ValidationInputs {
 
 /// One row of the Table 3 / Table 4 analogues: a priori, Model 12 or Model 31.
 struct ModelValidation {
-  std::string label;                          ///< "a priori", "Model 12", "Model 31"
-  JointResidualStats heldout;                 ///< Table 3 on the evaluated poses (see in_sample)
-  JointResidualStats all;                     ///< every dataset row (histograms)
-  PositioningError positioning;               ///< FK of the readings vs measured pose, evaluated
+  std::string label;             ///< "a priori", "Model 12", "Model 31"
+  JointResidualStats heldout;    ///< Table 3 on the evaluated poses (see in_sample)
+  JointResidualStats all;        ///< every dataset row (histograms)
+  PositioningError positioning;  ///< FK of the readings vs measured pose, evaluated
   /// The result's k-fold cross-validated (held-out) board pose error: with every pose in the
   /// fit, the only held-out accuracy there is. Empty for the a priori and older results.
   std::optional<CrossValidationFigures> cross_validation;
@@ -72,6 +72,12 @@ struct ModelValidation {
   /// `parameter_covariance_camera_exact`): what the two differ by is the camera model's
   /// share. Empty when the result does not say (no camera uncertainty entered it).
   std::optional<AccuracyMap> accuracy_map_camera_exact;
+  /// Where this model puts the dataset's poses (forward kinematics of their joint readings,
+  /// in its base frame, the accuracy map's): those in the result's fit, and the evaluated
+  /// ones (heldout_ids) when they are held out (empty when in-sample). Identified models
+  /// only; a pose whose forward kinematics fails is left out.
+  std::vector<EePose> calibration_poses;
+  std::vector<EePose> evaluated_poses;
 };
 
 struct ValidationReport {
@@ -82,9 +88,9 @@ struct ValidationReport {
   /// The poses of heldout_ids were in a result's fit: their figures are in-sample, not a
   /// validation; the held-out accuracy is then each model's cross_validation.
   bool in_sample = false;
-  PositioningError apriori_all;         ///< a priori positioning error over every row
-  PriorAnalysis prior;                  ///< 4-DoF check (rotation axis spread)
-  bool has_truth = false;               ///< a truth file was given (simulation)
+  PositioningError apriori_all;  ///< a priori positioning error over every row
+  PriorAnalysis prior;           ///< 4-DoF check (rotation axis spread)
+  bool has_truth = false;        ///< a truth file was given (simulation)
   /// The a priori is Table 2's and the truth Table 2's "Identified" rows.
   bool paper_scenario = false;
   /// The measured square runs, in the order given; placement from the Model 12 result.

@@ -9,7 +9,6 @@
 #include <string>
 
 #include <gtest/gtest.h>
-
 #include <spdlog/fmt/fmt.h>
 
 #include "common/formats/board_yaml.h"
@@ -218,19 +217,20 @@ TEST(Report, EveryPoseInTheFitIsInSampleOnTheWholePage) {
 }
 
 // With corners, a refined camera and the camera-exact covariance, the camera section has its
-// three parts: the intrinsics table (file, refined, sigma), the residual map's figure and
-// summary (corners with 1e-6 px noise through the true robot and camera: nothing left), and the
-// camera's share of the accuracy map (here half the variance: share = exact).
+// four parts: the intrinsics table (file, refined, sigma), the residual map's figure and
+// summary (corners with 1e-6 px noise through the true robot and camera: nothing left), the
+// board's coverage of the image, and the camera's share of the accuracy map (here half the
+// variance: share = exact).
 TEST(Report, TheCameraSectionShowsIntrinsicsResidualsAndTheCamerasShare) {
   if (!GnuplotAvailable()) GTEST_SKIP() << "gnuplot missing: run scripts/setup";
   const SimulatedRobot truth = PaperTruth();
-  const BoardModel board(ReadBoardYaml(std::string(H4_SOURCE_DIR) +
-                                       "/boards/aprilgrid_6x6_30mm.yaml"));
+  const BoardModel board(
+      ReadBoardYaml(std::string(H4_SOURCE_DIR) + "/boards/aprilgrid_6x6_30mm.yaml"));
   const CameraIntrinsics camera =
       ReadCameraYaml(std::string(H4_SOURCE_DIR) + "/boards/sim_camera_1024x768.yaml");
-  const CornerCampaign campaign = SimulateCornerCampaign(
-      truth, GridPosePlan(), board, camera, camera,
-      {.sigma_px = 1e-6, .sigma_q = 0.0, .seed = 3, .valid_count = 10});
+  const CornerCampaign campaign =
+      SimulateCornerCampaign(truth, GridPosePlan(), board, camera, camera,
+                             {.sigma_px = 1e-6, .sigma_q = 0.0, .seed = 3, .valid_count = 10});
   ValidationInputs in = PaperValidationInputs();
   in.rows = campaign.rows;
   std::vector<int64_t> valid;
@@ -265,7 +265,10 @@ TEST(Report, TheCameraSectionShowsIntrinsicsResidualsAndTheCamerasShare) {
   const std::string html = FormatHtmlReport(in, report, "test");
   const std::string section = SectionText(html, "camera");
   EXPECT_EQ(Count(section, "Not computed"), 0) << section;
-  EXPECT_EQ(Count(section, "<svg"), 1);
+  // The corner residual map and the board's coverage of the image.
+  EXPECT_EQ(Count(section, "<svg"), 2);
+  EXPECT_NE(section.find("<h3>The board's coverage of the image</h3>\n<figure>"),
+            std::string::npos);
   EXPECT_NE(section.find("<th>camera.fx</th><td>817.800</td><td>817.000</td>"), std::string::npos)
       << section;
   EXPECT_NE(section.find("<td>-0.800</td><td>0.200</td><td>-4.0</td>"), std::string::npos);

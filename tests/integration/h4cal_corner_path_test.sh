@@ -45,15 +45,17 @@ grep -q "818.2255" "$dir/corner31.json" || fail "the file's value is not recorde
 grep -q '^camera_matrix' "$dir/refined.yaml" || fail "--camera-out wrote no camera YAML"
 
 # The report's camera section (host/report/report_camera.h): the corner path's report has
-# the refined intrinsics beside the file's, the corner residual map and the camera's share
-# of the accuracy map; a pose-path result given the corners maps them through the file.
+# the refined intrinsics beside the file's, the corner residual map, the board's coverage of
+# the image and the camera's share of the accuracy map; a pose-path result given the corners maps them through the file.
 camera_section() { sed -n '/<section id="camera">/,/<\/section>/p' "$1/report.html"; }
 run corner31_report 0 --model 31 --from "$dir/r12.json" --corners "$dir/sim/corners.csv" \
   --board "$board" --camera "$file_camera" --report-dir "$dir/corner_report"
 camera_section "$dir/corner_report" > "$dir/corner_camera.html"
 grep -q '<th>camera.fx</th><td>818.226</td>' "$dir/corner_camera.html" ||
   fail "the corner path's report has no intrinsics table"
-[ "$(grep -c '<svg' "$dir/corner_camera.html")" -eq 1 ] || fail "no corner residual map"
+# The corner residual map and the board's coverage of the image.
+[ "$(grep -c '<svg' "$dir/corner_camera.html")" -eq 2 ] ||
+  fail "no corner residual map or board coverage figure"
 grep -q 'through the Model 31 result and the intrinsics the corner path refined' "$dir/corner_camera.html" ||
   fail "the residual map does not use the refined camera"
 grep -q "camera's share: median" "$dir/corner_camera.html" || fail "no camera share table"

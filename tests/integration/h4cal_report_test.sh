@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The calibration report end to end: the paper scenario simulated, identified (Models 12
 # and 31), reported; the page opened in headless Chromium must hold every section and
-# figure, log no console error and render a non-blank screenshot. Bad input (a result of
+# figure, log no console error, render a non-blank screenshot, and lay out without clipping
+# or overlap at desktop (1920) and laptop (1366) widths (report_layout_check.js). Bad input (a result of
 # the other model, a dataset missing held-out poses, an unreachable square) must fail with
 # a clear message and write no report. Exit 77 (skipped) when Chromium is missing.
 set -uo pipefail
@@ -38,7 +39,10 @@ grep -q "a priori positioning error, every pose (RMS, mm / deg)" "$html" ||
 grep -q "<tr><th>alpha1</th><td>deg</td>" "$html" && grep -q "<tr><th>h</th><td>mm</td>" "$html" ||
   fail "the parameter table is not in mm and deg"
 [ "$(grep -c "residual (deg)" "$html")" -ge 2 ] || fail "the residual plots are not in deg"
-[ "$(grep -o '<svg' "$html" | wc -l)" -eq 5 ] || fail "report.html does not hold 5 figures"
+# Residuals, histograms, straightness, square, and an accuracy map per model (12 and 31).
+[ "$(grep -o '<svg' "$html" | wc -l)" -eq 6 ] || fail "report.html does not hold 6 figures"
+[ "$(sed -n '/<section id="accuracy-map">/,/<\/section>/p' "$html" | grep -c '<svg')" -eq 2 ] ||
+  fail "the accuracy map is not drawn for both models"
 # The accuracy map: CSV per identified model beside the page, a row per reachable map pose
 # (13 x 13 X-Y positions, 3 levels, 3 rotations at most), the figure of Model 31.
 for m in 12 31; do
@@ -124,9 +128,10 @@ if [ -z "$browser" ]; then
        "itself was checked" >&2
   exit 77
 fi
-flags=(--headless --no-sandbox --disable-gpu --disable-quic --no-first-run
-       --disable-background-networking --disable-component-update --disable-sync
-       --enable-logging=stderr --v=0 --window-size=1280,6000)
+base_flags=(--headless --no-sandbox --disable-gpu --disable-quic --no-first-run
+            --disable-background-networking --disable-component-update --disable-sync
+            --enable-logging=stderr --v=0)
+flags=("${base_flags[@]}" --window-size=1280,6000)
 profile=$(mktemp -d)
 timeout 120 "$browser" "${flags[@]}" --user-data-dir="$profile" --dump-dom "file://$html" \
   > "$dir/dom.html" 2> "$dir/chromium_dom.log" || fail "chromium --dump-dom failed"
@@ -134,7 +139,7 @@ rm -rf "$profile"
 for id in $sections; do
   grep -q "<section id=\"$id\">" "$dir/dom.html" || fail "the rendered DOM has no section $id"
 done
-[ "$(grep -o '<svg' "$dir/dom.html" | wc -l)" -eq 5 ] || fail "the rendered DOM lacks figures"
+[ "$(grep -o '<svg' "$dir/dom.html" | wc -l)" -eq 6 ] || fail "the rendered DOM lacks figures"
 profile=$(mktemp -d)
 timeout 120 "$browser" "${flags[@]}" --user-data-dir="$profile" \
   --screenshot="$dir/report.png" "file://$html" 2> "$dir/chromium_shot.log" ||
@@ -147,4 +152,53 @@ fi
 # A blank page compresses to a few kB; tables and four plots do not.
 size=$(stat -c %s "$dir/report.png")
 [ "$size" -gt 100000 ] || fail "screenshot of $size bytes looks blank"
+
+# Layout at desktop and laptop widths: a scratch copy of the page with the layout check
+# injected (the report itself has no script) reports clipping, overlap and empty figures
+# into its DOM; then a screenshot of the whole page height at that width.
+layout_check=$(dirname "$0")/report_layout_check.js
+with_check() {  # page, copy: the copy with the layout check run on load
+  { sed '/<\/body>/,$d' "$1"; echo "<script>"; cat "$layout_check"; echo "</script>";
+    echo "</body></html>"; } > "$2"
+}
+check_layout() {  # page, width: the rendered DOM, with the check's findings, in $dir/layout.html
+  local profile
+  profile=$(mktemp -d)
+  timeout 120 "$browser" "${base_flags[@]}" --window-size="$2,1080" --user-data-dir="$profile" \
+    --virtual-time-budget=5000 --dump-dom "file://$1" > "$dir/layout.html" 2> /dev/null
+  rm -rf "$profile"
+}
+layout_findings() {  # the findings of the last check_layout, "layout ok" when none
+  sed -n '/<pre id="layout-check" data-height/,/<\/pre>/p' "$dir/layout.html" | sed 's/<[^>]*>//g'
+}
+page_height() {  # the page's height in px, as the last check_layout measured it
+  grep -o 'id="layout-check" data-height="[0-9]*"' "$dir/layout.html" | grep -o '[0-9]*"$' |
+    tr -d '"'
+}
+# The check must see a broken layout: an element wider than the window, two blocks on
+# top of each other.
+sed 's|<h1>H4 calibration report</h1>|&<div style="width:3000px;height:4px"></div><p style="margin-bottom:-40px">a</p><p>b</p>|' \
+  "$html" > "$dir/broken.html"
+with_check "$dir/broken.html" "$dir/broken_check.html"
+check_layout "$dir/broken_check.html" 1366
+findings=$(layout_findings)
+echo "$findings" | grep -q "px wide in a 1366 px window" &&
+  echo "$findings" | grep -q "p and p overlap" ||
+  fail "the layout check misses a too-wide element or an overlap: $findings"
+with_check "$html" "$dir/checked.html"
+for width in 1920 1366; do
+  check_layout "$dir/checked.html" "$width"
+  findings=$(layout_findings)
+  [ "$findings" = "layout ok" ] || fail "layout at $width px wide: $findings"
+  height=$(page_height)
+  [ -n "$height" ] && [ "$height" -gt 1080 ] || fail "no page height at $width px: '$height'"
+  profile=$(mktemp -d)
+  timeout 120 "$browser" "${base_flags[@]}" --window-size="$width,$height" \
+    --user-data-dir="$profile" --screenshot="$dir/report_$width.png" "file://$html" \
+    2> "$dir/chromium_shot_$width.log" ||
+    fail "chromium --screenshot at $width px failed"
+  rm -rf "$profile"
+  [ "$(stat -c %s "$dir/report_$width.png")" -gt 100000 ] ||
+    fail "the screenshot at $width px looks blank"
+done
 echo "PASS"
