@@ -308,8 +308,11 @@ IntrinsicsCalibrationResult CalibrateIntrinsics(const std::vector<CalibrationVie
     return result;
   }
   for (const auto& view : views) {
-    result.views.push_back(
-        {view.name, static_cast<int>(view.image_points.size()), 0, 0, false, true});
+    ViewReport report;
+    report.name = view.name;
+    report.points = static_cast<int>(view.image_points.size());
+    report.corners_px = view.image_points;
+    result.views.push_back(std::move(report));
   }
   if (static_cast<int>(views.size()) < options.min_views) {
     result.status = IntrinsicsCalibrationResult::Status::kTooFewViews;
