@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include <Eigen/Geometry>
@@ -19,8 +20,8 @@ namespace {
 constexpr std::array<double, 2> kWidthSpanned = {0.5, 0.35};
 /// Kept inside the image: the pattern and this much of the white border around it, as a
 /// fraction of the pattern's larger side (the chessboard detector needs a white frame).
-constexpr double kBorderKept = 0.08;
-constexpr double kImageMarginPx = 4.0;
+constexpr double kBorderKept = 0.05;
+constexpr double kImageMarginPx = 3.0;
 
 /// The 3 x 3 grid cells (column, row), corners first: an image edge in the first frames.
 constexpr std::array<std::array<int, 2>, 9> kCellOrder = {
@@ -63,6 +64,22 @@ bool OutlineInImage(const CameraModel& camera, const RigidTransform& X_CT,
   return true;
 }
 
+/// The largest fraction in [start, 1] for which `fits` holds, by bisection (`fits(start)`
+/// holds; the farther out, the less of the board fits).
+double FarthestFitting(double start, const std::function<bool(double)>& fits) {
+  if (fits(1.0)) return 1.0;
+  double inside = start, outside = 1.0;
+  for (int step = 0; step < 20; ++step) {
+    const double middle = 0.5 * (inside + outside);
+    if (fits(middle)) {
+      inside = middle;
+    } else {
+      outside = middle;
+    }
+  }
+  return inside;
+}
+
 /// X_CT with R_CT and the board centre on the ray of pixel `uv` at depth `depth`.
 RigidTransform PoseAimedAt(const CameraIntrinsics& camera, const Eigen::Matrix3d& R_CT,
                            const Eigen::Vector3d& p_T_centre, const Eigen::Vector2d& uv,
@@ -85,18 +102,25 @@ RigidTransform SimCapturePose(const BoardSpec& board, const CameraIntrinsics& ca
   const Eigen::Matrix3d R_CT = BoardOrientation(index);
   const auto& cell = kCellOrder[index % kCellOrder.size()];
   const Eigen::Vector2d image_centre(0.5 * camera.width, 0.5 * camera.height);
-  const Eigen::Vector2d half_image = image_centre;
-  // From the image edge of the cell towards the centre until the board fits.
-  Eigen::Vector2d offset(cell[0] - 1, cell[1] - 1);
+  // As far out towards the cell's image edges as the board fits: along the diagonal, then
+  // along each axis in turn (a board stopped by the bottom edge slides on to the left).
+  const Eigen::Vector2d offset(cell[0] - 1, cell[1] - 1);
+  const auto aimed = [&](const Eigen::Vector2d& fraction) {
+    const Eigen::Vector2d uv =
+        image_centre + fraction.cwiseProduct(offset).cwiseProduct(image_centre);
+    return PoseAimedAt(camera, R_CT, p_T_centre, uv, depth);
+  };
   const std::array<Eigen::Vector3d, 4> outline = KeptOutline(model);
-  RigidTransform X_CT = PoseAimedAt(camera, R_CT, p_T_centre, image_centre, depth);
-  for (int step = 0; step < 40; ++step) {
-    const Eigen::Vector2d uv = image_centre + offset.cwiseProduct(half_image);
-    const RigidTransform candidate = PoseAimedAt(camera, R_CT, p_T_centre, uv, depth);
-    if (OutlineInImage(camera_model, candidate, outline)) return candidate;
-    offset *= 0.92;
-  }
-  return X_CT;  // never fitted: the board centred, the capture shows what it can
+  const auto fits = [&](const Eigen::Vector2d& fraction) {
+    return OutlineInImage(camera_model, aimed(fraction), outline);
+  };
+  const double diagonal =
+      FarthestFitting(0.0, [&](double f) { return fits(Eigen::Vector2d(f, f)); });
+  const double across =
+      FarthestFitting(diagonal, [&](double f) { return fits(Eigen::Vector2d(f, diagonal)); });
+  const double down =
+      FarthestFitting(diagonal, [&](double f) { return fits(Eigen::Vector2d(across, f)); });
+  return aimed(Eigen::Vector2d(across, down));
 }
 
 }  // namespace h4::cam

@@ -4,8 +4,8 @@
 // plane that turns by the golden angle from frame to frame (every direction of tilt soon
 // seen: the focal length observable), turned up to 15 deg about the optical axis, at one of
 // two depths, its centre on one cell of a 3 x 3 grid over the image (the cells visited in
-// an order that reaches the corners first), pulled towards the image centre just enough
-// that the whole board with part of its white border stays in the image. Pure.
+// an order that reaches the corners first), as far out towards the cell's image edge as
+// the whole board with part of its white border stays in the image. Pure.
 #pragma once
 
 #include "common/board/board_spec.h"
