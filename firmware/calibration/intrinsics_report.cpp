@@ -194,9 +194,8 @@ std::string ResidualHistogramPanel(const ResidualSamples& samples, double sigma,
   const std::vector<int> counts = Histogram(samples.components_px, box.x1, kBins);
   box.y1 = std::max(1, *std::max_element(counts.begin(), counts.end()));
   const double bin_width = (box.x1 - box.x0) / kBins;
-  std::string svg =
-      SvgAxes(box, "residual x and y components; red: normal, sigma " + Decimal(spread, 4) + " px",
-              "px", "count");
+  std::string svg = SvgAxes(box, "x, y components; red: normal of s " + Decimal(spread, 4) + " px",
+                            "px", "count");
   for (int b = 0; b < kBins; ++b) {
     const double x = box.x0 + b * bin_width;
     svg += "<rect x=\"" + Decimal(box.X(x)) + "\" y=\"" + Decimal(box.Y(counts[b])) +
@@ -289,7 +288,7 @@ CoverageGrid CornerCoverage(const IntrinsicsCalibrationResult& result, int cols,
 std::string CoverageSummary(const CoverageGrid& grid) {
   const int cells = grid.cols * grid.rows;
   std::string text = "corners in " + std::to_string(cells - grid.EmptyCells()) + " of " +
-                     std::to_string(cells) + " cells of a " + std::to_string(grid.cols) + " x " +
+                     std::to_string(cells) + " cells of the " + std::to_string(grid.cols) + " x " +
                      std::to_string(grid.rows) + " grid over the image";
   if (grid.EmptyCells() == 0) return text + "; no empty cell";
   text += "; empty (row, column from the top left):";

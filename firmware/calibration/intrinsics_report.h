@@ -38,7 +38,7 @@ struct CoverageGrid {
 
 CoverageGrid CornerCoverage(const IntrinsicsCalibrationResult& result, int cols = 8, int rows = 6);
 
-/// "corners in 46 of 48 cells of an 8 x 6 grid over the image; empty: row 0 col 7, row 5
+/// "corners in 46 of 48 cells of the 8 x 6 grid over the image; empty: row 0 col 7, row 5
 /// col 0 (rows from the top)".
 std::string CoverageSummary(const CoverageGrid& grid);
 
