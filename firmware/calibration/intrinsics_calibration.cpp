@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include <opencv2/calib3d.hpp>
@@ -11,6 +12,7 @@
 #include "common/camera/intrinsics_uncertainty.h"
 #include "common/text/enum_names.h"
 #include "common/units.h"
+#include "firmware/calibration/intrinsics_report.h"
 
 namespace h4::cam {
 namespace {
@@ -19,8 +21,9 @@ struct Solution {
   cv::Mat K, distortion;
   double rms_px = 0;
   std::vector<double> view_rms_px;
-  std::vector<cv::Vec3d> board_normals;  ///< per view, in the camera frame
-  std::vector<CalibrationViewFit> fits;  ///< per view, its corners and X_CT
+  std::vector<std::vector<cv::Point2f>> residuals_px;  ///< per view: found - reprojected
+  std::vector<cv::Vec3d> board_normals;                ///< per view, in the camera frame
+  std::vector<CalibrationViewFit> fits;                ///< per view, its corners and X_CT
 };
 
 double Median(std::vector<double> values) {
@@ -123,6 +126,7 @@ bool Solve(const std::vector<const CalibrationView*>& views, cv::Size image_size
     return false;
   }
   solution->view_rms_px.clear();
+  solution->residuals_px.clear();
   solution->board_normals.clear();
   solution->fits.clear();
   for (size_t i = 0; i < views.size(); ++i) {
@@ -131,6 +135,9 @@ bool Solve(const std::vector<const CalibrationView*>& views, cv::Size image_size
     ProjectView(object_points[i], rvecs[i], tvecs[i], K, distortion, options.model, &projected);
     const double sum_sq = std::pow(cv::norm(image_points[i], projected, cv::NORM_L2), 2);
     solution->view_rms_px.push_back(std::sqrt(sum_sq / static_cast<double>(projected.size())));
+    std::vector<cv::Point2f> residuals(projected.size());
+    for (size_t k = 0; k < projected.size(); ++k) residuals[k] = image_points[i][k] - projected[k];
+    solution->residuals_px.push_back(std::move(residuals));
     cv::Matx33d R_CT;
     cv::Rodrigues(rvecs[i], R_CT);
     solution->board_normals.emplace_back(R_CT(0, 2), R_CT(1, 2), R_CT(2, 2));
@@ -194,6 +201,41 @@ std::string FocalLengthObservability(const Solution& solution,
   return why.str();
 }
 
+/// "k1 k2 p1 p2 k3": the distortion coefficients' names, in the file's order.
+std::string DistortionNames(const IntrinsicsCalibrationResult& result) {
+  std::string names;
+  const std::vector<ParameterRow> rows = ParameterRows(result);
+  for (size_t i = 4; i < rows.size(); ++i) names += (i > 4 ? " " : "") + rows[i].name;
+  return names;
+}
+
+/// The parameters, one a line, with their 1-sigma and how it was computed.
+std::string ParameterTable(const IntrinsicsCalibrationResult& result) {
+  std::ostringstream out;
+  out << "  parameter          value       1-sigma\n";
+  for (const ParameterRow& row : ParameterRows(result)) {
+    char line[96];
+    if (row.has_sigma) {
+      std::snprintf(line, sizeof(line), "  %-9s %14.6f %13.6f %s\n", row.name.c_str(), row.value,
+                    row.sigma, row.unit.c_str());
+    } else {
+      std::snprintf(line, sizeof(line), "  %-9s %14.6f %13s %s\n", row.name.c_str(), row.value, "-",
+                    row.unit.c_str());
+    }
+    out << line;
+  }
+  out.setf(std::ios::fixed);
+  out.precision(4);
+  if (result.camera.intrinsics_covariance) {
+    out << "  (1-sigma from the fit's Jacobian, the board poses marginalised, scaled by the "
+           "residual variance: s = "
+        << result.residual_sigma_px << " px per axis)\n";
+  } else {
+    out << "  (no 1-sigma: the views do not determine the intrinsics' covariance)\n";
+  }
+  return out.str();
+}
+
 std::string Fixed(double value) {
   std::ostringstream out;
   out.setf(std::ios::fixed);
@@ -221,18 +263,6 @@ void FillCamera(const Solution& solution, cv::Size image_size, IntrinsicsModel m
       std::min(CoefficientCount(model), static_cast<int>(solution.distortion.total()));
   camera->distortion.resize(count);
   for (int i = 0; i < count; ++i) camera->distortion(i) = solution.distortion.at<double>(i);
-}
-
-const char* CoefficientNames(IntrinsicsModel model) {
-  switch (model) {
-    case IntrinsicsModel::kRadTan:
-      return "k1 k2 p1 p2 k3";
-    case IntrinsicsModel::kRational:
-      return "k1 k2 p1 p2 k3 k4 k5 k6";
-    case IntrinsicsModel::kEquidistant:
-      return "k1 k2 k3 k4";
-  }
-  return "";
 }
 
 }  // namespace
@@ -278,8 +308,11 @@ IntrinsicsCalibrationResult CalibrateIntrinsics(const std::vector<CalibrationVie
     return result;
   }
   for (const auto& view : views) {
-    result.views.push_back(
-        {view.name, static_cast<int>(view.image_points.size()), 0, 0, false, true});
+    ViewReport report;
+    report.name = view.name;
+    report.points = static_cast<int>(view.image_points.size());
+    report.corners_px = view.image_points;
+    result.views.push_back(std::move(report));
   }
   if (static_cast<int>(views.size()) < options.min_views) {
     result.status = IntrinsicsCalibrationResult::Status::kTooFewViews;
@@ -300,6 +333,8 @@ IntrinsicsCalibrationResult CalibrateIntrinsics(const std::vector<CalibrationVie
     result.views[i].rms_px = solution.view_rms_px[i];
     result.views[i].tilt_deg = TiltDeg(solution.board_normals[i]);
     result.views[i].outlier = solution.view_rms_px[i] > limit;
+    result.views[i].corners_px = views[i].image_points;
+    result.views[i].residuals_px = solution.residuals_px[i];
     if (result.views[i].outlier) outliers.push_back(views[i].name);
   }
 
@@ -321,6 +356,7 @@ IntrinsicsCalibrationResult CalibrateIntrinsics(const std::vector<CalibrationVie
         if (view.used) {
           view.rms_px = solution.view_rms_px[k];
           view.tilt_deg = TiltDeg(solution.board_normals[k]);
+          view.residuals_px = solution.residuals_px[k];
           ++k;
         }
       }
@@ -339,6 +375,7 @@ IntrinsicsCalibrationResult CalibrateIntrinsics(const std::vector<CalibrationVie
   if (const auto covariance =
           IntrinsicsCovarianceOf(result.camera, solution.fits, options.fix_aspect_ratio)) {
     result.camera.intrinsics_covariance = covariance->covariance;
+    result.residual_sigma_px = covariance->sigma_px;
   }
   const std::string degenerate = FocalLengthObservability(solution, options, &result);
   if (!degenerate.empty()) {
@@ -357,26 +394,13 @@ std::string IntrinsicsCalibrationResult::Report() const {
     if (status != Status::kDegenerateViews) return out.str();
     out << "(refused solution, for diagnosis only:)\n";
   }
-  const auto& K = camera.K;
   out.setf(std::ios::fixed);
-  out.precision(3);
   out << "image " << camera.width << "x" << camera.height << ", " << views_used << " of "
-      << views.size() << " views used, model " << ToString(model) << "\n"
-      << "fx " << K(0, 0) << "  fy " << K(1, 1) << "  cx " << K(0, 2) << "  cy " << K(1, 2)
-      << " px\n"
-      << "distortion (" << CoefficientNames(model) << "):";
-  out.precision(5);
-  for (Eigen::Index i = 0; i < camera.distortion.size(); ++i) out << " " << camera.distortion(i);
-  if (camera.intrinsics_covariance) {
-    const Eigen::VectorXd sigma = camera.intrinsics_covariance->diagonal().cwiseSqrt();
-    out.precision(3);
-    out << "\none sigma: fx " << sigma[0] << "  fy " << sigma[1] << "  cx " << sigma[2]
-        << "  cy " << sigma[3] << " px; distortion";
-    out.precision(5);
-    for (Eigen::Index i = 4; i < sigma.size(); ++i) out << " " << sigma[i];
-  }
+      << views.size() << " views used, model " << ToString(model) << ", distortion ("
+      << DistortionNames(*this) << ")\n";
+  out << ParameterTable(*this);
   out.precision(4);
-  out << "\nRMS reprojection error " << rms_px << " px (median per view " << median_view_rms_px
+  out << "RMS reprojection error " << rms_px << " px (median per view " << median_view_rms_px
       << " px)\n";
   out.precision(1);
   out << distinct_orientations << " distinct board orientation(s), largest tilt " << max_tilt_deg

@@ -54,6 +54,10 @@ struct ViewReport {
   double tilt_deg = 0;   ///< angle between the board normal and the optical axis, deg
   bool outlier = false;  ///< by the rule of IntrinsicsCalibrationOptions::outlier_factor
   bool used = true;      ///< in the final calibration (false once dropped)
+  /// The corners found, px, and their residuals (found - reprojected), px, in the
+  /// calibration that last used the view (the first one for a dropped view).
+  std::vector<cv::Point2f> corners_px;
+  std::vector<cv::Point2f> residuals_px;
 };
 
 struct IntrinsicsCalibrationResult {
@@ -69,9 +73,14 @@ struct IntrinsicsCalibrationResult {
   int views_used = 0;
   int distinct_orientations = 0;  ///< among the used views (see the options)
   double max_tilt_deg = 0;        ///< largest board tilt from fronto-parallel, deg
+  /// The per-axis residual sigma s that scales camera.intrinsics_covariance (the fit's
+  /// Jacobian with the board poses marginalised, times s^2 = |r|^2 / (residuals -
+  /// parameters); intrinsics_uncertainty.h), px; 0 when there is no covariance.
+  double residual_sigma_px = 0;
 
   bool ok() const { return status == Status::kOk; }
-  /// Multi-line report: K, distortion, RMS, one line per view with outliers marked.
+  /// Multi-line report: the parameters with their 1-sigma, RMS, one line per view with
+  /// outliers marked.
   std::string Report() const;
 };
 

@@ -1,6 +1,7 @@
 // `h4cam calibrate-intrinsics`; see calibrate_intrinsics_command.h.
 #include "firmware/cli/calibrate_intrinsics_command.h"
 
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <ostream>
@@ -9,16 +10,68 @@
 #include <CLI/CLI.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "common/board/board_model.h"
 #include "common/cli/shared_options.h"
 #include "common/cli/subcommand.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
+#include "common/formats/file_output.h"
+#include "firmware/calibration/intrinsics_report.h"
 
 namespace h4::cam {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// What was found of the board: "chessboard: 54/54 corners", or on an AprilTag grid
+/// "30/36 tags, 120/144 corners" (every tag found gives its 4 corners, board_views.h).
+std::string BoardFound(const CalibrationView& view, const BoardModel& board) {
+  const std::string corners = std::to_string(view.image_points.size()) + "/" +
+                              std::to_string(board.corner_count()) + " corners";
+  if (!board.is_aprilgrid()) return "chessboard: " + corners;
+  const auto& grid = std::get<AprilGridSpec>(board.spec());
+  return std::to_string(view.image_points.size() / 4) + "/" +
+         std::to_string(grid.rows * grid.cols) + " tags, " + corners;
+}
+
+/// The report's files beside the camera YAML, named after it: camera.yaml ->
+/// camera-report.html, camera-coverage.svg, camera-residuals.svg, camera-report.txt.
+struct ReportPaths {
+  fs::path html, coverage_svg, residuals_svg, text;
+};
+
+ReportPaths ReportPathsBeside(const std::string& camera_yaml) {
+  const fs::path yaml(camera_yaml);
+  const fs::path stem = yaml.parent_path() / yaml.stem();
+  const auto named = [&](const char* suffix) { return fs::path(stem.string() + suffix); };
+  return {named("-report.html"), named("-coverage.svg"), named("-residuals.svg"),
+          named("-report.txt")};
+}
+
+/// Writes the report (intrinsics_report.h) beside the camera YAML, each file atomically;
+/// prints the coverage and the files written.
+void WriteReportFiles(const IntrinsicsCalibrationResult& result, const std::string& camera_yaml,
+                      std::ostream& out) {
+  const ReportPaths paths = ReportPathsBeside(camera_yaml);
+  const CoverageGrid grid = CornerCoverage(result);
+  const ReportFiles names = {
+      fs::path(camera_yaml).filename().string(), paths.coverage_svg.filename().string(),
+      paths.residuals_svg.filename().string(), paths.text.filename().string()};
+  WriteFileAtomically(paths.coverage_svg.string(), CoverageSvg(result, grid));
+  WriteFileAtomically(paths.residuals_svg.string(), ResidualsSvg(result));
+  WriteFileAtomically(paths.text.string(), result.Report() + CoverageSummary(grid) + "\n");
+  WriteFileAtomically(paths.html.string(), ReportHtml(result, grid, names));
+  out << "coverage: " << CoverageSummary(grid) << "\n"
+      << "report: " << paths.html.string() << " (with " << paths.coverage_svg.string() << ", "
+      << paths.residuals_svg.string() << ", " << paths.text.string() << ")\n";
+}
+
+}  // namespace
 
 IntrinsicsCalibrationResult RunCalibrateIntrinsics(const CalibrateIntrinsicsArgs& args,
                                                    std::ostream& out) {
   const BoardSpec board = ReadBoardYaml(args.board_path);
+  const BoardModel board_model(board);
   const BoardViewFinder finder(board);
   if (!finder.ok()) throw std::runtime_error(args.board_path + ": " + finder.error());
 
@@ -36,7 +89,7 @@ IntrinsicsCalibrationResult RunCalibrateIntrinsics(const CalibrateIntrinsicsArgs
     }
     std::string why;
     if (auto view = finder.Find(grey, path, &why)) {
-      out << path << ": board found, " << view->image_points.size() << " corners\n";
+      out << path << ": board found, " << BoardFound(*view, board_model) << "\n";
       views.push_back(std::move(*view));
     } else {
       out << path << ": skipped: " << why << "\n";
@@ -48,6 +101,7 @@ IntrinsicsCalibrationResult RunCalibrateIntrinsics(const CalibrateIntrinsicsArgs
   if (!result.ok()) throw std::runtime_error("calibrate-intrinsics: " + result.message);
   WriteCameraYaml(args.out_path, result.camera);
   out << "wrote " << args.out_path << "\n";
+  WriteReportFiles(result, args.out_path, out);
   return result;
 }
 
@@ -57,7 +111,10 @@ void DeclareCalibrateIntrinsicsCommand(CLI::App* command) {
   command->add_option("images", args->images, "Images of the board (at least --min-views)")
       ->required()
       ->check(CLI::ExistingFile);
-  h4::cli::AddOutOption(command, &args->out_path, "Camera YAML to write");
+  h4::cli::AddOutOption(command, &args->out_path,
+                        "Camera YAML to write; the report goes beside it, named after it "
+                        "(camera.yaml: camera-report.html with camera-coverage.svg, "
+                        "camera-residuals.svg, camera-report.txt)");
   const std::map<std::string, IntrinsicsModel> models = {
       {"radtan", IntrinsicsModel::kRadTan},
       {"rational", IntrinsicsModel::kRational},

@@ -1,9 +1,12 @@
 // `h4cam calibrate-intrinsics --board B.yaml IMAGES... --out camera.yaml
 // [--model radtan|rational|equidistant]`: finds the board in each image (chessboard or
-// AprilTag grid), calibrates the camera (intrinsics_calibration.h), prints per-view errors
-// with outliers named, and writes the camera YAML with its distortion_model
-// (common/formats/README.md). Refuses (non-zero exit) view sets that cannot determine the
-// focal length.
+// AprilTag grid), calibrates the camera (intrinsics_calibration.h), prints each parameter
+// with its 1-sigma and per-view errors with outliers named, and writes the camera YAML with
+// its distortion_model (common/formats/README.md) and, beside it and named after it, the
+// report (intrinsics_report.h): camera.yaml -> camera-report.html (parameters, coverage,
+// residuals, views) with camera-coverage.svg, camera-residuals.svg and camera-report.txt
+// (the console report). Refuses (non-zero exit) view sets that cannot determine the focal
+// length.
 #pragma once
 
 #include <iosfwd>

@@ -1,6 +1,7 @@
 // `h4cam capture` and `h4cam preview`; see capture_command.h.
 #include "firmware/cli/capture_command.h"
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -9,6 +10,9 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -24,6 +28,7 @@
 #include "firmware/cli/frame_check.h"
 #include "firmware/sources/image_file_source.h"
 #include "firmware/sources/libcamera_source.h"
+#include "firmware/sources/sim_capture_poses.h"
 #include "firmware/sources/sim_source.h"
 
 namespace h4::cam {
@@ -44,6 +49,12 @@ RigidTransform CentredBoardPose(const BoardSpec& board, double depth) {
                         Eigen::Vector3d(-centre.x(), -centre.y(), depth));
 }
 
+/// Whether the sim source shows capture's pose sequence (sim_capture_poses.h) rather than
+/// one pose: saving frames without --sim-pose, so that the intrinsics step can be rehearsed.
+bool SimShowsPoseSequence(const CaptureArgs& args, bool save_frames) {
+  return save_frames && args.source == "sim" && args.sim_pose.empty();
+}
+
 RigidTransform SimPose(const CaptureArgs& args, const BoardSpec& board) {
   if (args.sim_pose.empty()) return CentredBoardPose(board, 0.5);
   if (args.sim_pose.size() != 7) {
@@ -58,8 +69,8 @@ RigidTransform SimPose(const CaptureArgs& args, const BoardSpec& board) {
   return RigidTransform(R_CT, Eigen::Vector3d(v[0], v[1], v[2]));
 }
 
-std::unique_ptr<FrameSource> MakeSimSource(const CaptureArgs& args, const BoardSpec& board,
-                                           const CameraIntrinsics& camera) {
+std::unique_ptr<SimSource> MakeSimSource(const CaptureArgs& args, const BoardSpec& board,
+                                         const CameraIntrinsics& camera) {
   SimSourceOptions options;
   if (!RenderPresetByName(args.sim_preset, &options.render)) {
     throw std::runtime_error("--sim-preset '" + args.sim_preset + "': expected clean or processed");
@@ -70,14 +81,16 @@ std::unique_ptr<FrameSource> MakeSimSource(const CaptureArgs& args, const BoardS
   options.render.background_level *= args.sim_exposure;
   std::string why;
   if (!options.render.IsValid(&why)) throw std::runtime_error("--sim-exposure: " + why);
-  auto source = std::make_unique<SimSource>(board, camera, options);
-  source->SetPose(SimPose(args, board));
-  return source;
+  return std::make_unique<SimSource>(board, camera, options);
 }
 
 std::unique_ptr<FrameSource> MakeSource(const CaptureArgs& args, const BoardSpec& board,
                                         const CameraIntrinsics& camera) {
-  if (args.source == "sim") return MakeSimSource(args, board, camera);
+  if (args.source == "sim") {
+    std::unique_ptr<SimSource> sim = MakeSimSource(args, board, camera);
+    sim->SetPose(SimPose(args, board));
+    return sim;
+  }
   if (args.source.rfind("dir:", 0) == 0) {
     return std::make_unique<ImageFileSource>(std::vector<std::string>{args.source.substr(4)});
   }
@@ -120,6 +133,27 @@ std::string Numbered(const char* stem, int index) {
   return name;
 }
 
+/// The folder's file names (none when it does not exist yet).
+std::vector<std::string> FileNamesIn(const fs::path& dir) {
+  std::vector<std::string> names;
+  if (!fs::is_directory(dir)) return names;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
+    names.push_back(entry.path().filename().string());
+  }
+  return names;
+}
+
+std::unique_ptr<FrameSource> MakeCaptureSource(const CaptureArgs& args, bool save_frames,
+                                               const BoardSpec& board,
+                                               const CameraIntrinsics& camera,
+                                               SimSource** pose_sequence_sim) {
+  *pose_sequence_sim = nullptr;
+  if (!SimShowsPoseSequence(args, save_frames)) return MakeSource(args, board, camera);
+  std::unique_ptr<SimSource> sim = MakeSimSource(args, board, camera);
+  *pose_sequence_sim = sim.get();
+  return sim;
+}
+
 void CheckFrameSize(const Frame& frame, const CameraIntrinsics& camera,
                     const std::string& camera_path) {
   if (frame.image.cols == camera.width && frame.image.rows == camera.height) return;
@@ -130,7 +164,8 @@ void CheckFrameSize(const Frame& frame, const CameraIntrinsics& camera,
                            std::to_string(camera.height));
 }
 
-/// What is done with one frame: checked, printed, saved and drawn as asked.
+/// What is done with one frame: checked, printed, saved and drawn as asked; `index` is its
+/// number, in the printed line and the file names.
 void TakeFrame(const CaptureArgs& args, bool save_frames, const Frame& frame, int index,
                const BoardDetector& detector, const CameraModel& camera, std::ostream& out,
                CaptureSummary* summary) {
@@ -154,6 +189,24 @@ void TakeFrame(const CaptureArgs& args, bool save_frames, const Frame& frame, in
 
 }  // namespace
 
+int FirstFreeFrameNumber(const std::vector<std::string>& file_names) {
+  int next = 0;
+  for (const std::string& name : file_names) {
+    for (const std::string_view prefix : {"frame_", "overlay_"}) {
+      if (name.size() <= prefix.size() + 4 || name.rfind(prefix, 0) != 0 ||
+          name.substr(name.size() - 4) != ".png") {
+        continue;
+      }
+      const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - 4);
+      if (digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) {
+        continue;
+      }
+      next = std::max(next, std::stoi(digits) + 1);
+    }
+  }
+  return next;
+}
+
 CaptureSummary RunCapture(const CaptureArgs& args, bool save_frames, std::ostream& out,
                           const std::atomic<bool>& stop) {
   const BoardSpec board = ReadBoardYaml(args.board_path);
@@ -167,11 +220,20 @@ CaptureSummary RunCapture(const CaptureArgs& args, bool save_frames, std::ostrea
   }
   if (!args.out_dir.empty()) fs::create_directories(args.out_dir);
 
-  std::unique_ptr<FrameSource> source = MakeSource(args, board, intrinsics);
+  // Saved frames are numbered on from those already in the folder: a second capture (or a
+  // loop of --count 1) adds to the set instead of overwriting it.
+  const int first_number =
+      save_frames ? FirstFreeFrameNumber(FileNamesIn(fs::path(args.out_dir))) : 0;
+  SimSource* pose_sequence_sim = nullptr;
+  std::unique_ptr<FrameSource> source =
+      MakeCaptureSource(args, save_frames, board, intrinsics, &pose_sequence_sim);
   StartSource(*source);
   CaptureSummary summary;
   std::optional<std::chrono::steady_clock::time_point> last_taken;
   while ((args.count == 0 || summary.frames < args.count) && !stop.load()) {
+    const int number = first_number + summary.frames;
+    // The frame's number picks its pose: a loop of --count 1 varies the board as well.
+    if (pose_sequence_sim) pose_sequence_sim->SetPose(SimCapturePose(board, intrinsics, number));
     std::optional<Frame> frame = source->Next(std::chrono::milliseconds(1000));
     if (!frame) {
       // The error first: an unreadable last file also leaves the file source finished, and
@@ -186,13 +248,17 @@ CaptureSummary RunCapture(const CaptureArgs& args, bool save_frames, std::ostrea
     }
     last_taken = now;
     CheckFrameSize(*frame, intrinsics, args.camera_path);
-    TakeFrame(args, save_frames, *frame, summary.frames, detector, camera, out, &summary);
+    TakeFrame(args, save_frames, *frame, number, detector, camera, out, &summary);
   }
   source->Stop();
   source->Close();
   out << (save_frames ? "captured " : "checked ") << summary.frames << " frame(s), "
-      << summary.with_board << " showing the board"
-      << (save_frames ? ", in " + args.out_dir : std::string()) << "\n";
+      << summary.with_board << " showing the board";
+  if (save_frames && summary.frames > 0) {
+    out << ", in " << args.out_dir << " as " << Numbered("frame", first_number) << " to "
+        << Numbered("frame", first_number + summary.frames - 1);
+  }
+  out << "\n";
   return summary;
 }
 
@@ -223,7 +289,9 @@ void AddCaptureOptions(CLI::App* command, CaptureArgs* args) {
       ->capture_default_str();
   command
       ->add_option("--sim-pose", args->sim_pose,
-                   "sim: X_CT as x,y,z,qw,qx,qy,qz (m; default the board centred 0.5 m ahead)")
+                   "sim: X_CT as x,y,z,qw,qx,qy,qz (m); default: capture shows the board at a "
+                   "sequence of tilted poses over the whole image (frame N at pose N), "
+                   "preview centred 0.5 m ahead")
       ->delimiter(',')
       ->expected(7);
   command->add_option("--sim-preset", args->sim_preset, "sim: clean or processed")
@@ -284,7 +352,9 @@ void DeclareCaptureOrPreviewCommand(CLI::App* command, const CaptureCommandText&
 const CaptureCommandText kCaptureText = {
     .save_frames = true,
     .count_help = "Frames to save",
-    .out_dir_help = "Folder of frame_NNNN.png (and overlay_NNNN.png)",
+    .out_dir_help =
+        "Folder of frame_NNNN.png (and overlay_NNNN.png), numbered on after the highest "
+        "already there: never overwritten, so captures add to a set",
     .footer = "Exit codes: 0 some frame showed the board, 3 none did, 130 interrupted, 1 error."};
 
 const CaptureCommandText kPreviewText = {

@@ -3,7 +3,11 @@
 // the renderer `sim`, image files `dir:PATH`). Each frame is checked (frame_check.h) and
 // one line of figures printed on stdout:
 //   h4cam capture --source libcamera --board B.yaml --camera C.yaml --count 20 --out DIR
-//       [--draw] [--interval 2]     saves DIR/frame_NNNN.png (and overlay_NNNN.png)
+//       [--draw] [--interval 2]     saves DIR/frame_NNNN.png (and overlay_NNNN.png),
+//       numbered on after the highest NNNN already in DIR (a capture never overwrites one)
+//   h4cam capture --source sim ...  without --sim-pose, frame N shows the board at pose N
+//       of a tilted sequence over the whole image (sim_capture_poses.h): the intrinsics
+//       step rehearsed
 //   h4cam preview --source libcamera --board B.yaml --camera C.yaml [--draw --out DIR]
 //       until Ctrl-C (or --count); --draw keeps DIR/preview.png, the last frame with its
 //       detection drawn, replaced atomically so an image viewer can reload it
@@ -35,7 +39,8 @@ struct CaptureArgs {
   std::string camera_id;       ///< libcamera camera id ("" = the first)
   double exposure_us = 0;      ///< libcamera: fixed exposure time, us (0 = automatic)
   double analogue_gain = 1.0;  ///< libcamera: with a fixed exposure
-  /// sim: X_CT as x,y,z,qw,qx,qy,qz (m); empty: the board centred 0.5 m in front.
+  /// sim: X_CT as x,y,z,qw,qx,qy,qz (m); empty: capture's pose sequence
+  /// (sim_capture_poses.h), preview's board centred 0.5 m in front.
   std::vector<double> sim_pose;
   std::string sim_preset = "processed";  ///< sim: clean | processed (render_options.h)
   /// sim: scale of the light (1 = the preset's exposure; above ~1.2 the white clips).
@@ -46,6 +51,10 @@ struct CaptureSummary {
   int frames = 0;      ///< frames checked
   int with_board = 0;  ///< of which the board was found (ok or partial)
 };
+
+/// The number of the next frame to save in a folder holding `file_names`: one after the
+/// highest NNNN of frame_NNNN.png or overlay_NNNN.png, 0 when there is none.
+int FirstFreeFrameNumber(const std::vector<std::string>& file_names);
 
 /// Checks (and, with `save_frames`, saves) frames until args.count or `stop`; prints one
 /// line per frame on `out`. Throws std::runtime_error naming the source, file or option at

@@ -61,6 +61,7 @@ FrameFigures CheckFrame(const cv::Mat& image, const BoardDetector& detector,
   const std::vector<cv::Point2f> corners = CornerPixels(detection);
   FrameFigures figures;
   figures.status = detection.status;
+  figures.chessboard = !detector.board().is_aprilgrid();
   figures.tags = detection.tags;
   figures.tags_total = TagsOnBoard(detector.board());
   figures.corners = static_cast<int>(detection.corners.size());
@@ -78,15 +79,32 @@ FrameFigures CheckFrame(const cv::Mat& image, const BoardDetector& detector,
   return figures;
 }
 
+namespace {
+
+/// "36/36 tags, 144/144 corners"; a chessboard has no tags to count: "chessboard: 54/54
+/// corners" (not "0/0 tags").
+std::string FeaturesFound(const FrameFigures& f) {
+  char text[96];
+  if (f.chessboard) {
+    std::snprintf(text, sizeof(text), "chessboard: %d/%d corners", f.corners, f.corners_total);
+  } else {
+    std::snprintf(text, sizeof(text), "%d/%d tags, %d/%d corners", f.tags, f.tags_total, f.corners,
+                  f.corners_total);
+  }
+  return text;
+}
+
+}  // namespace
+
 std::string FormatFrameFigures(const FrameFigures& f) {
   char rms[32] = "rms -";
   if (f.rms_px) std::snprintf(rms, sizeof(rms), "rms %.3f px", *f.rms_px);
-  char line[256];
+  char line[320];
   std::snprintf(line, sizeof(line),
-                "%s%s, %d/%d tags, %d/%d corners, %s, sharpness %.0f, mean level %.1f, "
-                "saturated %.2f %%, coverage %.1f %%",
+                "%s%s, %s, %s, sharpness %.0f, mean level %.1f, saturated %.2f %%, "
+                "coverage %.1f %%",
                 f.status == BoardDetection::Status::kNoBoard ? "" : "board ", ToString(f.status),
-                f.tags, f.tags_total, f.corners, f.corners_total, rms, f.sharpness, f.mean_level,
+                FeaturesFound(f).c_str(), rms, f.sharpness, f.mean_level,
                 100.0 * f.saturated_fraction, 100.0 * f.coverage);
   return line;
 }

@@ -17,10 +17,11 @@ namespace h4::cam {
 
 struct FrameFigures {
   BoardDetection::Status status = BoardDetection::Status::kNoBoard;
-  int tags = 0;           ///< AprilTag grid: tags found (0 on a chessboard)
-  int tags_total = 0;     ///< AprilTag grid: tags on the board
-  int corners = 0;        ///< board corners found
-  int corners_total = 0;  ///< corners on the board
+  bool chessboard = false;  ///< the board is a chessboard: corners only, no tags
+  int tags = 0;             ///< AprilTag grid: tags found (0 on a chessboard)
+  int tags_total = 0;       ///< AprilTag grid: tags on the board
+  int corners = 0;          ///< board corners found
+  int corners_total = 0;    ///< corners on the board
   /// RMS reprojection error of the pose fit through the camera file's intrinsics, px;
   /// unset when the fit was not possible (too few corners).
   std::optional<double> rms_px;
@@ -40,7 +41,7 @@ FrameFigures CheckFrame(const cv::Mat& image, const BoardDetector& detector,
 
 /// One line: "board ok, 36/36 tags, 144/144 corners, rms 0.018 px, sharpness 357,
 /// mean level 140.5, saturated 0.00 %, coverage 15.7 %" ("board partial, ...",
-/// "no board, ...").
+/// "no board, ..."); on a chessboard "board ok, chessboard: 54/54 corners, rms ...".
 std::string FormatFrameFigures(const FrameFigures& figures);
 
 /// The frame in colour with the corners found (green crosses), the hull of the board

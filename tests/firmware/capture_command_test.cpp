@@ -143,5 +143,41 @@ TEST_F(CaptureCommandTest, PreviewWithDrawKeepsOnePreviewImage) {
   EXPECT_FALSE(fs::exists(dir_ / "overlay_0000.png"));
 }
 
+// issue 26: a loop of `--count 1` (as on a real camera, one frame per board placement)
+// overwrote frame_0000.png every time. Numbering goes on after the frames already there.
+TEST_F(CaptureCommandTest, ASecondCaptureAddsFramesInsteadOfOverwriting) {
+  args_.board_path = H4_SOURCE_DIR "/boards/checkerboard_9x6_25mm.yaml";
+  args_.count = 1;
+  const std::string first = Run(/*save_frames=*/true);
+  const std::string second = Run(/*save_frames=*/true);
+  EXPECT_NE(first.find("frame 0:"), std::string::npos) << first;
+  EXPECT_NE(second.find("frame 1:"), std::string::npos) << second;
+  EXPECT_NE(second.find("as frame_0001.png to frame_0001.png"), std::string::npos) << second;
+  const cv::Mat frame0 = cv::imread((dir_ / "frame_0000.png").string(), cv::IMREAD_GRAYSCALE);
+  const cv::Mat frame1 = cv::imread((dir_ / "frame_0001.png").string(), cv::IMREAD_GRAYSCALE);
+  ASSERT_FALSE(frame0.empty());
+  ASSERT_FALSE(frame1.empty()) << "the second capture did not add frame_0001.png";
+  // Without --sim-pose the frame number picks the pose: the two frames show the board apart.
+  EXPECT_GT(cv::norm(frame0, frame1, cv::NORM_L1) / static_cast<double>(frame0.total()), 5.0);
+}
+
+TEST(CaptureFrameNumbering, FollowsTheHighestFrameOrOverlayNumber) {
+  EXPECT_EQ(FirstFreeFrameNumber({}), 0);
+  EXPECT_EQ(FirstFreeFrameNumber({"notes.txt", "preview.png", "frame_.png", "frame_00a1.png"}), 0);
+  EXPECT_EQ(FirstFreeFrameNumber({"frame_0000.png", "frame_0003.png", "overlay_0002.png"}), 4);
+  EXPECT_EQ(FirstFreeFrameNumber({"frame_0001.png", "overlay_0007.png"}), 8);
+  EXPECT_EQ(FirstFreeFrameNumber({"frame_12345.png"}), 12346);
+}
+
+// A chessboard has no tags: its frames read "chessboard: 54/54 corners", not "0/0 tags".
+TEST_F(CaptureCommandTest, ChessboardFramesCountCornersNotTags) {
+  args_.board_path = H4_SOURCE_DIR "/boards/checkerboard_9x6_25mm.yaml";
+  args_.count = 1;
+  const std::string output = Run(/*save_frames=*/false);
+  EXPECT_NE(output.find("frame 0: board ok, chessboard: 54/54 corners, rms "), std::string::npos)
+      << output;
+  EXPECT_EQ(output.find("tags"), std::string::npos) << output;
+}
+
 }  // namespace
 }  // namespace h4::cam
