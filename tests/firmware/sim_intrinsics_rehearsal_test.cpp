@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include "common/formats/camera_yaml.h"
 #include "firmware/calibration/intrinsics_report.h"
@@ -33,7 +34,10 @@ std::string ReadText(const fs::path& path) {
 class SimIntrinsicsRehearsal : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new fs::path(fs::path(H4_BINARY_DIR) / "test_tmp" / "sim_intrinsics_rehearsal");
+    // One folder per process: ctest runs each test of the suite as its own process, in
+    // parallel, and capture numbers its frames on after those already there.
+    dir_ = new fs::path(fs::path(H4_BINARY_DIR) / "test_tmp" /
+                        ("sim_intrinsics_rehearsal_" + std::to_string(::getpid())));
     fs::remove_all(*dir_);
     CaptureArgs capture;
     capture.source = "sim";
@@ -63,6 +67,8 @@ class SimIntrinsicsRehearsal : public ::testing::Test {
     calibrate_output_ = new std::string(calibrate_out.str());
   }
   static void TearDownTestSuite() {
+    std::error_code ignored;
+    fs::remove_all(*dir_, ignored);
     delete result_;
     delete capture_output_;
     delete calibrate_output_;
