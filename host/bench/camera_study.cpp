@@ -1,4 +1,4 @@
-// The camera study (issue 25; README "Results"): how wrong a camera file may be before the
+// The camera study (issue 25; README "When the camera file is wrong"): how wrong a camera file may be before the
 // robot pays for it, and what the corner path recovers. For each simulated Model 31 robot
 // and each camera-file error, the campaign is simulated with the TRUE camera of
 // boards/sim_camera_1024x768.yaml (the legacy 6x6 board's 144 corners, per-axis pixel

@@ -397,7 +397,7 @@ std::string Campaign::StaleCameraNote() const {
       DescribeClockOffset("camera status timestamps", *offset), bus_.max_clock_offset_s());
 }
 
-// A key on one end only (messages/README.md, "Authentication"): each end sees the other's
+// A key on one end only (messages/README.md, "Authenticated messages"): each end sees the other's
 // messages refused or read unchecked, and says which end lacks the key.
 std::string Campaign::KeyMismatchNote() const {
   const int64_t refused = bus_.auth_failures(channels::kCameraStatus) +

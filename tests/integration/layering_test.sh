@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The dependency rule of the layout (README "Layout"): common includes neither firmware,
+# The dependency rule of the layout (docs/development.md "Layout"): common includes neither firmware,
 # host nor messages; firmware never includes host; host never includes firmware;
 # examples/ (the workstation side of the bus) never includes firmware.
 set -uo pipefail
