@@ -1,4 +1,4 @@
-// Looking a bare board name up among the installed boards; see board_lookup.h.
+// Looking a bare board or camera file name up among the installed ones; see board_lookup.h.
 #include "common/cli/board_lookup.h"
 
 #include <system_error>
@@ -13,10 +13,10 @@ bool IsFile(const fs::path& path) {
   return fs::is_regular_file(path, error);
 }
 
-std::string FolderList(const std::vector<fs::path>& folders) {
+std::string NotFound(const std::string& name, const std::vector<fs::path>& folders) {
   std::string list;
   for (const fs::path& folder : folders) list += (list.empty() ? "" : ", ") + folder.string();
-  return list;
+  return "File does not exist: " + name + " (nor a file of that name in " + list + ")";
 }
 
 }  // namespace
@@ -32,6 +32,7 @@ std::vector<fs::path> InstalledBoardFolders() {
   }
   const fs::path packaged = "/usr/share/h4cam/boards";
   if (folders.empty() || folders.front() != packaged) folders.push_back(packaged);
+  folders.push_back("boards");
   return folders;
 }
 
@@ -49,15 +50,28 @@ CLI::Validator ExistingBoardFile(const std::vector<fs::path>& folders) {
   return CLI::Validator(
       [folders](std::string& value) -> std::string {
         const std::string resolved = ResolveBoardPath(value, folders);
-        if (resolved.empty()) {
-          return "File does not exist: " + value + " (nor a board of that name in " +
-                 FolderList(folders) + ")";
-        }
+        if (resolved.empty()) return NotFound(value, folders);
         if (!IsFile(resolved)) return CLI::ExistingFile(resolved);
         value = resolved;
         return "";
       },
       "FILE|BOARD");
+}
+
+CLI::Validator ExistingCameraFile(const std::vector<fs::path>& folders) {
+  return CLI::Validator(
+      [folders](std::string& value) -> std::string {
+        if (IsFile(value)) return "";
+        const size_t hash = value.rfind('#');
+        const std::string file = hash == std::string::npos ? value : value.substr(0, hash);
+        const std::string block = hash == std::string::npos ? "" : value.substr(hash);
+        const std::string resolved = ResolveBoardPath(file, folders);
+        if (resolved.empty()) return NotFound(file, folders);
+        if (!IsFile(resolved)) return CLI::ExistingFile(resolved);
+        value = resolved + block;
+        return "";
+      },
+      "FILE[#NAME]");
 }
 
 }  // namespace h4::cli

@@ -58,28 +58,13 @@ CLI::Option* AddBoardOption(CLI::App* command, Path* path) {
       ->transform(ExistingBoardFile());
 }
 
-/// An existing file, or FILE#NAME naming one block of an existing FILE ("camchain.yaml#cam1",
-/// which ReadCameraYaml splits at the last '#'): CLI::ExistingFile on the whole text refused
-/// the form the README and the reader's own errors give.
-inline CLI::Validator ExistingFileWithOptionalBlock() {
-  return CLI::Validator(
-      [](std::string& value) {
-        const size_t hash = value.rfind('#');
-        std::string file = value;
-        if (!CLI::ExistingFile(file).empty() || hash == std::string::npos) {
-          file = hash == std::string::npos ? value : value.substr(0, hash);
-        }
-        return CLI::ExistingFile(file);
-      },
-      "FILE[#NAME]");
-}
-
 template <typename Path>
 CLI::Option* AddCameraOption(CLI::App* command, Path* path,
                              const std::string& what =
                                  "Camera intrinsics YAML (OpenCV, or Kalibr's "
                                  "camchain.yaml#camN)") {
-  return command->add_option("--camera", *path, what)->check(ExistingFileWithOptionalBlock());
+  // A file, FILE#camN of a Kalibr camchain, or an installed camera file's name (board_lookup.h).
+  return command->add_option("--camera", *path, what)->transform(ExistingCameraFile());
 }
 
 /// --out FILE, required: the file the command writes.

@@ -215,8 +215,8 @@ CaptureSummary RunCapture(const CaptureArgs& args, bool save_frames, std::ostrea
   if (!detector.ok()) throw std::runtime_error(args.board_path + ": " + detector.error());
   const CameraModel camera(intrinsics);
   if ((save_frames || args.draw) && args.out_dir.empty()) {
-    throw std::runtime_error(save_frames ? "--out: the folder to save the frames in is required"
-                                         : "--draw needs --out (the folder of preview.png)");
+    throw std::runtime_error(save_frames ? "--out-dir: the folder to save the frames in is required"
+                                         : "--draw needs --out-dir (the folder of preview.png)");
   }
   if (!args.out_dir.empty()) fs::create_directories(args.out_dir);
 

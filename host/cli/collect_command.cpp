@@ -377,7 +377,7 @@ void DeclareCollectCommand(CLI::App* command) {
   h4::cli::AddRobotOption(command, &options->robot_path,
                           "A priori robot.yaml: the plan is checked against its reach before "
                           "the robot moves (poses it cannot take are named and not sent); "
-                          "needed by --identify, and by --controller with a Model 31 result "
+                          "needed by --report-dir, and by --controller with a Model 31 result "
                           "(its frame B)");
   AddJointRangeOption(command, &options->joint_range_deg);
   command->add_flag("--dry-run", options->dry_run,

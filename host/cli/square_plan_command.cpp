@@ -56,7 +56,7 @@ void Run(const SquarePlanCommandOptions& o) {
   square.theta = RadiansFromDegrees(o.theta_deg);
   if (const std::string problem = square.Problem(); !problem.empty()) {
     throw std::invalid_argument("square-plan: " + problem +
-                                " (--side-mm > 0, --points-per-side >= 2)");
+                                " (--square-mm > 0, --points-per-side >= 2)");
   }
   const std::vector<EndEffectorPoseRow> rows = SquarePlanPoses(square, o.first_id);
   WritePosesCsv(o.out_path, rows);

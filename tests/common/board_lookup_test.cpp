@@ -50,10 +50,29 @@ TEST_F(BoardLookup, TheBoardOptionTakesTheInstalledBoardAndNamesWhereItLooked) {
   }
 }
 
-TEST(BoardLookupFolders, TheProgramsOwnPrefixComesFirst) {
+TEST_F(BoardLookup, TheCameraOptionTakesAnInstalledCameraFileAndKeepsTheCamchainBlock) {
+  std::ofstream(folder_ / "camchain.yaml") << "cam0: {}\n";
+  CLI::App app;
+  std::string camera;
+  app.add_option("--camera", camera)->transform(ExistingCameraFile({folder_}));
+  app.parse(std::vector<std::string>{"camchain.yaml#cam1", "--camera"});
+  EXPECT_EQ(camera, (folder_ / "camchain.yaml").string() + "#cam1");
+  app.parse(std::vector<std::string>{"camchain", "--camera"});
+  EXPECT_EQ(camera, (folder_ / "camchain.yaml").string());
+  try {
+    app.parse(std::vector<std::string>{"missing.yaml#cam0", "--camera"});
+    FAIL() << "a camera file found nowhere was accepted";
+  } catch (const CLI::ValidationError& e) {
+    EXPECT_NE(std::string(e.what()).find("File does not exist: missing.yaml ("), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(BoardLookupFolders, ThePackagedFolderThenTheSourceTreesComeLast) {
   const std::vector<fs::path> folders = InstalledBoardFolders();
-  ASSERT_FALSE(folders.empty());
-  EXPECT_EQ(folders.back(), fs::path("/usr/share/h4cam/boards"));
+  ASSERT_GE(folders.size(), 2u);
+  EXPECT_EQ(folders[folders.size() - 2], fs::path("/usr/share/h4cam/boards"));
+  EXPECT_EQ(folders.back(), fs::path("boards"));
 }
 
 }  // namespace

@@ -96,6 +96,11 @@ expect="$camera:1: this looks like a camera file, not a board YAML (were --board
 swapped "$h4cam" measure --board "$camera" --camera "$board" --out m.csv near
 expect="$board:1: this looks like a board file, not a camera YAML (were --board and --camera swapped?)"
 swapped "$h4cam" capture --source sim --board "$board" --camera "$board" --count 1 --out frames
+# Errors name the options by their names, not their old spellings.
+c=$(code "$h4cam" preview --source sim --board "$board" --camera "$camera" --count 1 --draw)
+[ "$c" -eq 1 ] && grep -q -- "--draw needs --out-dir" out.txt || fail "preview --draw: $(cat out.txt)"
+c=$(code "$h4cal" square-plan --square-mm 0 --out sq.csv)
+[ "$c" -eq 1 ] && grep -q -- "(--square-mm > 0" out.txt || fail "square-plan --square-mm 0: $(cat out.txt)"
 # The old spelling simulate --truth and the new --truth-model draw the same robot.
 "$h4cal" simulate --truth-model 12 --out-dir sim_new 2> /dev/null || fail "simulate --truth-model"
 cmp -s sim/truth.yaml sim_new/truth.yaml || fail "simulate --truth and --truth-model differ"

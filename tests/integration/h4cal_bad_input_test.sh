@@ -205,6 +205,11 @@ expect_error "plan --count 1" "1 poses are too few: Model 31 needs at least 20" 
   --for-check --out "$dir/check5.csv" > "$dir/check5.log" 2>&1 || fail "plan --for-check: $(tail -2 "$dir/check5.log")"
 [ "$(($(wc -l < "$dir/check5.csv") - 1))" -eq 5 ] || fail "plan --for-check did not write 5 poses"
 grep -q "for h4cal check" "$dir/check5.log" || fail "plan --for-check did not say what the poses are for"
+# ... within the region the grid calibrated (box 200 x 200 x 150 mm at z -0.45 m, theta within
+# +-20 deg): beyond it the result extrapolates and an unchanged robot failed check.
+awk -F, 'NR > 1 && ($2 < -0.1 || $2 > 0.1 || $3 < -0.1 || $3 > 0.1 || $4 < -0.525 ||
+         $4 > -0.375 || $5 < -0.3491 || $5 > 0.3491) { print; bad = 1 } END { exit bad }' \
+  "$dir/check5.csv" || fail "plan --for-check chose poses outside the calibrated region"
 sed 's/^tagFamily: .*/tagFamily: tagCircle21h7/' "$boards/aprilgrid_6x6_30mm.yaml" > "$dir/circle.yaml"
 expect_error "plan on tagCircle21h7" "circle.yaml:.*tagCircle21h7.*families h4cam detects" \
   "$h4cal" plan "${plan_inputs[@]}" --board "$dir/circle.yaml" --out "$dir/plan.csv"

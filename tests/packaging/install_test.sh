@@ -47,10 +47,10 @@ for file in share/h4cal/boards/aprilgrid_6x6_30mm.yaml share/h4cal/boards/sim_ca
   share/doc/h4cal/README.md share/doc/h4cal/common/formats/README.md share/doc/h4cal/messages/README.md; do
   [ -s "$prefix/$file" ] || fail "$file is not installed"
 done
-# The README's walkthrough names boards bare (--board aprilgrid_6x6_30mm.yaml): from any
-# folder, the installed programs find the installed board of that name.
+# The README's walkthrough names boards and the simulated camera bare (--board
+# aprilgrid_6x6_30mm.yaml): from any folder, the installed programs find the installed file.
 (cd "$scratch" && "$prefix/bin/h4cam" preview --source sim --board aprilgrid_6x6_30mm.yaml \
-  --camera "$prefix/share/h4cal/boards/sim_camera_1024x768.yaml" --count 1 > preview.log 2>&1) \
+  --camera sim_camera_1024x768.yaml --count 1 > preview.log 2>&1) \
   || { cat "$scratch/preview.log"; fail "h4cam preview --board aprilgrid_6x6_30mm.yaml"; }
 grep -q "board ok" "$scratch/preview.log" || fail "preview: $(cat "$scratch/preview.log")"
 echo "ok:   installed: --version on both, --help on $checked subcommands, man pages, boards, docs"
