@@ -55,20 +55,17 @@ struct PlanCommandOptions {
 };
 
 /// --for-check: candidates only where the robot was calibrated, the paper's grid (its box,
-/// theta within +-20 deg). Beyond it the result extrapolates: on the walkthrough's rendered
-/// camera, 4 poses of the unchanged robot at theta 40-60 deg failed check (chi-square 43.5
-/// for 24 dof, limit 40.3) where 5 grid poses passed (24.6 for 30), and one of them was out
-/// of the true robot's reach.
+/// theta within its +-20 deg by 10 deg). Beyond it the result extrapolates, and fresh poses
+/// of an unchanged robot there failed check (README "Planning the poses").
 void KeepToTheCalibratedRegion(CandidateOptions* candidates) {
   const GridOptions grid;
   candidates->centre = grid.centre.head<3>();
   candidates->half_extent = 0.5 * grid.size;
-  const double largest_theta = *std::max_element(grid.theta.begin(), grid.theta.end());
+  const double largest_deg =
+      DegreesFromRadians(*std::max_element(grid.theta.begin(), grid.theta.end()));
+  const int steps = static_cast<int>(std::round(largest_deg / 10.0));
   candidates->theta.clear();
-  for (double theta = -largest_theta; theta <= largest_theta + 1e-12;
-       theta += RadiansFromDegrees(10.0)) {
-    candidates->theta.push_back(theta);
-  }
+  for (int k = -steps; k <= steps; ++k) candidates->theta.push_back(RadiansFromDegrees(10.0 * k));
 }
 
 PlanningProblemOptions ProblemOptions(const PlanCommandOptions& o) {
