@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -20,6 +19,7 @@
 #include "common/board/board_model.h"
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
+#include "common/cli/stop_signal.h"
 #include "common/cli/subcommand.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
@@ -35,11 +35,6 @@ namespace h4::cam {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::atomic<bool> g_capture_stop_requested{false};
-
-// Only sets the flag: the capture loop polls it between frames.
-extern "C" void OnCaptureStopSignal(int) { g_capture_stop_requested.store(true); }
 
 /// The board centred on the optical axis, facing the camera, `depth` m away.
 RigidTransform CentredBoardPose(const BoardSpec& board, double depth) {
@@ -304,16 +299,8 @@ void AddCaptureOptions(CLI::App* command, CaptureArgs* args) {
       ->capture_default_str();
 }
 
-void InstallCaptureStopSignal() {
-  struct sigaction action {};
-  action.sa_handler = OnCaptureStopSignal;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
-}
-
-void SetCaptureExitCode(const CaptureSummary& summary) {
-  if (summary.frames == 0 && g_capture_stop_requested.load()) {
+void SetCaptureExitCode(const CaptureSummary& summary, const std::atomic<bool>& stopped) {
+  if (summary.frames == 0 && stopped.load()) {
     SetExitCode(h4::cli::kExitInterrupted);
   } else if (summary.with_board == 0) {
     std::cerr << "h4cam: no frame showed the board\n";
@@ -344,8 +331,9 @@ void DeclareCaptureOrPreviewCommand(CLI::App* command, const CaptureCommandText&
   command->footer(text.footer);
   h4::cli::RunWhenParsed(
       command, args, [save_frames = text.save_frames](const CaptureArgs& parsed) {
-        InstallCaptureStopSignal();
-        SetCaptureExitCode(RunCapture(parsed, save_frames, std::cout, g_capture_stop_requested));
+        // The capture loop polls the flag between frames.
+        const std::atomic<bool>& stop = h4::cli::InstallStopSignalHandlers();
+        SetCaptureExitCode(RunCapture(parsed, save_frames, std::cout, stop), stop);
       });
 }
 

@@ -1,7 +1,6 @@
 // `h4cam run`; see run_command.h.
 #include "firmware/cli/run_command.h"
 
-#include <csignal>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -11,6 +10,7 @@
 
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
+#include "common/cli/stop_signal.h"
 #include "common/cli/subcommand.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
@@ -25,11 +25,6 @@
 
 namespace h4::cam {
 namespace {
-
-std::atomic<bool> g_stop_requested{false};
-
-// Only sets the flag: the main loop polls it at least every 100 ms.
-extern "C" void OnStopSignal(int) { g_stop_requested.store(true); }
 
 LibcameraSourceOptions LibcameraOptions(const ServiceConfig& config) {
   LibcameraSourceOptions o;
@@ -186,13 +181,10 @@ void DeclareRunCommand(CLI::App* command) {
       "--camera-id", args->camera_id,
       "libcamera camera id (also the name in the messages unless camera.name is set)");
   h4::cli::RunWhenParsed(command, args, [](const RunArgs& parsed) {
+    // The service's loop polls the flag at least every 100 ms.
+    const std::atomic<bool>& stop = h4::cli::InstallStopSignalHandlers();
     const ServiceConfig config = ResolveRunConfig(parsed);
-    struct sigaction action {};
-    action.sa_handler = OnStopSignal;
-    sigemptyset(&action.sa_mask);
-    sigaction(SIGINT, &action, nullptr);
-    sigaction(SIGTERM, &action, nullptr);
-    if (const int code = RunService(config, std::cerr, g_stop_requested); code != 0) {
+    if (const int code = RunService(config, std::cerr, stop); code != 0) {
       throw CLI::RuntimeError(code);
     }
   });

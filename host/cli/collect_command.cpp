@@ -16,6 +16,7 @@
 
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
+#include "common/cli/stop_signal.h"
 #include "common/cli/subcommand.h"
 #include "common/formats/file_output.h"
 #include "common/formats/identification_result.h"
@@ -28,7 +29,6 @@
 #include "host/cli/plan_reach.h"
 #include "host/cli/progress.h"
 #include "host/cli/robot_source.h"
-#include "host/cli/stop_signal.h"
 #include "host/cli/validation_inputs.h"
 #include "host/identification/identification.h"
 #include "host/kinematics/model31.h"
@@ -83,8 +83,9 @@ CampaignOptions::ControlLaw LoadControlLaw(const std::string& path, const std::s
   if (robot.model->kind() == ModelKind::k31) {
     const std::optional<Model12Parameters> apriori = AprioriModel12For(path, robot_path);
     if (!apriori) {
-      throw std::invalid_argument(path + ": a Model 31 control law needs --robot robot.yaml, the "
-                                         "a priori robot whose frame B the planned poses are in");
+      throw std::invalid_argument(path +
+                                  ": a Model 31 control law needs --robot robot.yaml, the "
+                                  "a priori robot whose frame B the planned poses are in");
     }
     X_B31B = NominalX_B31B(*apriori);
   }
@@ -145,9 +146,9 @@ void PrintSummary(const Campaign& campaign, const DatasetJournal& journal,
       static_cast<long long>(c.impossible_values),
       static_cast<long long>(c.nonphysical_covariances),
       static_cast<long long>(c.unexpected_pose_ids), static_cast<long long>(c.duplicates),
-      static_cast<long long>(c.stale_joint_states),
-      static_cast<long long>(c.unpaired), static_cast<long long>(bus.decode_failures()),
-      static_cast<long long>(bus.auth_failures()), static_cast<long long>(c.retries));
+      static_cast<long long>(c.stale_joint_states), static_cast<long long>(c.unpaired),
+      static_cast<long long>(bus.decode_failures()), static_cast<long long>(bus.auth_failures()),
+      static_cast<long long>(c.retries));
   if (interrupted) std::printf("  run the same command again to resume\n");
 }
 
@@ -282,7 +283,7 @@ void Run(CollectOptions options, const std::string& command_line) {
   // interruption (130, resumable), not kill it with the default action (the
   // second-campaign test interrupted the first right after it took the lock, and 1 run in
   // 20 died of SIGINT).
-  const std::atomic<bool>& stop = InstallStopSignalHandlers();
+  const std::atomic<bool>& stop = h4::cli::InstallStopSignalHandlers();
   bus::LcmBus bus(from_log ? LogUrl(options.from_log) : options.lcm_url, bus::WireLimits{},
                   CollectAuth(options, from_log));
   if (!bus.good()) {

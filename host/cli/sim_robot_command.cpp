@@ -13,13 +13,13 @@
 #include <spdlog/spdlog.h>
 
 #include "common/cli/shared_options.h"
+#include "common/cli/stop_signal.h"
 #include "common/cli/subcommand.h"
 #include "common/formats/robot_yaml.h"
 #include "host/campaign/sim_robot_node.h"
 #include "host/campaign/simulated_controller.h"
 #include "host/cli/commands.h"
 #include "host/cli/plan_reach.h"
-#include "host/cli/stop_signal.h"
 #include "host/simulation/paper_scenario.h"
 #include "host/simulation/true_robot.h"
 #include "host/simulation/truth_file.h"
@@ -81,6 +81,9 @@ Scenario LoadScenario(const SimRobotArgs& args) {
 }
 
 void Run(const SimRobotArgs& args) {
+  // Before the slow set-up, so that an early SIGTERM is a clean stop, not a kill; the node's
+  // loop polls the flag at least every 100 ms.
+  const std::atomic<bool>& stop = h4::cli::InstallStopSignalHandlers();
   const Scenario scenario = LoadScenario(args);
   SimulatedControllerOptions controller_options = args.controller;
   controller_options.joint_limits = ParseJointRange(args.joint_range_deg);
@@ -89,9 +92,6 @@ void Run(const SimRobotArgs& args) {
   bus::LcmBus bus(args.lcm_url);
   if (!bus.good()) throw std::runtime_error("sim-robot: " + bus.error());
   SimRobotNode node(bus, controller, args.node);
-
-  // The node's loop polls the flag at least every 100 ms.
-  const std::atomic<bool>& stop = InstallStopSignalHandlers();
 
   spdlog::info("sim-robot: {}; LCM {}; {} Hz, joint speed {} rad/s, settle {} s, sigma_q {} rad",
                scenario.description, bus.url(), args.node.rate_hz, args.controller.joint_speed,

@@ -1,14 +1,14 @@
 // Clean stop on SIGINT / SIGTERM; see stop_signal.h.
-#include "host/cli/stop_signal.h"
+#include "common/cli/stop_signal.h"
 
 #include <csignal>
 
-namespace h4::host::cli {
+namespace h4::cli {
 namespace {
 
 std::atomic<bool> g_stop_requested{false};
 
-extern "C" void H4calOnStopSignal(int signal_number) {
+extern "C" void H4OnStopSignal(int signal_number) {
   g_stop_requested.store(true);
   std::signal(signal_number, SIG_DFL);  // async-signal-safe; a second signal is not ignored
 }
@@ -17,11 +17,11 @@ extern "C" void H4calOnStopSignal(int signal_number) {
 
 const std::atomic<bool>& InstallStopSignalHandlers() {
   struct sigaction action {};
-  action.sa_handler = H4calOnStopSignal;
+  action.sa_handler = H4OnStopSignal;
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
   return g_stop_requested;
 }
 
-}  // namespace h4::host::cli
+}  // namespace h4::cli
