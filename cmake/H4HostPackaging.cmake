@@ -23,7 +23,7 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/boards/ DESTINATION share/h4cal/boards C
         FILES_MATCHING PATTERN "*.yaml" PATTERN "*.svg" PATTERN "*.pdf" PATTERN "*.md")
 foreach(doc README.md common/README.md common/formats/README.md messages/README.md
             boards/README.md firmware/packaging/README.md docs/robot-bridge.md docs/cli.md
-            docs/development.md)
+            docs/development.md docs/architecture.md docs/results.md)
   if(EXISTS ${PROJECT_SOURCE_DIR}/${doc})
     get_filename_component(folder ${doc} DIRECTORY)
     install(FILES ${PROJECT_SOURCE_DIR}/${doc} DESTINATION share/doc/h4cal/${folder}

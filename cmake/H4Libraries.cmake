@@ -1,7 +1,7 @@
 # One static library per source folder, named after what it does, with the folders and
-# packages it uses listed: the build enforces the layering (docs/development.md "Layout"),
-# and a user of one part links only what that part needs (h4::kinematics brings no LCM,
-# NLopt or OpenCV).
+# packages it uses listed: the build enforces the layering
+# (docs/architecture.md#libraries-and-their-dependencies), and a user of one part links only what
+# that part needs (h4::kinematics brings no LCM, NLopt or OpenCV).
 #
 #   h4_add_folder_library(<name> <folder> [PUBLIC deps...] [PRIVATE deps...])
 #

@@ -1,7 +1,7 @@
-// Corner positions p_TQ of a calibration board in its frame T (common/formats/README.md
-// "Board": origin at the outer top-left corner of the top-left tag as printed / the first
-// inner chessboard corner, x right along a row, y down a column, z into the board; the
-// printed face is the plane z = 0).
+// Corner positions p_TQ of a calibration board in its frame T
+// (common/formats/README.md#board-yaml---board: origin at the outer top-left corner of the top-left
+// tag as printed / the first inner chessboard corner, x right along a row, y down a column, z into
+// the board; the printed face is the plane z = 0).
 //
 // Corner ids: AprilTag grid: 4 * (tag_id - firstId) + k, where k follows libapriltag's
 // corner order seen on the print with y down: k = 0 bottom-left (x0, y0 + s),

@@ -1,4 +1,4 @@
-// Calibration board descriptions (board YAML, common/formats/README.md "Board"): an
+// Calibration board descriptions (board YAML, common/formats/README.md#board-yaml---board): an
 // AprilTag grid with Kalibr's keys, or an OpenCV chessboard. Board frame T: origin at the
 // outer top-left corner of the top-left tag as printed (the first inner corner of a
 // chessboard), x right along a row, y down a column, z into the board (away from the print).
@@ -67,8 +67,8 @@ using BoardSpec = std::variant<AprilGridSpec, CheckerboardSpec>;
 /// h4camSizeSigma: the relative one-sigma of the board's true size against its stated one
 /// (a print measured with calipers to 0.02 %: 0.0002). A uniform scale of the board is not
 /// observable with rotary joints (it scales every identified length), so the stated size
-/// is the calibration's metric reference and this its uncertainty (common/README.md "The
-/// camera file's uncertainty"); nullopt when the file does not state it.
+/// is the calibration's metric reference and this its uncertainty
+/// (common/README.md#the-camera-files-uncertainty); nullopt when the file does not state it.
 inline std::optional<double> BoardSizeSigma(const BoardSpec& board) {
   return std::visit([](const auto& spec) { return spec.size_sigma; }, board);
 }

@@ -1,7 +1,8 @@
 // Pinhole camera intrinsics with one of two distortion models (camera YAML,
-// common/formats/README.md "Camera intrinsics"): OpenCV's radial-tangential model, or the
-// equidistant fisheye model of OpenCV's cv::fisheye (Kalibr's pinhole-equi).
-// Pixel convention: (0, 0) is the centre of the top-left pixel, as in OpenCV.
+// common/formats/README.md#camera-intrinsics-opencv-filestorage-yaml-or-a-kalibr-camchain):
+// OpenCV's radial-tangential model, or the equidistant fisheye model of OpenCV's cv::fisheye
+// (Kalibr's pinhole-equi). Pixel convention: (0, 0) is the centre of the top-left pixel, as in
+// OpenCV.
 #pragma once
 
 #include <optional>

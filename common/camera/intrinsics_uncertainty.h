@@ -1,5 +1,5 @@
 // How well a camera's intrinsics are known and what their uncertainty does to board poses
-// (common/README.md "The camera file's uncertainty").
+// (common/README.md#the-camera-files-uncertainty).
 //
 // A calibration from views of a planar board estimates the intrinsics c (fx, fy, cx, cy,
 // then the distortion coefficients in the file's order; CameraModel::IntrinsicJacobian)

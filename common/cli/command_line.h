@@ -1,4 +1,4 @@
-// The command-line conventions h4cal and h4cam share (README.md, "Using h4cal"): an
+// The command-line conventions h4cal and h4cam share (README.md#using-h4cal): an
 // option's first long name is its name, further long names are old spellings that stay
 // accepted and are not shown in --help; one error line, "<program>: error: <what>", where
 // <what> names the file, line and field (common/formats/format_error.h); the exit codes.
@@ -11,7 +11,7 @@
 
 namespace h4::cli {
 
-/// Exit codes, the same for both programs (README.md, "Using h4cal").
+/// Exit codes, the same for both programs (README.md#using-h4cal).
 constexpr int kExitError = 1;
 /// The command ran but nothing usable came out (skipped poses, no board seen, a verdict
 /// other than good); what it wrote stays written.

@@ -1,5 +1,5 @@
 // The options several commands of h4cal and h4cam take, declared once so that the same
-// thing has the same name everywhere (README.md, "Using h4cal", lists every option). The
+// thing has the same name everywhere (README.md#using-h4cal, lists every option). The
 // rule: --out a file the command writes, --out-dir the folder it writes its files into,
 // --report-dir the folder of an extra report.html; input files by what they hold
 // (--robot, --data, --result, --board, --camera); --frames the frames averaged per

@@ -2,7 +2,7 @@
 // one table of CommandEntry (host/cli/commands.cpp, firmware/main.cpp): the name, the line
 // --help shows, and the Declare*Command function of the command's own file. That function
 // makes the command's options struct, declares the options CLI11 writes into it, and has
-// the command run on it once the whole line is parsed (README.md, "Using h4cal"). The
+// the command run on it once the whole line is parsed (README.md#using-h4cal). The
 // struct is shared: it outlives the declaring call, held by the run callback.
 #pragma once
 

@@ -1,5 +1,5 @@
-// The board YAML (common/formats/README.md "Board", `--board`): an AprilTag grid with Kalibr's
-// aprilgrid keys, or an OpenCV chessboard with Kalibr's checkerboard keys.
+// The board YAML (common/formats/README.md#board-yaml---board, `--board`): an AprilTag grid with
+// Kalibr's aprilgrid keys, or an OpenCV chessboard with Kalibr's checkerboard keys.
 #pragma once
 
 #include <string>

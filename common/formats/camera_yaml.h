@@ -1,10 +1,10 @@
-// Camera intrinsics files (common/formats/README.md "Camera intrinsics"): OpenCV
-// FileStorage YAML as OpenCV's calibration sample writes it (`%YAML:1.0` header,
-// image_width, image_height, camera_matrix and distortion_coefficients as !!opencv-matrix
-// (rows, cols, dt, data), optional avg_reprojection_error) with an optional
-// distortion_model (radtan, the default, or equidistant); and, for reading, Kalibr's
-// camchain.yaml (camera_model pinhole, distortion_model, intrinsics, distortion_coeffs,
-// resolution).
+// Camera intrinsics files
+// (common/formats/README.md#camera-intrinsics-opencv-filestorage-yaml-or-a-kalibr-camchain): OpenCV
+// FileStorage YAML as OpenCV's calibration sample writes it (`%YAML:1.0` header, image_width,
+// image_height, camera_matrix and distortion_coefficients as !!opencv-matrix (rows, cols, dt,
+// data), optional avg_reprojection_error) with an optional distortion_model (radtan, the default,
+// or equidistant); and, for reading, Kalibr's camchain.yaml (camera_model pinhole,
+// distortion_model, intrinsics, distortion_coeffs, resolution).
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// The board-corner CSV (common/formats/README.md "Board corners: CSV"); see corners_csv.h.
+// The board-corner CSV (common/formats/README.md#board-corners-csv); see corners_csv.h.
 #include "common/formats/corners_csv.h"
 
 #include <cmath>
@@ -13,12 +13,14 @@ namespace h4 {
 namespace {
 
 // A pixel coordinate beyond this is no image's (images are at most 16384 px a side,
-// README "Camera intrinsics"); the bound leaves room for corners projected off-image.
+// common/formats/README.md#camera-intrinsics-opencv-filestorage-yaml-or-a-kalibr-camchain); the
+// bound leaves room for corners projected off-image.
 constexpr double kMaxPixel = 1e6;
 
 int ReadTagId(const CsvTable& table, size_t r) {
   const int64_t tag = table.GetInt64(r, "tag_id");
-  // -1 marks a chessboard corner (README "Board corners: CSV"); tag ids are never negative.
+  // -1 marks a chessboard corner (common/formats/README.md#board-corners-csv); tag ids are never
+  // negative.
   if (tag < -1 || tag > std::numeric_limits<int>::max()) {
     table.Fail(
         r, "tag_id",
@@ -44,8 +46,8 @@ double ReadPixel(const CsvTable& table, size_t r, const char* column) {
   return value;
 }
 
-// Bounded like the dataset's sigmas (README "Paired dataset"): a weight 1/sigma^2 must
-// neither overflow nor come from a sigma no camera measures.
+// Bounded like the dataset's sigmas (common/formats/README.md#paired-dataset-csv): a weight
+// 1/sigma^2 must neither overflow nor come from a sigma no camera measures.
 std::optional<double> ReadSigma(const CsvTable& table, size_t r) {
   const std::optional<double> sigma = table.GetOptionalDouble(r, "sigma_px");
   if (sigma && !(*sigma >= kCornerSigmaBounds.min && *sigma <= kCornerSigmaBounds.max)) {

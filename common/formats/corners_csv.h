@@ -1,4 +1,4 @@
-// The board-corner CSV (common/formats/README.md "Board corners: CSV"): the refined image
+// The board-corner CSV (common/formats/README.md#board-corners-csv): the refined image
 // corners a board pose was estimated from, one row per corner, so that the identification
 // can fit in pixel space and refine the camera's intrinsics (host/identification).
 //   pose_id,tag_id,corner,u,v[,sigma_px]

@@ -1,4 +1,4 @@
-// The paired dataset CSV (common/formats/README.md "Paired dataset"); see dataset_csv.h.
+// The paired dataset CSV (common/formats/README.md#paired-dataset-csv); see dataset_csv.h.
 #include "common/formats/dataset_csv.h"
 
 #include <cmath>

@@ -2,7 +2,7 @@
 // of the command's inputs. Every result, report, export and CSV writer goes through
 // WriteFileAtomically: the bytes go to a temporary file in the same directory, are
 // flushed to disk (fsync), then renamed over the target, so a crash, a full disk or a
-// failed write leaves the previous file whole (common/formats/README.md, "Writing files").
+// failed write leaves the previous file whole (common/formats/README.md#writing-files).
 #pragma once
 
 #include <string>

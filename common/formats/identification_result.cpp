@@ -1,4 +1,5 @@
-// The identification result JSON (common/formats/README.md "Identification result"); see
+// The identification result JSON
+// (common/formats/README.md#identification-result-json-h4cal-identify---out); see
 // identification_result.h. Keys are written in the order common/formats/README.md lists them, then
 // the extra keys of the solver's account.
 #include "common/formats/identification_result.h"

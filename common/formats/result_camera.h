@@ -1,6 +1,7 @@
-// The `camera` key of the identification result JSON (common/formats/README.md
-// "Identification result"): the intrinsics the corner path refined together with the robot,
-// their file values, sigmas and covariance. Absent (null) on the pose path.
+// The `camera` key of the identification result JSON
+// (common/formats/README.md#identification-result-json-h4cal-identify---out): the intrinsics the
+// corner path refined together with the robot, their file values, sigmas and covariance. Absent
+// (null) on the pose path.
 #pragma once
 
 #include <optional>

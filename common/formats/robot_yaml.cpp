@@ -15,8 +15,8 @@
 namespace h4 {
 namespace {
 
-// The bounds of common/formats/README.md "Robot description", the result JSON's (no part of
-// an H4 lies kMaxRobotSize_m from its base, no angle needs more than a turn): a value past
+// The bounds of common/formats/README.md#robot-description-yaml---robot, the result JSON's (no part
+// of an H4 lies kMaxRobotSize_m from its base, no angle needs more than a turn): a value past
 // them is a typing mistake or a damaged file, and 1e154 made `identify` loop on a Jacobian
 // of inf and NaN and `analyze` print NaN. Each check names the file, line and field.
 constexpr double kTurn = 2.0 * std::numbers::pi;

@@ -1,6 +1,6 @@
-// The robot description YAML (common/formats/README.md "Robot description", `--robot`): the a
-// priori Model 12 parameters, assembly signs, a priori X_BC and X_TE, and an optional model31 block
-// with the Model 31 names of common/README.md. SI units (m, rad).
+// The robot description YAML (common/formats/README.md#robot-description-yaml---robot, `--robot`):
+// the a priori Model 12 parameters, assembly signs, a priori X_BC and X_TE, and an optional model31
+// block with the Model 31 names of common/README.md. SI units (m, rad).
 #pragma once
 
 #include <string>

@@ -1,4 +1,4 @@
-// Nominal Model 31 from Model 12 (common/README.md, "Model 31").
+// Nominal Model 31 from Model 12 (common/README.md#model-31-calibration-model-31-parameters).
 #include "common/robot/robot_description.h"
 
 #include <cmath>

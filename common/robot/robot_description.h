@@ -51,7 +51,8 @@ struct RobotDescription {
   RigidTransform X_TE;  ///< a priori end-effector pose in board frame T
 };
 
-/// The exact Model 31 equivalent of a Model 12 robot (common/README.md, "Model 31").
+/// The exact Model 31 equivalent of a Model 12 robot
+/// (common/README.md#model-31-calibration-model-31-parameters).
 Model31Parameters NominalModel31(const Model12Parameters& m12);
 
 /// Model 31 parameters of a description: its model31 block, else NominalModel31(model12).

@@ -1,4 +1,4 @@
-// The exit code of an h4cam run (README.md, "Using h4cal"): 0 success, 1 an error (main
+// The exit code of an h4cam run (README.md#using-h4cal): 0 success, 1 an error (main
 // prints it once), 3 the command ran but nothing usable was measured or rendered (the
 // command says why), CLI11's usage errors 100 and above. A command that finished without a
 // usable result sets 3 here instead of throwing, so that what it wrote stays written.

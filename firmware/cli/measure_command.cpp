@@ -57,7 +57,7 @@ int RunMeasure(const MeasureArgs& args, std::ostream& progress) {
       row.sigma_t = m.sigma_t;
       row.sigma_r = m.sigma_r;
       ++with_pose;
-      // The pose id is the row's number in --out (common/formats/README.md "Board corners: CSV").
+      // The pose id is the row's number in --out (common/formats/README.md#board-corners-csv).
       const std::vector<h4::CornerObservation> used =
           CornerRows(m, static_cast<int64_t>(rows.size()));
       corner_rows.insert(corner_rows.end(), used.begin(), used.end());

@@ -1,7 +1,8 @@
 // `h4cam measure --board B.yaml --camera camera.yaml [--frames 10] IMAGES... --out
-// poses.csv`: offline board poses (common/formats/README.md "Offline board poses") from image
-// files, each group of N consecutive images averaged into one measurement, one row per group (empty
-// pose fields when the group gives no usable pose). Progress on stderr.
+// poses.csv`: offline board poses
+// (common/formats/README.md#offline-board-poses-csv-h4cam-measure---out) from image files, each
+// group of N consecutive images averaged into one measurement, one row per group (empty pose fields
+// when the group gives no usable pose). Progress on stderr.
 #pragma once
 
 #include <iosfwd>
@@ -21,7 +22,7 @@ struct MeasureArgs {
   int group = 10;                   ///< images averaged per measurement
   double max_spread_px = 0.5;       ///< motion threshold, the camera service's (service_config.h)
   std::string out_path;
-  /// Board-corner CSV (common/formats/README.md "Board corners: CSV") of the poses in
+  /// Board-corner CSV (common/formats/README.md#board-corners-csv) of the poses in
   /// `out_path`: pose_id is the row's number there, from 0. Empty: not written.
   std::string corners_out_path;
 };

@@ -8,7 +8,7 @@ namespace h4::cam {
 namespace {
 
 // The corners the pose was fitted to, with their tag and noise, to travel with the pose
-// (common/formats/README.md "Board corners: CSV": the tag of corner id 4 * (tag - firstId) + k,
+// (common/formats/README.md#board-corners-csv: the tag of corner id 4 * (tag - firstId) + k,
 // -1 on a chessboard).
 std::vector<MeasuredCorner> MeasuredCorners(const BoardModel& board,
                                             const std::vector<CornerObservation>& corners,

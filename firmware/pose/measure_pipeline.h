@@ -29,9 +29,10 @@ struct PipelineOptions {
   bool IsValid(std::string* why) const;
 };
 
-/// The measurement's corners as rows of the board-corner CSV (common/formats/README.md
-/// "Board corners: CSV") for pose `pose_id`; each sigma clamped into kCornerSigmaBounds (a
-/// perfect synthetic fit has none to speak of, and the format bounds what a weight may be).
+/// The measurement's corners as rows of the board-corner CSV
+/// (common/formats/README.md#board-corners-csv) for pose `pose_id`; each sigma clamped into
+/// kCornerSigmaBounds (a perfect synthetic fit has none to speak of, and the format bounds what a
+/// weight may be).
 std::vector<h4::CornerObservation> CornerRows(const Measurement& m, int64_t pose_id);
 
 class MeasurePipeline {

@@ -15,7 +15,7 @@
 namespace h4::cam {
 
 /// A refined board corner the pose was fitted to, as it travels with the pose
-/// (common/formats/README.md "Board corners: CSV"; board_corners_t on the bus).
+/// (common/formats/README.md#board-corners-csv; board_corners_t on the bus).
 struct MeasuredCorner {
   int tag_id = -1;                               ///< AprilTag id, -1 for a chessboard corner
   int corner = 0;                                ///< BoardModel corner id

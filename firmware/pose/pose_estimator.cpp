@@ -267,7 +267,7 @@ int CountEdgeGroups(const std::vector<CornerObservation>& corners) {
 // Each corner's per-axis standard deviation under the noise the covariance was built from:
 // with the edge noise, its own share of the edge fits' noise (trace(N N^T) / 2 per axis)
 // plus the excess the residuals show; otherwise the residuals' sigma^2; then the floor.
-// What travels with the pose (common/formats/README.md "Board corners: CSV").
+// What travels with the pose (common/formats/README.md#board-corners-csv).
 std::vector<double> CornerSigmas(const std::vector<CornerObservation>& corners, bool edge_noise,
                                  double independent_variance, double floor_px) {
   std::vector<double> sigmas;

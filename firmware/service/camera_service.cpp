@@ -15,7 +15,7 @@ namespace h4::cam {
 namespace {
 
 // The corners that travel with a STATUS_OK pose (messages/README.md, H4_BOARD_CORNERS;
-// common/formats/README.md "Board corners: CSV"); none when there are more than a message
+// common/formats/README.md#board-corners-csv); none when there are more than a message
 // holds or a value is not finite.
 std::optional<h4msgs::board_corners_t> CornersMessage(const Measurement& m,
                                                       const h4msgs::board_pose_t& pose) {

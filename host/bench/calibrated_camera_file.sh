@@ -1,11 +1,10 @@
 #!/usr/bin/env bash
-# The realistic camera file of h4_camera_study (common/README.md "The camera file's
-# uncertainty"): 25 views of the 9 x 6 chessboard rendered through the true camera
-# (boards/sim_camera_1024x768.yaml) with a camera module's image formation (h4cam render
-# --preset processed: defocus, illumination gradient, shot noise, sRGB response), then
-# calibrated by `h4cam calibrate-intrinsics` as a user calibrates. Its error against the
-# true camera comes from the views and the detector, not from a drawn number; its
-# intrinsics_covariance is what the calibration claims.
+# The realistic camera file of h4_camera_study (common/README.md#the-camera-files-uncertainty): 25
+# views of the 9 x 6 chessboard rendered through the true camera (boards/sim_camera_1024x768.yaml)
+# with a camera module's image formation (h4cam render --preset processed: defocus, illumination
+# gradient, shot noise, sRGB response), then calibrated by `h4cam calibrate-intrinsics` as a user
+# calibrates. Its error against the true camera comes from the views and the detector, not from a
+# drawn number; its intrinsics_covariance is what the calibration claims.
 #   host/bench/calibrated_camera_file.sh H4CAM OUT.yaml [WORK_DIR]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)

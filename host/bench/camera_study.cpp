@@ -1,7 +1,7 @@
-// The camera study (issue 25; README "When the camera file is wrong"): how wrong a camera file may be before the
-// robot pays for it, and what the corner path recovers. For each simulated Model 31 robot
-// and each camera-file error, the campaign is simulated with the TRUE camera of
-// boards/sim_camera_1024x768.yaml (the legacy 6x6 board's 144 corners, per-axis pixel
+// The camera study (issue 25; docs/results.md#when-the-camera-file-is-wrong-the-corner-path): how
+// wrong a camera file may be before the robot pays for it, and what the corner path recovers. For
+// each simulated Model 31 robot and each camera-file error, the campaign is simulated with the TRUE
+// camera of boards/sim_camera_1024x768.yaml (the legacy 6x6 board's 144 corners, per-axis pixel
 // noise, encoder noise), board poses solved with the FILE's intrinsics; then the pose path
 // (Model 12, then Model 31 --from) and the corner path (from that Model 31) are identified
 // and each result's TRUE registered accuracy measured where the true robot goes over the

@@ -17,7 +17,7 @@
 //  - and counts the verdicts (a campaign the model describes should be "good").
 // Usage: h4_coverage_study [--campaigns N (100)] [--first-seed S (1)] [--map-in-model-frame
 // (the map and actual errors without the rigid registration of the base frame)]; prints a
-// Markdown table (README, "Every pose counts, and the result says how good it is").
+// Markdown table (docs/results.md#uncertainty-that-holds).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>

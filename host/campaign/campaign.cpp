@@ -193,7 +193,7 @@ void Campaign::PairCornersOf(int64_t pose_id, int64_t utime) {
 }
 
 // Written only if the file will read back: the rows go through the CSV reader first
-// (common/formats/README.md "Board corners: CSV": bounds, one row per corner).
+// (common/formats/README.md#board-corners-csv: bounds, one row per corner).
 bool Campaign::AppendCorners(const h4msgs::board_corners_t& msg) {
   std::string text = CornersCsvHeader(true) + "\n";
   try {
@@ -397,7 +397,7 @@ std::string Campaign::StaleCameraNote() const {
       DescribeClockOffset("camera status timestamps", *offset), bus_.max_clock_offset_s());
 }
 
-// A key on one end only (messages/README.md, "Authenticated messages"): each end sees the other's
+// A key on one end only (messages/README.md#authenticated-messages): each end sees the other's
 // messages refused or read unchecked, and says which end lacks the key.
 std::string Campaign::KeyMismatchNote() const {
   const int64_t refused = bus_.auth_failures(channels::kCameraStatus) +

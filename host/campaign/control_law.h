@@ -18,9 +18,9 @@ using ControlLawFunction =
     std::function<std::optional<JointVector>(const EePose& x_B, std::string* why)>;
 
 /// The inverse kinematics of `model` as a control law. A Model 31 takes poses in its own
-/// base frame B31 (origin at P_1, common/README.md "Model 31"): X_B31B maps the planned
-/// pose there (NominalX_B31B of the a priori Model 12, model31.h); a Model 12 needs none.
-/// Throws std::invalid_argument for a Model 31 without X_B31B.
+/// base frame B31 (origin at P_1, common/README.md#model-31-calibration-model-31-parameters):
+/// X_B31B maps the planned pose there (NominalX_B31B of the a priori Model 12, model31.h); a Model
+/// 12 needs none. Throws std::invalid_argument for a Model 31 without X_B31B.
 ControlLawFunction InverseKinematicsControlLaw(std::shared_ptr<const KinematicModel> model,
                                                const std::optional<RigidTransform>& X_B31B);
 

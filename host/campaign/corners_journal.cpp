@@ -10,7 +10,7 @@ namespace h4::host {
 namespace {
 
 // Every corner the campaign writes has a sigma (the camera sends one per corner), so the
-// column is always there (common/formats/README.md "Board corners: CSV").
+// column is always there (common/formats/README.md#board-corners-csv).
 constexpr bool kCornersWithSigma = true;
 
 // The first field of `line` (its pose id), or "" when the line has no comma.

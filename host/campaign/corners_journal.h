@@ -1,10 +1,10 @@
 // The campaign's board corners (issue 25: corners travel with the pose), appended durably
 // beside the dataset: for each recorded pose whose camera sent them (board_corners_t), the
-// refined corners as rows of the board-corner CSV (common/formats/README.md "Board corners:
-// CSV"), all rows of a pose in one write(2) and one fsync(2), as the dataset's rows are
-// (dataset_journal.h). On open, an existing file is read back (a last line cut by a crash is
-// dropped): the poses it holds are not appended again, so a resumed campaign writes each
-// pose's corners once. Locked like the dataset while open.
+// refined corners as rows of the board-corner CSV (common/formats/README.md#board-corners-csv), all
+// rows of a pose in one write(2) and one fsync(2), as the dataset's rows are (dataset_journal.h).
+// On open, an existing file is read back (a last line cut by a crash is dropped): the poses it
+// holds are not appended again, so a resumed campaign writes each pose's corners once. Locked like
+// the dataset while open.
 #pragma once
 
 #include <cstdint>

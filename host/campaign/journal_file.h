@@ -1,6 +1,6 @@
 // The file operations the campaign's durable files share (the dataset, dataset_journal.h,
 // and its corners, corners_journal.h): an exclusive lock, whole-file reads, and appends that
-// are either on the disk whole or cut back (common/formats/README.md "Writing files" says why
+// are either on the disk whole or cut back (common/formats/README.md#writing-files says why
 // results are replaced atomically; a journal appends instead, one fsync per pose).
 #pragma once
 

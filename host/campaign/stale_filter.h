@@ -5,8 +5,8 @@
 // recent messages on a channel the least delayed one (the largest utime minus arrival)
 // gives where its clock is now; a message that lags it by more than max_lag is stale,
 // whatever the clocks' offset. Pure: the caller passes both times, in us since the epoch.
-// Robot channels are unsigned (README "Who can talk to the campaign and the camera"): a
-// forged message with a current stamp is not stale, and a forged one dated in the future
+// Robot channels are unsigned (README.md#who-can-talk-to-the-campaign-and-the-camera-threat-model):
+// a forged message with a current stamp is not stale, and a forged one dated in the future
 // makes the real ones look stale for `memory` seconds; the key protects the camera's
 // channels only.
 #pragma once

@@ -71,7 +71,7 @@ std::optional<Model12Parameters> AprioriModel12For(const std::string& controller
 /// robot.yaml (a priori, or h4cal export's) or of a result, Model 12 or Model 31: the robot
 /// is driven by whichever model the verdict found accurate. The planned poses are in B; a
 /// Model 31 takes them in its own base frame B31 (origin at P_1), through the a priori
-/// robot's nominal X_B31B (common/README.md, "Model 31").
+/// robot's nominal X_B31B (common/README.md#model-31-calibration-model-31-parameters).
 CampaignOptions::ControlLaw LoadControlLaw(const std::string& path, const std::string& robot_path) {
   RobotSourceOptions source;
   const bool is_result = std::filesystem::path(path).extension() == ".json";

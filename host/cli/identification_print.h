@@ -12,7 +12,7 @@ namespace h4::host::cli {
 /// fixed parameters, the residuals, the held-out figures and the predictions, to stdout.
 void PrintHeadline(const IdentificationOutcome& outcome);
 
-/// The accuracy map written with a report, in one line (README "Using h4cal").
+/// The accuracy map written with a report, in one line (README.md#using-h4cal).
 void PrintAccuracyMapLine(const ModelValidation& identified);
 
 }  // namespace h4::host::cli

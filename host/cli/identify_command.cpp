@@ -52,7 +52,7 @@ struct IdentifyCommandOptions {
   bool no_outliers = false;
   bool no_polish = false;
   std::string report_dir;
-  // The corner path (common/README.md "Identification from corners").
+  // The corner path (common/README.md#identification-from-corners).
   std::string corners_path;
   std::string board_path;
   std::string camera_path;
@@ -148,8 +148,8 @@ void RequireCameraFiles(const IdentifyCommandOptions& options) {
   }
 }
 
-// The camera file's uncertainty for the pose path (common/README.md "The camera file's
-// uncertainty"), when --camera and --board are given.
+// The camera file's uncertainty for the pose path (common/README.md#the-camera-files-uncertainty),
+// when --camera and --board are given.
 std::optional<CameraFileUncertainty> CameraFileOf(const IdentifyCommandOptions& options) {
   if (options.camera_path.empty()) return std::nullopt;
   CameraFileUncertainty file{ReadCameraYaml(options.camera_path),

@@ -1,6 +1,6 @@
 // The log's line style: warnings and errors as "h4cal: warning: <what>" and "h4cal: error:
 // <what>", the same form main prints a command's error in (common/cli/command_line.h,
-// README.md "Using h4cal"); information lines as they are, without a prefix.
+// README.md#using-h4cal); information lines as they are, without a prefix.
 #pragma once
 
 #include <string>

@@ -56,7 +56,7 @@ struct PlanCommandOptions {
 
 /// --for-check: candidates only where the robot was calibrated, the paper's grid (its box,
 /// theta within its +-20 deg by 10 deg). Beyond it the result extrapolates, and fresh poses
-/// of an unchanged robot there failed check (README "Planning the poses").
+/// of an unchanged robot there failed check (docs/results.md#checking-for-drift-h4cal-check).
 void KeepToTheCalibratedRegion(CandidateOptions* candidates) {
   const GridOptions grid;
   candidates->centre = grid.centre.head<3>();
@@ -146,8 +146,8 @@ void Run(const PlanCommandOptions& o) {
   design.pose_count = o.pose_count;
   design.seed = o.seed;
   // A check compares a few poses with a result: the poses that tell the parameters apart
-  // best (D-optimal, as the check study measured: README "Planning the poses") also show a
-  // change of them best; they identify nothing on their own.
+  // best (D-optimal, as the check study measured: docs/results.md#checking-for-drift-h4cal-check)
+  // also show a change of them best; they identify nothing on their own.
   const PlannedCampaign campaign = PlanCampaign(
       problem, design, o.first_id, o.for_check ? PlanCriterion::kDOptimal : Criterion(o));
   if (o.for_check) {

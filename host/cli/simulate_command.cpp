@@ -43,7 +43,7 @@ struct SimulateOptions {
   double sigma_q = 2e-5;
   int valid = 10;
   std::string out_dir;
-  // The camera at the corner level (common/README.md "Identification from corners").
+  // The camera at the corner level (common/README.md#identification-from-corners).
   std::string board_path;
   std::string camera_path;       ///< the true camera the corners are projected through
   std::string camera_file_path;  ///< the camera file the poses are solved with

@@ -205,7 +205,7 @@ std::string CrossValidatedLines(const ValidationReport& report) {
 
 std::string FormatValidationText(const ValidationReport& report) {
   std::ostringstream t;
-  // People read mm and deg (README "Using h4cal"); the files keep m and rad.
+  // People read mm and deg (README.md#using-h4cal); the files keep m and rad.
   const auto deg = [](double rad) { return DegreesFromRadians(rad); };
   const std::string poses = EvaluatedPosesLabel(report);
   t << fmt::format("Table 3: joint residuals, {} (deg, measured - model)\n", poses);

@@ -3,10 +3,10 @@
 // as a standard deviation per axis added in quadrature to each pose's stated sigma, for the
 // rotation and the translation apart. A rendered or real camera states the covariance of its
 // corner noise alone; the corner bias of blur and response curves and an imperfect intrinsic
-// calibration add an error that does not shrink with that noise (common/README.md, "The
-// camera file's uncertainty"). A factor on the stated variances instead would overstate that
-// error on the poses whose stated sigmas are large (README, "Planning the poses": the demo's
-// rendered camera).
+// calibration add an error that does not shrink with that noise
+// (common/README.md#the-camera-files-uncertainty). A factor on the stated variances instead would
+// overstate that error on the poses whose stated sigmas are large
+// (docs/results.md#checking-for-drift-h4cal-check: the demo's rendered camera).
 #pragma once
 
 #include <optional>

@@ -1,9 +1,8 @@
-// The camera file's uncertainty in the pose path (common/README.md "The camera file's
-// uncertainty"). Every board pose is solved with the same intrinsics c, so an error dc of
-// the file moves every pose by D_j dc (D_j = dX_CT/dc at pose j,
-// common/camera/intrinsics_uncertainty.h) at once: an error shared by all the poses, which
-// the fit cannot average out and its covariance (J^T J)^-1 does not contain. The estimate
-// moves with it by
+// The camera file's uncertainty in the pose path (common/README.md#the-camera-files-uncertainty).
+// Every board pose is solved with the same intrinsics c, so an error dc of the file moves every
+// pose by D_j dc (D_j = dX_CT/dc at pose j, common/camera/intrinsics_uncertainty.h) at once: an
+// error shared by all the poses, which the fit cannot average out and its covariance (J^T J)^-1
+// does not contain. The estimate moves with it by
 //   dtheta/dc = A^-1 sum_j J_j^T W_j D_j     (A = J^T J of the weighted measurement cost,
 //                                            W_j its 1/sigma weights, e_j moving by -D_j dc)
 // and its covariance gains the "consider" term (dtheta/dc) C_c (dtheta/dc)^T, C_c the file's

@@ -1,7 +1,7 @@
-// The camera block of the corner path's parameter vector (common/README.md "Identification
-// from corners"): the intrinsics of the camera file as named parameters, camera.fx,
-// camera.fy, camera.cx, camera.cy (px), then the distortion coefficients in the file's
-// order (radtan camera.k1 camera.k2 camera.p1 camera.p2 [camera.k3 [k4 k5 k6]];
+// The camera block of the corner path's parameter vector
+// (common/README.md#identification-from-corners): the intrinsics of the camera file as named
+// parameters, camera.fx, camera.fy, camera.cx, camera.cy (px), then the distortion coefficients in
+// the file's order (radtan camera.k1 camera.k2 camera.p1 camera.p2 [camera.k3 [k4 k5 k6]];
 // equidistant camera.k1 .. camera.k4). The skew is held at the file's value.
 #pragma once
 

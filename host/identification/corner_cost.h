@@ -1,4 +1,4 @@
-// The corner cost (common/README.md "Identification from corners"): the measurement model
+// The corner cost (common/README.md#identification-from-corners): the measurement model
 // of the paper's eq. (6) carried down to the pixels the camera measured. For pose j and
 // board corner Q, with X_CT_predicted = inv(X_BC) X_BE(FK(q~_j)) inv(X_TE),
 //   r_jQ = (project(intrinsics, X_CT_predicted p_TQ) - uv~_jQ) / sigma_jQ      (2 per corner)

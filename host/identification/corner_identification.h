@@ -1,4 +1,4 @@
-// Identification from corners (common/README.md "Identification from corners"): the pose
+// Identification from corners (common/README.md#identification-from-corners): the pose
 // path's result refined in pixel space with the camera's intrinsics as parameters
 // (corner_cost.h), then every board pose measured again from its corners with the refined
 // camera, so that the pose path's machinery (cross-validation, outliers, verdict, accuracy

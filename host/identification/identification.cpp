@@ -313,7 +313,7 @@ void RecordCrossValidation(const StageContext& context, IdentificationState* sta
       cv.reduced_chi2, cv.failed_folds, cv.seconds * 1e3));
 }
 
-// What no campaign can tell (common/README.md "Identification from corners"): with rotary
+// What no campaign can tell (common/README.md#identification-from-corners): with rotary
 // joints a board printed 0.2 % large gives a robot 0.2 % large that fits as well.
 std::string BoardScaleNote(const std::optional<double>& board_size_sigma) {
   if (!board_size_sigma) {

@@ -1,4 +1,4 @@
-// Kinematic identification of an H4 (paper II-III, common/README.md "Identification"): from a
+// Kinematic identification of an H4 (paper II-III, common/README.md#identification): from a
 // rough a priori robot and a paired dataset to a filled IdentificationResult. Stages:
 //  1. prior analysis of the rotation axis (paper III.B) turns the a priori X_BC / X_TE so
 //     that their z axes agree with the measured axis;
@@ -46,7 +46,7 @@ struct IdentificationOptions {
   /// Every stage starts with NLopt (algorithm by name; "none": Levenberg-Marquardt alone),
   /// loose when the LM polish follows, else to tight tolerances (1e-12, at least 2000
   /// evaluations): NLopt is the engine and copes with rough starts, LM is far faster near
-  /// the minimum (timings: README, "How well it works").
+  /// the minimum (timings: docs/development.md#identification-speed).
   NloptOptions nlopt;
   /// The Levenberg-Marquardt polish on the column-scaled normal equations, the final stage
   /// (false: NLopt alone, `h4cal identify --no-polish`). When it does not converge, NLopt

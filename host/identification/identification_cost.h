@@ -1,4 +1,4 @@
-// The identification costs (common/README.md, "Identification") as residual vectors with
+// The identification costs (common/README.md#identification) as residual vectors with
 // analytic Jacobians by the whole parameter vector (kinematic parameters, X_BC, X_TE):
 //  - kJointSpace, paper eq. (3): wrap(q_i(xi, x_j) - q~_ij), x_j from the measured X_CT
 //    through X_BE = X_BC X_CT X_TE, q_i by the closed-form IK (Model 12 and 31 alike);

@@ -34,7 +34,7 @@ std::vector<PlannedStage> PlanStages(const IdentificationOptions& options);
 
 /// What every stage of one identification reads. `reference` holds the values a parameter
 /// fixed by the analysis takes (the start: the a priori after the prior analysis, or the
-/// --from result; common/README.md, "Identification").
+/// --from result; common/README.md#identification).
 struct StageContext {
   const KinematicModel& model;
   const IdentificationOptions& options;

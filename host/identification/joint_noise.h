@@ -3,7 +3,7 @@
 // corners of its pose together (the pose's 4 columns G_j = dr_j/dq_j), a noise that does not
 // average out over a pose's 144 corners. Left out, the covariance (J^T J)^-1 claims the
 // corner noise floor; measured on simulated robots with 2e-5 rad encoders, the true accuracy
-// was 1.5-2.3x the predicted one (README "When the camera file is wrong").
+// was 1.5-2.3x the predicted one (docs/results.md#when-the-camera-file-is-wrong-the-corner-path).
 //
 // The residual covariance is modelled as s2 I + sigma_q^2 blockdiag(G_j G_j^T) (weighted
 // units) and its two scales are estimated from the residuals split into their part in each

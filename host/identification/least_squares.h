@@ -26,7 +26,7 @@ struct NloptOptions {
   std::string algorithm = "LD_LBFGS";
   /// Defaults for NLopt before a Levenberg-Marquardt polish: loose, since it only has to
   /// bring the estimate into LM's basin, and tighter tolerances cost evaluations without
-  /// saving LM iterations (README, "How well it works").
+  /// saving LM iterations (docs/development.md#identification-speed).
   int max_evaluations = 100;              ///< per call
   double relative_cost_tolerance = 1e-1;  ///< NLopt ftol_rel
   double relative_step_tolerance = 1e-6;  ///< NLopt xtol_rel (scaled variables)

@@ -1,4 +1,4 @@
-// The identification parameter vector (common/README.md, "Identification"): the kinematic
+// The identification parameter vector (common/README.md#identification): the kinematic
 // parameters of a model followed by X_BC and X_TE as (tx ty tz rx ry rz), R = Rz Ry Rx,
 // named "X_BC.tx" ... "X_TE.rz", with a free/fixed mask that records why a parameter is
 // fixed. Also the Model 12 -> Model 31 conversion of a parameter set (paper III.C).

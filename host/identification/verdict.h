@@ -34,7 +34,7 @@ struct VerdictOptions {
   /// can follow the noise and the chi-square test has too few degrees of freedom to judge it.
   /// Three residuals per parameter leave two thirds of them to the test, and admit what a
   /// planned design needs: `h4cal plan`'s 25 poses (150 residuals for Model 31's 40
-  /// parameters) match the paper's 71-pose grid (README, "Planning the poses").
+  /// parameters) match the paper's 71-pose grid (docs/results.md#planned-poses-against-the-grid).
   int min_poses = 20;
   double min_residuals_per_parameter = 3.0;
   /// The chi-square test: the fit is consistent with the noise model when the upper-tail

@@ -14,7 +14,7 @@ namespace {
 // Parameter indices in the common/README.md order.
 constexpr int kH = 0, kArm = 1, kForearm = 2, kR = 3, kD = 4, kAlpha = 5, kQ0 = 9;
 
-// Workspace centre of the paper's pose grid, in B (common/README.md, "Checks against the paper").
+// Workspace centre of the paper's pose grid, in B (common/README.md#checks-against-the-paper).
 constexpr double kCentreZ = -0.45;
 
 // Arm direction u_i for the geometric angle phi and its derivatives by phi and alpha.

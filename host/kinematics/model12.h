@@ -1,6 +1,7 @@
-// Model 12, the H4 design model (paper eq. (1)-(2), common/README.md "Model 12"): closed-form
-// inverse kinematics per leg, the closure equations f_i = |PA_i - arm u_i|^2 - forearm^2
-// and their analytic Jacobians by pose, joints and the 13 parameters.
+// Model 12, the H4 design model (paper eq. (1)-(2),
+// common/README.md#model-12-design-model-12-parameters): closed-form inverse kinematics per leg,
+// the closure equations f_i = |PA_i - arm u_i|^2 - forearm^2 and their analytic Jacobians by pose,
+// joints and the 13 parameters.
 #pragma once
 
 #include <memory>

@@ -1,6 +1,7 @@
-// Model 31, the H4 calibration model (paper eq. (4), common/README.md "Model 31"): per-leg
-// closed-form inverse kinematics, closure equations f_i = |arm_i V_i + W_i|^2 - forearm_i^2
-// and their analytic Jacobians; and the nominal map from Model 12's base B to B31.
+// Model 31, the H4 calibration model (paper eq. (4),
+// common/README.md#model-31-calibration-model-31-parameters): per-leg closed-form inverse
+// kinematics, closure equations f_i = |arm_i V_i + W_i|^2 - forearm_i^2 and their analytic
+// Jacobians; and the nominal map from Model 12's base B to B31.
 #pragma once
 
 #include <array>

@@ -28,7 +28,7 @@ struct CandidateOptions {
   Eigen::Vector3d centre = Eigen::Vector3d(0.0, 0.0, -0.45);
   /// Half extent of the grid along x, y, z of B, m.
   /// (A box wider than the paper's grid: the poses that carry the most information lie at
-  /// its edges; README.md, "Planning the poses".)
+  /// its edges; README.md#planning-the-poses-how-many-and-which.)
   Eigen::Vector3d half_extent = Eigen::Vector3d(0.25, 0.25, 0.15);
   /// Grid step along x, y, z, m.
   double position_step = 0.05;
@@ -59,7 +59,7 @@ struct CandidateOptions {
   /// there the true robot, whose singular locus is displaced from the a priori's, may have
   /// no forward kinematics at its measured joints, and the measurement-space identification
   /// cannot be evaluated. The limit keeps the paper's grid and every pose of the earlier
-  /// default grid (theta +-30 deg) as candidates (README.md, "Planning the poses").
+  /// default grid (theta +-30 deg) as candidates (README.md#planning-the-poses-how-many-and-which).
   double max_theta_gain = 12.0;
   /// Depth range (z in C of the board centre) the camera is in focus over, m.
   double min_depth = 0.15;

@@ -1,4 +1,4 @@
-// The report's camera section (common/README.md "The camera file's uncertainty"): the
+// The report's camera section (common/README.md#the-camera-files-uncertainty): the
 // intrinsics the corner path refined beside the camera file's, with their sigmas; where the
 // camera model misfits the corners (a residual map over the image, after mrcal's); and what
 // the camera model contributes to the accuracy map.

@@ -1,8 +1,8 @@
-// A simulated campaign as the corner path sees it (common/README.md "Identification from
-// corners"): the board's corners projected through the TRUE camera with Gaussian pixel
-// noise, and the board poses a camera would report from them, solved with the camera
-// file's (ASSUMED) intrinsics. When the two cameras differ, the poses carry the file's
-// error as a real campaign does; the corners carry the truth.
+// A simulated campaign as the corner path sees it (common/README.md#identification-from-corners):
+// the board's corners projected through the TRUE camera with Gaussian pixel noise, and the board
+// poses a camera would report from them, solved with the camera file's (ASSUMED) intrinsics. When
+// the two cameras differ, the poses carry the file's error as a real campaign does; the corners
+// carry the truth.
 #pragma once
 
 #include <cstdint>

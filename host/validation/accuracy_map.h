@@ -17,7 +17,7 @@
 // where exactly the identified base frame lies is a convention the identifiability analysis
 // fixes (for Model 31, through the camera's X_BC.rz), and a user registers the robot to the
 // work anyway (touch-up); otherwise the uncertainty of a frame orientation taken from the
-// camera dominates the map (README, "Validation and the report"). With register_base_frame
+// camera dominates the map (README.md#validation-and-the-report). With register_base_frame
 // false, the error in the model's own base frame.
 #pragma once
 
@@ -96,8 +96,9 @@ std::optional<AccuracyMap> AccuracyMapOfResult(
     const IdentificationResult& result, const Assembly& assembly,
     const AccuracyMapOptions& options = AccuracyMapOptions{});
 
-/// The map as CSV (common/formats/README.md, "Accuracy map"): a header, then
-/// X,Y,Z,theta,position_sigma,theta_sigma per point, m and rad, in the model's base frame.
+/// The map as CSV
+/// (common/formats/README.md#accuracy-map-csv---report-dir-of-h4cal-identify--validate): a header,
+/// then X,Y,Z,theta,position_sigma,theta_sigma per point, m and rad, in the model's base frame.
 std::string AccuracyMapCsv(const AccuracyMap& map);
 
 }  // namespace h4::host

@@ -1,9 +1,9 @@
 // Where the camera model misfits (the report's camera section, after mrcal's residual
 // maps): every board corner the camera measured, predicted from the pose's joint readings
-// through the identified robot, X_BC, X_TE and the camera (common/README.md "Identification
-// from corners", the corner residual r_jQ without its weight), binned over the image. A
-// model that fits leaves noise in every cell; a wrong camera model leaves a pattern: mean
-// residuals that turn about the centre (focal length, distortion) or shift one way
+// through the identified robot, X_BC, X_TE and the camera
+// (common/README.md#identification-from-corners, the corner residual r_jQ without its weight),
+// binned over the image. A model that fits leaves noise in every cell; a wrong camera model leaves
+// a pattern: mean residuals that turn about the centre (focal length, distortion) or shift one way
 // (principal point), growing towards the edges.
 #pragma once
 

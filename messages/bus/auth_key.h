@@ -1,7 +1,7 @@
 // The pre-shared key of authenticated messages (message_auth.h): read from a key file that
 // only its owner may read, at least kMinAuthKeyBytes long. Make one with
 //   (umask 077; head -c 32 /dev/urandom > h4.key)
-// and copy it to both ends (messages/README.md, "Authenticated messages").
+// and copy it to both ends (messages/README.md#authenticated-messages).
 #pragma once
 
 #include <cstddef>

@@ -1,6 +1,6 @@
-// Authenticated messages on the bus (off by default; messages/README.md, "Authenticated
-// messages"). An authenticated channel carries the LCM-encoded message followed by a
-// 68-byte trailer, all integers big-endian:
+// Authenticated messages on the bus (off by default; messages/README.md#authenticated-messages). An
+// authenticated channel carries the LCM-encoded message followed by a 68-byte trailer, all integers
+// big-endian:
 //
 //   offset  0  "H4A1"        magic and version
 //           4  key id        8 bytes: the first 8 of HMAC-SHA256(key, "h4 key id")

@@ -1,4 +1,4 @@
-// Board-corner CSV (common/formats/README.md "Board corners: CSV"): exact round trip, an
+// Board-corner CSV (common/formats/README.md#board-corners-csv): exact round trip, an
 // AprilTag and a chessboard row, CRLF and BOM, and each refusal with its line and field.
 #include "common/formats/corners_csv.h"
 

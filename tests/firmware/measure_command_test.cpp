@@ -63,7 +63,7 @@ TEST(MeasureCommandTest, WritesOneRowPerGroupWithEmptyPoseWhenNoBoard) {
 
 // --corners-out: the corners of the pose of row 1 (the first group shows no board), with the
 // board's tag and corner ids, and the reported pose reprojects them within a fraction of a
-// pixel (common/formats/README.md "Board corners: CSV").
+// pixel (common/formats/README.md#board-corners-csv).
 TEST(MeasureCommandTest, CornersOutCarriesTheCornersOfEachPose) {
   const fs::path dir = fs::path(H4_BINARY_DIR) / "test_tmp" / "measure_command_corners";
   fs::remove_all(dir);

@@ -67,10 +67,9 @@ TEST(PoseEstimatorTest, ExactCornersGiveTheExactPose) {
   }
 }
 
-// The per-corner sigma that travels with the pose (common/formats/README.md "Board corners:
-// CSV") is the noise the covariance takes for that corner: the residuals' sigma with
-// kResidual, the corner's own edge-fit noise (plus the excess) with kEdgeNoise; the floor on
-// top of both.
+// The per-corner sigma that travels with the pose (common/formats/README.md#board-corners-csv) is
+// the noise the covariance takes for that corner: the residuals' sigma with kResidual, the corner's
+// own edge-fit noise (plus the excess) with kEdgeNoise; the floor on top of both.
 TEST(PoseEstimatorTest, CornerSigmasAreTheNoiseTheCovarianceTakes) {
   const BoardModel board(scenes::PaperBoard());
   const CameraModel camera(scenes::PaperCamera());

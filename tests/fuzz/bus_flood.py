@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A junk flood on the H4 channels (tests/fuzz/README.md, "The campaign under a flood"):
+"""A junk flood on the H4 channels (tests/fuzz/README.md#the-campaign-under-a-flood):
 LCM UDP small messages (magic LC02) at RATE messages/s for SECONDS, on the LCM group of
 LCM_DEFAULT_URL's default (239.255.76.67:7667) with multicast ttl 0, so nothing leaves the
 host; run it inside scripts/in-private-netns. Each message picks an H4 channel and one of:

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A live campaign under a junk flood (tests/fuzz/README.md, "The campaign under a flood"):
+# A live campaign under a junk flood (tests/fuzz/README.md#the-campaign-under-a-flood):
 # the simulated robot (h4cal sim-robot), the camera service on rendered frames (h4cam run
 # --source sim) and `h4cal collect` over POSES poses of the paper's grid, while
 # tests/fuzz/bus_flood.py sends RATE junk messages/s for SECONDS on every H4 channel.

@@ -1,5 +1,5 @@
 // Durable, resumable appends of the campaign's board corners (host/campaign/corners_journal.h,
-// common/formats/README.md "Board corners: CSV").
+// common/formats/README.md#board-corners-csv).
 #include "host/campaign/corners_journal.h"
 
 #include <cerrno>

@@ -111,7 +111,7 @@ TEST(BoardPoseFit, RecoversThePoseFromExactCornersAndDepthFollowsTheFocalLength)
   EXPECT_LT((fitted.translation() - X_CT.translation()).norm(), 1e-9);
   EXPECT_LT(PoseError(X_CT, fitted).head<3>().norm(), 1e-9);
   // A focal length 0.1 % long puts the board about 0.1 % further away: the bias the corner
-  // path exists to remove (common/README.md "Identification from corners").
+  // path exists to remove (common/README.md#identification-from-corners).
   CameraIntrinsics longer = camera;
   longer.K(0, 0) *= 1.001;
   longer.K(1, 1) *= 1.001;

@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# The corner path of `h4cal identify` as a user runs it (common/README.md "Identification
-# from corners"): a campaign simulated at the corner level through the true camera, its
-# poses solved with a camera file as wrong as an ordinary intrinsic calibration
-# (boards/sim_camera_1024x768_typical_error.yaml). The pose path is fooled (its verdict
-# cannot see the file's error); the corner path refines the intrinsics back to the true
-# camera, writes them to the result and to --camera-out, and judges itself "good".
+# The corner path of `h4cal identify` as a user runs it
+# (common/README.md#identification-from-corners): a campaign simulated at the corner level through
+# the true camera, its poses solved with a camera file as wrong as an ordinary intrinsic calibration
+# (boards/sim_camera_1024x768_typical_error.yaml). The pose path is fooled (its verdict cannot see
+# the file's error); the corner path refines the intrinsics back to the true camera, writes them to
+# the result and to --camera-out, and judges itself "good".
 set -uo pipefail
 . "$(dirname "$0")/h4cal_test_lib.sh"
 boards=$(cd "$(dirname "$0")/../../boards" && pwd)
@@ -75,7 +75,7 @@ grep -q 'same file as --camera' "$dir/overwrite.log" || fail "--camera-out over 
 cmp -s "$file_camera" "$dir/camera.yaml" || fail "the camera file was changed"
 
 # The pose path given the camera file and its board carries the file's intrinsics_covariance
-# (common/README.md "The camera file's uncertainty"): a larger predicted robot accuracy than
+# (common/README.md#the-camera-files-uncertainty): a larger predicted robot accuracy than
 # without it, said in the result's log.
 run posecam31 3 --model 31 --from "$dir/r12.json" --board "$board" --camera "$file_camera"
 grep -q 'camera file: its intrinsics_covariance, shared by all' "$dir/posecam31.json" \

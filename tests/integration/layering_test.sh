@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# The dependency rule of the layout (docs/development.md "Layout"): common includes neither firmware,
-# host nor messages; firmware never includes host; host never includes firmware;
-# examples/ (the workstation side of the bus) never includes firmware.
+# The dependency rule of the layout (docs/architecture.md#libraries-and-their-dependencies): common
+# includes neither firmware, host nor messages; firmware never includes host; host never includes
+# firmware; examples/ (the workstation side of the bus) never includes firmware.
 set -uo pipefail
 src=$1
 status=0

@@ -2,7 +2,7 @@
 // as `h4cal identify` does, the result through its JSON text, then 5 check poses on the
 // unchanged robot and on the robot after a 3-sigma joint offset drift. A few seeded trials
 // here (at most one wrong verdict each way in 10); the full rate over many trials is
-// h4_check_study's (README, "Planning the poses").
+// h4_check_study's (docs/results.md#checking-for-drift-h4cal-check).
 #include "host/planning/check_trial.h"
 
 #include <gtest/gtest.h>
