@@ -1,6 +1,7 @@
 // Figures for the HTML report, drawn by gnuplot (Debian gnuplot-nox) as SVG that the report
 // inlines: a well-kept plotting program, no JavaScript, nothing fetched when the page opens.
-// gnuplot runs as a subprocess with the script on a temporary file; its stdout is the SVG.
+// gnuplot runs as a subprocess (an argument vector, no shell) with the script on a temporary
+// file; its stdout is the SVG.
 #pragma once
 
 #include <string>
