@@ -144,7 +144,7 @@ constexpr double kSwampingFactor = 4.0;
 struct HeldOutScores {
   std::vector<double> scores;  ///< in the order of the poses
   double excess = 1.0;
-  double spread = 0.0;  ///< pose-to-pose spread of the covariances (outlier_limit.h)
+  double spread = 0.0;        ///< pose-to-pose spread of the covariances (outlier_limit.h)
   double spread_limit = 0.0;  ///< outlier_chi2_limit raised for that spread
   double worst = 0.0;
   double median_position_error_m = 0.0;  ///< over the poses predicted
@@ -191,7 +191,8 @@ std::string HeldOutReason(const HeldOutPrediction& pose, double score,
     return "the model fitted without it cannot predict it (forward kinematics fails)";
   }
   std::string limit = fmt::format("limit {:.3g}", options.outlier_chi2_limit);
-  if (s.excess > 1.0) limit += fmt::format(", after dividing by the median pose's {:.3g}", s.excess);
+  if (s.excess > 1.0)
+    limit += fmt::format(", after dividing by the median pose's {:.3g}", s.excess);
   const double pose_limit = PoseLimit(pose, options, s);
   if (pose_limit > options.outlier_chi2_limit) {
     limit += fmt::format(", {:.3g} allowing for the spread of the pose covariances (s = {:.2f})",
@@ -399,14 +400,28 @@ IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const Param
   const std::vector<int64_t> none_rejected;
   if (std::string why; !options.IsValid(&why)) {
     out.summary.message = why;
-    SummariseSolution({model, apriori, start, calib, valid, none_rejected, options}, &out);
+    SummariseSolution({.model = model,
+                       .apriori = apriori,
+                       .p = start,
+                       .calib = calib,
+                       .valid = valid,
+                       .rejected = none_rejected,
+                       .options = options},
+                      &out);
     return out;
   }
   const StageContext context{model, options, start};
-  IdentificationState state{start, calib, {}, {}, {}, false, {}, false};
+  IdentificationState state{.p = start, .rows = calib};
   const size_t poses_given = calib.size() + valid.size();
   if (!RunPlannedStages(context, &state, &out)) {
-    SummariseSolution({model, apriori, state.p, calib, valid, none_rejected, options}, &out);
+    SummariseSolution({.model = model,
+                       .apriori = apriori,
+                       .p = state.p,
+                       .calib = calib,
+                       .valid = valid,
+                       .rejected = none_rejected,
+                       .options = options},
+                      &out);
     JudgeSolution(model, apriori, state, poses_given, options, &out);
     return out;
   }
@@ -416,8 +431,14 @@ IdentificationOutcome IdentifyFromStart(const KinematicModel& model, const Param
   out.parameters = state.p;
   out.identifiability = state.final_stage.identifiability;
   const auto report_start = std::chrono::steady_clock::now();
-  SummariseSolution({model, apriori, state.p, state.rows, valid, state.rejected, options,
-                     &state.final_stage.solution},
+  SummariseSolution({.model = model,
+                     .apriori = apriori,
+                     .p = state.p,
+                     .calib = state.rows,
+                     .valid = valid,
+                     .rejected = state.rejected,
+                     .options = options,
+                     .at_solution = &state.final_stage.solution},
                     &out);
   out.summary.report_seconds = SecondsSince(report_start);
   Conclude(state.final_ok, &out.summary, out.uncertainty);
