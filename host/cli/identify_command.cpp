@@ -7,6 +7,7 @@
 #include <cmath>
 #include <ctime>
 #include <filesystem>
+#include <memory>
 #include <numbers>
 #include <optional>
 
@@ -168,7 +169,7 @@ void RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription
                    const IdentificationOutcome& pose_path, const IdentificationOptions& id_options,
                    const std::string& command_line);
 
-void Run(const IdentifyCommandOptions& options, const std::string& command_line) {
+void RequireValidInputs(const IdentifyCommandOptions& options) {
   std::string algorithm_why;
   if (!IsValidNloptAlgorithm(options.algorithm, &algorithm_why)) {
     throw std::invalid_argument("--algorithm: " + algorithm_why);
@@ -182,16 +183,13 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
   if (!options.camera_out_path.empty()) {
     RequireOutputIsNotAnInput({"--camera-out", options.camera_out_path}, input_files);
   }
-  const RobotDescription robot = ReadRobotYaml(options.robot_path);
-  const std::vector<DatasetRow> rows = ReadDatasetCsv(options.data_path);
-  RequireUsableSplit(options, rows);
+}
+
+/// The library's options from the command's; `progress` shows each iteration.
+IdentificationOptions IdentificationOptionsOf(const IdentifyCommandOptions& options,
+                                              Progress* progress) {
   IdentificationOptions id_options;
-  const std::optional<CostKind> estimator = ParseCostKind(options.estimator);
-  if (!estimator) {
-    throw std::invalid_argument("--estimator: expected measurement, joint or implicit, got '" +
-                                options.estimator + "'");
-  }
-  id_options.estimator = *estimator;
+  id_options.estimator = *ParseCostKind(options.estimator);  // CLI11 checked the name
   id_options.nlopt.algorithm = options.algorithm;
   id_options.fixed_parameters = options.fix;
   id_options.reject_outliers = !options.no_outliers;
@@ -201,30 +199,59 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
   id_options.camera_file = CameraFileOf(options);
   if (!options.board_path.empty())
     id_options.board_size_sigma = BoardSizeSigma(ReadBoardYaml(options.board_path));
-  Progress progress("identify Model " + options.model, 0);
-  int iterations = 0;
-  id_options.progress = [&](const std::string& stage, int iteration, double cost) {
+  // One count however often the library copies the options (cross-validation does).
+  id_options.progress = [progress, iterations = std::make_shared<int>(0)](
+                            const std::string& stage, int iteration, double cost) {
     char status[96];
     std::snprintf(status, sizeof status, "%s it %d cost %.4g", stage.c_str(), iteration, cost);
-    progress.Update(++iterations, status);
+    progress->Update(++*iterations, status);
     return true;
   };
   std::string why;
   if (!id_options.IsValid(&why)) throw std::invalid_argument(why);
+  return id_options;
+}
 
-  const ModelKind model = *ParseModelKind(options.model);  // CLI11 checked the text
-  const IdentificationOutcome outcome = [&] {
-    if (!options.from_path.empty()) {
-      if (model != ModelKind::k31) {
-        throw std::invalid_argument(
-            "--from starts a Model 31 identification: use it with --model 31");
-      }
-      const IdentificationResult from = ReadIdentificationResult(options.from_path);
-      RequireModel12Result(from, options.from_path, "--from");
-      return IdentifyModel31FromModel12(robot, from, rows, id_options);
-    }
+/// Model 12 or 31 from the a priori robot, or Model 31 from a Model 12 result (--from).
+IdentificationOutcome IdentifyAsAsked(const IdentifyCommandOptions& options,
+                                      const RobotDescription& robot, ModelKind model,
+                                      const std::vector<DatasetRow>& rows,
+                                      const IdentificationOptions& id_options) {
+  if (options.from_path.empty()) {
     return IdentifyRobot(robot, model, rows, id_options, options.validation, options.seed);
-  }();
+  }
+  if (model != ModelKind::k31) {
+    throw std::invalid_argument("--from starts a Model 31 identification: use it with --model 31");
+  }
+  const IdentificationResult from = ReadIdentificationResult(options.from_path);
+  RequireModel12Result(from, options.from_path, "--from");
+  return IdentifyModel31FromModel12(robot, from, rows, id_options);
+}
+
+/// The report of this result: validation on its held-out poses, with the Model 12 result
+/// it started from when there is one.
+void WriteReport(const IdentifyCommandOptions& options, ModelKind model,
+                 const std::string& command_line) {
+  ValidationFileOptions files;
+  files.robot_path = options.robot_path;
+  files.data_path = options.data_path;
+  (model == ModelKind::k12 ? files.result12_path : files.result31_path) = options.out_path;
+  if (!options.from_path.empty()) files.result12_path = options.from_path;
+  const ValidationInputs inputs = LoadValidationInputs(files);
+  const ValidationReport report = Validate(inputs);
+  spdlog::info("wrote {}", WriteHtmlReport(options.report_dir, inputs, report, command_line));
+  PrintAccuracyMapLine(report.models.back());
+}
+
+void Run(const IdentifyCommandOptions& options, const std::string& command_line) {
+  RequireValidInputs(options);
+  const RobotDescription robot = ReadRobotYaml(options.robot_path);
+  const std::vector<DatasetRow> rows = ReadDatasetCsv(options.data_path);
+  RequireUsableSplit(options, rows);
+  Progress progress("identify Model " + options.model, 0);
+  const IdentificationOptions id_options = IdentificationOptionsOf(options, &progress);
+  const ModelKind model = *ParseModelKind(options.model);  // CLI11 checked the text
+  const IdentificationOutcome outcome = IdentifyAsAsked(options, robot, model, rows, id_options);
   progress.Finish(outcome.summary.message);
   if (!options.corners_path.empty()) {
     RunCornerPath(options, robot, model, rows, outcome, id_options, command_line);
@@ -243,19 +270,7 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
     if (!options.report_dir.empty()) spdlog::error("no report written for an unusable result");
     return;
   }
-  if (!options.report_dir.empty()) {
-    // The report of this result: validation on its held-out poses, with the Model 12
-    // result it started from when there is one.
-    ValidationFileOptions files;
-    files.robot_path = options.robot_path;
-    files.data_path = options.data_path;
-    (model == ModelKind::k12 ? files.result12_path : files.result31_path) = options.out_path;
-    if (!options.from_path.empty()) files.result12_path = options.from_path;
-    const ValidationInputs inputs = LoadValidationInputs(files);
-    const ValidationReport report = Validate(inputs);
-    spdlog::info("wrote {}", WriteHtmlReport(options.report_dir, inputs, report, command_line));
-    PrintAccuracyMapLine(report.models.back());
-  }
+  if (!options.report_dir.empty()) WriteReport(options, model, command_line);
 }
 
 void RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription& robot,
@@ -339,11 +354,9 @@ void DeclareIdentifyCommand(CLI::App* command) {
   h4::cli::AddInputFileOption(command, "--from", &options->from_path,
                               "Model 12 result to start Model 31 from; parameters Model 31 must "
                               "fix take its values (paper IV.C)");
-  command
-      ->add_option("--estimator", options->estimator,
-                   "Cost: measurement (6-DoF board pose, weighted; default), joint (the "
-                   "paper's eq. (3)), implicit (eq. (5))")
-      ->check(CLI::IsMember({"measurement", "joint", "implicit"}))
+  h4::cli::AddChoiceOption(command, "--estimator", &options->estimator, kCostKindNames,
+                           "Cost: measurement (6-DoF board pose, weighted; default), joint (the "
+                           "paper's eq. (3)), implicit (eq. (5))")
       ->capture_default_str();
   std::string algorithms;
   for (const std::string& name : NloptAlgorithmNames()) algorithms += " " + name;

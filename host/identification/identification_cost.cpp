@@ -21,9 +21,6 @@ std::string PoseName(const DatasetRow& row) { return "pose " + std::to_string(ro
 
 }  // namespace
 
-constexpr EnumNames<CostKind, CostKind::kMeasurement> kCostKindNames = {"joint", "implicit",
-                                                                        "measurement"};
-
 const char* ToString(CostKind kind) { return kCostKindNames.NameOf(kind, "unknown"); }
 
 std::optional<CostKind> ParseCostKind(const std::string& text) {

@@ -18,6 +18,7 @@
 #include <Eigen/Core>
 
 #include "common/formats/dataset_csv.h"
+#include "common/text/enum_names.h"
 #include "common/units.h"
 #include "host/identification/parameter_vector.h"
 #include "host/identification/pose_chain.h"
@@ -26,10 +27,13 @@
 
 namespace h4::host {
 
-/// Named by ToString, in this order (identification_cost.cpp).
 enum class CostKind { kJointSpace, kImplicit, kMeasurement };
 
-/// "joint", "implicit", "measurement" (the estimator names of IdentificationResult).
+/// The estimator names of IdentificationResult and of `h4cal identify --estimator`.
+inline constexpr EnumNames<CostKind, CostKind::kMeasurement> kCostKindNames = {
+    "joint", "implicit", "measurement"};
+
+/// kCostKindNames' name of `kind`.
 const char* ToString(CostKind kind);
 /// Parses those names; nullopt when unknown.
 std::optional<CostKind> ParseCostKind(const std::string& text);
