@@ -298,6 +298,91 @@ bool IntrinsicsCalibrationOptions::IsValid(std::string* why) const {
   return true;
 }
 
+namespace {
+
+/// Every view's report before solving: name and corners.
+std::vector<ViewReport> ViewReportsOf(const std::vector<CalibrationView>& views) {
+  std::vector<ViewReport> reports;
+  for (const auto& view : views) {
+    ViewReport report;
+    report.name = view.name;
+    report.points = static_cast<int>(view.image_points.size());
+    report.corners_px = view.image_points;
+    reports.push_back(std::move(report));
+  }
+  return reports;
+}
+
+/// Records the first solution (all views) in each view's report and returns the names of
+/// the views whose RMS exceeds outlier_factor x the median.
+std::vector<std::string> RecordSolutionOnEveryView(const std::vector<CalibrationView>& views,
+                                                   const Solution& solution,
+                                                   const IntrinsicsCalibrationOptions& options,
+                                                   IntrinsicsCalibrationResult* result) {
+  result->median_view_rms_px = Median(solution.view_rms_px);
+  const double limit = options.outlier_factor * result->median_view_rms_px;
+  result->outlier_limit_px = limit;
+  std::vector<std::string> outliers;
+  for (size_t i = 0; i < views.size(); ++i) {
+    ViewReport& view = result->views[i];
+    view.rms_px = solution.view_rms_px[i];
+    view.tilt_deg = TiltDeg(solution.board_normals[i]);
+    view.outlier = solution.view_rms_px[i] > limit;
+    view.corners_px = views[i].image_points;
+    view.residuals_px = solution.residuals_px[i];
+    if (view.outlier) outliers.push_back(views[i].name);
+  }
+  return outliers;
+}
+
+/// Solves again without the outlier views, unless too few would remain (then says so in
+/// result->message and keeps the first solution). False when the second solve fails.
+bool RecalibrateWithoutOutliers(const std::vector<CalibrationView>& views, cv::Size image_size,
+                                const IntrinsicsCalibrationOptions& options, size_t outliers,
+                                Solution* solution, IntrinsicsCalibrationResult* result) {
+  std::vector<const CalibrationView*> kept;
+  for (size_t i = 0; i < views.size(); ++i) {
+    if (!result->views[i].outlier) kept.push_back(&views[i]);
+  }
+  if (static_cast<int>(kept.size()) < options.min_views) {
+    result->message = "outliers kept: dropping them would leave " + std::to_string(kept.size()) +
+                      " view(s), fewer than " + std::to_string(options.min_views);
+    return true;
+  }
+  if (!Solve(kept, image_size, options, solution, &result->message)) return false;
+  size_t k = 0;
+  for (auto& view : result->views) {
+    view.used = !view.outlier;
+    if (!view.used) continue;
+    view.rms_px = solution->view_rms_px[k];
+    view.tilt_deg = TiltDeg(solution->board_normals[k]);
+    view.residuals_px = solution->residuals_px[k];
+    ++k;
+  }
+  result->message = "dropped " + std::to_string(outliers) + " outlier view(s) and recalibrated";
+  return true;
+}
+
+/// The camera file's content from the solution, with the intrinsics' covariance (written to
+/// the camera YAML for the identification's predicted accuracy; without it the file claims
+/// nothing).
+void FillCameraWithCovariance(const Solution& solution, cv::Size image_size,
+                              const IntrinsicsCalibrationOptions& options,
+                              IntrinsicsCalibrationResult* result) {
+  result->rms_px = solution.rms_px;
+  result->views_used = static_cast<int>(std::count_if(result->views.begin(), result->views.end(),
+                                                      [](const auto& v) { return v.used; }));
+  FillCamera(solution, image_size, options.model, &result->camera);
+  result->camera.avg_reprojection_error = result->rms_px;
+  if (const auto covariance =
+          IntrinsicsCovarianceOf(result->camera, solution.fits, options.fix_aspect_ratio)) {
+    result->camera.intrinsics_covariance = covariance->covariance;
+    result->residual_sigma_px = covariance->sigma_px;
+  }
+}
+
+}  // namespace
+
 IntrinsicsCalibrationResult CalibrateIntrinsics(const std::vector<CalibrationView>& views,
                                                 cv::Size image_size,
                                                 const IntrinsicsCalibrationOptions& options) {
@@ -307,76 +392,25 @@ IntrinsicsCalibrationResult CalibrateIntrinsics(const std::vector<CalibrationVie
     result.status = IntrinsicsCalibrationResult::Status::kInvalidOptions;
     return result;
   }
-  for (const auto& view : views) {
-    ViewReport report;
-    report.name = view.name;
-    report.points = static_cast<int>(view.image_points.size());
-    report.corners_px = view.image_points;
-    result.views.push_back(std::move(report));
-  }
+  result.views = ViewReportsOf(views);
   if (static_cast<int>(views.size()) < options.min_views) {
     result.status = IntrinsicsCalibrationResult::Status::kTooFewViews;
     result.message = std::to_string(views.size()) + " view(s) with the board, expected at least " +
                      std::to_string(options.min_views);
     return result;
   }
-
   std::vector<const CalibrationView*> used;
   for (const auto& view : views) used.push_back(&view);
   Solution solution;
   if (!Solve(used, image_size, options, &solution, &result.message)) return result;
-  result.median_view_rms_px = Median(solution.view_rms_px);
-  const double limit = options.outlier_factor * result.median_view_rms_px;
-  result.outlier_limit_px = limit;
-  std::vector<std::string> outliers;
-  for (size_t i = 0; i < views.size(); ++i) {
-    result.views[i].rms_px = solution.view_rms_px[i];
-    result.views[i].tilt_deg = TiltDeg(solution.board_normals[i]);
-    result.views[i].outlier = solution.view_rms_px[i] > limit;
-    result.views[i].corners_px = views[i].image_points;
-    result.views[i].residuals_px = solution.residuals_px[i];
-    if (result.views[i].outlier) outliers.push_back(views[i].name);
+  const std::vector<std::string> outliers =
+      RecordSolutionOnEveryView(views, solution, options, &result);
+  if (options.drop_outliers && !outliers.empty() &&
+      !RecalibrateWithoutOutliers(views, image_size, options, outliers.size(), &solution,
+                                  &result)) {
+    return result;
   }
-
-  if (options.drop_outliers && !outliers.empty()) {
-    std::vector<const CalibrationView*> kept;
-    for (size_t i = 0; i < views.size(); ++i) {
-      if (!result.views[i].outlier) kept.push_back(&views[i]);
-    }
-    if (static_cast<int>(kept.size()) < options.min_views) {
-      result.message = "outliers kept: dropping them would leave " + std::to_string(kept.size()) +
-                       " view(s), fewer than " + std::to_string(options.min_views);
-    } else {
-      Solution again;
-      if (!Solve(kept, image_size, options, &again, &result.message)) return result;
-      solution = again;
-      size_t k = 0;
-      for (auto& view : result.views) {
-        view.used = !view.outlier;
-        if (view.used) {
-          view.rms_px = solution.view_rms_px[k];
-          view.tilt_deg = TiltDeg(solution.board_normals[k]);
-          view.residuals_px = solution.residuals_px[k];
-          ++k;
-        }
-      }
-      result.message =
-          "dropped " + std::to_string(outliers.size()) + " outlier view(s) and recalibrated";
-    }
-  }
-
-  result.rms_px = solution.rms_px;
-  result.views_used = static_cast<int>(std::count_if(result.views.begin(), result.views.end(),
-                                                     [](const auto& v) { return v.used; }));
-  FillCamera(solution, image_size, options.model, &result.camera);
-  result.camera.avg_reprojection_error = result.rms_px;
-  // The intrinsics' covariance (written to the camera YAML for the identification's
-  // predicted accuracy); without it the file claims nothing.
-  if (const auto covariance =
-          IntrinsicsCovarianceOf(result.camera, solution.fits, options.fix_aspect_ratio)) {
-    result.camera.intrinsics_covariance = covariance->covariance;
-    result.residual_sigma_px = covariance->sigma_px;
-  }
+  FillCameraWithCovariance(solution, image_size, options, &result);
   const std::string degenerate = FocalLengthObservability(solution, options, &result);
   if (!degenerate.empty()) {
     result.status = IntrinsicsCalibrationResult::Status::kDegenerateViews;

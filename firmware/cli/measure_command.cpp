@@ -20,34 +20,16 @@
 
 namespace h4::cam {
 
-int RunMeasure(const MeasureArgs& args, std::ostream& progress) {
-  if (!args.corners_out_path.empty()) {
-    RequireOutputIsNotAnInput(
-        {"--corners-out", args.corners_out_path},
-        {{"--out", args.out_path}, {"--board", args.board_path}, {"--camera", args.camera_path}});
-  }
-  const BoardSpec board = ReadBoardYaml(args.board_path);
-  const CameraIntrinsics camera = ReadCameraYaml(args.camera_path);
-  PipelineOptions options;
-  options.frames = args.group;
-  options.motion.max_spread_px = args.max_spread_px;
-  MeasurePipeline pipeline(board, camera, options);
-  if (!pipeline.ok()) throw std::runtime_error(args.board_path + ": " + pipeline.error());
+namespace {
 
-  ImageFileSource source(args.images);
-  if (!source.Open()) throw std::runtime_error(source.error());
-  const size_t total = source.files().size();
-  const size_t groups =
-      (total + static_cast<size_t>(args.group) - 1) / static_cast<size_t>(args.group);
-  if (total % static_cast<size_t>(args.group) != 0) {
-    progress << "note: " << total << " images do not fill groups of " << args.group
-             << "; the last group averages " << total % static_cast<size_t>(args.group) << "\n";
-  }
-
+/// What `measure` writes: a row per group of images, the corners of the groups with a pose.
+struct MeasureOutputs {
   std::vector<BoardPoseRow> rows;
   std::vector<h4::CornerObservation> corner_rows;
   int with_pose = 0;
-  auto record = [&](const Measurement& m) {
+
+  /// Adds the measurement of one group and prints its line ("[k/groups] image: status").
+  void Record(const Measurement& m, size_t groups, std::ostream& progress) {
     BoardPoseRow row;
     row.image = m.origin;
     row.corners = m.corners_used;
@@ -73,34 +55,70 @@ int RunMeasure(const MeasureArgs& args, std::ostream& progress) {
       progress << " (" << m.message << ")";
     }
     progress << "\n";
-  };
+  }
+};
 
+void RequireTheCameraFilesSize(const Frame& frame, const CameraIntrinsics& camera,
+                               const std::string& camera_path) {
+  if (frame.image.cols == camera.width && frame.image.rows == camera.height) return;
+  throw std::runtime_error(frame.origin + ": image is " + std::to_string(frame.image.cols) + "x" +
+                           std::to_string(frame.image.rows) + ", the camera file " + camera_path +
+                           " says " + std::to_string(camera.width) + "x" +
+                           std::to_string(camera.height));
+}
+
+/// Groups of `group` images (the last one may be short), said when they do not divide.
+size_t GroupCount(size_t images, int group, std::ostream& progress) {
+  const auto per_group = static_cast<size_t>(group);
+  if (images % per_group != 0) {
+    progress << "note: " << images << " images do not fill groups of " << group
+             << "; the last group averages " << images % per_group << "\n";
+  }
+  return (images + per_group - 1) / per_group;
+}
+
+}  // namespace
+
+int RunMeasure(const MeasureArgs& args, std::ostream& progress) {
+  if (!args.corners_out_path.empty()) {
+    RequireOutputIsNotAnInput(
+        {"--corners-out", args.corners_out_path},
+        {{"--out", args.out_path}, {"--board", args.board_path}, {"--camera", args.camera_path}});
+  }
+  const BoardSpec board = ReadBoardYaml(args.board_path);
+  const CameraIntrinsics camera = ReadCameraYaml(args.camera_path);
+  PipelineOptions options;
+  options.frames = args.group;
+  options.motion.max_spread_px = args.max_spread_px;
+  MeasurePipeline pipeline(board, camera, options);
+  if (!pipeline.ok()) throw std::runtime_error(args.board_path + ": " + pipeline.error());
+
+  ImageFileSource source(args.images);
+  if (!source.Open()) throw std::runtime_error(source.error());
+  const size_t groups = GroupCount(source.files().size(), args.group, progress);
+  MeasureOutputs out;
   while (!source.finished()) {
     std::optional<Frame> frame = source.Next(std::chrono::milliseconds(0));
     if (!frame) {
       if (!source.error().empty()) throw std::runtime_error(source.error());
       continue;
     }
-    if (frame->image.cols != camera.width || frame->image.rows != camera.height) {
-      throw std::runtime_error(frame->origin + ": image is " + std::to_string(frame->image.cols) +
-                               "x" + std::to_string(frame->image.rows) + ", the camera file " +
-                               args.camera_path + " says " + std::to_string(camera.width) + "x" +
-                               std::to_string(camera.height));
-    }
+    RequireTheCameraFilesSize(*frame, camera, args.camera_path);
     if (std::optional<Measurement> m = pipeline.AddFrame(*frame)) {
       if (m->status == Measurement::Status::kCameraError) throw std::runtime_error(m->message);
-      record(*m);
+      out.Record(*m, groups, progress);
     }
   }
-  if (rows.size() < groups) record(pipeline.Finish());
-  WriteBoardPosesCsv(args.out_path, rows);
-  progress << "wrote " << rows.size() << " row(s), " << with_pose << " with a pose, to "
+  if (out.rows.size() < groups) out.Record(pipeline.Finish(), groups, progress);
+  WriteBoardPosesCsv(args.out_path, out.rows);
+  progress << "wrote " << out.rows.size() << " row(s), " << out.with_pose << " with a pose, to "
            << args.out_path << "\n";
   if (!args.corners_out_path.empty()) {
-    WriteCornersCsv(args.corners_out_path, corner_rows);
-    progress << "wrote " << corner_rows.size() << " corner(s) to " << args.corners_out_path << "\n";
+    WriteCornersCsv(args.corners_out_path, out.corner_rows);
+    progress << "wrote " << out.corner_rows.size() << " corner(s) to " << args.corners_out_path
+             << "\n";
   }
-  return with_pose;
+  return out.with_pose;
 }
 
 void DeclareMeasureCommand(CLI::App* command) {

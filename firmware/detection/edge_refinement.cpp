@@ -371,6 +371,106 @@ InnerEdge ReadInnerEdge(const cv::Mat& image, const IdealPixelMap& map, const Ei
   return inner;
 }
 
+// The step's two levels to start the fit from: the darkest and brightest sides of the band
+// (more than 0.8 px inside, more than 1 px outside). False without both sides or contrast.
+bool InitialLevels(const std::vector<Sample>& samples, const Line& line, double* level_a,
+                   double* level_b) {
+  double dark = 0, bright = 0;
+  int n_dark = 0, n_bright = 0;
+  const Eigen::Vector2d nn = line.n();
+  for (const Sample& sample : samples) {
+    const double d = nn.dot(sample.q) - line.c;
+    if (d < -0.8) dark += sample.value, ++n_dark;
+    if (d > 1.0) bright += sample.value, ++n_bright;
+  }
+  if (n_dark == 0 || n_bright == 0) return false;
+  *level_a = dark / n_dark;
+  *level_b = bright / n_bright - *level_a;
+  return *level_b > 1.0;
+}
+
+// The quad's side k, from corner k to k+1: a blurred step fitted in ideal coordinates over
+// options.passes passes, each placing the next pass's band with the blur it fitted. The
+// line and the square root of its (c, phi) covariance; false when the side is not a clean
+// step.
+bool FitSide(const cv::Mat& image32f, const IdealPixelMap& map, const EdgeFitOptions& options,
+             const std::array<Eigen::Vector2d, 4>& corners,
+             const std::array<Eigen::Vector2d, 4>& ideal, const Eigen::Vector2d& centre, size_t k,
+             Line* line, Eigen::Matrix2d* line_sqrt_covariance) {
+  const Eigen::Vector2d& a = ideal[k];
+  const Eigen::Vector2d& b = ideal[(k + 1) % 4];
+  line->mid = 0.5 * (a + b);
+  Eigen::Vector2d n(-(b - a).y(), (b - a).x());
+  n.normalize();
+  if (n.dot(line->mid - centre) < 0) n = -n;  // outward: from the dark border to the white
+  line->phi = std::atan2(n.y(), n.x());
+  const double thickness = BorderThickness(ideal, k, options.border_cells);
+  const double pixel_scale = PixelScaleAt(map, corners[k]);
+  const InnerEdge inner = options.model_inner_edge ? ReadInnerEdge(image32f, map, a, b, line->n(),
+                                                                   thickness, options.border_cells)
+                                                   : InnerEdge{};
+  double level_a = 0, level_b = 0, s = 0.8;
+  for (int pass = 0; pass < options.passes; ++pass) {
+    // s is the previous pass's fitted blur (the initial guess on the first pass).
+    const double band_in = DarkSideWidth(options, thickness, s);
+    const std::vector<Sample> samples =
+        SelectBand(image32f, map, *line, corners[k], corners[(k + 1) % 4], a, b, options, band_in);
+    if (static_cast<int>(samples.size()) < options.min_pixels) return false;
+    if (pass == 0 && !InitialLevels(samples, *line, &level_a, &level_b)) return false;
+    double rms = 0;
+    Eigen::Matrix2d line_covariance;
+    // Earlier passes only place the next pass's band: a hundredth of a pixel is enough
+    // there; the last converges well below the noise of a line (~1e-3 px).
+    const bool last_pass = pass == options.passes - 1;
+    const double tolerance_px = last_pass ? 1e-5 : 1e-2;
+    if (!FitEdge(samples, options.iterations, tolerance_px, pixel_scale, options.fit_shading, inner,
+                 line, &level_a, &level_b, &s, &rms, &line_covariance)) {
+      return false;
+    }
+    Eigen::LLT<Eigen::Matrix2d> llt(line_covariance);
+    if (llt.info() != Eigen::Success) return false;
+    *line_sqrt_covariance = llt.matrixL();
+    // Something else in the band (an occluder, a shadow, a neighbour): not a clean step.
+    if (last_pass && rms > options.max_residual * level_b) return false;
+  }
+  return true;
+}
+
+// The refined corners: each the intersection of its two fitted sides, back in pixels, with
+// the direction an erosion of the tag moves it and its noise by the eight line parameters.
+// False when two sides do not meet or a corner moved more than options.max_shift_px.
+bool CornersFromSides(const IdealPixelMap& map, const EdgeFitOptions& options,
+                      const std::array<Line, 4>& lines,
+                      const std::array<Eigen::Matrix2d, 4>& line_sqrt_covariance,
+                      const std::array<Eigen::Vector2d, 4>& start,
+                      std::array<Eigen::Vector2d, 4>* refined,
+                      std::array<Eigen::Vector2d, 4>* erosion,
+                      std::array<CornerNoisePx, 4>* noise) {
+  for (size_t k = 0; k < 4; ++k) {
+    // Corner k joins side k-1 (from corner k-1 to k) and side k (from k to k+1).
+    const Line& before = lines[(k + 3) % 4];
+    Eigen::Vector2d p;
+    if (!Intersect(before, lines[k], &p)) return false;
+    (*refined)[k] = map.PixelFromIdeal(p);
+    if (!(*refined)[k].allFinite() || ((*refined)[k] - start[k]).norm() > options.max_shift_px) {
+      return false;
+    }
+    const double pixel_scale = PixelScaleAt(map, (*refined)[k]);
+    (*erosion)[k] = ErosionDirection(map, before, lines[k], p, pixel_scale);
+    if (!(*erosion)[k].allFinite()) return false;
+    const Eigen::Matrix<double, 2, 4> by_two_lines =
+        CornerNoise(PixelJacobian(map, p, pixel_scale), before, line_sqrt_covariance[(k + 3) % 4],
+                    lines[k], line_sqrt_covariance[k], p);
+    if (!by_two_lines.allFinite()) return false;
+    CornerNoisePx& corner_noise = (*noise)[k];
+    corner_noise.setZero();
+    corner_noise.middleCols<2>(2 * static_cast<Eigen::Index>((k + 3) % 4)) =
+        by_two_lines.leftCols<2>();
+    corner_noise.middleCols<2>(2 * static_cast<Eigen::Index>(k)) = by_two_lines.rightCols<2>();
+  }
+  return true;
+}
+
 }  // namespace
 
 bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
@@ -390,82 +490,16 @@ bool RefineQuadCorners(const cv::Mat& image32f, const IdealPixelMap& map,
   std::array<Line, 4> lines;
   std::array<Eigen::Matrix2d, 4> line_sqrt_covariance;
   for (size_t k = 0; k < 4; ++k) {
-    const Eigen::Vector2d& a = ideal[k];
-    const Eigen::Vector2d& b = ideal[(k + 1) % 4];
-    Line& line = lines[k];
-    line.mid = 0.5 * (a + b);
-    Eigen::Vector2d n(-(b - a).y(), (b - a).x());
-    n.normalize();
-    if (n.dot(line.mid - centre) < 0) n = -n;  // outward: from the dark border to the white
-    line.phi = std::atan2(n.y(), n.x());
-    const double thickness = BorderThickness(ideal, k, options.border_cells);
-    const double pixel_scale = PixelScaleAt(map, (*corners)[k]);
-    const InnerEdge inner =
-        options.model_inner_edge
-            ? ReadInnerEdge(image32f, map, a, b, line.n(), thickness, options.border_cells)
-            : InnerEdge{};
-    double level_a = 0, level_b = 0, s = 0.8;
-    bool levels_set = false;
-    for (int pass = 0; pass < options.passes; ++pass) {
-      // s is the previous pass's fitted blur (the initial guess on the first pass).
-      const double band_in = DarkSideWidth(options, thickness, s);
-      const std::vector<Sample> samples = SelectBand(
-          image32f, map, line, (*corners)[k], (*corners)[(k + 1) % 4], a, b, options, band_in);
-      if (static_cast<int>(samples.size()) < options.min_pixels) return false;
-      if (!levels_set) {
-        // Start from the darkest and brightest sides of the band.
-        double dark = 0, bright = 0;
-        int n_dark = 0, n_bright = 0;
-        const Eigen::Vector2d nn = line.n();
-        for (const Sample& sample : samples) {
-          const double d = nn.dot(sample.q) - line.c;
-          if (d < -0.8) dark += sample.value, ++n_dark;
-          if (d > 1.0) bright += sample.value, ++n_bright;
-        }
-        if (n_dark == 0 || n_bright == 0) return false;
-        level_a = dark / n_dark;
-        level_b = bright / n_bright - level_a;
-        if (!(level_b > 1.0)) return false;
-        levels_set = true;
-      }
-      double rms = 0;
-      Eigen::Matrix2d line_covariance;
-      // Earlier passes only place the next pass's band: a hundredth of a pixel is enough
-      // there; the last converges well below the noise of a line (~1e-3 px).
-      const bool last_pass = pass == options.passes - 1;
-      const double tolerance_px = last_pass ? 1e-5 : 1e-2;
-      if (!FitEdge(samples, options.iterations, tolerance_px, pixel_scale, options.fit_shading,
-                   inner, &line, &level_a, &level_b, &s, &rms, &line_covariance)) {
-        return false;
-      }
-      Eigen::LLT<Eigen::Matrix2d> llt(line_covariance);
-      if (llt.info() != Eigen::Success) return false;
-      line_sqrt_covariance[k] = llt.matrixL();
-      // Something else in the band (an occluder, a shadow, a neighbour): not a clean step.
-      if (last_pass && rms > options.max_residual * level_b) return false;
+    if (!FitSide(image32f, map, options, *corners, ideal, centre, k, &lines[k],
+                 &line_sqrt_covariance[k])) {
+      return false;
     }
   }
   std::array<Eigen::Vector2d, 4> refined, erosion;
   std::array<CornerNoisePx, 4> noise;
-  for (size_t k = 0; k < 4; ++k) {
-    // Corner k joins side k-1 (from corner k-1 to k) and side k (from k to k+1).
-    const Line& before = lines[(k + 3) % 4];
-    Eigen::Vector2d p;
-    if (!Intersect(before, lines[k], &p)) return false;
-    refined[k] = map.PixelFromIdeal(p);
-    if (!refined[k].allFinite() || (refined[k] - (*corners)[k]).norm() > options.max_shift_px) {
-      return false;
-    }
-    const double pixel_scale = PixelScaleAt(map, refined[k]);
-    erosion[k] = ErosionDirection(map, before, lines[k], p, pixel_scale);
-    if (!erosion[k].allFinite()) return false;
-    const Eigen::Matrix<double, 2, 4> by_two_lines =
-        CornerNoise(PixelJacobian(map, p, pixel_scale), before, line_sqrt_covariance[(k + 3) % 4],
-                    lines[k], line_sqrt_covariance[k], p);
-    if (!by_two_lines.allFinite()) return false;
-    noise[k].setZero();
-    noise[k].middleCols<2>(2 * static_cast<Eigen::Index>((k + 3) % 4)) = by_two_lines.leftCols<2>();
-    noise[k].middleCols<2>(2 * static_cast<Eigen::Index>(k)) = by_two_lines.rightCols<2>();
+  if (!CornersFromSides(map, options, lines, line_sqrt_covariance, *corners, &refined, &erosion,
+                        &noise)) {
+    return false;
   }
   *corners = refined;
   if (erosion_px != nullptr) *erosion_px = erosion;

@@ -303,17 +303,13 @@ bool ReprojectionResiduals(const std::vector<CornerObservation>& corners, const 
   return true;
 }
 
-PoseEstimate EstimatePose(const std::vector<CornerObservation>& corners, const CameraModel& camera,
-                          const PoseOptions& options) {
-  PoseEstimate estimate;
-  estimate.corners = static_cast<int>(corners.size());
-  if (estimate.corners < std::max(options.min_corners, 4)) {
-    estimate.status = PoseEstimate::Status::kTooFewCorners;
-    estimate.message = std::to_string(estimate.corners) + " corners, need " +
-                       std::to_string(std::max(options.min_corners, 4));
-    return estimate;
-  }
-  // IPPE on undistorted normalised points (identity camera matrix, no distortion).
+namespace {
+
+// Step 1: the starts. IPPE (infinitesimal plane-based pose estimation) on undistorted
+// normalised points (identity camera matrix, no distortion) gives the planar target's two
+// candidate poses.
+std::vector<RigidTransform> IppeStarts(const std::vector<CornerObservation>& corners,
+                                       const CameraModel& camera) {
   std::vector<cv::Point3d> object;
   std::vector<cv::Point2d> image;
   for (const CornerObservation& c : corners) {
@@ -323,58 +319,73 @@ PoseEstimate EstimatePose(const std::vector<CornerObservation>& corners, const C
     image.emplace_back(xn.x(), xn.y());
   }
   std::vector<cv::Mat> rvecs, tvecs;
-  if (object.size() >= 4) {
-    try {
-      cv::solvePnPGeneric(object, image, cv::Mat::eye(3, 3, CV_64F), cv::Mat(), rvecs, tvecs, false,
-                          cv::SOLVEPNP_IPPE);
-    } catch (const cv::Exception&) {
-      rvecs.clear();  // degenerate configuration (collinear points): no start
-    }
+  if (object.size() < 4) return {};
+  try {
+    cv::solvePnPGeneric(object, image, cv::Mat::eye(3, 3, CV_64F), cv::Mat(), rvecs, tvecs, false,
+                        cv::SOLVEPNP_IPPE);
+  } catch (const cv::Exception&) {
+    return {};  // degenerate configuration (collinear points): no start
   }
-  const ErosionBasis basis(EffectiveErosionModel(corners, options), camera, corners);
-  std::vector<Refined> solutions;
+  std::vector<RigidTransform> starts;
   for (size_t k = 0; k < rvecs.size(); ++k) {
     cv::Mat R_cv;
     cv::Rodrigues(rvecs[k], R_cv);
-    Eigen::Matrix3d R;
-    Eigen::Vector3d t;
-    cv::cv2eigen(R_cv, R);
-    cv::cv2eigen(tvecs[k], t);
-    const State start{RigidTransform(R, t), Eigen::VectorXd::Zero(basis.count())};
+    Eigen::Matrix3d R_CT;
+    Eigen::Vector3d p_CT;
+    cv::cv2eigen(R_cv, R_CT);
+    cv::cv2eigen(tvecs[k], p_CT);
+    starts.emplace_back(R_CT, p_CT);
+  }
+  return starts;
+}
+
+// Step 2: each start refined on the pixel reprojection error (with the erosion
+// parameters); the refinements that ended with a finite cost.
+std::vector<Refined> RefineEachStart(const std::vector<RigidTransform>& starts,
+                                     const std::vector<CornerObservation>& corners,
+                                     const CameraModel& camera, const ErosionBasis& basis,
+                                     const PoseOptions& options) {
+  std::vector<Refined> solutions;
+  for (const RigidTransform& X_CT : starts) {
+    const State start{X_CT, Eigen::VectorXd::Zero(basis.count())};
     Refined refined = RefineLm(corners, camera, basis, start, options);
     if (std::isfinite(refined.cost)) solutions.push_back(refined);
   }
-  if (solutions.empty()) {
-    estimate.message = "no pose: IPPE found no start or every refinement failed";
-    return estimate;
-  }
+  return solutions;
+}
+
+// Step 3: the lowest-cost solution, and the other one's RMS (how clearly IPPE's two-fold
+// ambiguity was resolved; infinity when there was only one).
+size_t KeepTheBest(const std::vector<Refined>& solutions, double residual_count,
+                   PoseEstimate* estimate) {
   size_t best = 0;
   for (size_t k = 1; k < solutions.size(); ++k) {
     if (solutions[k].cost < solutions[best].cost) best = k;
   }
-  const double m = 2.0 * estimate.corners;
-  estimate.alternative_rms_px = std::numeric_limits<double>::infinity();
+  estimate->alternative_rms_px = std::numeric_limits<double>::infinity();
   for (size_t k = 0; k < solutions.size(); ++k) {
-    if (k != best) estimate.alternative_rms_px = std::sqrt(solutions[k].cost / m);
+    if (k != best) estimate->alternative_rms_px = std::sqrt(solutions[k].cost / residual_count);
   }
   const Refined& sol = solutions[best];
-  estimate.X_CT = sol.state.X_CT;
-  estimate.iterations = sol.iterations;
-  estimate.rms_px = std::sqrt(sol.cost / m);
-  estimate.erosion_parameters = basis.count();
+  estimate->X_CT = sol.state.X_CT;
+  estimate->iterations = sol.iterations;
+  estimate->rms_px = std::sqrt(sol.cost / residual_count);
+  return best;
+}
 
+// Step 4: the covariance of the pose at the solution, marginal over the erosion (its
+// uncertainty is propagated, not ignored), from the options' noise model plus the corner
+// floor; and each corner's sigma. False when J^T J is singular (pose not observable).
+bool FillCovariance(const std::vector<CornerObservation>& corners, const CameraModel& camera,
+                    const ErosionBasis& basis, const Refined& sol, const PoseOptions& options,
+                    PoseEstimate* estimate) {
   Eigen::VectorXd r;
   Eigen::MatrixXd J;
   Residuals(corners, camera, basis, sol.state, &r, &J);
-  const Eigen::MatrixXd JtJ = J.transpose() * J;
-  Eigen::FullPivLU<Eigen::MatrixXd> lu(JtJ);
-  if (!lu.isInvertible()) {
-    estimate.message = "degenerate corner layout: the pose is not observable";
-    return estimate;
-  }
-  const double dof = m - static_cast<double>(J.cols());
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(J.transpose() * J);
+  if (!lu.isInvertible()) return false;
+  const double dof = static_cast<double>(r.size() - J.cols());
   const double sigma2 = dof > 0 ? sol.cost / dof : 0.0;
-  // The pose's marginal covariance: the erosion's uncertainty is propagated, not ignored.
   const Eigen::MatrixXd H_inverse = lu.inverse();
   const bool clustered =
       options.covariance == CovarianceModel::kEdgeGroup &&
@@ -388,17 +399,45 @@ PoseEstimate EstimatePose(const std::vector<CornerObservation>& corners, const C
   const double floor_px =
       options.corner_floor_px + options.corner_floor_erosion_gain * erosion_px * erosion_px;
   const Eigen::MatrixXd full = fitted + floor_px * floor_px * H_inverse;
-  estimate.covariance = full.topLeftCorner<6, 6>();
-  estimate.covariance = 0.5 * (estimate.covariance + estimate.covariance.transpose()).eval();
+  estimate->covariance = full.topLeftCorner<6, 6>();
+  estimate->covariance = 0.5 * (estimate->covariance + estimate->covariance.transpose()).eval();
   if (basis.count() > 0) {
-    estimate.erosion_px = sol.state.erosion[0];
-    estimate.erosion_sigma_px = std::sqrt(std::max(0.0, full(6, 6)));
+    estimate->erosion_px = sol.state.erosion[0];
+    estimate->erosion_sigma_px = std::sqrt(std::max(0.0, full(6, 6)));
   }
-  estimate.sigma_t =
-      std::sqrt(std::max(0.0, estimate.covariance.topLeftCorner<3, 3>().trace() / 3));
-  estimate.sigma_r =
-      std::sqrt(std::max(0.0, estimate.covariance.bottomRightCorner<3, 3>().trace() / 3));
-  estimate.corner_sigma_px = CornerSigmas(corners, edge_noise, excess, floor_px);
+  estimate->sigma_t =
+      std::sqrt(std::max(0.0, estimate->covariance.topLeftCorner<3, 3>().trace() / 3));
+  estimate->sigma_r =
+      std::sqrt(std::max(0.0, estimate->covariance.bottomRightCorner<3, 3>().trace() / 3));
+  estimate->corner_sigma_px = CornerSigmas(corners, edge_noise, excess, floor_px);
+  return true;
+}
+
+}  // namespace
+
+PoseEstimate EstimatePose(const std::vector<CornerObservation>& corners, const CameraModel& camera,
+                          const PoseOptions& options) {
+  PoseEstimate estimate;
+  estimate.corners = static_cast<int>(corners.size());
+  if (estimate.corners < std::max(options.min_corners, 4)) {
+    estimate.status = PoseEstimate::Status::kTooFewCorners;
+    estimate.message = std::to_string(estimate.corners) + " corners, need " +
+                       std::to_string(std::max(options.min_corners, 4));
+    return estimate;
+  }
+  const ErosionBasis basis(EffectiveErosionModel(corners, options), camera, corners);
+  const std::vector<Refined> solutions =
+      RefineEachStart(IppeStarts(corners, camera), corners, camera, basis, options);
+  if (solutions.empty()) {
+    estimate.message = "no pose: IPPE found no start or every refinement failed";
+    return estimate;
+  }
+  const size_t best = KeepTheBest(solutions, 2.0 * estimate.corners, &estimate);
+  estimate.erosion_parameters = basis.count();
+  if (!FillCovariance(corners, camera, basis, solutions[best], options, &estimate)) {
+    estimate.message = "degenerate corner layout: the pose is not observable";
+    return estimate;
+  }
   estimate.status = PoseEstimate::Status::kOk;
   return estimate;
 }
