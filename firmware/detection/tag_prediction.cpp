@@ -160,7 +160,7 @@ double TagCodeReader::SampleCell(const cv::Mat& image32, const CameraModel& came
       sum += GreyAtPredictedPixel(image32, uv);
     }
   }
-  return sum / 9.0;
+  return sum / 4.0;
 }
 
 // Mean level of the white gap beside the middle of each side.
@@ -181,38 +181,66 @@ double TagCodeReader::QuietZoneLevel(const cv::Mat& image32, const CameraModel& 
   return count > 0 ? sum / count : NAN;
 }
 
+bool TagCodeReader::InBorder(int row, int col) const {
+  return std::min({row, col, width_ - 1 - row, width_ - 1 - col}) < border_cells_;
+}
+
+// The cells' levels at their centres, sharpened as libapriltag's decoder sharpens them
+// (decode_sharpening): at 2 px per cell the blur leaves a lone white cell among black ones
+// below the black/white midpoint, and v + k (4 v - neighbours) restores it. Cells outside
+// the tag are the quiet zone's white. Empty when a cell falls outside the image.
+std::vector<double> TagCodeReader::SharpenedCells(const cv::Mat& image32, const CameraModel& camera,
+                                                  const RigidTransform& X_CT, int tag_index,
+                                                  double white) const {
+  const size_t n = static_cast<size_t>(width_);
+  std::vector<double> levels(n * n);
+  for (size_t k = 0; k < levels.size(); ++k) {
+    levels[k] =
+        SampleCell(image32, camera, X_CT, tag_index, (static_cast<double>(k % n) + 0.5) / width_,
+                   (static_cast<double>(k / n) + 0.5) / width_);
+    if (std::isnan(levels[k])) return {};
+  }
+  const auto level = [&](int row, int col) {
+    const bool inside = row >= 0 && col >= 0 && row < width_ && col < width_;
+    return inside ? levels[static_cast<size_t>(row * width_ + col)] : white;
+  };
+  std::vector<double> sharpened(levels.size());
+  for (int row = 0; row < width_; ++row) {
+    for (int col = 0; col < width_; ++col) {
+      const double v = level(row, col);
+      const double neighbours =
+          level(row - 1, col) + level(row + 1, col) + level(row, col - 1) + level(row, col + 1);
+      sharpened[static_cast<size_t>(row * width_ + col)] = v + sharpening_ * (4 * v - neighbours);
+    }
+  }
+  return sharpened;
+}
+
 TagCodeReading TagCodeReader::Read(const cv::Mat& image32, const CameraModel& camera,
                                    const RigidTransform& X_CT, int tag_index) const {
   TagCodeReading reading;
   const std::vector<bool>& expected = cells_[static_cast<size_t>(tag_index)];
-  std::vector<double> levels(expected.size());
+  const double white = QuietZoneLevel(image32, camera, X_CT, tag_index);
+  if (std::isnan(white)) return {.code_errors = width_ * width_};
+  const std::vector<double> levels = SharpenedCells(image32, camera, X_CT, tag_index, white);
+  if (levels.empty()) return {.code_errors = width_ * width_};
   double black = 0;
   int border = 0;
   for (int row = 0; row < width_; ++row) {
     for (int col = 0; col < width_; ++col) {
-      const size_t k = static_cast<size_t>(row * width_ + col);
-      levels[k] =
-          SampleCell(image32, camera, X_CT, tag_index, (col + 0.5) / width_, (row + 0.5) / width_);
-      if (std::isnan(levels[k])) return {.code_errors = width_ * width_};
-      const bool in_border =
-          std::min({row, col, width_ - 1 - row, width_ - 1 - col}) < border_cells_;
-      if (in_border) {
-        black += levels[k];
-        ++border;
-      }
+      if (!InBorder(row, col)) continue;
+      black += levels[static_cast<size_t>(row * width_ + col)];
+      ++border;
     }
   }
   black /= std::max(border, 1);
-  const double white = QuietZoneLevel(image32, camera, X_CT, tag_index);
-  reading.contrast = std::isnan(white) ? 0 : white - black;
+  reading.contrast = white - black;
   const double threshold = 0.5 * (white + black);
   for (int row = 0; row < width_; ++row) {
     for (int col = 0; col < width_; ++col) {
       const size_t k = static_cast<size_t>(row * width_ + col);
-      const bool in_border =
-          std::min({row, col, width_ - 1 - row, width_ - 1 - col}) < border_cells_;
       const bool reads_white = levels[k] > threshold;
-      if (in_border) {
+      if (InBorder(row, col)) {
         reading.border_errors += reads_white ? 1 : 0;
       } else if (reads_white != expected[k]) {
         ++reading.code_errors;

@@ -34,9 +34,12 @@ struct TagPredictionOptions {
   double max_tag_rms_px = 1.5;
   /// Every point of a predicted tag's outer border must be this far inside the image, px.
   double image_margin_px = 2.0;
-  /// A predicted tag's data cells that may read other than its code (tag36h11's codes
-  /// differ in at least 11 bits, rotations included: 3 keeps a wrong tag out).
-  int max_code_errors = 3;
+  /// A predicted tag's data cells that may read other than its code: tag36h11's codes
+  /// differ in at least 11 bits, so a reading within 5 of the expected code is farther from
+  /// every other (the decoding radius (11 - 1) / 2). Measured on 20 px tags of a rendered
+  /// 512 x 512 fisheye view: true tags read with up to 5 cells wrong, other ids' codes
+  /// with 12 or more (tests/firmware/fisheye_detection_test.cpp).
+  int max_code_errors = 5;
   /// Black border cells that may read white (blur across a 2 px cell, a glint).
   int max_border_errors = 2;
   /// Grey levels the quiet zone around a predicted tag must be brighter than its border.
@@ -92,10 +95,13 @@ class TagCodeReader {
                       int tag_index) const;
 
  private:
-  /// Mean grey level over a cell-sized square centred at (s, t) of the tag (fractions of
-  /// its side from its top-left corner), or NaN when a sample falls outside the image.
+  /// Mean grey level near the point (s, t) of the tag (fractions of its side from its
+  /// top-left corner), or NaN when a sample falls outside the image.
   double SampleCell(const cv::Mat& image32, const CameraModel& camera, const RigidTransform& X_CT,
                     int tag_index, double s, double t) const;
+  std::vector<double> SharpenedCells(const cv::Mat& image32, const CameraModel& camera,
+                                     const RigidTransform& X_CT, int tag_index, double white) const;
+  bool InBorder(int row, int col) const;
   double QuietZoneLevel(const cv::Mat& image32, const CameraModel& camera,
                         const RigidTransform& X_CT, int tag_index) const;
 
@@ -104,6 +110,7 @@ class TagCodeReader {
   int width_ = 0;                         // cells across a tag up to its outer border edge
   int border_cells_ = 1;
   double quiet_offset_cells_ = 1.0;  // how far outside the border the quiet zone is read
+  double sharpening_ = 0.25;         // libapriltag's default decode_sharpening
 };
 
 }  // namespace h4::cam
