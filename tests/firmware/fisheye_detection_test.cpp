@@ -72,19 +72,35 @@ struct TagCount {
   int misplaced = 0;  ///< tags reported with a corner far from the truth (wrong tags)
 };
 
-// A corner this far from the truth is on another tag or another corner (tags are 20 px or
-// more here): a wrong tag. Corner precision itself is board_detector_test's subject.
-constexpr double kWrongCornerPx = 3.0;
+// A corner farther from the truth than a third of its tag's shortest side is on another
+// tag or is another corner: a wrong tag. (Corner precision is not this test's subject: the
+// X-corners of large tags bent by strong distortion are still off by 1.5-3 px, which
+// board_detector_test and the Kalibr corner work measure.)
+double WrongCornerPx(const BoardModel& board, const CameraModel& camera, const RigidTransform& X_CT,
+                     int index) {
+  double shortest = 1e9;
+  for (int k = 0; k < 4; ++k) {
+    Eigen::Vector2d a, b;
+    if (!camera.ProjectRay(X_CT * board.corners()[static_cast<size_t>(4 * index + k)], &a) ||
+        !camera.ProjectRay(X_CT * board.corners()[static_cast<size_t>(4 * index + (k + 1) % 4)],
+                           &b)) {
+      return 0;
+    }
+    shortest = std::min(shortest, (a - b).norm());
+  }
+  return shortest / 3;
+}
 
 // Counts a detection against the truth: a tag counts as found when all its reported
-// corners are within kWrongCornerPx of the true projection.
+// corners are within WrongCornerPx of the true projection.
 TagCount CountTags(const BoardModel& board, const CameraModel& camera, const RigidTransform& X_CT,
                    const BoardDetection& detection) {
   const int tags = board.corner_count() / 4;
   std::vector<int> good(static_cast<size_t>(tags), 0), bad(static_cast<size_t>(tags), 0);
   for (const CornerObservation& c : detection.corners) {
     Eigen::Vector2d uv;
-    const bool near = camera.ProjectRay(X_CT * c.p_TQ, &uv) && (uv - c.uv).norm() < kWrongCornerPx;
+    const bool near = camera.ProjectRay(X_CT * c.p_TQ, &uv) &&
+                      (uv - c.uv).norm() < WrongCornerPx(board, camera, X_CT, c.id / 4);
     ++(near ? good : bad)[static_cast<size_t>(c.id / 4)];
   }
   TagCount count;
@@ -174,7 +190,7 @@ TEST(FisheyeDetectionTest, FindsTheTagsOfAStronglyDistortedRadTanView) {
       {"near view, tilted", 10, 90, 0.45, 0, 35},
   };
   TagCount old_total, new_total;
-  DetectScenes("sim_wide_radtan_120deg_1280x800.yaml", scenes, &old_total, &new_total);
+  DetectScenes("sim_wide_radtan_120deg_960x600.yaml", scenes, &old_total, &new_total);
   EXPECT_LE(old_total.found, new_total.found);
 }
 
