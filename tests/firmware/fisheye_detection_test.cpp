@@ -178,6 +178,8 @@ TEST(FisheyeDetectionTest, FindsTwentyPixelTagsOnA512Fisheye) {
   const std::vector<Scene> scenes = {
       {"20 px tags, centred", 10, 30, 0.8, 0, 0},
       {"20 px tags, rolled 45 deg, off-centre", 40, 120, 0.7, 45, 10},
+      {"18 px tags, 15 deg off-axis", 15, 166, 0.83, 10, 0},
+      {"18 px tags, 25 deg off-axis", 25, 90, 0.85, 5, 0},
   };
   TagCount old_total, new_total;
   DetectScenes("sim_fisheye_160deg_512x512.yaml", scenes, &old_total, &new_total);
