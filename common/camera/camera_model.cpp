@@ -19,6 +19,7 @@ namespace h4 {
 namespace {
 
 constexpr double kHalfPi = 1.5707963267948966;
+constexpr double kPi = 3.141592653589793;
 
 }  // namespace
 
@@ -33,14 +34,19 @@ CameraModel::CameraModel(const CameraIntrinsics& intrinsics) : intrinsics_(intri
   skew_ = intrinsics.K(0, 1);
   valid_ = IsSupportedDistortionCount(intrinsics.distortion_model, n) && fx_ > 0 && fy_ > 0;
   if (intrinsics.distortion_model == DistortionModel::kEquidistant) {
-    max_theta_ = FirstFold([this](double theta) {
-      double slope = 0;
-      EquidistantThetaD(theta, &slope);
-      return slope;
-    });
+    const auto slope = [this](double theta) {
+      double dthetad_dtheta = 0;
+      EquidistantThetaD(theta, &dthetad_dtheta);
+      return dthetad_dtheta;
+    };
+    max_theta_ = FirstFold(slope, kHalfPi);
     max_theta_d_ = EquidistantThetaD(max_theta_);
+    max_ray_theta_ = FirstFold(slope, kPi);
+    max_ray_theta_d_ = EquidistantThetaD(max_ray_theta_);
   } else {
-    max_theta_ = FirstFold([this](double theta) { return RadTanRadialSlope(std::tan(theta)); });
+    max_theta_ =
+        FirstFold([this](double theta) { return RadTanRadialSlope(std::tan(theta)); }, kHalfPi);
+    max_ray_theta_ = max_theta_;
   }
   max_r_ = max_theta_ < kHalfPi ? std::tan(max_theta_) : std::numeric_limits<double>::infinity();
 }
@@ -109,24 +115,24 @@ double CameraModel::RadTanRadialSlope(double r) const {
   return std::isfinite(slope) ? slope : 0;
 }
 
-// The first angle in (0, pi/2] where slope(theta) is no longer positive (pi/2 when it stays
+// The first angle in (0, limit] where slope(theta) is no longer positive (limit when it stays
 // positive): past it two rays share a pixel and the model cannot be inverted. Scanned
 // finely (a polynomial of degree 8 turns at most 4 times) then bisected. Runs once per
 // model, in the constructor.
 template <class Slope>
-double CameraModel::FirstFold(const Slope& slope) {
+double CameraModel::FirstFold(const Slope& slope, double limit) {
   const int steps = 2048;
   for (int i = 1; i <= steps; ++i) {
-    double hi = kHalfPi * i / steps;
+    double hi = limit * i / steps;
     if (slope(hi) > 0) continue;
-    double lo = kHalfPi * (i - 1) / steps;
+    double lo = limit * (i - 1) / steps;
     for (int it = 0; it < 60; ++it) {
       const double mid = 0.5 * (lo + hi);
       (slope(mid) > 0 ? lo : hi) = mid;
     }
     return lo;
   }
-  return kHalfPi;
+  return limit;
 }
 
 Eigen::Vector2d CameraModel::DistortEquidistant(const Eigen::Vector2d& xn,
@@ -254,27 +260,69 @@ bool CameraModel::UndistortEquidistant(const Eigen::Vector2d& xd, Eigen::Vector2
     *xn = xd;
     return true;
   }
-  if (!(theta_d < max_theta_d_)) {
-    *xn = xd;
-    return false;
-  }
-  // theta_d(theta) increases on [0, max_theta_]: one root, kept bracketed; Newton steps
-  // that leave the bracket become bisections.
-  double lo = 0, hi = max_theta_, theta = std::min(theta_d, max_theta_);
-  for (int it = 0; it < 100; ++it) {
-    double slope = 0;
-    const double residual = EquidistantThetaD(theta, &slope) - theta_d;
-    if (std::abs(residual) < 1e-15) break;
-    (residual > 0 ? hi : lo) = theta;
-    const double newton = theta - residual / slope;
-    theta = (slope > 0 && newton > lo && newton < hi) ? newton : 0.5 * (lo + hi);
-  }
-  if (!(theta < kHalfPi)) {
+  double theta = 0;
+  if (!(theta_d < max_theta_d_) || !EquidistantTheta(theta_d, max_theta_, &theta) ||
+      !(theta < kHalfPi)) {
     *xn = xd;
     return false;
   }
   *xn = xd * (std::tan(theta) / theta_d);
-  return std::abs(EquidistantThetaD(theta) - theta_d) < 1e-10;
+  return true;
+}
+
+// theta_d(theta) increases on [0, max_theta]: one root, kept bracketed; Newton steps that
+// leave the bracket become bisections.
+bool CameraModel::EquidistantTheta(double theta_d, double max_theta, double* theta) const {
+  double lo = 0, hi = max_theta, t = std::min(theta_d, max_theta);
+  for (int it = 0; it < 100; ++it) {
+    double slope = 0;
+    const double residual = EquidistantThetaD(t, &slope) - theta_d;
+    if (std::abs(residual) < 1e-15) break;
+    (residual > 0 ? hi : lo) = t;
+    const double newton = t - residual / slope;
+    t = (slope > 0 && newton > lo && newton < hi) ? newton : 0.5 * (lo + hi);
+  }
+  *theta = t;
+  return std::abs(EquidistantThetaD(t) - theta_d) < 1e-10;
+}
+
+bool CameraModel::ProjectRay(const Eigen::Vector3d& p_CQ, Eigen::Vector2d* uv) const {
+  if (intrinsics_.distortion_model != DistortionModel::kEquidistant) {
+    return ProjectVisible(p_CQ, uv);
+  }
+  const double rho = p_CQ.head<2>().norm();
+  if (!(rho > 0 || p_CQ.z() > 0)) return false;  // the centre, or straight behind
+  const double theta = std::atan2(rho, p_CQ.z());
+  if (!(theta < max_ray_theta_)) return false;
+  // The equidistant map written with the angle, not x/z, so that it holds past 90 degrees.
+  const double scale =
+      rho > 1e-12 * std::abs(p_CQ.z()) ? EquidistantThetaD(theta) / rho : 1.0 / p_CQ.z();
+  const double xd = p_CQ.x() * scale, yd = p_CQ.y() * scale;
+  *uv = Eigen::Vector2d(fx_ * xd + skew_ * yd + cx_, fy_ * yd + cy_);
+  return true;
+}
+
+bool CameraModel::RayFromPixel(const Eigen::Vector2d& uv, Eigen::Vector3d* ray_C) const {
+  const double yd = (uv.y() - cy_) / fy_;
+  const double xd = (uv.x() - cx_ - skew_ * yd) / fx_;
+  if (intrinsics_.distortion_model != DistortionModel::kEquidistant) {
+    Eigen::Vector2d xn;
+    if (!UndistortRadTan(Eigen::Vector2d(xd, yd), &xn)) return false;
+    *ray_C = Eigen::Vector3d(xn.x(), xn.y(), 1.0).normalized();
+    return true;
+  }
+  const double theta_d = std::hypot(xd, yd);
+  if (theta_d < 1e-12) {
+    *ray_C = Eigen::Vector3d(0, 0, 1);
+    return true;
+  }
+  double theta = 0;
+  if (!(theta_d < max_ray_theta_d_) || !EquidistantTheta(theta_d, max_ray_theta_, &theta)) {
+    return false;
+  }
+  const double s = std::sin(theta) / theta_d;
+  *ray_C = Eigen::Vector3d(xd * s, yd * s, std::cos(theta));
+  return true;
 }
 
 bool CameraModel::IdealFromPixel(const Eigen::Vector2d& uv, Eigen::Vector2d* ideal) const {

@@ -44,6 +44,21 @@ class CameraModel {
   /// whether a point is seen, and where, must use.
   bool ProjectVisible(const Eigen::Vector3d& p_CQ, Eigen::Vector2d* uv) const;
 
+  /// The largest angle from the optical axis (rad) whose rays the lens images one to one,
+  /// beyond 90 degrees where the model allows it: equidistant, the first fold of
+  /// theta_d(theta) in (0, pi] (a 190-degree fisheye sees rays 95 degrees off-axis, behind
+  /// the camera's image plane); radtan, max_field_angle() (a pinhole has no ray at 90
+  /// degrees or more).
+  double max_ray_angle() const { return max_ray_theta_; }
+
+  /// Pixel of a point p_CQ (m) seen at any angle up to max_ray_angle() from the axis, z <= 0
+  /// included on a fisheye; false (uv untouched) beyond it or at the camera centre.
+  bool ProjectRay(const Eigen::Vector3d& p_CQ, Eigen::Vector2d* uv) const;
+
+  /// Unit direction (camera frame) of the ray imaged at pixel uv, up to max_ray_angle();
+  /// false (ray untouched) beyond it, or where NormalizedFromPixel fails on radtan.
+  bool RayFromPixel(const Eigen::Vector2d& uv, Eigen::Vector3d* ray_C) const;
+
   /// Distorted normalised coordinates of undistorted normalised ones (x/z, y/z),
   /// with the 2x2 Jacobian J_xd_xn when asked.
   Eigen::Vector2d Distort(const Eigen::Vector2d& xn, Eigen::Matrix2d* J_xd_xn = nullptr) const;
@@ -88,16 +103,20 @@ class CameraModel {
   /// d r_d / d r of the radial-tangential model's radial part at normalised radius r
   /// (non-positive also where the rational denominator is).
   double RadTanRadialSlope(double r) const;
-  /// The first angle in (0, pi/2] where slope(theta) stops being positive; pi/2 if never.
+  /// The first angle in (0, limit] where slope(theta) stops being positive; limit if never.
   template <class Slope>
-  static double FirstFold(const Slope& slope);
+  static double FirstFold(const Slope& slope, double limit);
+  /// Equidistant: theta with theta_d(theta) = theta_d on [0, max_theta], false past it.
+  bool EquidistantTheta(double theta_d, double max_theta, double* theta) const;
 
   CameraIntrinsics intrinsics_;
   std::array<double, 8> d_{};  // radtan: k1 k2 p1 p2 k3 k4 k5 k6; equidistant: k1 k2 k3 k4
   double fx_ = 1, fy_ = 1, cx_ = 0, cy_ = 0, skew_ = 0;
-  double max_theta_ = 0;    // see max_field_angle()
-  double max_theta_d_ = 0;  // equidistant: EquidistantThetaD(max_theta_)
-  double max_r_ = 0;        // tan(max_theta_), or infinity at pi/2
+  double max_theta_ = 0;        // see max_field_angle()
+  double max_theta_d_ = 0;      // equidistant: EquidistantThetaD(max_theta_)
+  double max_r_ = 0;            // tan(max_theta_), or infinity at pi/2
+  double max_ray_theta_ = 0;    // see max_ray_angle()
+  double max_ray_theta_d_ = 0;  // equidistant: EquidistantThetaD(max_ray_theta_)
   bool valid_ = false;
 };
 

@@ -1,7 +1,9 @@
 // Figures and overlay of one camera frame; see frame_check.h.
 #include "firmware/cli/frame_check.h"
 
+#include <cmath>
 #include <cstdio>
+#include <string>
 #include <variant>
 #include <vector>
 
@@ -94,6 +96,25 @@ std::string FeaturesFound(const FrameFigures& f) {
   return text;
 }
 
+// Each tag the detection expected wholly in the image but left out: its predicted outline in
+// red, with the reason ("not found", "failed code", "failed refinement") at its centre.
+void DrawMissedTags(const BoardDetection& detection, cv::Mat* overlay) {
+  for (const MissedTag& miss : detection.missed) {
+    std::vector<cv::Point> outline;
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (const Eigen::Vector2d& uv : miss.corners_px) {
+      outline.emplace_back(static_cast<int>(std::lround(uv.x())),
+                           static_cast<int>(std::lround(uv.y())));
+      centre += 0.25 * uv;
+    }
+    cv::polylines(*overlay, outline, /*isClosed=*/true, cv::Scalar(0, 0, 255), 1);
+    const std::string label = std::to_string(miss.tag_id) + " " + ToString(miss.why);
+    cv::putText(*overlay, label,
+                cv::Point(static_cast<int>(centre.x()) - 20, static_cast<int>(centre.y())),
+                cv::FONT_HERSHEY_SIMPLEX, 0.3, cv::Scalar(0, 0, 255), 1, cv::LINE_AA);
+  }
+}
+
 }  // namespace
 
 std::string FormatFrameFigures(const FrameFigures& f) {
@@ -123,6 +144,7 @@ cv::Mat DrawFrameFigures(const cv::Mat& image, const BoardDetection& detection,
   for (const cv::Point2f& p : corners) {
     cv::drawMarker(overlay, p, cv::Scalar(0, 255, 0), cv::MARKER_CROSS, 9, 1);
   }
+  DrawMissedTags(detection, &overlay);
   const cv::Scalar colour =
       figures.status == BoardDetection::Status::kOk ? cv::Scalar(0, 200, 0) : cv::Scalar(0, 0, 255);
   cv::rectangle(overlay, cv::Rect(0, 0, overlay.cols, 26), cv::Scalar(0, 0, 0), cv::FILLED);

@@ -45,7 +45,9 @@ FrameFigures CheckFrame(const cv::Mat& image, const BoardDetector& detector,
 std::string FormatFrameFigures(const FrameFigures& figures);
 
 /// The frame in colour with the corners found (green crosses), the hull of the board
-/// (yellow) and the figures written at the top.
+/// (yellow), each tag expected wholly in the image but left out (red outline where it was
+/// predicted, with its id and why: BoardDetection::missed) and the figures written at the
+/// top.
 cv::Mat DrawFrameFigures(const cv::Mat& image, const BoardDetection& detection,
                          const FrameFigures& figures);
 

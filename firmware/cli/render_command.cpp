@@ -81,9 +81,10 @@ std::string BoardOutOfView(const BoardSpec& board, const CameraIntrinsics& camer
   for (const Eigen::Vector3d& p_TQ : model.corners()) {
     const Eigen::Vector3d p_CQ = X_CT * p_TQ;
     Eigen::Vector2d uv;
-    if (!(p_CQ.z() > 0)) continue;
+    if (!(p_CQ.z() > 0) && !projection.ProjectRay(p_CQ, &uv)) continue;
     ++in_front;
-    if (!projection.ProjectVisible(p_CQ, &uv)) continue;
+    // ProjectRay: a fisheye of more than 180 degrees also sees points with z <= 0.
+    if (!projection.ProjectRay(p_CQ, &uv)) continue;
     // Pixel centres run from 0 to width - 1 (common/formats/README.md): the image covers
     // [-0.5, width - 0.5).
     if (uv.x() >= -0.5 && uv.x() < camera.width - 0.5 && uv.y() >= -0.5 &&
@@ -93,7 +94,7 @@ std::string BoardOutOfView(const BoardSpec& board, const CameraIntrinsics& camer
   }
   return in_front == 0
              ? "the board is behind the camera (no corner has z > 0 in the camera "
-               "frame)"
+               "frame, nor is inside a fisheye's field)"
              : "the board is off the image (no corner projects into the " +
                    std::to_string(camera.width) + "x" + std::to_string(camera.height) + " image)";
 }

@@ -21,7 +21,11 @@ const char* ToString(BoardDetection::Status status) {
 
 BoardDetector::BoardDetector(const BoardSpec& board, const CameraIntrinsics& camera,
                              const DetectorOptions& options)
-    : board_(board), options_(options), width_(camera.width), height_(camera.height) {
+    : board_(board),
+      options_(options),
+      camera_(camera),
+      width_(camera.width),
+      height_(camera.height) {
   const CameraModel model(camera);
   if (!model.valid() || width_ <= 0 || height_ <= 0) {
     error_ = "camera intrinsics invalid (size, focal length or distortion count)";
@@ -45,6 +49,7 @@ BoardDetector::BoardDetector(const BoardSpec& board, const CameraIntrinsics& cam
       error_ = apriltag_->error();
       return;
     }
+    code_reader_ = std::make_unique<TagCodeReader>(board_, *grid);
     if (grid->design().corner_squares) {
       if (options_.refinement == CornerRefinement::kEdgeFit) {
         options_.refinement = CornerRefinement::kXCorner;
@@ -119,6 +124,7 @@ BoardDetection BoardDetector::DetectAprilGrid(const cv::Mat& image8, const cv::M
     std::optional<RefinedTag> refined = RefineTag(image32, &tag);
     if (refined && (!best[index] || refined->count > best[index]->count)) best[index] = refined;
   }
+  RecoverMissedTags(image32, &best, &detection);
   std::vector<cv::Point2f> subpix;
   for (size_t index = 0; index < tag_count; ++index) {
     if (!best[index]) {

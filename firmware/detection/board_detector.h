@@ -14,10 +14,13 @@
 
 #include "common/board/board_model.h"
 #include "common/camera/camera_intrinsics.h"
+#include "common/camera/camera_model.h"
+#include "common/geometry/rigid_transform.h"
 #include "firmware/detection/apriltag_detector.h"
 #include "firmware/detection/corner_observation.h"
 #include "firmware/detection/edge_refinement.h"
 #include "firmware/detection/ideal_pixel_map.h"
+#include "firmware/detection/tag_prediction.h"
 #include "firmware/detection/x_corner_refinement.h"
 
 namespace h4::cam {
@@ -40,6 +43,9 @@ struct DetectorOptions {
   CornerRefinement refinement = CornerRefinement::kEdgeFit;
   EdgeFitOptions edge_fit;
   XCornerOptions x_corner;
+  /// AprilTag grids: the tags libapriltag missed, predicted from the found ones' pose
+  /// through the camera model and verified by their code (tag_prediction.h).
+  TagPredictionOptions prediction;
   int subpix_half_window = 5;  ///< cornerSubPix window (2n+1)^2, px (chessboard too)
   /// Fewer corners than this: status kPartial (the pose would be unreliable).
   int min_corners = kMinBoardCorners;  ///< the board reader refuses smaller boards
@@ -55,6 +61,12 @@ struct BoardDetection {
   /// AprilTag grid: ids decoded more than once in one search (two boards in view, or a
   /// misdecode), every detection of them dropped; said in the measurement's message.
   int ids_seen_twice = 0;
+  /// AprilTag grid: tags among `tags` that the quad search missed and the prediction found
+  /// (tag_prediction.h).
+  int tags_predicted = 0;
+  /// AprilTag grid: tags predicted wholly inside the image but not in the detection, and why
+  /// (empty when every tag was found or too few were to predict from).
+  std::vector<MissedTag> missed;
 };
 
 const char* ToString(BoardDetection::Status status);
@@ -91,9 +103,22 @@ class BoardDetector {
   /// (`refined`); false (none could be) drops the tag.
   bool RefineTagXCorners(const cv::Mat& image32, TagDetection* tag,
                          std::array<bool, 4>* refined) const;
+  /// Adds to `best` the tags the prediction recovers (board_detector_prediction.cpp).
+  void RecoverMissedTags(const cv::Mat& image32, std::vector<std::optional<RefinedTag>>* best,
+                         BoardDetection* detection) const;
+  /// X_CT fitted to the found tags, leaving out tags that disagree with the others.
+  bool FitPoseToFoundTags(const std::vector<std::optional<RefinedTag>>& best,
+                          RigidTransform* X_CT) const;
+  /// Tags missing from `best` checked at their place under X_CT: the verified and refined
+  /// ones added to `best` (their number returned), the others in `missed`.
+  int PredictMissingTags(const cv::Mat& image32, const RigidTransform& X_CT,
+                         std::vector<std::optional<RefinedTag>>* best,
+                         std::vector<MissedTag>* missed) const;
 
   BoardModel board_;
   DetectorOptions options_;
+  CameraModel camera_;
+  std::unique_ptr<TagCodeReader> code_reader_;  // AprilTag grids
   std::unique_ptr<AprilTagDetector> apriltag_;
   std::unique_ptr<IdealPixelMap> ideal_map_;
   double x_radius_of_side_ = 0;  // X-corner radius / tag side (Kalibr layout)

@@ -1,6 +1,7 @@
 // Synthetic board images; see board_renderer.h. A pixel centred at (u, v) covers
-// [u - 0.5, u + 0.5] x [v - 0.5, v + 0.5] (OpenCV's convention). The undistorted ray of
-// every pixel corner is solved once per camera; inside a pixel the ray is interpolated
+// [u - 0.5, u + 0.5] x [v - 0.5, v + 0.5] (OpenCV's convention). The ray of every pixel
+// corner is solved once per camera (inverting the lens model, not through any of the
+// detector's code); inside a pixel the ray is interpolated
 // bilinearly (the error is below 1e-4 px for mild distortion) and the board point found
 // through the inverse of the plane homography [r1 r2 p_CT]. Each step with an option at
 // its neutral value (no light variation, no defocus, linear response, no shot noise) is
@@ -54,15 +55,28 @@ BoardRenderer::BoardRenderer(const BoardSpec& board, const CameraIntrinsics& cam
   corner_rays_.resize(static_cast<size_t>((width_ + 1) * (height_ + 1)));
   for (int j = 0; j <= height_; ++j) {
     for (int i = 0; i <= width_; ++i) {
-      Eigen::Vector2d xn;
-      // No ray (a fisheye pixel beyond 90 degrees): NaN, which no board point accepts.
-      if (!camera_.NormalizedFromPixel(Eigen::Vector2d(i - 0.5, j - 0.5), &xn)) xn.setConstant(NAN);
-      corner_rays_[static_cast<size_t>(j * (width_ + 1) + i)] = xn;
+      corner_rays_[static_cast<size_t>(j * (width_ + 1) + i)] = PixelCornerRay(i, j);
     }
   }
   const int f = Supersampling();
   strata_ = std::max(1, static_cast<int>(std::ceil(
                             std::sqrt(static_cast<double>(options_.samples_per_pixel) / (f * f)))));
+}
+
+// The ray of pixel corner (i, j). A radtan lens keeps (xn, yn, 1) exactly, so that its
+// images stay the same bit for bit; a fisheye's unit rays reach past 90 degrees (z <= 0),
+// which normalised coordinates cannot. No ray (beyond the lens's fold): NaN, which no
+// board point accepts.
+Eigen::Vector3d BoardRenderer::PixelCornerRay(int i, int j) const {
+  const Eigen::Vector2d uv(i - 0.5, j - 0.5);
+  Eigen::Vector3d ray = Eigen::Vector3d::Constant(NAN);
+  if (camera_.distortion_model() == DistortionModel::kEquidistant) {
+    camera_.RayFromPixel(uv, &ray);
+    return ray;
+  }
+  Eigen::Vector2d xn;
+  if (camera_.NormalizedFromPixel(uv, &xn)) ray = Eigen::Vector3d(xn.x(), xn.y(), 1.0);
+  return ray;
 }
 
 // The printed board's image plus the reach of the PSF (Gaussian and defocus disk).
@@ -82,11 +96,11 @@ BoardRenderer::Region BoardRenderer::BoardRegion(const RigidTransform& X_CT) con
     for (const Eigen::Vector2d& q : side) {
       const Eigen::Vector3d p_CQ = X_CT * Eigen::Vector3d(q.x(), q.y(), 0.0);
       Eigen::Vector2d uv;
-      if (!camera_.Project(p_CQ, &uv) || !uv.allFinite()) return {0, 0, width_, height_};
+      if (!camera_.ProjectRay(p_CQ, &uv) || !uv.allFinite()) return {0, 0, width_, height_};
       pmin = pmin.cwiseMin(uv);
       pmax = pmax.cwiseMax(uv);
-      defocus_px =
-          std::max(defocus_px, DefocusRadiusPx(options_, camera_.intrinsics().K(0, 0), p_CQ.z()));
+      defocus_px = std::max(
+          defocus_px, DefocusRadiusPx(options_, camera_.intrinsics().K(0, 0), FocusDistance(p_CQ)));
     }
   }
   const int reach = static_cast<int>(std::ceil(4.0 * options_.blur_sigma_px + defocus_px)) + 2;
@@ -96,8 +110,17 @@ BoardRenderer::Region BoardRenderer::BoardRegion(const RigidTransform& X_CT) con
           std::clamp(static_cast<int>(std::ceil(pmax.y())) + reach + 1, 0, height_)};
 }
 
-// Defocus disk radius (px) per pixel of the region, from the depth at which the pixel
-// centre's ray meets the board plane (depth = 1 / (M^-1 n).z).
+// The distance a lens focuses on for the board point p_CQ: its depth z for a radtan lens,
+// its range |p_CQ| for a fisheye, whose surface of focus is closer to a sphere than a
+// plane (and whose z-depth falls to zero at 90 degrees off-axis, which would blur a ring
+// of the image into disks of unbounded size).
+double BoardRenderer::FocusDistance(const Eigen::Vector3d& p_CQ) const {
+  if (camera_.distortion_model() == DistortionModel::kEquidistant) return p_CQ.norm();
+  return p_CQ.z();
+}
+
+// Defocus disk radius (px) per pixel of the region, from the distance at which the pixel
+// centre's ray n meets the board plane (M^-1 n = (x, y, 1) / t with the point at t n).
 cv::Mat BoardRenderer::DefocusRadiusMap(const Eigen::Matrix3d& Minv, const Region& region) const {
   cv::Mat radius(region.v1 - region.v0, region.u1 - region.u0, CV_32F);
   const size_t stride = static_cast<size_t>(width_ + 1);
@@ -105,13 +128,14 @@ cv::Mat BoardRenderer::DefocusRadiusMap(const Eigen::Matrix3d& Minv, const Regio
     for (int c = 0; c < radius.cols; ++c) {
       const size_t k =
           static_cast<size_t>(region.v0 + r) * stride + static_cast<size_t>(region.u0 + c);
-      const Eigen::Vector2d xn = 0.25 * (corner_rays_[k] + corner_rays_[k + 1] +
-                                         corner_rays_[k + stride] + corner_rays_[k + stride + 1]);
-      const double inverse_depth = (Minv * Eigen::Vector3d(xn.x(), xn.y(), 1.0)).z();
+      const Eigen::Vector3d ray = 0.25 * (corner_rays_[k] + corner_rays_[k + 1] +
+                                          corner_rays_[k + stride] + corner_rays_[k + stride + 1]);
+      const double inverse_t = (Minv * ray).z();
       radius.at<float>(r, c) =
-          inverse_depth > 1e-12 ? static_cast<float>(DefocusRadiusPx(
-                                      options_, camera_.intrinsics().K(0, 0), 1.0 / inverse_depth))
-                                : 0.0f;
+          inverse_t > 1e-12
+              ? static_cast<float>(DefocusRadiusPx(options_, camera_.intrinsics().K(0, 0),
+                                                   FocusDistance(ray / inverse_t)))
+              : 0.0f;
     }
   }
   return radius;
@@ -119,10 +143,10 @@ cv::Mat BoardRenderer::DefocusRadiusMap(const Eigen::Matrix3d& Minv, const Regio
 
 namespace {
 
-// The board point (x, y) a normalised ray xn meets: M^-1 (xn, 1) = (x, y, 1) / depth, with
-// M = [r1 r2 p_CT]; false when the plane is behind the camera along the ray.
-bool BoardPointOnRay(const Eigen::Matrix3d& Minv, const Eigen::Vector2d& xn, Eigen::Vector2d* p) {
-  const Eigen::Vector3d h = Minv * Eigen::Vector3d(xn.x(), xn.y(), 1.0);
+// The board point (x, y) a ray n meets: M^-1 n = (x, y, 1) / t for the point t n, with
+// M = [r1 r2 p_CT]; false when the plane is behind the camera along the ray (t <= 0).
+bool BoardPointOnRay(const Eigen::Matrix3d& Minv, const Eigen::Vector3d& ray, Eigen::Vector2d* p) {
+  const Eigen::Vector3d h = Minv * ray;
   if (!(h.z() > 1e-12)) return false;
   *p = h.head<2>() / h.z();
   return true;
@@ -169,24 +193,30 @@ float BoardRenderer::Level(BoardPattern::Colour colour) const {
   }
 }
 
-// Ray of the fine grid corner (I, J) of the region: bilinear in the pixel-corner rays.
-Eigen::Vector2d BoardRenderer::FineRay(const Region& region, int I, int J) const {
+// Ray of the fine grid corner (I, J) of the region: bilinear in the pixel-corner rays (z as
+// a sum of differences, exactly 1 when the four are a radtan lens's (xn, yn, 1)).
+Eigen::Vector3d BoardRenderer::FineRay(const Region& region, int I, int J) const {
   const int f = Supersampling();
   const size_t stride = static_cast<size_t>(width_ + 1);
   const int ci = region.u0 + I / f, cj = region.v0 + J / f;
   const double a = static_cast<double>(I % f) / f, b = static_cast<double>(J % f) / f;
   const size_t k = static_cast<size_t>(cj) * stride + static_cast<size_t>(ci);
-  const Eigen::Vector2d& r00 = corner_rays_[k];
+  const Eigen::Vector3d& r00 = corner_rays_[k];
   if (a == 0 && b == 0) return r00;
-  const Eigen::Vector2d& r10 = corner_rays_[a > 0 ? k + 1 : k];
-  const Eigen::Vector2d& r01 = corner_rays_[b > 0 ? k + stride : k];
-  const Eigen::Vector2d& r11 = corner_rays_[(a > 0 ? k + 1 : k) + (b > 0 ? stride : 0)];
-  return Eigen::Vector2d((1 - b) * ((1 - a) * r00 + a * r10) + b * ((1 - a) * r01 + a * r11));
+  const Eigen::Vector3d& r10 = corner_rays_[a > 0 ? k + 1 : k];
+  const Eigen::Vector3d& r01 = corner_rays_[b > 0 ? k + stride : k];
+  const Eigen::Vector3d& r11 = corner_rays_[(a > 0 ? k + 1 : k) + (b > 0 ? stride : 0)];
+  const Eigen::Vector2d xy((1 - b) * ((1 - a) * r00.head<2>() + a * r10.head<2>()) +
+                           b * ((1 - a) * r01.head<2>() + a * r11.head<2>()));
+  const double z_top = r00.z() + a * (r10.z() - r00.z());
+  const double z_bottom = r01.z() + a * (r11.z() - r01.z());
+  return Eigen::Vector3d(xy.x(), xy.y(), z_top + b * (z_bottom - z_top));
 }
 
 // The rays of one row of fine grid corners and the board points they meet.
 struct BoardRenderer::FineCornerRow {
-  std::vector<Eigen::Vector2d> rays, points;
+  std::vector<Eigen::Vector3d> rays;
+  std::vector<Eigen::Vector2d> points;
   std::vector<unsigned char> valid;  ///< the ray meets the board plane in front of the camera
 };
 
@@ -241,17 +271,17 @@ cv::Mat BoardRenderer::RenderFineRegion(const Eigen::Matrix3d& Minv, const Regio
 
 // Mean level over a fine pixel with corner rays r00, r10 (top) and r01, r11 (bottom):
 // jittered stratified samples, the ray bilinear inside the pixel and the plane met exactly.
-float BoardRenderer::AreaSample(const Eigen::Matrix3d& Minv, const Eigen::Vector2d& r00,
-                                const Eigen::Vector2d& r10, const Eigen::Vector2d& r01,
-                                const Eigen::Vector2d& r11, uint64_t seed) const {
+float BoardRenderer::AreaSample(const Eigen::Matrix3d& Minv, const Eigen::Vector3d& r00,
+                                const Eigen::Vector3d& r10, const Eigen::Vector3d& r01,
+                                const Eigen::Vector3d& r11, uint64_t seed) const {
   SplitMix64 rng{seed};
   const double step = 1.0 / strata_;
   double sum = 0;
   for (int sy = 0; sy < strata_; ++sy) {
     for (int sx = 0; sx < strata_; ++sx) {
       const double x = (sx + rng.Uniform()) * step, y = (sy + rng.Uniform()) * step;
-      const Eigen::Vector2d upper = r00 + x * (r10 - r00);
-      const Eigen::Vector2d lower = r01 + x * (r11 - r01);
+      const Eigen::Vector3d upper = r00 + x * (r10 - r00);
+      const Eigen::Vector3d lower = r01 + x * (r11 - r01);
       Eigen::Vector2d q;
       const BoardPattern::Colour c = BoardPointOnRay(Minv, upper + y * (lower - upper), &q)
                                          ? pattern_.At(q.x(), q.y())

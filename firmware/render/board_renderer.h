@@ -2,10 +2,10 @@
 // for the measuring pipeline's tests and benchmarks. The board's region is rendered on a
 // grid finer than the pixels, area-sampled (a jittered grid of sub-pixel rays wherever
 // a colour boundary may cross, each ray undistorted and intersected with the board
-// plane), lit (illumination gradient, vignetting), blurred by the optics (Gaussian and a
-// depth-dependent defocus disk) and integrated over each pixel; then the sensor (shot and
-// read noise, saturation), the response curve and 8-bit quantisation, reproducible from a
-// seed. The steps and their options: render_options.h.
+// plane; a fisheye's rays past 90 degrees from the axis included), lit (illumination gradient,
+// vignetting), blurred by the optics (Gaussian and a depth-dependent defocus disk) and integrated
+// over each pixel; then the sensor (shot and read noise, saturation), the response curve and 8-bit
+// quantisation, reproducible from a seed. The steps and their options: render_options.h.
 #pragma once
 
 #include <algorithm>
@@ -50,15 +50,17 @@ class BoardRenderer {
     int u0 = 0, v0 = 0, u1 = 0, v1 = 0;
   };
   Region BoardRegion(const RigidTransform& X_CT) const;
+  double FocusDistance(const Eigen::Vector3d& p_CQ) const;
   cv::Mat DefocusRadiusMap(const Eigen::Matrix3d& Minv, const Region& region) const;
   struct FineCornerRow;
   cv::Mat RenderFineRegion(const Eigen::Matrix3d& Minv, const Region& region) const;
   void FillFineCornerRow(const Eigen::Matrix3d& Minv, const Region& region, int J,
                          FineCornerRow* row) const;
-  Eigen::Vector2d FineRay(const Region& region, int I, int J) const;
-  float AreaSample(const Eigen::Matrix3d& Minv, const Eigen::Vector2d& r00,
-                   const Eigen::Vector2d& r10, const Eigen::Vector2d& r01,
-                   const Eigen::Vector2d& r11, uint64_t seed) const;
+  Eigen::Vector3d FineRay(const Region& region, int I, int J) const;
+  float AreaSample(const Eigen::Matrix3d& Minv, const Eigen::Vector3d& r00,
+                   const Eigen::Vector3d& r10, const Eigen::Vector3d& r01,
+                   const Eigen::Vector3d& r11, uint64_t seed) const;
+  Eigen::Vector3d PixelCornerRay(int i, int j) const;
   void ApplyOptics(const Eigen::Matrix3d& Minv, const Region& region, cv::Mat& fine) const;
   float Level(BoardPattern::Colour colour) const;
   int Supersampling() const { return std::max(1, options_.supersampling); }
@@ -69,9 +71,11 @@ class BoardRenderer {
   SensorModel sensor_;
   BoardPattern pattern_;
   int width_ = 0, height_ = 0;
-  std::vector<Eigen::Vector2d> corner_rays_;  // undistorted normalised coordinates of
-                                              // pixel corners, (w+1) x (h+1) row-major
-  int strata_ = 1;                            // s: s x s jittered samples per edge pixel
+  // Ray directions in C of the pixel corners, (w+1) x (h+1) row-major: (xn, yn, 1) for a
+  // radtan lens, unit vectors for a fisheye (whose rays reach past 90 degrees); NaN where
+  // the lens images no ray.
+  std::vector<Eigen::Vector3d> corner_rays_;
+  int strata_ = 1;  // s: s x s jittered samples per edge pixel
   std::string error_;
 };
 

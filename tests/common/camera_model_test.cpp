@@ -225,6 +225,39 @@ TEST(CameraModelTest, UndistortionInvertsDistortionAcrossTheImage) {
   }
 }
 
+// A fisheye sees past 90 degrees: over every pixel of Fisheye() (corners ~107 degrees
+// off-axis) the ray RayFromPixel gives projects back onto the pixel through ProjectRay, and
+// agrees with Project and NormalizedFromPixel where they hold (in front, z > 0).
+TEST(CameraModelTest, FisheyeRaysPastNinetyDegreesRoundTripThroughProjectRay) {
+  const CameraModel camera(Fisheye());
+  ASSERT_GT(camera.max_ray_angle(), std::numbers::pi / 2);
+  int behind = 0;
+  for (int v = 0; v < 768; v += 17) {
+    for (int u = 0; u < 1024; u += 17) {
+      const Eigen::Vector2d uv(u, v);
+      Eigen::Vector3d ray;
+      ASSERT_TRUE(camera.RayFromPixel(uv, &ray)) << uv.transpose();
+      EXPECT_NEAR(ray.norm(), 1.0, 1e-12);
+      Eigen::Vector2d back;
+      ASSERT_TRUE(camera.ProjectRay(2.5 * ray, &back));
+      EXPECT_LT((back - uv).norm(), 1e-7) << uv.transpose();
+      if (ray.z() <= 0) {
+        ++behind;
+        continue;
+      }
+      Eigen::Vector2d uv_project;
+      ASSERT_TRUE(camera.Project(ray, &uv_project));
+      EXPECT_LT((uv_project - uv).norm(), 1e-7);
+    }
+  }
+  EXPECT_GT(behind, 0) << "no pixel of the test camera sees past 90 degrees";
+  // A pinhole lens has no ray at 90 degrees: ProjectRay is ProjectVisible there.
+  const CameraModel pinhole(Camera(5));
+  Eigen::Vector2d uv;
+  EXPECT_FALSE(pinhole.ProjectRay(Eigen::Vector3d(1.0, 0.0, -0.01), &uv));
+  EXPECT_DOUBLE_EQ(pinhole.max_ray_angle(), pinhole.max_field_angle());
+}
+
 TEST(CameraModelTest, PointBehindCameraIsRefused) {
   const CameraModel camera(Camera(5));
   Eigen::Vector2d uv(-1, -1);
