@@ -9,6 +9,7 @@
 
 #include "common/camera/board_pose_fit.h"
 #include "common/text/enum_names.h"
+#include "firmware/detection/planar_pose_starts.h"
 #include "firmware/detection/tag_family.h"
 
 namespace h4::cam {
@@ -20,41 +21,20 @@ const char* ToString(TagMiss why) { return kTagMissNames.NameOf(why); }
 
 namespace {
 
-// IPPE's two planar solutions on undistorted normalised rays: starts for the fit through
-// the lens model (IPPE itself knows no distortion).
+// The corners the pose fit can use (those with a ray IPPE can take: less than 90 degrees
+// off-axis), and IPPE's two planar solutions from them: starts for the fit through the
+// lens model.
 std::vector<RigidTransform> PlanarPoseStartsFromRays(const std::vector<CornerObservation>& corners,
                                                      const CameraModel& camera,
                                                      PoseCorners* fitted) {
-  std::vector<cv::Point3d> object;
-  std::vector<cv::Point2d> image;
   for (const CornerObservation& c : corners) {
     Eigen::Vector2d xn;
     if (!camera.NormalizedFromPixel(c.uv, &xn)) continue;  // 90 degrees or more off-axis
-    object.emplace_back(c.p_TQ.x(), c.p_TQ.y(), c.p_TQ.z());
-    image.emplace_back(xn.x(), xn.y());
     fitted->p_TQ.push_back(c.p_TQ);
     fitted->uv.push_back(c.uv);
     fitted->weight.push_back(1.0);
   }
-  std::vector<RigidTransform> starts;
-  if (object.size() < 4) return starts;
-  std::vector<cv::Mat> rvecs, tvecs;
-  try {
-    cv::solvePnPGeneric(object, image, cv::Mat::eye(3, 3, CV_64F), cv::Mat(), rvecs, tvecs, false,
-                        cv::SOLVEPNP_IPPE);
-  } catch (const cv::Exception&) {
-    return starts;  // degenerate (collinear corners)
-  }
-  for (size_t k = 0; k < rvecs.size(); ++k) {
-    cv::Mat R_cv;
-    cv::Rodrigues(rvecs[k], R_cv);
-    Eigen::Matrix3d R_CT;
-    Eigen::Vector3d p_CT;
-    cv::cv2eigen(R_cv, R_CT);
-    cv::cv2eigen(tvecs[k], p_CT);
-    starts.emplace_back(R_CT, p_CT);
-  }
-  return starts;
+  return IppePlanarStarts(corners, camera);
 }
 
 double PredictionFitRmsPx(const PoseCorners& corners, const CameraModel& camera,

@@ -13,6 +13,7 @@
 #include <opencv2/core/eigen.hpp>
 
 #include "common/geometry/rotation.h"
+#include "firmware/detection/planar_pose_starts.h"
 
 namespace h4::cam {
 namespace {
@@ -305,40 +306,6 @@ bool ReprojectionResiduals(const std::vector<CornerObservation>& corners, const 
 
 namespace {
 
-// Step 1: the starts. IPPE (infinitesimal plane-based pose estimation) on undistorted
-// normalised points (identity camera matrix, no distortion) gives the planar target's two
-// candidate poses.
-std::vector<RigidTransform> IppeStarts(const std::vector<CornerObservation>& corners,
-                                       const CameraModel& camera) {
-  std::vector<cv::Point3d> object;
-  std::vector<cv::Point2d> image;
-  for (const CornerObservation& c : corners) {
-    Eigen::Vector2d xn;
-    if (!camera.NormalizedFromPixel(c.uv, &xn)) continue;
-    object.emplace_back(c.p_TQ.x(), c.p_TQ.y(), c.p_TQ.z());
-    image.emplace_back(xn.x(), xn.y());
-  }
-  std::vector<cv::Mat> rvecs, tvecs;
-  if (object.size() < 4) return {};
-  try {
-    cv::solvePnPGeneric(object, image, cv::Mat::eye(3, 3, CV_64F), cv::Mat(), rvecs, tvecs, false,
-                        cv::SOLVEPNP_IPPE);
-  } catch (const cv::Exception&) {
-    return {};  // degenerate configuration (collinear points): no start
-  }
-  std::vector<RigidTransform> starts;
-  for (size_t k = 0; k < rvecs.size(); ++k) {
-    cv::Mat R_cv;
-    cv::Rodrigues(rvecs[k], R_cv);
-    Eigen::Matrix3d R_CT;
-    Eigen::Vector3d p_CT;
-    cv::cv2eigen(R_cv, R_CT);
-    cv::cv2eigen(tvecs[k], p_CT);
-    starts.emplace_back(R_CT, p_CT);
-  }
-  return starts;
-}
-
 // Step 2: each start refined on the pixel reprojection error (with the erosion
 // parameters); the refinements that ended with a finite cost.
 std::vector<Refined> RefineEachStart(const std::vector<RigidTransform>& starts,
@@ -427,7 +394,7 @@ PoseEstimate EstimatePose(const std::vector<CornerObservation>& corners, const C
   }
   const ErosionBasis basis(EffectiveErosionModel(corners, options), camera, corners);
   const std::vector<Refined> solutions =
-      RefineEachStart(IppeStarts(corners, camera), corners, camera, basis, options);
+      RefineEachStart(IppePlanarStarts(corners, camera), corners, camera, basis, options);
   if (solutions.empty()) {
     estimate.message = "no pose: IPPE found no start or every refinement failed";
     return estimate;

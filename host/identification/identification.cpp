@@ -50,13 +50,13 @@ void RequireIdentifiableInput(const KinematicModel& model, const ParameterVector
 
 // What one identification carries from step to step.
 struct IdentificationState {
-  ParameterVector p;                           ///< the current values, with the last stage's mask
-  std::vector<DatasetRow> rows;                ///< the calibration poses still in
-  std::vector<int64_t> rejected;               ///< pose ids rejected as outliers
-  std::vector<RejectedPose> rejected_details;  ///< the same with score and reason
-  FinalStageOutputs final_stage;               ///< the estimator's analysis and solution, on `rows`
-  bool final_ok = false;                       ///< the last estimator stage converged
-  CrossValidation cv;                          ///< of `p` on `rows` when cv_current
+  ParameterVector p;                             ///< the current values, with the last stage's mask
+  std::vector<DatasetRow> rows;                  ///< the calibration poses still in
+  std::vector<int64_t> rejected{};               ///< pose ids rejected as outliers
+  std::vector<RejectedPose> rejected_details{};  ///< the same with score and reason
+  FinalStageOutputs final_stage{};  ///< the estimator's analysis and solution, on `rows`
+  bool final_ok = false;            ///< the last estimator stage converged
+  CrossValidation cv{};             ///< of `p` on `rows` when cv_current
   bool cv_current = false;
 };
 
