@@ -9,8 +9,6 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
-#include <opencv2/calib3d.hpp>
-#include <opencv2/core/eigen.hpp>
 
 #include "common/geometry/rotation.h"
 #include "firmware/detection/planar_pose_starts.h"
