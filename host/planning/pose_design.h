@@ -50,6 +50,16 @@ Design PlanDOptimal(const InformationModel& info, int candidate_count,
 Design PlanForAccuracy(const InformationModel& info, int candidate_count,
                        const std::vector<int>& evaluated, const DesignOptions& options);
 
+/// Bayesian I-optimality: the same exchange for the mean of trace(A_k M_k^-1) over `models`,
+/// one per robot drawn from the a priori uncertainty (the same poses, each at its own
+/// robot's Jacobian), from the D-optimal design of the first. A design good for the a priori
+/// alone may lean on directions another robot of the prior does not give (Chaloner and
+/// Verdinelli 1995, Bayesian experimental design, section 2.3: the expected utility over the
+/// prior). One model: PlanForAccuracy.
+Design PlanForMeanAccuracy(const std::vector<const InformationModel*>& models,
+                           int candidate_count, const std::vector<int>& evaluated,
+                           const DesignOptions& options);
+
 /// n distinct indices of [0, count) drawn with the seed, in draw order (n <= count).
 std::vector<int> SeededSubset(int count, int n, uint64_t seed);
 

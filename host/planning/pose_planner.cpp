@@ -2,6 +2,7 @@
 #include "host/planning/pose_planner.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include <spdlog/fmt/fmt.h>
@@ -32,20 +33,148 @@ PosePlan ReachableGridPoses(const RobotDescription& robot, std::vector<int64_t>*
 
 }  // namespace
 
+bool TargetRegion::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& text) {
+    if (why) *why = text;
+    return false;
+  };
+  if (!centre.allFinite()) return fail("the target region's centre must be finite");
+  if (!half_extent.allFinite() || (half_extent.array() < 0.0).any()) {
+    return fail("the target region's half extent must be finite and >= 0");
+  }
+  if (!(std::isfinite(theta_min) && std::isfinite(theta_max) && theta_min <= theta_max)) {
+    return fail("the target region's theta range must be finite with min <= max");
+  }
+  if (positions_per_axis < 1 || positions_per_axis > 20) {
+    return fail("the target region's positions_per_axis must be in 1..20");
+  }
+  if (theta_count < 1 || theta_count > 20) return fail("theta_count must be in 1..20");
+  return true;
+}
+
+namespace {
+
+// count values spanning [low, high], ends included (the middle alone for one).
+std::vector<double> Span(double low, double high, int count) {
+  if (count == 1) return {0.5 * (low + high)};
+  std::vector<double> values;
+  for (int k = 0; k < count; ++k) values.push_back(low + (high - low) * k / (count - 1));
+  return values;
+}
+
+}  // namespace
+
+PosePlan TargetPoses(const TargetRegion& region) {
+  std::string why;
+  if (!region.IsValid(&why)) throw std::invalid_argument(why);
+  std::vector<std::vector<double>> axes;
+  for (int k = 0; k < 3; ++k) {
+    axes.push_back(Span(region.centre[k] - region.half_extent[k],
+                        region.centre[k] + region.half_extent[k], region.positions_per_axis));
+  }
+  PosePlan poses;
+  for (double z : axes[2]) {
+    for (double y : axes[1]) {
+      for (double x : axes[0]) {
+        for (double theta : Span(region.theta_min, region.theta_max, region.theta_count)) {
+          poses.push_back({static_cast<int64_t>(poses.size() + 1), EePose(x, y, z, theta)});
+        }
+      }
+    }
+  }
+  return poses;
+}
+
+std::vector<const InformationModel*> PlanningProblem::Models() const {
+  std::vector<const InformationModel*> models = {&info};
+  for (const InformationModel& model : drawn) models.push_back(&model);
+  return models;
+}
+
+namespace {
+
+// Whether `robot` reaches each of `poses_B` (its inverse kinematics, as SimulateDataset's).
+std::vector<char> ReachedBy(const SimulatedRobot& robot, const std::vector<EePose>& poses_B) {
+  PosePlan plan;
+  for (size_t j = 0; j < poses_B.size(); ++j) {
+    plan.push_back({static_cast<int64_t>(j), poses_B[j]});
+  }
+  DatasetOptions options;
+  options.noise = NoiseOptions{0.0, 0.0, 0.0};
+  options.valid_count = 0;
+  std::vector<char> reached(poses_B.size(), 1);
+  for (int64_t j : SimulateDataset(robot, plan, options).unreachable) {
+    reached[static_cast<size_t>(j)] = 0;
+  }
+  return reached;
+}
+
+// The robots of options.robust, drawn around `robot`.
+std::vector<SimulatedRobot> DrawnRobots(const RobotDescription& robot,
+                                        const RobustOptions& options) {
+  std::vector<SimulatedRobot> drawn;
+  for (int k = 0; k < options.robots; ++k) {
+    PerturbationOptions spread = options.spread;
+    spread.seed += static_cast<uint64_t>(k);
+    drawn.push_back(MakeTrueRobot(robot, TrueGeometry::kPerturbedModel31, spread));
+  }
+  return drawn;
+}
+
+// The poses every drawn robot reaches, among candidates, grid and target (the a priori
+// reaches them all): the others are left out of the problem.
+void KeepPosesEveryRobotReaches(const std::vector<SimulatedRobot>& drawn,
+                                PlanningProblem* problem, PosePlan* target) {
+  std::vector<EePose> poses_B;
+  for (const CandidatePose& pose : problem->candidates.poses) poses_B.push_back(pose.x_B);
+  for (const PlannedPose& pose : problem->grid) poses_B.push_back(pose.x);
+  for (const PlannedPose& pose : *target) poses_B.push_back(pose.x);
+  std::vector<char> keep(poses_B.size(), 1);
+  for (const SimulatedRobot& robot : drawn) {
+    const std::vector<char> reached = ReachedBy(robot, poses_B);
+    for (size_t j = 0; j < keep.size(); ++j) keep[j] = keep[j] && reached[j];
+  }
+  size_t j = 0;
+  std::vector<CandidatePose> candidates;
+  for (const CandidatePose& pose : problem->candidates.poses) {
+    if (keep[j++]) candidates.push_back(pose);
+  }
+  problem->candidates_out_of_drawn_reach =
+      static_cast<int>(problem->candidates.poses.size() - candidates.size());
+  problem->candidates.poses = std::move(candidates);
+  PosePlan grid, kept_target;
+  for (const PlannedPose& pose : problem->grid) {
+    if (keep[j++]) grid.push_back(pose);
+  }
+  for (const PlannedPose& pose : *target) {
+    if (keep[j++]) kept_target.push_back(pose);
+  }
+  problem->grid = std::move(grid);
+  *target = std::move(kept_target);
+}
+
+}  // namespace
+
 PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraModel& camera,
                                     const BoardModel& board,
                                     const PlanningProblemOptions& options) {
   PlanningProblem problem;
   problem.candidates = MakeCandidateSet(robot, camera, board, options.candidates);
+  problem.grid = ReachableGridPoses(robot, &problem.unreachable_grid_ids);
+  PosePlan target = TargetPoses(options.target);
+  problem.target_lattice_size = static_cast<int>(target.size());
+  std::vector<SimulatedRobot> drawn = DrawnRobots(robot, options.robust);
+  drawn.insert(drawn.begin(), SimulatedRobot::FromDescription(robot));  // the a priori too
+  KeepPosesEveryRobotReaches(drawn, &problem, &target);
   if (problem.candidates.poses.empty()) {
     throw std::invalid_argument("pose planning: no candidate pose (" +
                                 problem.candidates.Summary() + ")");
   }
-  problem.grid = ReachableGridPoses(robot, &problem.unreachable_grid_ids);
-  if (problem.grid.empty()) {
+  if (problem.grid.empty() || target.empty()) {
     throw std::runtime_error(
-        "pose planning: none of the paper's 81 grid poses, over which the accuracy is "
-        "predicted, is within the a priori robot's reach: check robot.yaml's lengths");
+        "pose planning: none of the paper's 81 grid poses, or none of the target region's "
+        "poses, over which the accuracy is predicted, is within the a priori robot's reach: "
+        "check robot.yaml's lengths and the region");
   }
   std::vector<EePose> poses_B;
   for (const CandidatePose& pose : problem.candidates.poses) poses_B.push_back(pose.x_B);
@@ -53,8 +182,16 @@ PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraM
     problem.grid_indices.push_back(static_cast<int>(poses_B.size()));
     poses_B.push_back(pose.x);
   }
-  problem.info =
-      BuildInformationModel(robot, options.model, poses_B, problem.candidate_count(), options.cost);
+  for (const PlannedPose& pose : target) {
+    problem.target_indices.push_back(static_cast<int>(poses_B.size()));
+    poses_B.push_back(pose.x);
+  }
+  const int analysed = problem.candidate_count();
+  problem.info = BuildInformationModel(robot, options.model, poses_B, analysed, options.cost);
+  for (size_t k = 1; k < drawn.size(); ++k) {
+    problem.drawn.push_back(BuildInformationModel(drawn[k].Description(), options.model, poses_B,
+                                                  analysed, options.cost));
+  }
   return problem;
 }
 
@@ -65,16 +202,14 @@ Design DesignFromOneStart(const PlanningProblem& problem, const DesignOptions& o
                           PlanCriterion criterion) {
   return criterion == PlanCriterion::kDOptimal
              ? PlanDOptimal(problem.info, problem.candidate_count(), options)
-             : PlanForAccuracy(problem.info, problem.candidate_count(), problem.grid_indices,
-                               options);
+             : PlanForMeanAccuracy(problem.Models(), problem.candidate_count(),
+                                   problem.target_indices, options);
 }
 
-// Lower is better: minus log det, or the predicted position RMS over the grid.
+// Lower is better: minus log det, or the predicted position RMS over the target region.
 double DesignCost(const PlanningProblem& problem, const Design& design, PlanCriterion criterion) {
-  return criterion == PlanCriterion::kDOptimal
-             ? -design.log_det
-             : PredictedPositionRms(problem.info, InformationMatrix(problem.info, design.chosen),
-                                    problem.grid_indices);
+  return criterion == PlanCriterion::kDOptimal ? -design.log_det
+                                               : PredictedTargetRms(problem, design.chosen);
 }
 
 // The best design of options.restarts starts (seeds seed, seed + 1, ...).
@@ -104,8 +239,7 @@ PlannedCampaign PlanCampaign(const PlanningProblem& problem, const DesignOptions
   for (int j : campaign.design.chosen) {
     campaign.plan.push_back({pose_id++, problem.candidates.poses[static_cast<size_t>(j)].x_B});
   }
-  campaign.predicted_position_rms = PredictedPositionRms(
-      problem.info, InformationMatrix(problem.info, campaign.design.chosen), problem.grid_indices);
+  campaign.predicted_position_rms = PredictedTargetRms(problem, campaign.design.chosen);
   return campaign;
 }
 
@@ -130,8 +264,18 @@ double GridPredictedPositionRms(const PlanningProblem& problem, int n, uint64_t 
   for (int k : SeededSubset(grid_size, std::clamp(n, 0, grid_size), seed)) {
     chosen.push_back(problem.grid_indices[static_cast<size_t>(k)]);
   }
-  return PredictedPositionRms(problem.info, InformationMatrix(problem.info, chosen),
-                              problem.grid_indices);
+  return PredictedTargetRms(problem, chosen);
+}
+
+double PredictedTargetRms(const PlanningProblem& problem, const std::vector<int>& chosen) {
+  double sum_variance = 0.0;
+  const std::vector<const InformationModel*> models = problem.Models();
+  for (const InformationModel* info : models) {
+    const double rms =
+        PredictedPositionRms(*info, InformationMatrix(*info, chosen), problem.target_indices);
+    sum_variance += rms * rms;
+  }
+  return std::sqrt(sum_variance / static_cast<double>(models.size()));
 }
 
 }  // namespace h4::host
