@@ -108,9 +108,7 @@ RobustStudyOptions ParseRobustStudyOptions(int argc, char** argv) {
 class UniformDraw {
  public:
   explicit UniformDraw(uint64_t seed) : rng_(seed) {}
-  double operator()(double value, double half_width) {
-    return value + half_width * uniform_(rng_);
-  }
+  double operator()(double value, double half_width) { return value + half_width * uniform_(rng_); }
   RigidTransform Placement(const RigidTransform& X, double translation, double rotation) {
     Eigen::Vector3d t = X.translation(), rpy = X.rpy();
     for (int k = 0; k < 3; ++k) t[k] = (*this)(t[k], translation);
@@ -143,8 +141,7 @@ Model31Parameters DrawModel31(const Model12Parameters& apriori, const GeometrySp
 }
 
 // The true robot of `prior` number `seed` (see the file comment for the spreads).
-SimulatedRobot DrawRobot(const RobotDescription& apriori, const std::string& prior,
-                         uint64_t seed) {
+SimulatedRobot DrawRobot(const RobotDescription& apriori, const std::string& prior, uint64_t seed) {
   if (prior == "simulate") {
     return MakeTrueRobot(apriori, TrueGeometry::kPerturbedModel31, {.seed = seed});
   }
@@ -195,7 +192,6 @@ std::vector<DatasetRow> TrueRows(const SimulatedRobot& truth, const PosePlan& po
   return SimulateDataset(truth, poses, exact).rows;
 }
 
-
 // What a campaign is measured with: the camera and board, and the noise settings.
 struct CampaignSetting {
   CameraModel camera;
@@ -239,7 +235,7 @@ std::vector<DatasetRow> SimulateCampaign(const SimulatedRobot& truth, const Pose
 
 struct CampaignFigures {
   bool usable = false;
-  double realised = NAN;           ///< held-out position RMS, m
+  double realised = NAN;            ///< held-out position RMS, m
   double identify_predicted = NAN;  ///< the result's covariance over the held-out poses, m
   std::string verdict12, verdict31;
   int poses = 0;
@@ -295,7 +291,6 @@ CampaignFigures RunCampaign(const SimulatedRobot& truth, const PosePlan& plan,
   return figures;
 }
 
-
 double Median(std::vector<double> values) {
   if (values.empty()) return NAN;
   std::sort(values.begin(), values.end());
@@ -334,13 +329,12 @@ struct CampaignTally {
     identify_over_realised.push_back(f.identify_predicted / f.realised);
   }
   void PrintRow(const std::string& prior, const std::string& name) const {
-    const double worst = ratio_to_grid.empty()
-                             ? NAN
-                             : *std::max_element(ratio_to_grid.begin(), ratio_to_grid.end());
-    std::printf("| %s | %s | %.4f | %.3f | %.3f | %.2f | %.2f | %d of %d | %d |\n",
-                prior.c_str(), name.c_str(), Median(realised) * 1e3, Median(ratio_to_grid),
-                worst, GeometricMean(plan_over_realised), GeometricMean(identify_over_realised),
-                unusable, trials, model12_inconsistent);
+    const double worst =
+        ratio_to_grid.empty() ? NAN : *std::max_element(ratio_to_grid.begin(), ratio_to_grid.end());
+    std::printf("| %s | %s | %.4f | %.3f | %.3f | %.2f | %.2f | %d of %d | %d |\n", prior.c_str(),
+                name.c_str(), Median(realised) * 1e3, Median(ratio_to_grid), worst,
+                GeometricMean(plan_over_realised), GeometricMean(identify_over_realised), unusable,
+                trials, model12_inconsistent);
   }
 };
 
@@ -366,11 +360,10 @@ PlannedDesigns PlanOnce(const PlanningProblem& problem, const RobustStudyOptions
 // One robot of one prior: the grid and every planned campaign, with their own noise.
 void RunRobot(const std::string& prior, int robot, const PlannedDesigns& designs,
               const CampaignSetting& setting, std::map<std::string, CampaignTally>* tallies) {
-  const SimulatedRobot truth =
-      DrawRobot(PaperAprioriRobot(), prior, static_cast<uint64_t>(robot));
+  const SimulatedRobot truth = DrawRobot(PaperAprioriRobot(), prior, static_cast<uint64_t>(robot));
   const uint64_t trial_seed = static_cast<uint64_t>(robot) * 1000 + (prior == "wide" ? 1 : 2);
-  const std::vector<DatasetRow> heldout = TrueRows(
-      truth, UniformWorkspacePoses(truth, setting.options->heldout, trial_seed + 500));
+  const std::vector<DatasetRow> heldout =
+      TrueRows(truth, UniformWorkspacePoses(truth, setting.options->heldout, trial_seed + 500));
   // The paper's practice: 10 of the 81 grid poses held out (here unused), 71 calibrate.
   const PosePlan grid = GridPosePlan();
   PosePlan grid71;
@@ -399,8 +392,7 @@ void RunRobustStudy(const RobustStudyOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const CampaignSetting setting{
       CameraModel(ReadCameraYaml(options.source_dir + "/boards/sim_camera_1024x768.yaml")),
-      BoardModel(ReadBoardYaml(options.source_dir + "/boards/aprilgrid_6x6_30mm.yaml")),
-      &options};
+      BoardModel(ReadBoardYaml(options.source_dir + "/boards/aprilgrid_6x6_30mm.yaml")), &options};
   const PlanningProblem problem =
       MakePlanningProblem(PaperAprioriRobot(), setting.camera, setting.board, options.problem);
   std::printf("%s; %d robots drawn for the criterion\n", problem.candidates.Summary().c_str(),

@@ -1,8 +1,8 @@
 // `h4cal plan`: choose N calibration poses for the measurement-space identification
-// (host/planning/pose_design.h: the predicted accuracy over the paper's grid poses by
-// default, or D-optimality, the information, with --criterion d) among the poses
-// the a priori robot reaches with the whole board in the camera's image
-// (host/planning/candidate_poses.h); writes them as a poses CSV (common/formats/README.md:
+// (host/planning/pose_design.h: the predicted accuracy over the target region, averaged over
+// robots drawn from the a priori uncertainty, by default, or D-optimality, the information, with
+// --criterion d) among the poses the a priori robot reaches with the whole board in the camera's
+// image (host/planning/candidate_poses.h); writes them as a poses CSV (common/formats/README.md:
 // pose_id,X,Y,Z,theta in B) for `h4cal collect --plan`, prints them with the predicted
 // accuracy beside the paper's grid, and with --curve the predicted accuracy against N.
 #include <algorithm>
@@ -52,7 +52,26 @@ struct PlanCommandOptions {
   /// A verification campaign for `h4cal check` (a few poses): D-optimal, below the
   /// identification's minimum, no accuracy predicted.
   bool for_check = false;
+  /// The target region (TargetRegion): centre and full size of the box in B, mm, and the
+  /// nacelle angle range, deg; the defaults are the paper's grid box.
+  std::vector<double> region_centre_mm = {0.0, 0.0, -450.0};
+  std::vector<double> region_size_mm = {200.0, 200.0, 150.0};
+  std::vector<double> region_theta_deg = {-20.0, 20.0};
+  int robust_robots = RobustOptions{}.robots;
 };
+
+TargetRegion RegionOf(const PlanCommandOptions& o) {
+  TargetRegion region;
+  for (int k = 0; k < 3; ++k) {
+    region.centre[k] = 1e-3 * o.region_centre_mm[static_cast<size_t>(k)];
+    region.half_extent[k] = 0.5e-3 * o.region_size_mm[static_cast<size_t>(k)];
+  }
+  region.theta_min = RadiansFromDegrees(o.region_theta_deg[0]);
+  region.theta_max = RadiansFromDegrees(o.region_theta_deg[1]);
+  std::string why;
+  if (!region.IsValid(&why)) throw std::invalid_argument("--region-*: " + why);
+  return region;
+}
 
 /// --for-check: candidates only where the robot was calibrated, the paper's grid (its box,
 /// theta within its +-20 deg by 10 deg). Beyond it the result extrapolates, and fresh poses
@@ -79,6 +98,8 @@ PlanningProblemOptions ProblemOptions(const PlanCommandOptions& o) {
   options.candidates.max_theta_gain = o.max_theta_gain;
   options.candidates.joint_range = ParseJointRange(o.joint_range_deg);
   if (o.for_check) KeepToTheCalibratedRegion(&options.candidates);
+  options.target = RegionOf(o);
+  options.robust.robots = o.robust_robots;
   return options;
 }
 
@@ -101,9 +122,15 @@ void PrintPlan(const PlannedCampaign& campaign, const PlanningProblem& problem, 
   const int grid_calibration = std::max(1, grid_size - 10);
   const double grid_rms = GridPredictedPositionRms(problem, grid_calibration, seed);
   std::printf(
-      "predicted board position error (one sigma, RMS over %d of the paper's 81 grid poses): "
+      "predicted board position error (one sigma, RMS over %zu poses of the target region%s): "
       "%.4f mm with these %zu poses; %.4f mm with the grid's %d calibration poses\n",
-      grid_size, campaign.predicted_position_rms * 1e3, campaign.plan.size(), grid_rms * 1e3,
+      problem.target_indices.size(),
+      problem.drawn.empty()
+          ? ""
+          : fmt::format(" and over the a priori and {} robots drawn from its uncertainty",
+                        problem.drawn.size())
+                .c_str(),
+      campaign.predicted_position_rms * 1e3, campaign.plan.size(), grid_rms * 1e3,
       grid_calibration);
 }
 
@@ -204,7 +231,8 @@ std::string CandidateGridHelp() {
       "Candidates: a grid of (X, Y, Z, theta) around ({:g}, {:g}, {:g}) m (+-{:g}, +-{:g}, "
       "+-{:g} mm by {:g}, theta {:g}..{:g} deg by {:g}), away from the singularity where the "
       "joints stop holding theta. The predicted accuracy is the one-sigma board position error "
-      "the identification's covariance predicts, RMS over the paper's 81 grid poses.",
+      "the identification's covariance predicts, RMS over the target region (--region-*) and over "
+      "robots drawn from the a priori uncertainty (--robust-robots).",
       grid.centre.x(), grid.centre.y(), grid.centre.z(), grid.half_extent.x() * 1e3,
       grid.half_extent.y() * 1e3, grid.half_extent.z() * 1e3, grid.position_step * 1e3,
       DegreesFromRadians(grid.theta.front()), DegreesFromRadians(grid.theta.back()),
@@ -237,6 +265,30 @@ void DeclarePlanCommand(CLI::App* command) {
                     "fewer poses than an identification needs, no accuracy predicted, within "
                     "the region the paper's grid calibrates (its box, theta within +-20 deg)");
   AddCandidateOptions(command, options.get());
+  command
+      ->add_option("--region-centre-mm", options->region_centre_mm,
+                   "Centre X,Y,Z of the target region (where the robot will work) in B, mm")
+      ->delimiter(',')
+      ->expected(3)
+      ->capture_default_str();
+  command
+      ->add_option("--region-size-mm", options->region_size_mm,
+                   "Full size X,Y,Z of the target region's box, mm (default: the paper's grid)")
+      ->delimiter(',')
+      ->expected(3)
+      ->capture_default_str();
+  command
+      ->add_option("--region-theta-deg", options->region_theta_deg,
+                   "Nacelle angle range MIN,MAX of the target region, deg")
+      ->delimiter(',')
+      ->expected(2)
+      ->capture_default_str();
+  command
+      ->add_option("--robust-robots", options->robust_robots,
+                   "Robots drawn from the a priori uncertainty the accuracy is averaged over "
+                   "(0: the a priori alone)")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
   command->add_option("--curve", options->curve_path,
                       "Also write the predicted accuracy against N (planned and grid) to this CSV");
   command->add_option("--curve-n", options->curve_n, "The N of the curve")->capture_default_str();

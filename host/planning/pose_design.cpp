@@ -89,27 +89,36 @@ size_t ArgMax(const std::vector<double>& values) {
   return static_cast<size_t>(std::max_element(values.begin(), values.end()) - values.begin());
 }
 
-// The information matrices of `design` under each model, plus each model's ridge.
+// `design` and the poses measured already.
+std::vector<int> WithExisting(std::vector<int> design, const std::vector<int>& existing) {
+  design.insert(design.end(), existing.begin(), existing.end());
+  return design;
+}
+
+// The information matrices of `design` and `existing` under each model, plus each model's
+// ridge.
 std::vector<Eigen::MatrixXd> InformationMatrices(const std::vector<const InformationModel*>& models,
                                                  const std::vector<int>& design,
+                                                 const std::vector<int>& existing,
                                                  const std::vector<double>& ridges) {
   std::vector<Eigen::MatrixXd> Ms;
   for (size_t k = 0; k < models.size(); ++k) {
-    Ms.push_back(InformationMatrix(*models[k], design, ridges[k]));
+    Ms.push_back(InformationMatrix(*models[k], WithExisting(design, existing), ridges[k]));
   }
   return Ms;
 }
 
 // The exchange: add the pose `scores` ranks best (sign +1) among those outside, drop the
 // one it ranks best to drop (sign -1) among the design and the added, until the dropped is
-// the added. Every model sees the same poses (one robot each, or one alone).
+// the added. Every model sees the same poses (one robot each, or one alone); the poses
+// `existing` are in every information matrix and never exchanged.
 template <typename Scores>
 Design Exchange(const std::vector<const InformationModel*>& models, int candidate_count,
-                std::vector<int> design, const std::vector<double>& ridges, int max_exchanges,
-                Scores scores) {
+                std::vector<int> design, const std::vector<int>& existing,
+                const std::vector<double>& ridges, int max_exchanges, Scores scores) {
   std::vector<char> in_design(static_cast<size_t>(candidate_count), 0);
   for (int j : design) in_design[static_cast<size_t>(j)] = 1;
-  std::vector<Eigen::MatrixXd> Ms = InformationMatrices(models, design, ridges);
+  std::vector<Eigen::MatrixXd> Ms = InformationMatrices(models, design, existing, ridges);
   Design result;
   while (result.exchanges < max_exchanges) {
     std::vector<int> outside;
@@ -129,7 +138,7 @@ Design Exchange(const std::vector<const InformationModel*>& models, int candidat
     const int dropped = design[drop_at];
     design.erase(design.begin() + static_cast<std::ptrdiff_t>(drop_at));
     // Fresh: no drift from adding and removing.
-    Ms = InformationMatrices(models, design, ridges);
+    Ms = InformationMatrices(models, design, existing, ridges);
     if (dropped == added) {
       result.converged = true;
       break;
@@ -171,16 +180,21 @@ Design PlanDOptimal(const InformationModel& info, int candidate_count,
                                 " poses asked of " + std::to_string(candidate_count) +
                                 " candidates");
   }
+  for (int j : options.existing) {
+    if (j < candidate_count || j >= info.pose_count()) {
+      throw std::invalid_argument("pose planning: an existing pose must not be a candidate");
+    }
+  }
   std::vector<int> design = SeededSubset(candidate_count, options.pose_count, options.seed);
   const std::vector<double> ridges = {RelativeRidge(info, candidate_count, options.ridge)};
-  Design result = Exchange({&info}, candidate_count, design, ridges, options.max_exchanges,
-                           [&](const std::vector<Eigen::MatrixXd>& Ms,
-                               const std::vector<int>& poses,
-                               double sign) { return LogDetChanges(info, Ms[0], poses, sign); });
+  Design result =
+      Exchange({&info}, candidate_count, design, options.existing, ridges, options.max_exchanges,
+               [&](const std::vector<Eigen::MatrixXd>& Ms, const std::vector<int>& poses,
+                   double sign) { return LogDetChanges(info, Ms[0], poses, sign); });
   design = result.chosen;
   std::sort(design.begin(), design.end());
   result.chosen = design;
-  result.log_det = LogDet(InformationMatrix(info, design));
+  result.log_det = LogDet(InformationMatrix(info, WithExisting(design, options.existing)));
   return result;
 }
 
@@ -189,9 +203,8 @@ Design PlanForAccuracy(const InformationModel& info, int candidate_count,
   return PlanForMeanAccuracy({&info}, candidate_count, evaluated, options);
 }
 
-Design PlanForMeanAccuracy(const std::vector<const InformationModel*>& models,
-                           int candidate_count, const std::vector<int>& evaluated,
-                           const DesignOptions& options) {
+Design PlanForMeanAccuracy(const std::vector<const InformationModel*>& models, int candidate_count,
+                           const std::vector<int>& evaluated, const DesignOptions& options) {
   if (models.empty()) throw std::invalid_argument("pose planning: no information model");
   const Design start = PlanDOptimal(*models.front(), candidate_count, options);
   std::vector<double> ridges;
@@ -206,16 +219,18 @@ Design PlanForMeanAccuracy(const std::vector<const InformationModel*>& models,
                                const std::vector<int>& poses, double sign) {
     std::vector<double> total(poses.size(), 0.0);
     for (size_t k = 0; k < models.size(); ++k) {
-      const std::vector<double> change = AccuracyChanges(*models[k], Ms[k], weights[k], poses, sign);
+      const std::vector<double> change =
+          AccuracyChanges(*models[k], Ms[k], weights[k], poses, sign);
       for (size_t n = 0; n < poses.size(); ++n) total[n] += change[n];
     }
     return total;
   };
-  Design result = Exchange(models, candidate_count, start.chosen, ridges, options.max_exchanges,
-                           mean_change);
+  Design result = Exchange(models, candidate_count, start.chosen, options.existing, ridges,
+                           options.max_exchanges, mean_change);
   result.exchanges += start.exchanges;
   std::sort(result.chosen.begin(), result.chosen.end());
-  result.log_det = LogDet(InformationMatrix(*models.front(), result.chosen));
+  result.log_det =
+      LogDet(InformationMatrix(*models.front(), WithExisting(result.chosen, options.existing)));
   return result;
 }
 

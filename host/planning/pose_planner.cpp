@@ -121,10 +121,10 @@ std::vector<SimulatedRobot> DrawnRobots(const RobotDescription& robot,
   return drawn;
 }
 
-// The poses every drawn robot reaches, among candidates, grid and target (the a priori
-// reaches them all): the others are left out of the problem.
-void KeepPosesEveryRobotReaches(const std::vector<SimulatedRobot>& drawn,
-                                PlanningProblem* problem, PosePlan* target) {
+// The poses every robot of `drawn` reaches, among candidates, grid and target: the others
+// are left out of the problem (a grid pose's id goes to unreachable_grid_ids).
+void KeepPosesEveryRobotReaches(const std::vector<SimulatedRobot>& drawn, PlanningProblem* problem,
+                                PosePlan* target) {
   std::vector<EePose> poses_B;
   for (const CandidatePose& pose : problem->candidates.poses) poses_B.push_back(pose.x_B);
   for (const PlannedPose& pose : problem->grid) poses_B.push_back(pose.x);
@@ -139,18 +139,44 @@ void KeepPosesEveryRobotReaches(const std::vector<SimulatedRobot>& drawn,
   for (const CandidatePose& pose : problem->candidates.poses) {
     if (keep[j++]) candidates.push_back(pose);
   }
-  problem->candidates_out_of_drawn_reach =
+  problem->candidates_drawn_robots_miss +=
       static_cast<int>(problem->candidates.poses.size() - candidates.size());
   problem->candidates.poses = std::move(candidates);
   PosePlan grid, kept_target;
   for (const PlannedPose& pose : problem->grid) {
-    if (keep[j++]) grid.push_back(pose);
+    if (keep[j++]) {
+      grid.push_back(pose);
+    } else {
+      problem->unreachable_grid_ids.push_back(pose.pose_id);
+    }
   }
   for (const PlannedPose& pose : *target) {
     if (keep[j++]) kept_target.push_back(pose);
   }
   problem->grid = std::move(grid);
   *target = std::move(kept_target);
+}
+
+// The candidates whose board every robot of `drawn` sees whole, by the candidate rule with
+// its own camera and board placement: a pose at the image's edge for the a priori set-up
+// leaves the image of a camera set up a few centimetres and degrees away.
+void KeepCandidatesEveryCameraSees(const std::vector<SimulatedRobot>& drawn,
+                                   const CameraModel& camera, const BoardModel& board,
+                                   const CandidateOptions& options, PlanningProblem* problem) {
+  std::vector<CandidateFilter> filters;
+  for (const SimulatedRobot& robot : drawn) {
+    filters.emplace_back(robot.Description(), camera, board, options);
+  }
+  std::vector<CandidatePose> seen;
+  for (const CandidatePose& pose : problem->candidates.poses) {
+    const bool everyone = std::all_of(filters.begin(), filters.end(), [&](const auto& filter) {
+      return filter.Check(pose.x_B, nullptr) == CandidateVerdict::kOk;
+    });
+    if (everyone) seen.push_back(pose);
+  }
+  problem->candidates_drawn_robots_miss +=
+      static_cast<int>(problem->candidates.poses.size() - seen.size());
+  problem->candidates.poses = std::move(seen);
 }
 
 }  // namespace
@@ -166,6 +192,7 @@ PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraM
   std::vector<SimulatedRobot> drawn = DrawnRobots(robot, options.robust);
   drawn.insert(drawn.begin(), SimulatedRobot::FromDescription(robot));  // the a priori too
   KeepPosesEveryRobotReaches(drawn, &problem, &target);
+  KeepCandidatesEveryCameraSees(drawn, camera, board, options.candidates, &problem);
   if (problem.candidates.poses.empty()) {
     throw std::invalid_argument("pose planning: no candidate pose (" +
                                 problem.candidates.Summary() + ")");
@@ -185,6 +212,10 @@ PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraM
   for (const PlannedPose& pose : target) {
     problem.target_indices.push_back(static_cast<int>(poses_B.size()));
     poses_B.push_back(pose.x);
+  }
+  for (const EePose& x_B : options.existing_poses_B) {
+    problem.existing_indices.push_back(static_cast<int>(poses_B.size()));
+    poses_B.push_back(x_B);
   }
   const int analysed = problem.candidate_count();
   problem.info = BuildInformationModel(robot, options.model, poses_B, analysed, options.cost);
@@ -231,8 +262,9 @@ Design BestDesign(const PlanningProblem& problem, DesignOptions options, PlanCri
 
 }  // namespace
 
-PlannedCampaign PlanCampaign(const PlanningProblem& problem, const DesignOptions& options,
+PlannedCampaign PlanCampaign(const PlanningProblem& problem, DesignOptions options,
                              int64_t first_pose_id, PlanCriterion criterion) {
+  options.existing = problem.existing_indices;
   PlannedCampaign campaign;
   campaign.design = BestDesign(problem, options, criterion);
   int64_t pose_id = first_pose_id;
@@ -258,24 +290,34 @@ void CheckPlannedPoseCount(const PlanningProblem& problem, int pose_count) {
       pose_count, ToString(problem.info.model), needed, problem.info.parameter_count(), needed));
 }
 
+namespace {
+
+// The RMS over the target region and problem.Models() of what the poses `measured` predict.
+double TargetRmsOf(const PlanningProblem& problem, const std::vector<int>& measured) {
+  double sum_variance = 0.0;
+  const std::vector<const InformationModel*> models = problem.Models();
+  for (const InformationModel* info : models) {
+    const double rms =
+        PredictedPositionRms(*info, InformationMatrix(*info, measured), problem.target_indices);
+    sum_variance += rms * rms;
+  }
+  return std::sqrt(sum_variance / static_cast<double>(models.size()));
+}
+
+}  // namespace
+
 double GridPredictedPositionRms(const PlanningProblem& problem, int n, uint64_t seed) {
   const int grid_size = static_cast<int>(problem.grid_indices.size());
   std::vector<int> chosen;
   for (int k : SeededSubset(grid_size, std::clamp(n, 0, grid_size), seed)) {
     chosen.push_back(problem.grid_indices[static_cast<size_t>(k)]);
   }
-  return PredictedTargetRms(problem, chosen);
+  return TargetRmsOf(problem, chosen);
 }
 
-double PredictedTargetRms(const PlanningProblem& problem, const std::vector<int>& chosen) {
-  double sum_variance = 0.0;
-  const std::vector<const InformationModel*> models = problem.Models();
-  for (const InformationModel* info : models) {
-    const double rms =
-        PredictedPositionRms(*info, InformationMatrix(*info, chosen), problem.target_indices);
-    sum_variance += rms * rms;
-  }
-  return std::sqrt(sum_variance / static_cast<double>(models.size()));
+double PredictedTargetRms(const PlanningProblem& problem, std::vector<int> chosen) {
+  chosen.insert(chosen.end(), problem.existing_indices.begin(), problem.existing_indices.end());
+  return TargetRmsOf(problem, chosen);
 }
 
 }  // namespace h4::host

@@ -60,6 +60,9 @@ struct PlanningProblemOptions {
   CostOptions cost;  ///< the measurement sigmas the information is weighted with
   TargetRegion target;
   RobustOptions robust;
+  /// Poses measured already, in B (the first batch of a sequential campaign): the plan
+  /// completes them, and the prediction counts them.
+  std::vector<EePose> existing_poses_B;
 };
 
 struct PlanningProblem {
@@ -67,7 +70,8 @@ struct PlanningProblem {
   /// The paper's 81 poses (GridPosePlan) that the a priori robot reaches: the accuracy is
   /// predicted over them.
   PosePlan grid;
-  /// Pose ids (1..81) of the grid poses out of the a priori robot's reach, left out of grid.
+  /// Pose ids (1..81) of the grid poses out of the a priori robot's reach (or of a robot
+  /// drawn from its uncertainty), left out of grid.
   std::vector<int64_t> unreachable_grid_ids;
   /// Poses 0 .. candidates.poses.size() - 1 are the candidates, the rest the grid's.
   InformationModel info;
@@ -75,11 +79,14 @@ struct PlanningProblem {
   /// Indices in info of the target region's poses that the a priori robot and every drawn
   /// robot reach: the predicted accuracy is the RMS over them.
   std::vector<int> target_indices;
+  /// Indices in info of options.existing_poses_B (in every design's information).
+  std::vector<int> existing_indices;
   int target_lattice_size = 0;  ///< the region's lattice poses, reached or not
   /// One per drawn robot, the same poses as info (candidates, grid, target).
   std::vector<InformationModel> drawn;
-  /// Candidates some drawn robot does not reach, left out of candidates.
-  int candidates_out_of_drawn_reach = 0;
+  /// Candidates some drawn robot does not reach, or at which its camera, set up as drawn,
+  /// does not see the whole board: left out of candidates.
+  int candidates_drawn_robots_miss = 0;
   int candidate_count() const { return static_cast<int>(candidates.poses.size()); }
   /// info, then every drawn robot's: what the accuracy criterion averages over.
   std::vector<const InformationModel*> Models() const;
@@ -99,12 +106,13 @@ enum class PlanCriterion { kDOptimal, kAccuracy };
 struct PlannedCampaign {
   PosePlan plan;  ///< the chosen poses in B, pose ids from first_pose_id
   Design design;
-    /// One-sigma board position error predicted over the target region, m: RMS over its poses
+  /// One-sigma board position error predicted over the target region, m: RMS over its poses
   /// and over the a priori and drawn robots (information_model.h).
   double predicted_position_rms = 0.0;
 };
 
-PlannedCampaign PlanCampaign(const PlanningProblem& problem, const DesignOptions& options,
+/// options.existing is problem.existing_indices (the poses measured already).
+PlannedCampaign PlanCampaign(const PlanningProblem& problem, DesignOptions options,
                              int64_t first_pose_id = 1,
                              PlanCriterion criterion = PlanCriterion::kDOptimal);
 
@@ -118,9 +126,9 @@ int MinimumPlannedPoses(const PlanningProblem& problem);
 void CheckPlannedPoseCount(const PlanningProblem& problem, int pose_count);
 
 /// The one-sigma board position error (m) the poses `chosen` (indices into info) predict over
-/// the target region, RMS over its poses and over problem.Models(); infinity when the
-/// poses do not determine the parameters of one of them.
-double PredictedTargetRms(const PlanningProblem& problem, const std::vector<int>& chosen);
+/// the target region with the existing poses, RMS over its poses and over problem.Models();
+/// infinity when the poses do not determine the parameters of one of them.
+double PredictedTargetRms(const PlanningProblem& problem, std::vector<int> chosen);
 
 /// The same prediction for n grid poses drawn with `seed` (n = 71: the paper's calibration
 /// poses, 10 held out; at most the reachable grid poses).
