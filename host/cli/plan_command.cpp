@@ -18,13 +18,16 @@
 #include "common/cli/subcommand.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
+#include "common/formats/dataset_csv.h"
 #include "common/formats/file_output.h"
+#include "common/formats/identification_result.h"
 #include "common/formats/poses_csv.h"
 #include "common/formats/robot_yaml.h"
 #include "common/units.h"
 #include "host/cli/commands.h"
 #include "host/cli/plan_reach.h"
 #include "host/planning/pose_planner.h"
+#include "host/planning/sequential_plan.h"
 #include "host/simulation/pose_plan.h"
 
 namespace h4::host::cli {
@@ -58,6 +61,8 @@ struct PlanCommandOptions {
   std::vector<double> region_size_mm = {200.0, 200.0, 150.0};
   std::vector<double> region_theta_deg = {-20.0, 20.0};
   int robust_robots = RobustOptions{}.robots;
+  /// A sequential campaign's second stage: the first batch's result and dataset.
+  std::string from_result_path, existing_dataset_path;
 };
 
 TargetRegion RegionOf(const PlanCommandOptions& o) {
@@ -153,11 +158,45 @@ void WriteCurve(const PlanCommandOptions& o, const PlanningProblem& problem) {
   spdlog::info("wrote the curve to {}", o.curve_path);
 }
 
+// The robot the poses are planned on, and the poses measured already: the a priori alone,
+// or (--from, --existing) the robot the first batch identified and that batch's poses.
+RobotDescription PlanningRobot(const PlanCommandOptions& o, PlanningProblemOptions* options) {
+  const RobotDescription apriori = ReadRobotYaml(o.robot_path);
+  if (o.from_result_path.empty() != o.existing_dataset_path.empty()) {
+    throw std::invalid_argument(
+        "--from and --existing go together: the first batch's result and its dataset");
+  }
+  if (o.from_result_path.empty()) return apriori;
+  const RobotDescription identified =
+      IdentifiedDescription(apriori, ReadIdentificationResult(o.from_result_path));
+  options->existing_poses_B = MeasuredPoses(identified, ReadDatasetCsv(o.existing_dataset_path));
+  // The draws spread as an a priori's; around an identified robot they would plan for an
+  // uncertainty the first batch has removed.
+  options->robust.robots = 0;
+  spdlog::info(
+      "sequential campaign: planning on the robot of {} (Model {}), completing the {} poses of {}",
+      o.from_result_path, ToString(identified.model31 ? ModelKind::k31 : ModelKind::k12),
+      options->existing_poses_B.size(), o.existing_dataset_path);
+  return identified;
+}
+
+// Says so when the poses are few for the free parameters: there the covariance, linearised
+// at one point, is optimistic (docs/results.md#planned-poses-on-robots-the-planner-has-never-seen).
+void WarnWhenThePredictionIsOptimistic(const PlanningProblem& problem, int pose_count) {
+  const int trusted = PosesForATrustedPrediction(problem);
+  if (pose_count >= trusted) return;
+  spdlog::warn(
+      "{} poses for {} free parameters: the predicted accuracy is optimistic with so few (a "
+      "linearised covariance); plan {} or more for a prediction to trust",
+      pose_count, problem.info.parameter_count(), trusted);
+}
+
 void Run(const PlanCommandOptions& o) {
-  const RobotDescription robot = ReadRobotYaml(o.robot_path);
+  PlanningProblemOptions problem_options = ProblemOptions(o);
+  const RobotDescription robot = PlanningRobot(o, &problem_options);
   const CameraModel camera(ReadCameraYaml(o.camera_path));
   const BoardModel board(ReadBoardYaml(o.board_path));
-  const PlanningProblem problem = MakePlanningProblem(robot, camera, board, ProblemOptions(o));
+  const PlanningProblem problem = MakePlanningProblem(robot, camera, board, problem_options);
   spdlog::info("{}", problem.candidates.Summary());
   spdlog::info("{} free parameters; fixed by the identifiability analysis: {}",
                problem.info.parameter_count(), problem.info.fixed.size());
@@ -168,7 +207,11 @@ void Run(const PlanCommandOptions& o) {
         problem.unreachable_grid_ids.size(), fmt::join(problem.unreachable_grid_ids, ", "),
         problem.grid.size());
   }
-  if (!o.for_check) CheckPlannedPoseCount(problem, o.pose_count);
+  const int total = o.pose_count + static_cast<int>(problem.existing_indices.size());
+  if (!o.for_check) {
+    CheckPlannedPoseCount(problem, total);
+    WarnWhenThePredictionIsOptimistic(problem, total);
+  }
   DesignOptions design;
   design.pose_count = o.pose_count;
   design.seed = o.seed;
@@ -289,6 +332,12 @@ void DeclarePlanCommand(CLI::App* command) {
                    "(0: the a priori alone)")
       ->check(CLI::Range(0, 100))
       ->capture_default_str();
+  command->add_option("--from", options->from_result_path,
+                      "Sequential campaign: plan the rest on this result of the first batch "
+                      "(with --existing)");
+  command->add_option("--existing", options->existing_dataset_path,
+                      "Sequential campaign: the first batch's dataset CSV, whose poses the plan "
+                      "completes (--count more)");
   command->add_option("--curve", options->curve_path,
                       "Also write the predicted accuracy against N (planned and grid) to this CSV");
   command->add_option("--curve-n", options->curve_n, "The N of the curve")->capture_default_str();

@@ -280,6 +280,12 @@ int MinimumPlannedPoses(const PlanningProblem& problem) {
   return std::max(MinimumPosesInFit(free_parameters), (free_parameters + 5) / 6);
 }
 
+int PosesForATrustedPrediction(const PlanningProblem& problem) {
+  return std::max(
+      MinimumPlannedPoses(problem),
+      static_cast<int>(std::ceil(kTrustedPosesPerParameter * problem.info.parameter_count())));
+}
+
 void CheckPlannedPoseCount(const PlanningProblem& problem, int pose_count) {
   const int needed = MinimumPlannedPoses(problem);
   if (pose_count >= needed) return;

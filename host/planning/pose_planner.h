@@ -121,6 +121,14 @@ PlannedCampaign PlanCampaign(const PlanningProblem& problem, DesignOptions optio
 /// free parameter), and a design with fewer residuals than free parameters predicts nothing.
 int MinimumPlannedPoses(const PlanningProblem& problem);
 
+/// The fewest poses whose predicted accuracy can be trusted: below it the covariance,
+/// linearised at the a priori, is optimistic (too few residuals per free parameter for the
+/// misfit of the linearisation to average out), and `h4cal plan` says so.
+/// kTrustedPosesPerParameter poses per free parameter, measured by the robust planning study
+/// (docs/results.md#planned-poses-on-robots-the-planner-has-never-seen).
+inline constexpr double kTrustedPosesPerParameter = 0.8;
+int PosesForATrustedPrediction(const PlanningProblem& problem);
+
 /// Throws std::invalid_argument, saying how many poses the model needs, when `pose_count` is
 /// below MinimumPlannedPoses(problem).
 void CheckPlannedPoseCount(const PlanningProblem& problem, int pose_count);
