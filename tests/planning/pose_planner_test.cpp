@@ -84,7 +84,7 @@ TEST(PosePlanner, DrawnRobotsSeeTheSamePosesThroughOtherJacobians) {
   const PlanningProblem& problem = SharedRobustProblem();
   ASSERT_EQ(problem.drawn.size(), 2u);
   ASSERT_EQ(problem.Models().size(), 3u);
-  EXPECT_EQ(problem.target_lattice_size, 27);
+  EXPECT_EQ(problem.target_lattice_size, 3 * 3 * 3 * 3);
   EXPECT_FALSE(problem.target_indices.empty());
   for (const InformationModel& drawn : problem.drawn) {
     EXPECT_EQ(drawn.pose_count(), problem.info.pose_count());
