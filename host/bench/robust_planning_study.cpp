@@ -21,7 +21,9 @@
 //
 //   h4_robust_planning_study [--priors wide,rough-camera] [--robots R] [--first-robot S]
 //       [--noise constant|renderer] [--n 25,71] [--heldout 40] [--robust-robots K]
-//       [--criterion accuracy|d] [--sigma-px P] [--source-dir DIR]
+//       [--lattice P,T] [--criterion accuracy|d] [--sigma-px P] [--source-dir DIR]
+// --robust-robots 0 --lattice 3,3 is the planner before issue 29: the a priori alone, the
+// accuracy over the grid's own 81 poses (the 3 x 3 x 3 x 3 lattice of the grid's box).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -93,6 +95,11 @@ RobustStudyOptions ParseRobustStudyOptions(int argc, char** argv) {
       o.heldout = std::stoi(value);
     } else if (flag == "--robust-robots") {
       o.problem.robust.robots = std::stoi(value);
+    } else if (flag == "--lattice") {  // POSITIONS_PER_AXIS,THETAS of the target region
+      const std::vector<std::string> counts = SplitWords(value);
+      if (counts.size() != 2) throw std::invalid_argument("--lattice P,T");
+      o.problem.target.positions_per_axis = std::stoi(counts[0]);
+      o.problem.target.theta_count = std::stoi(counts[1]);
     } else if (flag == "--criterion") {
       o.criterion = value == "d" ? PlanCriterion::kDOptimal : PlanCriterion::kAccuracy;
     } else if (flag == "--source-dir") {

@@ -120,5 +120,28 @@ TEST(PosePlanner, ADesignPlannedForARegionIsBetterThere) {
             0.98 * PredictedTargetRms(corner, for_box.design.chosen));
 }
 
+// A sequential campaign's second stage completes the poses measured already: planned with
+// them in its information, it predicts better with them than a plan made without them
+// does with them, and it counts them in its prediction.
+TEST(PosePlanner, TheSecondBatchCompletesTheFirst) {
+  const PlanningProblem& first_problem = SharedRobustProblem();
+  DesignOptions options;
+  options.pose_count = 20;
+  const PlannedCampaign first = PlanCampaign(first_problem, options, 1, PlanCriterion::kAccuracy);
+  PlanningProblemOptions second_options = CoarseRobustOptions();
+  for (const PlannedPose& pose : first.plan) second_options.existing_poses_B.push_back(pose.x);
+  const PlanningProblem second_problem = RobustProblem(second_options);
+  ASSERT_EQ(second_problem.existing_indices.size(), 20u);
+  ASSERT_EQ(second_problem.candidate_count(), first_problem.candidate_count());
+  const PlannedCampaign second =
+      PlanCampaign(second_problem, options, 101, PlanCriterion::kAccuracy);
+  EXPECT_EQ(second.plan.front().pose_id, 101);
+  // The same 20 poses planned again without the first batch, then measured with it.
+  const PlannedCampaign blind = PlanCampaign(first_problem, options, 1, PlanCriterion::kAccuracy);
+  EXPECT_LT(second.predicted_position_rms, PredictedTargetRms(second_problem, blind.design.chosen));
+  // 40 poses predict better than the first 20 alone.
+  EXPECT_LT(second.predicted_position_rms, 0.9 * first.predicted_position_rms);
+}
+
 }  // namespace
 }  // namespace h4::host
