@@ -21,7 +21,11 @@
 //
 //   h4_robust_planning_study [--priors wide,rough-camera] [--robots R] [--first-robot S]
 //       [--noise constant|renderer] [--n 25,71] [--heldout 40] [--robust-robots K]
-//       [--lattice P,T] [--criterion accuracy|d] [--sigma-px P] [--source-dir DIR]
+//       [--lattice P,T] [--sequential FIRST] [--criterion accuracy|d] [--sigma-px P]
+//       [--source-dir DIR]
+// --sequential FIRST: also a sequential campaign of each N above FIRST: FIRST poses planned
+// within the target region, identified, the rest planned on the identified robot with
+// them (`h4cal plan --from --existing`), then all identified together.
 // --robust-robots 0 --lattice 3,3 is the planner before issue 29: the a priori alone, the
 // accuracy over the grid's own 81 poses (the 3 x 3 x 3 x 3 lattice of the grid's box).
 #include <algorithm>
@@ -41,6 +45,7 @@
 #include "host/bench/study_main.h"
 #include "host/identification/identification.h"
 #include "host/planning/pose_planner.h"
+#include "host/planning/sequential_plan.h"
 #include "host/simulation/corner_campaign.h"
 #include "host/simulation/dataset_simulator.h"
 #include "host/simulation/paper_scenario.h"
@@ -60,6 +65,9 @@ struct RobustStudyOptions {
   std::string source_dir = H4_SOURCE_DIR;
   PlanCriterion criterion = PlanCriterion::kAccuracy;
   PlanningProblemOptions problem;  ///< `h4cal plan`'s defaults
+  /// Poses of a sequential campaign's first batch (0: none run); each N above it is also
+  /// run sequentially, N - first batch planned on the identified robot.
+  int sequential_first = 0;
 };
 
 std::vector<std::string> SplitWords(const std::string& text) {
@@ -95,6 +103,8 @@ RobustStudyOptions ParseRobustStudyOptions(int argc, char** argv) {
       o.heldout = std::stoi(value);
     } else if (flag == "--robust-robots") {
       o.problem.robust.robots = std::stoi(value);
+    } else if (flag == "--sequential") {
+      o.sequential_first = std::stoi(value);
     } else if (flag == "--lattice") {  // POSITIONS_PER_AXIS,THETAS of the target region
       const std::vector<std::string> counts = SplitWords(value);
       if (counts.size() != 2) throw std::invalid_argument("--lattice P,T");
@@ -275,12 +285,12 @@ void JudgeOnHeldOut(const IdentificationOutcome& outcome, const RobotDescription
   }
 }
 
-// Simulates, identifies (Model 12, then Model 31 from it) and judges one campaign.
-CampaignFigures RunCampaign(const SimulatedRobot& truth, const PosePlan& plan,
-                            const CampaignSetting& setting, uint64_t seed,
-                            const std::vector<DatasetRow>& heldout) {
+// Identifies `rows` (Model 12, then Model 31 from it) and judges the result on `heldout`;
+// *model31_result (when given) receives the Model 31 result.
+CampaignFigures IdentifyAndJudge(const std::vector<DatasetRow>& rows,
+                                 const std::vector<DatasetRow>& heldout,
+                                 IdentificationResult* model31_result = nullptr) {
   const RobotDescription apriori = PaperAprioriRobot();
-  const std::vector<DatasetRow> rows = SimulateCampaign(truth, plan, setting, seed);
   CampaignFigures figures;
   figures.poses = static_cast<int>(rows.size());
   const IdentificationOptions options;
@@ -292,10 +302,62 @@ CampaignFigures RunCampaign(const SimulatedRobot& truth, const PosePlan& plan,
   figures.usable = model31.summary.usable;
   if (!figures.usable) {
     std::fprintf(stderr, "unusable identification: %s\n", model31.summary.message.c_str());
-    return figures;
+  } else {
+    JudgeOnHeldOut(model31, apriori, heldout, &figures);
   }
-  JudgeOnHeldOut(model31, apriori, heldout, &figures);
+  if (model31_result) *model31_result = model31.result;
   return figures;
+}
+
+// Simulates, identifies and judges one campaign.
+CampaignFigures RunCampaign(const SimulatedRobot& truth, const PosePlan& plan,
+                            const CampaignSetting& setting, uint64_t seed,
+                            const std::vector<DatasetRow>& heldout) {
+  return IdentifyAndJudge(SimulateCampaign(truth, plan, setting, seed), heldout);
+}
+
+// The first batch of a sequential campaign plans among candidates within the target
+// region only: poses a camera set up centimetres and degrees away still sees whole.
+PlanningProblemOptions FirstBatchOptions(PlanningProblemOptions options) {
+  options.candidates.centre = options.target.centre;
+  options.candidates.half_extent = options.target.half_extent;
+  options.candidates.theta.clear();
+  for (double t = options.target.theta_min; t <= options.target.theta_max + 1e-9;
+       t += RadiansFromDegrees(10.0)) {
+    options.candidates.theta.push_back(t);
+  }
+  return options;
+}
+
+struct SequentialFigures {
+  CampaignFigures figures;
+  double plan_predicted = NAN;  ///< the second stage's prediction, m
+};
+
+// A sequential campaign of `total` poses: the first batch measured and identified, the
+// rest planned on the identified robot (`h4cal plan --from --existing`), then both fitted.
+SequentialFigures RunSequential(const SimulatedRobot& truth, const PosePlan& first_plan, int total,
+                                const CampaignSetting& setting, uint64_t seed,
+                                const std::vector<DatasetRow>& heldout) {
+  std::vector<DatasetRow> rows = SimulateCampaign(truth, first_plan, setting, seed);
+  IdentificationResult first;
+  SequentialFigures out;
+  out.figures = IdentifyAndJudge(rows, heldout, &first);
+  if (!out.figures.usable) return out;
+  PlanningProblemOptions second = setting.options->problem;
+  second.robust.robots = 0;  // as `h4cal plan --from`
+  const RobotDescription identified = IdentifiedDescription(PaperAprioriRobot(), first);
+  second.existing_poses_B = MeasuredPoses(identified, rows);
+  const PlanningProblem problem =
+      MakePlanningProblem(identified, setting.camera, setting.board, second);
+  DesignOptions design;
+  design.pose_count = std::max(1, total - static_cast<int>(rows.size()));
+  const PlannedCampaign rest = PlanCampaign(problem, design, 1001, setting.options->criterion);
+  out.plan_predicted = rest.predicted_position_rms;
+  const std::vector<DatasetRow> more = SimulateCampaign(truth, rest.plan, setting, seed + 13);
+  rows.insert(rows.end(), more.begin(), more.end());
+  out.figures = IdentifyAndJudge(rows, heldout);
+  return out;
 }
 
 double Median(std::vector<double> values) {
@@ -323,13 +385,13 @@ struct CampaignTally {
   std::vector<double> realised, ratio_to_grid, plan_over_realised, identify_over_realised;
   int unusable = 0, model12_inconsistent = 0, trials = 0;
 
+  // A campaign left with too few poses (the true camera missed planned ones) is unusable
+  // too: identify says so, and the user has to measure again; its figures still count.
   void Add(const CampaignFigures& f, double plan_predicted, double grid_realised) {
     ++trials;
     if (f.verdict12 == "inconsistent_with_apriori") ++model12_inconsistent;
-    if (!f.usable || !std::isfinite(f.realised)) {
-      ++unusable;
-      return;
-    }
+    if (!f.usable || !std::isfinite(f.realised) || f.verdict31 == "too_few_poses") ++unusable;
+    if (!std::isfinite(f.realised)) return;
     realised.push_back(f.realised);
     if (std::isfinite(grid_realised)) ratio_to_grid.push_back(f.realised / grid_realised);
     plan_over_realised.push_back(plan_predicted / f.realised);
@@ -348,6 +410,7 @@ struct CampaignTally {
 struct PlannedDesigns {
   std::map<int, PlannedCampaign> by_count;
   double grid_predicted = NAN;  ///< the plan's prediction for the grid's 71 poses
+  PosePlan first_batch;         ///< a sequential campaign's first batch (empty: none)
 };
 
 PlannedDesigns PlanOnce(const PlanningProblem& problem, const RobustStudyOptions& options) {
@@ -379,10 +442,11 @@ void RunRobot(const std::string& prior, int robot, const PlannedDesigns& designs
   }
   const CampaignFigures grid_figures = RunCampaign(truth, grid71, setting, trial_seed, heldout);
   (*tallies)["grid 71"].Add(grid_figures, designs.grid_predicted, grid_figures.realised);
-  std::printf("%s robot %d (%zu held out): grid-71 %.4f mm (plan %.4f, identify %.4f, %s/%s)",
-              prior.c_str(), robot, heldout.size(), grid_figures.realised * 1e3,
-              designs.grid_predicted * 1e3, grid_figures.identify_predicted * 1e3,
-              grid_figures.verdict12.c_str(), grid_figures.verdict31.c_str());
+  std::printf(
+      "%s robot %d (%zu held out): grid-71 %.4f mm (%d poses, plan %.4f, identify %.4f, %s/%s)",
+      prior.c_str(), robot, heldout.size(), grid_figures.realised * 1e3, grid_figures.poses,
+      designs.grid_predicted * 1e3, grid_figures.identify_predicted * 1e3,
+      grid_figures.verdict12.c_str(), grid_figures.verdict31.c_str());
   for (const auto& [n, campaign] : designs.by_count) {
     const CampaignFigures f = RunCampaign(truth, campaign.plan, setting, trial_seed + 7, heldout);
     (*tallies)["planned " + std::to_string(n)].Add(f, campaign.predicted_position_rms,
@@ -390,6 +454,18 @@ void RunRobot(const std::string& prior, int robot, const PlannedDesigns& designs
     std::printf("; planned-%d %.4f mm (%d poses, plan %.4f, identify %.4f, %s/%s)", n,
                 f.realised * 1e3, f.poses, campaign.predicted_position_rms * 1e3,
                 f.identify_predicted * 1e3, f.verdict12.c_str(), f.verdict31.c_str());
+  }
+  for (int n : setting.options->pose_counts) {
+    const int first = static_cast<int>(designs.first_batch.size());
+    if (first == 0 || n <= first) continue;
+    const SequentialFigures f =
+        RunSequential(truth, designs.first_batch, n, setting, trial_seed + 11, heldout);
+    (*tallies)["sequential " + std::to_string(first) + "+" + std::to_string(n - first)].Add(
+        f.figures, f.plan_predicted, grid_figures.realised);
+    std::printf("; sequential-%d %.4f mm (%d poses, plan %.4f, identify %.4f, %s/%s)", n,
+                f.figures.realised * 1e3, f.figures.poses, f.plan_predicted * 1e3,
+                f.figures.identify_predicted * 1e3, f.figures.verdict12.c_str(),
+                f.figures.verdict31.c_str());
   }
   std::printf("\n");
   std::fflush(stdout);
@@ -404,7 +480,17 @@ void RunRobustStudy(const RobustStudyOptions& options) {
       MakePlanningProblem(PaperAprioriRobot(), setting.camera, setting.board, options.problem);
   std::printf("%s; %d robots drawn for the criterion\n", problem.candidates.Summary().c_str(),
               static_cast<int>(problem.drawn.size()));
-  const PlannedDesigns designs = PlanOnce(problem, options);
+  PlannedDesigns designs = PlanOnce(problem, options);
+  if (options.sequential_first > 0) {
+    const PlanningProblem first_problem = MakePlanningProblem(
+        PaperAprioriRobot(), setting.camera, setting.board, FirstBatchOptions(options.problem));
+    DesignOptions design;
+    design.pose_count = options.sequential_first;
+    const PlannedCampaign first = PlanCampaign(first_problem, design, 1, options.criterion);
+    designs.first_batch = first.plan;
+    std::printf("sequential first batch, %d poses in the target region: predicted %.4f mm\n",
+                options.sequential_first, first.predicted_position_rms * 1e3);
+  }
   std::map<std::string, std::map<std::string, CampaignTally>> tallies;
   for (const std::string& prior : options.priors) {
     for (int r = options.first_robot; r < options.first_robot + options.robots; ++r) {
