@@ -22,7 +22,7 @@
 //   h4_robust_planning_study [--priors wide,rough-camera] [--robots R] [--first-robot S]
 //       [--noise constant|renderer] [--n 25,71] [--heldout 40] [--robust-robots K]
 //       [--lattice P,T] [--sequential FIRST] [--criterion accuracy|d] [--sigma-px P]
-//       [--source-dir DIR]
+//       [--plan-corner-sigma-px P] [--setup-sigma MM,DEG] [--source-dir DIR]
 // --sequential FIRST: also a sequential campaign of each N above FIRST: FIRST poses planned
 // within the target region, identified, the rest planned on the identified robot with
 // them (`h4cal plan --from --existing`), then all identified together.
@@ -103,6 +103,13 @@ RobustStudyOptions ParseRobustStudyOptions(int argc, char** argv) {
       o.heldout = std::stoi(value);
     } else if (flag == "--robust-robots") {
       o.problem.robust.robots = std::stoi(value);
+    } else if (flag == "--plan-corner-sigma-px") {  // the planner told the camera's noise
+      o.problem.corner_sigma_px = std::stod(value);
+    } else if (flag == "--setup-sigma") {  // MM,DEG: the drawn robots' camera set-up spread
+      const std::vector<std::string> sigma = SplitWords(value);
+      if (sigma.size() != 2) throw std::invalid_argument("--setup-sigma MM,DEG");
+      o.problem.robust.spread.camera_translation_std = 1e-3 * std::stod(sigma[0]);
+      o.problem.robust.spread.camera_rotation_std = RadiansFromDegrees(std::stod(sigma[1]));
     } else if (flag == "--sequential") {
       o.sequential_first = std::stoi(value);
     } else if (flag == "--lattice") {  // POSITIONS_PER_AXIS,THETAS of the target region

@@ -61,6 +61,10 @@ struct PlanCommandOptions {
   std::vector<double> region_size_mm = {200.0, 200.0, 150.0};
   std::vector<double> region_theta_deg = {-20.0, 20.0};
   int robust_robots = RobustOptions{}.robots;
+  double corner_sigma_px = 0.0;  ///< PlanningProblemOptions::corner_sigma_px
+  /// The camera set-up spread of the drawn robots (RobustOptions::spread), mm and deg.
+  double setup_sigma_mm = 1e3 * RobustOptions{}.spread.camera_translation_std;
+  double setup_sigma_deg = DegreesFromRadians(RobustOptions{}.spread.camera_rotation_std);
   /// A sequential campaign's second stage: the first batch's result and dataset.
   std::string from_result_path, existing_dataset_path;
 };
@@ -105,6 +109,9 @@ PlanningProblemOptions ProblemOptions(const PlanCommandOptions& o) {
   if (o.for_check) KeepToTheCalibratedRegion(&options.candidates);
   options.target = RegionOf(o);
   options.robust.robots = o.robust_robots;
+  options.corner_sigma_px = o.corner_sigma_px;
+  options.robust.spread.camera_translation_std = 1e-3 * o.setup_sigma_mm;
+  options.robust.spread.camera_rotation_std = RadiansFromDegrees(o.setup_sigma_deg);
   return options;
 }
 
@@ -180,14 +187,16 @@ RobotDescription PlanningRobot(const PlanCommandOptions& o, PlanningProblemOptio
   return identified;
 }
 
-// Says so when the poses are few for the free parameters: there the covariance, linearised
-// at one point, is optimistic (docs/results.md#planned-poses-on-robots-the-planner-has-never-seen).
-void WarnWhenThePredictionIsOptimistic(const PlanningProblem& problem, int pose_count) {
+// Says so when the poses are few for the free parameters: a campaign with no poses to spare
+// ends too_few_poses when the camera misses a few or the fit rejects them
+// (docs/results.md#planned-poses-on-robots-the-planner-has-never-seen).
+void WarnWhenThePosesAreFew(const PlanningProblem& problem, int pose_count) {
   const int trusted = PosesForATrustedPrediction(problem);
   if (pose_count >= trusted) return;
   spdlog::warn(
-      "{} poses for {} free parameters: the predicted accuracy is optimistic with so few (a "
-      "linearised covariance); plan {} or more for a prediction to trust",
+      "{} poses for {} free parameters leave none to spare: a campaign that loses a few (not "
+      "seen, rejected as outliers) cannot be identified, and the predicted accuracy does not "
+      "hold; plan {} or more",
       pose_count, problem.info.parameter_count(), trusted);
 }
 
@@ -210,7 +219,7 @@ void Run(const PlanCommandOptions& o) {
   const int total = o.pose_count + static_cast<int>(problem.existing_indices.size());
   if (!o.for_check) {
     CheckPlannedPoseCount(problem, total);
-    WarnWhenThePredictionIsOptimistic(problem, total);
+    WarnWhenThePosesAreFew(problem, total);
   }
   DesignOptions design;
   design.pose_count = o.pose_count;
@@ -331,6 +340,24 @@ void DeclarePlanCommand(CLI::App* command) {
                    "Robots drawn from the a priori uncertainty the accuracy is averaged over "
                    "(0: the a priori alone)")
       ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  command
+      ->add_option("--setup-sigma-mm", options->setup_sigma_mm,
+                   "How far the camera may be from robot.yaml's X_BC, one sigma per axis, mm "
+                   "(the drawn robots' cameras; candidates one of them misses are left out)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command
+      ->add_option("--setup-sigma-deg", options->setup_sigma_deg,
+                   "The same for the camera's orientation, deg")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command
+      ->add_option("--corner-sigma-px", options->corner_sigma_px,
+                   "Corner noise of the camera, px: each pose's noise from the board pose "
+                   "solved from its corners, as the camera reports it (0: 0.2 mm, 0.03 deg "
+                   "for every pose, as a dataset without sigma columns)")
+      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   command->add_option("--from", options->from_result_path,
                       "Sequential campaign: plan the rest on this result of the first batch "

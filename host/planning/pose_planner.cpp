@@ -179,6 +179,22 @@ void KeepCandidatesEveryCameraSees(const std::vector<SimulatedRobot>& drawn,
   problem->candidates.poses = std::move(seen);
 }
 
+// Each pose's camera noise with options.corner_sigma_px (none without it: the cost's
+// constant sigmas). The target poses are evaluated, never measured: they keep the cost's
+// default sigma_t, which the predicted error is scaled back by.
+std::vector<PoseSigma> MeasuredPoseSigmas(const RobotDescription& robot, const CameraModel& camera,
+                                          const BoardModel& board,
+                                          const PlanningProblemOptions& options,
+                                          const std::vector<EePose>& poses_B,
+                                          const std::vector<int>& target_indices) {
+  if (!(options.corner_sigma_px > 0.0)) return {};
+  const PoseSigma fallback{options.cost.default_sigma_t, options.cost.default_sigma_r};
+  std::vector<PoseSigma> sigmas =
+      PoseSigmasFromCorners(robot, camera, board, poses_B, options.corner_sigma_px, fallback);
+  for (int j : target_indices) sigmas[static_cast<size_t>(j)] = fallback;
+  return sigmas;
+}
+
 }  // namespace
 
 PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraModel& camera,
@@ -218,10 +234,13 @@ PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraM
     poses_B.push_back(x_B);
   }
   const int analysed = problem.candidate_count();
-  problem.info = BuildInformationModel(robot, options.model, poses_B, analysed, options.cost);
+  const std::vector<PoseSigma> sigmas =
+      MeasuredPoseSigmas(robot, camera, board, options, poses_B, problem.target_indices);
+  problem.info =
+      BuildInformationModel(robot, options.model, poses_B, analysed, options.cost, sigmas);
   for (size_t k = 1; k < drawn.size(); ++k) {
     problem.drawn.push_back(BuildInformationModel(drawn[k].Description(), options.model, poses_B,
-                                                  analysed, options.cost));
+                                                  analysed, options.cost, sigmas));
   }
   return problem;
 }

@@ -143,5 +143,15 @@ TEST(PosePlanner, TheSecondBatchCompletesTheFirst) {
   EXPECT_LT(second.predicted_position_rms, 0.9 * first.predicted_position_rms);
 }
 
+// A plan at identify's minimum has no pose to spare: the planner asks for more before it
+// trusts its prediction.
+TEST(PosePlanner, ThePredictionIsTrustedAboveTheMinimumOnly) {
+  const PlanningProblem& problem = SharedRobustProblem();
+  ASSERT_EQ(problem.info.model, ModelKind::k31);
+  EXPECT_GT(PosesForATrustedPrediction(problem), MinimumPlannedPoses(problem));
+  EXPECT_GE(PosesForATrustedPrediction(problem),
+            kTrustedPosesPerParameter * problem.info.parameter_count());
+}
+
 }  // namespace
 }  // namespace h4::host
