@@ -133,10 +133,8 @@ int MinimumPlannedPoses(const PlanningProblem& problem);
 /// The fewest poses a plan should have for its prediction to hold: below it a campaign has
 /// no poses to spare, and a few lost (a camera set up elsewhere does not see them, the fit
 /// rejects them as outliers) leave it too few to identify, and `h4cal plan` says so.
-/// kTrustedPosesPerParameter poses per free parameter (30 for Model 31's 40), from the robust
-/// planning study: of 30 campaigns of robots it had never seen, 20 planned poses left 8
-/// unusable, 25 left 4, 30 left 1
-/// (docs/results.md#planned-poses-on-robots-the-planner-has-never-seen).
+/// kTrustedPosesPerParameter poses per free parameter: 30 for Model 31's 40, chosen from the
+/// robust planning study (docs/results.md#planned-poses-on-robots-the-planner-has-never-seen).
 inline constexpr double kTrustedPosesPerParameter = 0.75;
 int PosesForATrustedPrediction(const PlanningProblem& problem);
 
