@@ -159,7 +159,8 @@ double RelativeRidge(const InformationModel& info, int candidate_count, double r
 }
 
 // A = sum of T_j^T T_j over the translation rows of the poses `evaluated`.
-Eigen::MatrixXd TranslationWeight(const InformationModel& info, const std::vector<int>& evaluated) {
+Eigen::MatrixXd TargetTranslationWeight(const InformationModel& info,
+                                        const std::vector<int>& evaluated) {
   const int k = info.parameter_count();
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(k, k);
   for (int j : evaluated) {
@@ -211,7 +212,7 @@ Design PlanForMeanAccuracy(const std::vector<const InformationModel*>& models, i
   std::vector<Eigen::MatrixXd> weights;
   for (const InformationModel* info : models) {
     ridges.push_back(RelativeRidge(*info, candidate_count, options.ridge));
-    weights.push_back(TranslationWeight(*info, evaluated));
+    weights.push_back(TargetTranslationWeight(*info, evaluated));
   }
   // The mean over the models of trace(A_k M_k^-1): each term is a variance in measurement
   // sigmas (column scaling cancels), so the models add as robots of one prior.
