@@ -276,47 +276,9 @@ void AddCandidateOptions(CLI::App* command, PlanCommandOptions* options) {
       ->capture_default_str();
 }
 
-// The candidate grid as --help describes it, from CandidateOptions' defaults.
-std::string CandidateGridHelp() {
-  const CandidateOptions grid;
-  return fmt::format(
-      "Candidates: a grid of (X, Y, Z, theta) around ({:g}, {:g}, {:g}) m (+-{:g}, +-{:g}, "
-      "+-{:g} mm by {:g}, theta {:g}..{:g} deg by {:g}), away from the singularity where the "
-      "joints stop holding theta. The predicted accuracy is the one-sigma board position error "
-      "the identification's covariance predicts, RMS over the target region (--region-*) and over "
-      "robots drawn from the a priori uncertainty (--robust-robots).",
-      grid.centre.x(), grid.centre.y(), grid.centre.z(), grid.half_extent.x() * 1e3,
-      grid.half_extent.y() * 1e3, grid.half_extent.z() * 1e3, grid.position_step * 1e3,
-      DegreesFromRadians(grid.theta.front()), DegreesFromRadians(grid.theta.back()),
-      DegreesFromRadians(grid.theta[1] - grid.theta[0]));
-}
-
-}  // namespace
-
-void DeclarePlanCommand(CLI::App* command) {
-  const auto options = std::make_shared<PlanCommandOptions>();
-  h4::cli::AddRobotOption(command, &options->robot_path, "A priori robot.yaml (with X_BC, X_TE)")
-      ->required();
-  h4::cli::AddCameraOption(command, &options->camera_path)->required();
-  h4::cli::AddBoardOption(command, &options->board_path)->required();
-  h4::cli::AddOutOption(command, &options->out_path, "Output poses CSV");
-  // --poses is ik's poses CSV; here it was the count, still accepted.
-  command->add_option("--count,--poses", options->pose_count, "Number of poses N")
-      ->check(CLI::Range(1, 10000))
-      ->capture_default_str();
-  h4::cli::AddModelOption(command, &options->model, "Model the poses are planned for");
-  h4::cli::AddChoiceOption(command, "--criterion", &options->criterion, kPlanCriterionNames,
-                           "d: D-optimal (information); accuracy: the predicted accuracy over "
-                           "the grid's poses (I-optimal, from the D-optimal design)")
-      ->capture_default_str();
-  h4::cli::AddSeedOption(command, &options->seed, "Seed of the exchange's start");
-  command->add_option("--first-id", options->first_id, "pose_id of the first pose")
-      ->capture_default_str();
-  command->add_flag("--for-check", options->for_check,
-                    "Plan a verification campaign for h4cal check (e.g. --count 5): D-optimal, "
-                    "fewer poses than an identification needs, no accuracy predicted, within "
-                    "the region the paper's grid calibrates (its box, theta within +-20 deg)");
-  AddCandidateOptions(command, options.get());
+// The options of the target region, the drawn robots, the camera noise and a sequential
+// campaign's second stage: what the plan is for.
+void AddTargetAndRobustOptions(CLI::App* command, PlanCommandOptions* options) {
   command
       ->add_option("--region-centre-mm", options->region_centre_mm,
                    "Centre X,Y,Z of the target region (where the robot will work) in B, mm")
@@ -365,6 +327,50 @@ void DeclarePlanCommand(CLI::App* command) {
   command->add_option("--existing", options->existing_dataset_path,
                       "Sequential campaign: the first batch's dataset CSV, whose poses the plan "
                       "completes (--count more)");
+}
+
+// The candidate grid as --help describes it, from CandidateOptions' defaults.
+std::string CandidateGridHelp() {
+  const CandidateOptions grid;
+  return fmt::format(
+      "Candidates: a grid of (X, Y, Z, theta) around ({:g}, {:g}, {:g}) m (+-{:g}, +-{:g}, "
+      "+-{:g} mm by {:g}, theta {:g}..{:g} deg by {:g}), away from the singularity where the "
+      "joints stop holding theta. The predicted accuracy is the one-sigma board position error "
+      "the identification's covariance predicts, RMS over the target region (--region-*) and over "
+      "robots drawn from the a priori uncertainty (--robust-robots).",
+      grid.centre.x(), grid.centre.y(), grid.centre.z(), grid.half_extent.x() * 1e3,
+      grid.half_extent.y() * 1e3, grid.half_extent.z() * 1e3, grid.position_step * 1e3,
+      DegreesFromRadians(grid.theta.front()), DegreesFromRadians(grid.theta.back()),
+      DegreesFromRadians(grid.theta[1] - grid.theta[0]));
+}
+
+}  // namespace
+
+void DeclarePlanCommand(CLI::App* command) {
+  const auto options = std::make_shared<PlanCommandOptions>();
+  h4::cli::AddRobotOption(command, &options->robot_path, "A priori robot.yaml (with X_BC, X_TE)")
+      ->required();
+  h4::cli::AddCameraOption(command, &options->camera_path)->required();
+  h4::cli::AddBoardOption(command, &options->board_path)->required();
+  h4::cli::AddOutOption(command, &options->out_path, "Output poses CSV");
+  // --poses is ik's poses CSV; here it was the count, still accepted.
+  command->add_option("--count,--poses", options->pose_count, "Number of poses N")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  h4::cli::AddModelOption(command, &options->model, "Model the poses are planned for");
+  h4::cli::AddChoiceOption(command, "--criterion", &options->criterion, kPlanCriterionNames,
+                           "d: D-optimal (information); accuracy: the predicted accuracy over "
+                           "the grid's poses (I-optimal, from the D-optimal design)")
+      ->capture_default_str();
+  h4::cli::AddSeedOption(command, &options->seed, "Seed of the exchange's start");
+  command->add_option("--first-id", options->first_id, "pose_id of the first pose")
+      ->capture_default_str();
+  command->add_flag("--for-check", options->for_check,
+                    "Plan a verification campaign for h4cal check (e.g. --count 5): D-optimal, "
+                    "fewer poses than an identification needs, no accuracy predicted, within "
+                    "the region the paper's grid calibrates (its box, theta within +-20 deg)");
+  AddCandidateOptions(command, options.get());
+  AddTargetAndRobustOptions(command, options.get());
   command->add_option("--curve", options->curve_path,
                       "Also write the predicted accuracy against N (planned and grid) to this CSV");
   command->add_option("--curve-n", options->curve_n, "The N of the curve")->capture_default_str();
