@@ -133,17 +133,20 @@ void PrintPlan(const PlannedCampaign& campaign, const PlanningProblem& problem, 
   const int grid_size = static_cast<int>(problem.grid.size());
   const int grid_calibration = std::max(1, grid_size - 10);
   const double grid_rms = GridPredictedPositionRms(problem, grid_calibration, seed);
-  std::printf(
-      "predicted board position error (one sigma, RMS over %zu poses of the target region%s): "
-      "%.4f mm with these %zu poses; %.4f mm with the grid's %d calibration poses\n",
-      problem.target_indices.size(),
+  const std::string over =
       problem.drawn.empty()
           ? ""
           : fmt::format(" and over the a priori and {} robots drawn from its uncertainty",
-                        problem.drawn.size())
-                .c_str(),
-      campaign.predicted_position_rms * 1e3, campaign.plan.size(), grid_rms * 1e3,
-      grid_calibration);
+                        problem.drawn.size());
+  const std::string with_existing =
+      problem.existing_indices.empty()
+          ? ""
+          : fmt::format(" and the {} measured", problem.existing_indices.size());
+  std::printf(
+      "predicted board position error (one sigma, RMS over %zu poses of the target region%s): "
+      "%.4f mm with these %zu poses%s; %.4f mm with the grid's %d calibration poses\n",
+      problem.target_indices.size(), over.c_str(), campaign.predicted_position_rms * 1e3,
+      campaign.plan.size(), with_existing.c_str(), grid_rms * 1e3, grid_calibration);
 }
 
 void WriteCurve(const PlanCommandOptions& o, const PlanningProblem& problem) {
@@ -194,9 +197,9 @@ void WarnWhenThePosesAreFew(const PlanningProblem& problem, int pose_count) {
   const int trusted = PosesForATrustedPrediction(problem);
   if (pose_count >= trusted) return;
   spdlog::warn(
-      "{} poses for {} free parameters leave none to spare: a campaign that loses a few (not "
-      "seen, rejected as outliers) cannot be identified, and the predicted accuracy does not "
-      "hold; plan {} or more",
+      "{} poses for {} free parameters leave few to spare: a campaign that loses a few (the "
+      "camera does not see them, the fit rejects them as outliers) may end too_few_poses; "
+      "plan {} or more",
       pose_count, problem.info.parameter_count(), trusted);
 }
 
