@@ -1,8 +1,8 @@
 // `h4cal plan`: choose N calibration poses for the measurement-space identification
-// (host/planning/pose_design.h: the predicted accuracy over the paper's grid poses by
-// default, or D-optimality, the information, with --criterion d) among the poses
-// the a priori robot reaches with the whole board in the camera's image
-// (host/planning/candidate_poses.h); writes them as a poses CSV (common/formats/README.md:
+// (host/planning/pose_design.h: the predicted accuracy over the target region, averaged over
+// robots drawn from the a priori uncertainty, by default, or D-optimality, the information, with
+// --criterion d) among the poses the a priori robot reaches with the whole board in the camera's
+// image (host/planning/candidate_poses.h); writes them as a poses CSV (common/formats/README.md:
 // pose_id,X,Y,Z,theta in B) for `h4cal collect --plan`, prints them with the predicted
 // accuracy beside the paper's grid, and with --curve the predicted accuracy against N.
 #include <algorithm>
@@ -18,13 +18,16 @@
 #include "common/cli/subcommand.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
+#include "common/formats/dataset_csv.h"
 #include "common/formats/file_output.h"
+#include "common/formats/identification_result.h"
 #include "common/formats/poses_csv.h"
 #include "common/formats/robot_yaml.h"
 #include "common/units.h"
 #include "host/cli/commands.h"
 #include "host/cli/plan_reach.h"
 #include "host/planning/pose_planner.h"
+#include "host/planning/sequential_plan.h"
 #include "host/simulation/pose_plan.h"
 
 namespace h4::host::cli {
@@ -52,7 +55,32 @@ struct PlanCommandOptions {
   /// A verification campaign for `h4cal check` (a few poses): D-optimal, below the
   /// identification's minimum, no accuracy predicted.
   bool for_check = false;
+  /// The target region (TargetRegion): centre and full size of the box in B, mm, and the
+  /// nacelle angle range, deg; the defaults are the paper's grid box.
+  std::vector<double> region_centre_mm = {0.0, 0.0, -450.0};
+  std::vector<double> region_size_mm = {200.0, 200.0, 150.0};
+  std::vector<double> region_theta_deg = {-20.0, 20.0};
+  int robust_robots = RobustOptions{}.robots;
+  double corner_sigma_px = 0.0;  ///< PlanningProblemOptions::corner_sigma_px
+  /// The camera set-up spread of the drawn robots (RobustOptions::spread), mm and deg.
+  double setup_sigma_mm = 1e3 * RobustOptions{}.spread.camera_translation_std;
+  double setup_sigma_deg = DegreesFromRadians(RobustOptions{}.spread.camera_rotation_std);
+  /// A sequential campaign's second stage: the first batch's result and dataset.
+  std::string from_result_path, existing_dataset_path;
 };
+
+TargetRegion RegionOf(const PlanCommandOptions& o) {
+  TargetRegion region;
+  for (int k = 0; k < 3; ++k) {
+    region.centre[k] = 1e-3 * o.region_centre_mm[static_cast<size_t>(k)];
+    region.half_extent[k] = 0.5e-3 * o.region_size_mm[static_cast<size_t>(k)];
+  }
+  region.theta_min = RadiansFromDegrees(o.region_theta_deg[0]);
+  region.theta_max = RadiansFromDegrees(o.region_theta_deg[1]);
+  std::string why;
+  if (!region.IsValid(&why)) throw std::invalid_argument("--region-*: " + why);
+  return region;
+}
 
 /// --for-check: candidates only where the robot was calibrated, the paper's grid (its box,
 /// theta within its +-20 deg by 10 deg). Beyond it the result extrapolates, and fresh poses
@@ -79,6 +107,11 @@ PlanningProblemOptions ProblemOptions(const PlanCommandOptions& o) {
   options.candidates.max_theta_gain = o.max_theta_gain;
   options.candidates.joint_range = ParseJointRange(o.joint_range_deg);
   if (o.for_check) KeepToTheCalibratedRegion(&options.candidates);
+  options.target = RegionOf(o);
+  options.robust.robots = o.robust_robots;
+  options.corner_sigma_px = o.corner_sigma_px;
+  options.robust.spread.camera_translation_std = 1e-3 * o.setup_sigma_mm;
+  options.robust.spread.camera_rotation_std = RadiansFromDegrees(o.setup_sigma_deg);
   return options;
 }
 
@@ -100,11 +133,20 @@ void PrintPlan(const PlannedCampaign& campaign, const PlanningProblem& problem, 
   const int grid_size = static_cast<int>(problem.grid.size());
   const int grid_calibration = std::max(1, grid_size - 10);
   const double grid_rms = GridPredictedPositionRms(problem, grid_calibration, seed);
+  const std::string over =
+      problem.drawn.empty()
+          ? ""
+          : fmt::format(" and over the a priori and {} robots drawn from its uncertainty",
+                        problem.drawn.size());
+  const std::string with_existing =
+      problem.existing_indices.empty()
+          ? ""
+          : fmt::format(" and the {} measured", problem.existing_indices.size());
   std::printf(
-      "predicted board position error (one sigma, RMS over %d of the paper's 81 grid poses): "
-      "%.4f mm with these %zu poses; %.4f mm with the grid's %d calibration poses\n",
-      grid_size, campaign.predicted_position_rms * 1e3, campaign.plan.size(), grid_rms * 1e3,
-      grid_calibration);
+      "predicted board position error (one sigma, RMS over %zu poses of the target region%s): "
+      "%.4f mm with these %zu poses%s; %.4f mm with the grid's %d calibration poses\n",
+      problem.target_indices.size(), over.c_str(), campaign.predicted_position_rms * 1e3,
+      campaign.plan.size(), with_existing.c_str(), grid_rms * 1e3, grid_calibration);
 }
 
 void WriteCurve(const PlanCommandOptions& o, const PlanningProblem& problem) {
@@ -126,11 +168,47 @@ void WriteCurve(const PlanCommandOptions& o, const PlanningProblem& problem) {
   spdlog::info("wrote the curve to {}", o.curve_path);
 }
 
+// The robot the poses are planned on, and the poses measured already: the a priori alone,
+// or (--from, --existing) the robot the first batch identified and that batch's poses.
+RobotDescription PlanningRobot(const PlanCommandOptions& o, PlanningProblemOptions* options) {
+  const RobotDescription apriori = ReadRobotYaml(o.robot_path);
+  if (o.from_result_path.empty() != o.existing_dataset_path.empty()) {
+    throw std::invalid_argument(
+        "--from and --existing go together: the first batch's result and its dataset");
+  }
+  if (o.from_result_path.empty()) return apriori;
+  const RobotDescription identified =
+      IdentifiedDescription(apriori, ReadIdentificationResult(o.from_result_path));
+  options->existing_poses_B = MeasuredPoses(identified, ReadDatasetCsv(o.existing_dataset_path));
+  // The draws spread as an a priori's; around an identified robot they would plan for an
+  // uncertainty the first batch has removed.
+  options->robust.robots = 0;
+  spdlog::info(
+      "sequential campaign: planning on the robot of {} (Model {}), completing the {} poses of {}",
+      o.from_result_path, ToString(identified.model31 ? ModelKind::k31 : ModelKind::k12),
+      options->existing_poses_B.size(), o.existing_dataset_path);
+  return identified;
+}
+
+// Says so when the poses are few for the free parameters: a campaign with no poses to spare
+// ends too_few_poses when the camera misses a few or the fit rejects them
+// (docs/results.md#planned-poses-on-robots-the-planner-has-never-seen).
+void WarnWhenThePosesAreFew(const PlanningProblem& problem, int pose_count) {
+  const int trusted = PosesForATrustedPrediction(problem);
+  if (pose_count >= trusted) return;
+  spdlog::warn(
+      "{} poses for {} free parameters leave few to spare: a campaign that loses a few (the "
+      "camera does not see them, the fit rejects them as outliers) may end too_few_poses; "
+      "plan {} or more",
+      pose_count, problem.info.parameter_count(), trusted);
+}
+
 void Run(const PlanCommandOptions& o) {
-  const RobotDescription robot = ReadRobotYaml(o.robot_path);
+  PlanningProblemOptions problem_options = ProblemOptions(o);
+  const RobotDescription robot = PlanningRobot(o, &problem_options);
   const CameraModel camera(ReadCameraYaml(o.camera_path));
   const BoardModel board(ReadBoardYaml(o.board_path));
-  const PlanningProblem problem = MakePlanningProblem(robot, camera, board, ProblemOptions(o));
+  const PlanningProblem problem = MakePlanningProblem(robot, camera, board, problem_options);
   spdlog::info("{}", problem.candidates.Summary());
   spdlog::info("{} free parameters; fixed by the identifiability analysis: {}",
                problem.info.parameter_count(), problem.info.fixed.size());
@@ -141,7 +219,11 @@ void Run(const PlanCommandOptions& o) {
         problem.unreachable_grid_ids.size(), fmt::join(problem.unreachable_grid_ids, ", "),
         problem.grid.size());
   }
-  if (!o.for_check) CheckPlannedPoseCount(problem, o.pose_count);
+  const int total = o.pose_count + static_cast<int>(problem.existing_indices.size());
+  if (!o.for_check) {
+    CheckPlannedPoseCount(problem, total);
+    WarnWhenThePosesAreFew(problem, total);
+  }
   DesignOptions design;
   design.pose_count = o.pose_count;
   design.seed = o.seed;
@@ -197,6 +279,59 @@ void AddCandidateOptions(CLI::App* command, PlanCommandOptions* options) {
       ->capture_default_str();
 }
 
+// The options of the target region, the drawn robots, the camera noise and a sequential
+// campaign's second stage: what the plan is for.
+void AddTargetAndRobustOptions(CLI::App* command, PlanCommandOptions* options) {
+  command
+      ->add_option("--region-centre-mm", options->region_centre_mm,
+                   "Centre X,Y,Z of the target region (where the robot will work) in B, mm")
+      ->delimiter(',')
+      ->expected(3)
+      ->capture_default_str();
+  command
+      ->add_option("--region-size-mm", options->region_size_mm,
+                   "Full size X,Y,Z of the target region's box, mm (default: the paper's grid)")
+      ->delimiter(',')
+      ->expected(3)
+      ->capture_default_str();
+  command
+      ->add_option("--region-theta-deg", options->region_theta_deg,
+                   "Nacelle angle range MIN,MAX of the target region, deg")
+      ->delimiter(',')
+      ->expected(2)
+      ->capture_default_str();
+  command
+      ->add_option("--robust-robots", options->robust_robots,
+                   "Robots drawn from the a priori uncertainty the accuracy is averaged over "
+                   "(0: the a priori alone)")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  command
+      ->add_option("--setup-sigma-mm", options->setup_sigma_mm,
+                   "How far the camera may be from robot.yaml's X_BC, one sigma per axis, mm "
+                   "(the drawn robots' cameras; candidates one of them misses are left out)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command
+      ->add_option("--setup-sigma-deg", options->setup_sigma_deg,
+                   "The same for the camera's orientation, deg")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command
+      ->add_option("--corner-sigma-px", options->corner_sigma_px,
+                   "Corner noise of the camera, px: each pose's noise from the board pose "
+                   "solved from its corners, as the camera reports it (0: 0.2 mm, 0.03 deg "
+                   "for every pose, as a dataset without sigma columns)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--from", options->from_result_path,
+                      "Sequential campaign: plan the rest on this result of the first batch "
+                      "(with --existing)");
+  command->add_option("--existing", options->existing_dataset_path,
+                      "Sequential campaign: the first batch's dataset CSV, whose poses the plan "
+                      "completes (--count more)");
+}
+
 // The candidate grid as --help describes it, from CandidateOptions' defaults.
 std::string CandidateGridHelp() {
   const CandidateOptions grid;
@@ -204,7 +339,8 @@ std::string CandidateGridHelp() {
       "Candidates: a grid of (X, Y, Z, theta) around ({:g}, {:g}, {:g}) m (+-{:g}, +-{:g}, "
       "+-{:g} mm by {:g}, theta {:g}..{:g} deg by {:g}), away from the singularity where the "
       "joints stop holding theta. The predicted accuracy is the one-sigma board position error "
-      "the identification's covariance predicts, RMS over the paper's 81 grid poses.",
+      "the identification's covariance predicts, RMS over the target region (--region-*) and over "
+      "robots drawn from the a priori uncertainty (--robust-robots).",
       grid.centre.x(), grid.centre.y(), grid.centre.z(), grid.half_extent.x() * 1e3,
       grid.half_extent.y() * 1e3, grid.half_extent.z() * 1e3, grid.position_step * 1e3,
       DegreesFromRadians(grid.theta.front()), DegreesFromRadians(grid.theta.back()),
@@ -237,6 +373,7 @@ void DeclarePlanCommand(CLI::App* command) {
                     "fewer poses than an identification needs, no accuracy predicted, within "
                     "the region the paper's grid calibrates (its box, theta within +-20 deg)");
   AddCandidateOptions(command, options.get());
+  AddTargetAndRobustOptions(command, options.get());
   command->add_option("--curve", options->curve_path,
                       "Also write the predicted accuracy against N (planned and grid) to this CSV");
   command->add_option("--curve-n", options->curve_n, "The N of the curve")->capture_default_str();

@@ -113,9 +113,9 @@ CheckTrialOutcome RunCheckTrial(const RobotDescription& apriori, const Simulated
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("check trial: " + why);
   CheckTrialOutcome outcome;
-  const std::optional<IdentificationResult> result = IdentifyAsTheCliDoes(
-      apriori, SimulateRows(truth, options.calibration_plan, options, seed),
-      options.identification);
+  const std::optional<IdentificationResult> result =
+      IdentifyAsTheCliDoes(apriori, SimulateRows(truth, options.calibration_plan, options, seed),
+                           options.identification);
   if (!result) {
     outcome.message = "identification unusable";
     return outcome;
@@ -136,16 +136,14 @@ CheckTrialOutcome RunCheckTrial(const RobotDescription& apriori, const Simulated
   IdentificationResult checked = *result;
   if (options.without_covariance) checked.parameter_covariance.reset();
   const bool camera_floor = !options.stated_camera_covariance;
-  outcome.unchanged =
-      CheckResultForDrift(checked, apriori.assembly,
-                          SimulateRows(truth, options.check_plan, options, check_seed),
-                          options.check, true, camera_floor);
+  outcome.unchanged = CheckResultForDrift(
+      checked, apriori.assembly, SimulateRows(truth, options.check_plan, options, check_seed),
+      options.check, true, camera_floor);
   const SimulatedRobot drifted =
       WithJointOffsetMoved(truth, outcome.drifted_joint, outcome.joint_offset_change);
-  outcome.drifted =
-      CheckResultForDrift(checked, apriori.assembly,
-                          SimulateRows(drifted, options.check_plan, options, check_seed + 1),
-                          options.check, true, camera_floor);
+  outcome.drifted = CheckResultForDrift(
+      checked, apriori.assembly, SimulateRows(drifted, options.check_plan, options, check_seed + 1),
+      options.check, true, camera_floor);
   return outcome;
 }
 

@@ -71,8 +71,8 @@ struct DriftCheckResult {
 
 /// p: the result's parameters; parameter_covariance: n x n over p's parameters in p's
 /// order, SI (zero rows for fixed ones; all zero: judge by the measurement noise alone);
-/// camera_floor: the floor in D (D = I when absent). Throws std::invalid_argument on invalid options,
-/// empty rows or a covariance of the wrong size.
+/// camera_floor: the floor in D (D = I when absent). Throws std::invalid_argument on invalid
+/// options, empty rows or a covariance of the wrong size.
 DriftCheckResult CheckForDrift(const KinematicModel& model, const ParameterVector& p,
                                const Eigen::MatrixXd& parameter_covariance,
                                const std::vector<DatasetRow>& rows,

@@ -17,7 +17,8 @@ namespace h4::host {
 namespace {
 
 std::vector<DatasetRow> NoiseFreeRows(const RobotDescription& robot,
-                                      const std::vector<EePose>& poses_B) {
+                                      const std::vector<EePose>& poses_B,
+                                      const std::vector<PoseSigma>& sigmas) {
   PosePlan plan;
   for (size_t j = 0; j < poses_B.size(); ++j) {
     plan.push_back({static_cast<int64_t>(j + 1), poses_B[j]});
@@ -38,6 +39,10 @@ std::vector<DatasetRow> NoiseFreeRows(const RobotDescription& robot,
         "priori robot's reach",
         x[0] * 1e3, x[1] * 1e3, x[2] * 1e3, DegreesFromRadians(x[3])));
   }
+  for (size_t j = 0; j < sigmas.size() && j < data.rows.size(); ++j) {
+    data.rows[j].sigma_t = sigmas[j].t;
+    data.rows[j].sigma_r = sigmas[j].r;
+  }
   return std::move(data.rows);
 }
 
@@ -45,10 +50,11 @@ std::vector<DatasetRow> NoiseFreeRows(const RobotDescription& robot,
 
 InformationModel BuildInformationModel(const RobotDescription& robot, ModelKind kind,
                                        const std::vector<EePose>& poses_B, int analysed_count,
-                                       const CostOptions& cost_options) {
+                                       const CostOptions& cost_options,
+                                       const std::vector<PoseSigma>& sigmas) {
   AprioriModel apriori = AprioriModelOf(robot, kind);
-  IdentificationCost cost(CostKind::kMeasurement, *apriori.model, NoiseFreeRows(robot, poses_B),
-                          cost_options);
+  IdentificationCost cost(CostKind::kMeasurement, *apriori.model,
+                          NoiseFreeRows(robot, poses_B, sigmas), cost_options);
   Eigen::VectorXd r;
   Eigen::MatrixXd J_full;
   std::string why;

@@ -17,6 +17,7 @@
 #include "common/robot/robot_description.h"
 #include "host/identification/identification_cost.h"
 #include "host/kinematics/kinematic_model.h"
+#include "host/planning/pose_noise.h"
 
 namespace h4::host {
 
@@ -37,10 +38,13 @@ struct InformationModel {
 /// The information model of `poses_B` (poses in B) for a Model `kind` identification from
 /// `robot` (a priori). The identifiability analysis runs over the first `analysed_count`
 /// poses (the candidates; the rest, e.g. evaluation poses, do not decide what is fixed).
+/// `sigmas` (one per pose, or empty): each pose's camera noise, its rows divided by it as the
+/// dataset's sigma columns would be; empty: cost's default sigmas for every pose.
 /// Throws std::runtime_error naming the pose when one cannot be evaluated (out of reach).
 InformationModel BuildInformationModel(const RobotDescription& robot, ModelKind kind,
                                        const std::vector<EePose>& poses_B, int analysed_count,
-                                       const CostOptions& cost = CostOptions{});
+                                       const CostOptions& cost = CostOptions{},
+                                       const std::vector<PoseSigma>& sigmas = {});
 
 /// Information matrix of the poses `chosen` (indices into the model), plus ridge * I.
 Eigen::MatrixXd InformationMatrix(const InformationModel& info, const std::vector<int>& chosen,

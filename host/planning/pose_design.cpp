@@ -89,15 +89,36 @@ size_t ArgMax(const std::vector<double>& values) {
   return static_cast<size_t>(std::max_element(values.begin(), values.end()) - values.begin());
 }
 
+// `design` and the poses measured already.
+std::vector<int> WithExisting(std::vector<int> design, const std::vector<int>& existing) {
+  design.insert(design.end(), existing.begin(), existing.end());
+  return design;
+}
+
+// The information matrices of `design` and `existing` under each model, plus each model's
+// ridge.
+std::vector<Eigen::MatrixXd> InformationMatrices(const std::vector<const InformationModel*>& models,
+                                                 const std::vector<int>& design,
+                                                 const std::vector<int>& existing,
+                                                 const std::vector<double>& ridges) {
+  std::vector<Eigen::MatrixXd> Ms;
+  for (size_t k = 0; k < models.size(); ++k) {
+    Ms.push_back(InformationMatrix(*models[k], WithExisting(design, existing), ridges[k]));
+  }
+  return Ms;
+}
+
 // The exchange: add the pose `scores` ranks best (sign +1) among those outside, drop the
 // one it ranks best to drop (sign -1) among the design and the added, until the dropped is
-// the added.
+// the added. Every model sees the same poses (one robot each, or one alone); the poses
+// `existing` are in every information matrix and never exchanged.
 template <typename Scores>
-Design Exchange(const InformationModel& info, int candidate_count, std::vector<int> design,
-                double ridge, int max_exchanges, Scores scores) {
+Design Exchange(const std::vector<const InformationModel*>& models, int candidate_count,
+                std::vector<int> design, const std::vector<int>& existing,
+                const std::vector<double>& ridges, int max_exchanges, Scores scores) {
   std::vector<char> in_design(static_cast<size_t>(candidate_count), 0);
   for (int j : design) in_design[static_cast<size_t>(j)] = 1;
-  Eigen::MatrixXd M = InformationMatrix(info, design, ridge);
+  std::vector<Eigen::MatrixXd> Ms = InformationMatrices(models, design, existing, ridges);
   Design result;
   while (result.exchanges < max_exchanges) {
     std::vector<int> outside;
@@ -108,13 +129,16 @@ Design Exchange(const InformationModel& info, int candidate_count, std::vector<i
       result.converged = true;
       break;
     }
-    const int added = outside[ArgMax(scores(M, outside, +1.0))];
-    M.noalias() += info.Block(added).transpose() * info.Block(added);
+    const int added = outside[ArgMax(scores(Ms, outside, +1.0))];
+    for (size_t k = 0; k < models.size(); ++k) {
+      Ms[k].noalias() += models[k]->Block(added).transpose() * models[k]->Block(added);
+    }
     design.push_back(added);
-    const size_t drop_at = ArgMax(scores(M, design, -1.0));
+    const size_t drop_at = ArgMax(scores(Ms, design, -1.0));
     const int dropped = design[drop_at];
     design.erase(design.begin() + static_cast<std::ptrdiff_t>(drop_at));
-    M = InformationMatrix(info, design, ridge);  // fresh: no drift from adding and removing
+    // Fresh: no drift from adding and removing.
+    Ms = InformationMatrices(models, design, existing, ridges);
     if (dropped == added) {
       result.converged = true;
       break;
@@ -125,6 +149,25 @@ Design Exchange(const InformationModel& info, int candidate_count, std::vector<i
   }
   result.chosen = design;
   return result;
+}
+
+// options.ridge relative to the mean diagonal of all the candidates' information.
+double RelativeRidge(const InformationModel& info, int candidate_count, double ridge) {
+  return ridge *
+         info.J_scaled.topRows(6 * static_cast<Eigen::Index>(candidate_count)).squaredNorm() /
+         std::max(1, info.parameter_count());
+}
+
+// A = sum of T_j^T T_j over the translation rows of the poses `evaluated`.
+Eigen::MatrixXd TargetTranslationWeight(const InformationModel& info,
+                                        const std::vector<int>& evaluated) {
+  const int k = info.parameter_count();
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(k, k);
+  for (int j : evaluated) {
+    const Eigen::MatrixXd T = info.Block(j).bottomRows(3);
+    A.noalias() += T.transpose() * T;
+  }
+  return A;
 }
 
 }  // namespace
@@ -138,41 +181,57 @@ Design PlanDOptimal(const InformationModel& info, int candidate_count,
                                 " poses asked of " + std::to_string(candidate_count) +
                                 " candidates");
   }
+  for (int j : options.existing) {
+    if (j < candidate_count || j >= info.pose_count()) {
+      throw std::invalid_argument("pose planning: an existing pose must not be a candidate");
+    }
+  }
   std::vector<int> design = SeededSubset(candidate_count, options.pose_count, options.seed);
-  // The ridge relative to the mean diagonal of all the candidates' information.
-  const double ridge =
-      options.ridge *
-      info.J_scaled.topRows(6 * static_cast<Eigen::Index>(candidate_count)).squaredNorm() /
-      std::max(1, info.parameter_count());
-  Design result = Exchange(info, candidate_count, design, ridge, options.max_exchanges,
-                           [&](const Eigen::MatrixXd& M_now, const std::vector<int>& poses,
-                               double sign) { return LogDetChanges(info, M_now, poses, sign); });
+  const std::vector<double> ridges = {RelativeRidge(info, candidate_count, options.ridge)};
+  Design result =
+      Exchange({&info}, candidate_count, design, options.existing, ridges, options.max_exchanges,
+               [&](const std::vector<Eigen::MatrixXd>& Ms, const std::vector<int>& poses,
+                   double sign) { return LogDetChanges(info, Ms[0], poses, sign); });
   design = result.chosen;
   std::sort(design.begin(), design.end());
   result.chosen = design;
-  result.log_det = LogDet(InformationMatrix(info, design));
+  result.log_det = LogDet(InformationMatrix(info, WithExisting(design, options.existing)));
   return result;
 }
 
 Design PlanForAccuracy(const InformationModel& info, int candidate_count,
                        const std::vector<int>& evaluated, const DesignOptions& options) {
-  const Design start = PlanDOptimal(info, candidate_count, options);
-  const int k = info.parameter_count();
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(k, k);
-  for (int j : evaluated) {
-    const Eigen::MatrixXd T = info.Block(j).bottomRows(3);
-    A.noalias() += T.transpose() * T;
+  return PlanForMeanAccuracy({&info}, candidate_count, evaluated, options);
+}
+
+Design PlanForMeanAccuracy(const std::vector<const InformationModel*>& models, int candidate_count,
+                           const std::vector<int>& evaluated, const DesignOptions& options) {
+  if (models.empty()) throw std::invalid_argument("pose planning: no information model");
+  const Design start = PlanDOptimal(*models.front(), candidate_count, options);
+  std::vector<double> ridges;
+  std::vector<Eigen::MatrixXd> weights;
+  for (const InformationModel* info : models) {
+    ridges.push_back(RelativeRidge(*info, candidate_count, options.ridge));
+    weights.push_back(TargetTranslationWeight(*info, evaluated));
   }
-  const double ridge =
-      options.ridge *
-      info.J_scaled.topRows(6 * static_cast<Eigen::Index>(candidate_count)).squaredNorm() /
-      std::max(1, k);
-  Design result = Exchange(info, candidate_count, start.chosen, ridge, options.max_exchanges,
-                           [&](const Eigen::MatrixXd& M, const std::vector<int>& poses,
-                               double sign) { return AccuracyChanges(info, M, A, poses, sign); });
+  // The mean over the models of trace(A_k M_k^-1): each term is a variance in measurement
+  // sigmas (column scaling cancels), so the models add as robots of one prior.
+  const auto mean_change = [&](const std::vector<Eigen::MatrixXd>& Ms,
+                               const std::vector<int>& poses, double sign) {
+    std::vector<double> total(poses.size(), 0.0);
+    for (size_t k = 0; k < models.size(); ++k) {
+      const std::vector<double> change =
+          AccuracyChanges(*models[k], Ms[k], weights[k], poses, sign);
+      for (size_t n = 0; n < poses.size(); ++n) total[n] += change[n];
+    }
+    return total;
+  };
+  Design result = Exchange(models, candidate_count, start.chosen, options.existing, ridges,
+                           options.max_exchanges, mean_change);
   result.exchanges += start.exchanges;
   std::sort(result.chosen.begin(), result.chosen.end());
-  result.log_det = LogDet(InformationMatrix(info, result.chosen));
+  result.log_det =
+      LogDet(InformationMatrix(*models.front(), WithExisting(result.chosen, options.existing)));
   return result;
 }
 

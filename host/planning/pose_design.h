@@ -27,6 +27,10 @@ struct DesignOptions {
   /// keeps the best design by its criterion (pose_planner.h). The exchange stops at a local
   /// optimum, which depends on the start.
   int restarts = 1;
+  /// Poses measured already (indices into the information model, none a candidate): their
+  /// information is in every matrix of the exchange, and the pose_count new poses complete
+  /// them (the sequential campaign: plan the rest once the first batch is identified).
+  std::vector<int> existing;
 
   bool IsValid(std::string* why) const;
 };
@@ -49,6 +53,15 @@ Design PlanDOptimal(const InformationModel& info, int candidate_count,
 /// (information_model.h, PredictedPositionRms).
 Design PlanForAccuracy(const InformationModel& info, int candidate_count,
                        const std::vector<int>& evaluated, const DesignOptions& options);
+
+/// Bayesian I-optimality: the same exchange for the mean of trace(A_k M_k^-1) over `models`,
+/// one per robot drawn from the a priori uncertainty (the same poses, each at its own
+/// robot's Jacobian), from the D-optimal design of the first. A design good for the a priori
+/// alone may lean on directions another robot of the prior does not give (Chaloner and
+/// Verdinelli 1995, Bayesian experimental design, section 2.3: the expected utility over the
+/// prior). One model: PlanForAccuracy.
+Design PlanForMeanAccuracy(const std::vector<const InformationModel*>& models, int candidate_count,
+                           const std::vector<int>& evaluated, const DesignOptions& options);
 
 /// n distinct indices of [0, count) drawn with the seed, in draw order (n <= count).
 std::vector<int> SeededSubset(int count, int n, uint64_t seed);

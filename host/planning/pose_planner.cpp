@@ -2,6 +2,7 @@
 #include "host/planning/pose_planner.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include <spdlog/fmt/fmt.h>
@@ -32,20 +33,191 @@ PosePlan ReachableGridPoses(const RobotDescription& robot, std::vector<int64_t>*
 
 }  // namespace
 
+bool TargetRegion::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& text) {
+    if (why) *why = text;
+    return false;
+  };
+  if (!centre.allFinite()) return fail("the target region's centre must be finite");
+  if (!half_extent.allFinite() || (half_extent.array() < 0.0).any()) {
+    return fail("the target region's half extent must be finite and >= 0");
+  }
+  if (!(std::isfinite(theta_min) && std::isfinite(theta_max) && theta_min <= theta_max)) {
+    return fail("the target region's theta range must be finite with min <= max");
+  }
+  if (positions_per_axis < 1 || positions_per_axis > 20) {
+    return fail("the target region's positions_per_axis must be in 1..20");
+  }
+  if (theta_count < 1 || theta_count > 20) return fail("theta_count must be in 1..20");
+  return true;
+}
+
+namespace {
+
+// count values spanning [low, high], ends included (the middle alone for one).
+std::vector<double> Span(double low, double high, int count) {
+  if (count == 1) return {0.5 * (low + high)};
+  std::vector<double> values;
+  for (int k = 0; k < count; ++k) values.push_back(low + (high - low) * k / (count - 1));
+  return values;
+}
+
+}  // namespace
+
+PosePlan TargetPoses(const TargetRegion& region) {
+  std::string why;
+  if (!region.IsValid(&why)) throw std::invalid_argument(why);
+  std::vector<std::vector<double>> axes;
+  for (int k = 0; k < 3; ++k) {
+    axes.push_back(Span(region.centre[k] - region.half_extent[k],
+                        region.centre[k] + region.half_extent[k], region.positions_per_axis));
+  }
+  PosePlan poses;
+  for (double z : axes[2]) {
+    for (double y : axes[1]) {
+      for (double x : axes[0]) {
+        for (double theta : Span(region.theta_min, region.theta_max, region.theta_count)) {
+          poses.push_back({static_cast<int64_t>(poses.size() + 1), EePose(x, y, z, theta)});
+        }
+      }
+    }
+  }
+  return poses;
+}
+
+std::vector<const InformationModel*> PlanningProblem::Models() const {
+  std::vector<const InformationModel*> models = {&info};
+  for (const InformationModel& model : drawn) models.push_back(&model);
+  return models;
+}
+
+namespace {
+
+// Whether `robot` reaches each of `poses_B` (its inverse kinematics, as SimulateDataset's).
+std::vector<char> ReachedBy(const SimulatedRobot& robot, const std::vector<EePose>& poses_B) {
+  PosePlan plan;
+  for (size_t j = 0; j < poses_B.size(); ++j) {
+    plan.push_back({static_cast<int64_t>(j), poses_B[j]});
+  }
+  DatasetOptions options;
+  options.noise = NoiseOptions{0.0, 0.0, 0.0};
+  options.valid_count = 0;
+  std::vector<char> reached(poses_B.size(), 1);
+  for (int64_t j : SimulateDataset(robot, plan, options).unreachable) {
+    reached[static_cast<size_t>(j)] = 0;
+  }
+  return reached;
+}
+
+// The robots of options.robust, drawn around `robot`.
+std::vector<SimulatedRobot> DrawnRobots(const RobotDescription& robot,
+                                        const RobustOptions& options) {
+  std::vector<SimulatedRobot> drawn;
+  for (int k = 0; k < options.robots; ++k) {
+    PerturbationOptions spread = options.spread;
+    spread.seed += static_cast<uint64_t>(k);
+    drawn.push_back(MakeTrueRobot(robot, TrueGeometry::kPerturbedModel31, spread));
+  }
+  return drawn;
+}
+
+// The poses every robot of `drawn` reaches, among candidates, grid and target: the others
+// are left out of the problem (a grid pose's id goes to unreachable_grid_ids).
+void KeepPosesEveryRobotReaches(const std::vector<SimulatedRobot>& drawn, PlanningProblem* problem,
+                                PosePlan* target) {
+  std::vector<EePose> poses_B;
+  for (const CandidatePose& pose : problem->candidates.poses) poses_B.push_back(pose.x_B);
+  for (const PlannedPose& pose : problem->grid) poses_B.push_back(pose.x);
+  for (const PlannedPose& pose : *target) poses_B.push_back(pose.x);
+  std::vector<char> keep(poses_B.size(), 1);
+  for (const SimulatedRobot& robot : drawn) {
+    const std::vector<char> reached = ReachedBy(robot, poses_B);
+    for (size_t j = 0; j < keep.size(); ++j) keep[j] = keep[j] && reached[j];
+  }
+  size_t j = 0;
+  std::vector<CandidatePose> candidates;
+  for (const CandidatePose& pose : problem->candidates.poses) {
+    if (keep[j++]) candidates.push_back(pose);
+  }
+  problem->candidates_drawn_robots_miss +=
+      static_cast<int>(problem->candidates.poses.size() - candidates.size());
+  problem->candidates.poses = std::move(candidates);
+  PosePlan grid, kept_target;
+  for (const PlannedPose& pose : problem->grid) {
+    if (keep[j++]) {
+      grid.push_back(pose);
+    } else {
+      problem->unreachable_grid_ids.push_back(pose.pose_id);
+    }
+  }
+  for (const PlannedPose& pose : *target) {
+    if (keep[j++]) kept_target.push_back(pose);
+  }
+  problem->grid = std::move(grid);
+  *target = std::move(kept_target);
+}
+
+// The candidates whose board every robot of `drawn` sees whole, by the candidate rule with
+// its own camera and board placement: a pose at the image's edge for the a priori set-up
+// leaves the image of a camera set up a few centimetres and degrees away.
+void KeepCandidatesEveryCameraSees(const std::vector<SimulatedRobot>& drawn,
+                                   const CameraModel& camera, const BoardModel& board,
+                                   const CandidateOptions& options, PlanningProblem* problem) {
+  std::vector<CandidateFilter> filters;
+  for (const SimulatedRobot& robot : drawn) {
+    filters.emplace_back(robot.Description(), camera, board, options);
+  }
+  std::vector<CandidatePose> seen;
+  for (const CandidatePose& pose : problem->candidates.poses) {
+    const bool everyone = std::all_of(filters.begin(), filters.end(), [&](const auto& filter) {
+      return filter.Check(pose.x_B, nullptr) == CandidateVerdict::kOk;
+    });
+    if (everyone) seen.push_back(pose);
+  }
+  problem->candidates_drawn_robots_miss +=
+      static_cast<int>(problem->candidates.poses.size() - seen.size());
+  problem->candidates.poses = std::move(seen);
+}
+
+// Each pose's camera noise with options.corner_sigma_px (none without it: the cost's
+// constant sigmas). The target poses are evaluated, never measured: they keep the cost's
+// default sigma_t, which the predicted error is scaled back by.
+std::vector<PoseSigma> MeasuredPoseSigmas(const RobotDescription& robot, const CameraModel& camera,
+                                          const BoardModel& board,
+                                          const PlanningProblemOptions& options,
+                                          const std::vector<EePose>& poses_B,
+                                          const std::vector<int>& target_indices) {
+  if (!(options.corner_sigma_px > 0.0)) return {};
+  const PoseSigma fallback{options.cost.default_sigma_t, options.cost.default_sigma_r};
+  std::vector<PoseSigma> sigmas =
+      PoseSigmasFromCorners(robot, camera, board, poses_B, options.corner_sigma_px, fallback);
+  for (int j : target_indices) sigmas[static_cast<size_t>(j)] = fallback;
+  return sigmas;
+}
+
+}  // namespace
+
 PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraModel& camera,
                                     const BoardModel& board,
                                     const PlanningProblemOptions& options) {
   PlanningProblem problem;
   problem.candidates = MakeCandidateSet(robot, camera, board, options.candidates);
+  problem.grid = ReachableGridPoses(robot, &problem.unreachable_grid_ids);
+  PosePlan target = TargetPoses(options.target);
+  problem.target_lattice_size = static_cast<int>(target.size());
+  std::vector<SimulatedRobot> drawn = DrawnRobots(robot, options.robust);
+  drawn.insert(drawn.begin(), SimulatedRobot::FromDescription(robot));  // the a priori too
+  KeepPosesEveryRobotReaches(drawn, &problem, &target);
+  KeepCandidatesEveryCameraSees(drawn, camera, board, options.candidates, &problem);
   if (problem.candidates.poses.empty()) {
     throw std::invalid_argument("pose planning: no candidate pose (" +
                                 problem.candidates.Summary() + ")");
   }
-  problem.grid = ReachableGridPoses(robot, &problem.unreachable_grid_ids);
-  if (problem.grid.empty()) {
+  if (problem.grid.empty() || target.empty()) {
     throw std::runtime_error(
-        "pose planning: none of the paper's 81 grid poses, over which the accuracy is "
-        "predicted, is within the a priori robot's reach: check robot.yaml's lengths");
+        "pose planning: none of the paper's 81 grid poses, or none of the target region's "
+        "poses, over which the accuracy is predicted, is within the a priori robot's reach: "
+        "check robot.yaml's lengths and the region");
   }
   std::vector<EePose> poses_B;
   for (const CandidatePose& pose : problem.candidates.poses) poses_B.push_back(pose.x_B);
@@ -53,8 +225,23 @@ PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraM
     problem.grid_indices.push_back(static_cast<int>(poses_B.size()));
     poses_B.push_back(pose.x);
   }
+  for (const PlannedPose& pose : target) {
+    problem.target_indices.push_back(static_cast<int>(poses_B.size()));
+    poses_B.push_back(pose.x);
+  }
+  for (const EePose& x_B : options.existing_poses_B) {
+    problem.existing_indices.push_back(static_cast<int>(poses_B.size()));
+    poses_B.push_back(x_B);
+  }
+  const int analysed = problem.candidate_count();
+  const std::vector<PoseSigma> sigmas =
+      MeasuredPoseSigmas(robot, camera, board, options, poses_B, problem.target_indices);
   problem.info =
-      BuildInformationModel(robot, options.model, poses_B, problem.candidate_count(), options.cost);
+      BuildInformationModel(robot, options.model, poses_B, analysed, options.cost, sigmas);
+  for (size_t k = 1; k < drawn.size(); ++k) {
+    problem.drawn.push_back(BuildInformationModel(drawn[k].Description(), options.model, poses_B,
+                                                  analysed, options.cost, sigmas));
+  }
   return problem;
 }
 
@@ -65,16 +252,14 @@ Design DesignFromOneStart(const PlanningProblem& problem, const DesignOptions& o
                           PlanCriterion criterion) {
   return criterion == PlanCriterion::kDOptimal
              ? PlanDOptimal(problem.info, problem.candidate_count(), options)
-             : PlanForAccuracy(problem.info, problem.candidate_count(), problem.grid_indices,
-                               options);
+             : PlanForMeanAccuracy(problem.Models(), problem.candidate_count(),
+                                   problem.target_indices, options);
 }
 
-// Lower is better: minus log det, or the predicted position RMS over the grid.
+// Lower is better: minus log det, or the predicted position RMS over the target region.
 double DesignCost(const PlanningProblem& problem, const Design& design, PlanCriterion criterion) {
-  return criterion == PlanCriterion::kDOptimal
-             ? -design.log_det
-             : PredictedPositionRms(problem.info, InformationMatrix(problem.info, design.chosen),
-                                    problem.grid_indices);
+  return criterion == PlanCriterion::kDOptimal ? -design.log_det
+                                               : PredictedTargetRms(problem, design.chosen);
 }
 
 // The best design of options.restarts starts (seeds seed, seed + 1, ...).
@@ -96,22 +281,28 @@ Design BestDesign(const PlanningProblem& problem, DesignOptions options, PlanCri
 
 }  // namespace
 
-PlannedCampaign PlanCampaign(const PlanningProblem& problem, const DesignOptions& options,
+PlannedCampaign PlanCampaign(const PlanningProblem& problem, DesignOptions options,
                              int64_t first_pose_id, PlanCriterion criterion) {
+  options.existing = problem.existing_indices;
   PlannedCampaign campaign;
   campaign.design = BestDesign(problem, options, criterion);
   int64_t pose_id = first_pose_id;
   for (int j : campaign.design.chosen) {
     campaign.plan.push_back({pose_id++, problem.candidates.poses[static_cast<size_t>(j)].x_B});
   }
-  campaign.predicted_position_rms = PredictedPositionRms(
-      problem.info, InformationMatrix(problem.info, campaign.design.chosen), problem.grid_indices);
+  campaign.predicted_position_rms = PredictedTargetRms(problem, campaign.design.chosen);
   return campaign;
 }
 
 int MinimumPlannedPoses(const PlanningProblem& problem) {
   const int free_parameters = problem.info.parameter_count();
   return std::max(MinimumPosesInFit(free_parameters), (free_parameters + 5) / 6);
+}
+
+int PosesForATrustedPrediction(const PlanningProblem& problem) {
+  return std::max(
+      MinimumPlannedPoses(problem),
+      static_cast<int>(std::ceil(kTrustedPosesPerParameter * problem.info.parameter_count())));
 }
 
 void CheckPlannedPoseCount(const PlanningProblem& problem, int pose_count) {
@@ -124,14 +315,34 @@ void CheckPlannedPoseCount(const PlanningProblem& problem, int pose_count) {
       pose_count, ToString(problem.info.model), needed, problem.info.parameter_count(), needed));
 }
 
+namespace {
+
+// The RMS over the target region and problem.Models() of what the poses `measured` predict.
+double TargetRmsOf(const PlanningProblem& problem, const std::vector<int>& measured) {
+  double sum_variance = 0.0;
+  const std::vector<const InformationModel*> models = problem.Models();
+  for (const InformationModel* info : models) {
+    const double rms =
+        PredictedPositionRms(*info, InformationMatrix(*info, measured), problem.target_indices);
+    sum_variance += rms * rms;
+  }
+  return std::sqrt(sum_variance / static_cast<double>(models.size()));
+}
+
+}  // namespace
+
 double GridPredictedPositionRms(const PlanningProblem& problem, int n, uint64_t seed) {
   const int grid_size = static_cast<int>(problem.grid_indices.size());
   std::vector<int> chosen;
   for (int k : SeededSubset(grid_size, std::clamp(n, 0, grid_size), seed)) {
     chosen.push_back(problem.grid_indices[static_cast<size_t>(k)]);
   }
-  return PredictedPositionRms(problem.info, InformationMatrix(problem.info, chosen),
-                              problem.grid_indices);
+  return TargetRmsOf(problem, chosen);
+}
+
+double PredictedTargetRms(const PlanningProblem& problem, std::vector<int> chosen) {
+  chosen.insert(chosen.end(), problem.existing_indices.begin(), problem.existing_indices.end());
+  return TargetRmsOf(problem, chosen);
 }
 
 }  // namespace h4::host

@@ -1,0 +1,37 @@
+// The second stage of a sequential campaign (sequential_plan.h).
+#include "host/planning/sequential_plan.h"
+
+#include "host/identification/identified_robot.h"
+#include "host/kinematics/measurement_chain.h"
+#include "host/kinematics/model12.h"
+#include "host/kinematics/model31.h"
+
+namespace h4::host {
+
+RobotDescription IdentifiedDescription(const RobotDescription& apriori,
+                                       const IdentificationResult& result) {
+  const IdentifiedRobot identified = RebuildFromResult(result, apriori.assembly);
+  RobotDescription robot = apriori;
+  robot.X_TE = identified.X_TE;
+  if (const auto* model31 = dynamic_cast<const Model31*>(identified.model.get())) {
+    robot.model31 = model31->model31_parameters();
+    // X_BC = inv(X_B31B) X_B31C: B is the a priori's, as the plan's poses are.
+    robot.X_BC = NominalX_B31B(apriori.model12).inverse() * identified.X_BC;
+  } else {
+    robot.model12 = dynamic_cast<const Model12&>(*identified.model).model12_parameters();
+    robot.model31.reset();
+    robot.X_BC = identified.X_BC;
+  }
+  return robot;
+}
+
+std::vector<EePose> MeasuredPoses(const RobotDescription& robot,
+                                  const std::vector<DatasetRow>& rows) {
+  std::vector<EePose> poses_B;
+  for (const DatasetRow& row : rows) {
+    poses_B.push_back(EePoseFromMeasurement(robot.X_BC, row.X_CT, robot.X_TE).x);
+  }
+  return poses_B;
+}
+
+}  // namespace h4::host
