@@ -323,19 +323,6 @@ CampaignFigures RunCampaign(const SimulatedRobot& truth, const PosePlan& plan,
   return IdentifyAndJudge(SimulateCampaign(truth, plan, setting, seed), heldout);
 }
 
-// The first batch of a sequential campaign plans among candidates within the target
-// region only: poses a camera set up centimetres and degrees away still sees whole.
-PlanningProblemOptions FirstBatchOptions(PlanningProblemOptions options) {
-  options.candidates.centre = options.target.centre;
-  options.candidates.half_extent = options.target.half_extent;
-  options.candidates.theta.clear();
-  for (double t = options.target.theta_min; t <= options.target.theta_max + 1e-9;
-       t += RadiansFromDegrees(10.0)) {
-    options.candidates.theta.push_back(t);
-  }
-  return options;
-}
-
 struct SequentialFigures {
   CampaignFigures figures;
   double plan_predicted = NAN;  ///< the second stage's prediction, m
@@ -351,12 +338,10 @@ SequentialFigures RunSequential(const SimulatedRobot& truth, const PosePlan& fir
   SequentialFigures out;
   out.figures = IdentifyAndJudge(rows, heldout, &first);
   if (!out.figures.usable) return out;
-  PlanningProblemOptions second = setting.options->problem;
-  second.robust.robots = 0;  // as `h4cal plan --from`
   const RobotDescription identified = IdentifiedDescription(PaperAprioriRobot(), first);
-  second.existing_poses_B = MeasuredPoses(identified, rows);
   const PlanningProblem problem =
-      MakePlanningProblem(identified, setting.camera, setting.board, second);
+      MakePlanningProblem(identified, setting.camera, setting.board,
+                          NextStageOptions(setting.options->problem, identified, rows));
   DesignOptions design;
   design.pose_count = std::max(1, total - static_cast<int>(rows.size()));
   const PlannedCampaign rest = PlanCampaign(problem, design, 1001, setting.options->criterion);
@@ -490,7 +475,7 @@ void RunRobustStudy(const RobustStudyOptions& options) {
   PlannedDesigns designs = PlanOnce(problem, options);
   if (options.sequential_first > 0) {
     const PlanningProblem first_problem = MakePlanningProblem(
-        PaperAprioriRobot(), setting.camera, setting.board, FirstBatchOptions(options.problem));
+        PaperAprioriRobot(), setting.camera, setting.board, FirstStageOptions(options.problem));
     DesignOptions design;
     design.pose_count = options.sequential_first;
     const PlannedCampaign first = PlanCampaign(first_problem, design, 1, options.criterion);

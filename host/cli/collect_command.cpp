@@ -1,13 +1,17 @@
 // `h4cal collect`: the calibration campaign over LCM (issue "Live system", item 3-4): drives
 // the robot and the camera through a pose plan (or listens, or reads a recorded log) and
 // writes the paired dataset durably; a restarted campaign resumes where it stopped. With
-// --identify DIR it then identifies Models 12 and 31, validates and writes the report.
+// --sequential FIRST,TOTAL it plans and measures a sequential campaign's two stages
+// (collect_stages.h). With --report-dir DIR it then identifies Models 12 and 31, validates
+// and writes the report.
 #include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
+#include <set>
 #include <thread>
 
 #include <fmt/format.h>
@@ -24,6 +28,7 @@
 #include "common/formats/robot_yaml.h"
 #include "host/campaign/campaign.h"
 #include "host/campaign/control_law.h"
+#include "host/cli/collect_stages.h"
 #include "host/cli/commands.h"
 #include "host/cli/identification_print.h"
 #include "host/cli/plan_reach.h"
@@ -52,8 +57,16 @@ struct CollectOptions {
   std::string identify_dir;
   std::string robot_path;
   std::string controller_path;
-  std::string joint_range_deg;  ///< "MIN,MAX" for the plan's check, empty: no limit
-  bool dry_run = false;         ///< check the plan, move nothing
+  std::string joint_range_deg;          ///< "MIN,MAX" for the plan's check, empty: no limit
+  bool dry_run = false;                 ///< check the plan, move nothing
+  std::vector<int> sequential;          ///< FIRST,TOTAL of a sequential campaign, empty: one plan
+  std::string camera_path, board_path;  ///< what a sequential campaign is planned for
+};
+
+/// How a campaign over one plan ended.
+struct CampaignEnd {
+  bool interrupted = false;
+  bool complete = false;  ///< every planned pose recorded, none skipped
 };
 
 /// The a priori Model 12 a Model 31 control law maps the planned poses through: the
@@ -244,46 +257,11 @@ void AwaitLastCorners(Campaign& campaign, bus::LcmBus& bus, bool from_log,
       missing.size(), corners_path, channels::kBoardCorners, fmt::join(missing, ", "));
 }
 
-void Run(CollectOptions options, const std::string& command_line) {
-  if (options.manual && options.passive) {
-    throw std::invalid_argument("--manual and --passive exclude each other");
-  }
-  if (!options.identify_dir.empty() && options.robot_path.empty()) {
-    throw std::invalid_argument("--identify needs --robot (the a priori robot.yaml)");
-  }
+/// One campaign over `plan` into the dataset (resumed when it holds rows already), on its
+/// own bus: a sequential campaign runs one per stage.
+CampaignEnd RunCampaignOver(const CollectOptions& options, const PosePlan& plan,
+                            const std::atomic<bool>& stop) {
   const bool from_log = !options.from_log.empty();
-  if (from_log && !options.lcm_url.empty()) {
-    throw std::invalid_argument("--from-log reads the log itself: do not give --lcm-url");
-  }
-  if (!options.controller_path.empty()) {
-    if (options.manual || options.passive || from_log) {
-      throw std::invalid_argument(
-          "--controller drives the robot: not with --manual, --passive "
-          "or --from-log");
-    }
-    options.campaign.control_law = LoadControlLaw(options.controller_path, options.robot_path);
-  }
-  options.campaign.mode = (options.passive || from_log) ? CampaignMode::kPassive
-                          : options.manual              ? CampaignMode::kManual
-                                                        : CampaignMode::kActive;
-  const PosePlan plan = options.plan_path.empty()
-                            ? GridPosePlan()
-                            : PosePlanFromRows(ReadPosesCsv(options.plan_path));
-  if (plan.empty()) throw std::invalid_argument(options.plan_path + ": the pose plan is empty");
-  if (options.corners_out_path.empty()) {
-    options.corners_out_path = CornersPathBeside(options.out_path);
-  }
-  RequireOutputIsNotAnInput({"--corners-out", options.corners_out_path},
-                            {{"--out", options.out_path},
-                             {"--plan", options.plan_path},
-                             {"--from-log", options.from_log}});
-  if (!CheckPlanBeforeMoving(&options, plan)) return;
-
-  // Before the dataset is locked: a stop signal from then on must end the campaign as an
-  // interruption (130, resumable), not kill it with the default action (the
-  // second-campaign test interrupted the first right after it took the lock, and 1 run in
-  // 20 died of SIGINT).
-  const std::atomic<bool>& stop = h4::cli::InstallStopSignalHandlers();
   bus::LcmBus bus(from_log ? LogUrl(options.from_log) : options.lcm_url, bus::WireLimits{},
                   CollectAuth(options, from_log));
   if (!bus.good()) {
@@ -305,14 +283,128 @@ void Run(CollectOptions options, const std::string& command_line) {
   if (!interrupted) AwaitLastCorners(campaign, bus, from_log, stop, corners.path());
   interrupted = interrupted || stop.load();
   PrintSummary(campaign, journal, corners, bus, interrupted);
-  if (interrupted) {
+  return {interrupted, campaign.finished() && campaign.skipped().empty()};
+}
+
+/// --plan's poses, or the paper's grid; nullopt for --dry-run (the check was all).
+std::optional<CampaignEnd> RunPlannedCampaign(CollectOptions options,
+                                              const std::atomic<bool>& stop) {
+  const PosePlan plan = options.plan_path.empty()
+                            ? GridPosePlan()
+                            : PosePlanFromRows(ReadPosesCsv(options.plan_path));
+  if (plan.empty()) throw std::invalid_argument(options.plan_path + ": the pose plan is empty");
+  if (!CheckPlanBeforeMoving(&options, plan)) return std::nullopt;
+  return RunCampaignOver(options, plan, stop);
+}
+
+/// The poses of `plan` the dataset holds.
+PosePlan MeasuredPart(const PosePlan& plan, const std::vector<DatasetRow>& rows) {
+  std::set<int64_t> measured;
+  for (const DatasetRow& row : rows) measured.insert(row.pose_id);
+  PosePlan part;
+  for (const PlannedPose& pose : plan) {
+    if (measured.count(pose.pose_id)) part.push_back(pose);
+  }
+  return part;
+}
+
+/// --sequential FIRST,TOTAL: the first stage planned and measured, then the second planned
+/// on the robot the first identifies and measured with it (collect_stages.h); a pose the
+/// first stage skipped is not measured again in the second.
+std::optional<CampaignEnd> RunStages(CollectOptions options, const std::atomic<bool>& stop) {
+  CollectStagesOptions stages;
+  ParseStageCounts(options.sequential, &stages);
+  stages.robot_path = options.robot_path;
+  stages.camera_path = options.camera_path;
+  stages.board_path = options.board_path;
+  stages.joint_range_deg = options.joint_range_deg;
+  stages.dataset_path = options.out_path;
+  const PosePlan first = FirstStagePlan(stages);
+  CheckPlanBeforeMoving(&options, first);
+  const CampaignEnd first_end = RunCampaignOver(options, first, stop);
+  if (first_end.interrupted) return first_end;
+  const std::vector<DatasetRow> rows = ReadDatasetCsv(options.out_path);
+  PosePlan both = MeasuredPart(first, rows);
+  const PosePlan second = SecondStagePlan(stages, first, rows);
+  both.insert(both.end(), second.begin(), second.end());
+  CheckPlanBeforeMoving(&options, both);
+  std::printf("stage 2 of 2: measuring %zu poses beside the %zu of stage 1\n", second.size(),
+              rows.size());
+  CampaignEnd end = RunCampaignOver(options, both, stop);
+  end.complete = end.complete && first_end.complete;
+  return end;
+}
+
+/// The options that exclude or need each other.
+void CheckOptionCombinations(const CollectOptions& options) {
+  if (options.manual && options.passive) {
+    throw std::invalid_argument("--manual and --passive exclude each other");
+  }
+  if (!options.identify_dir.empty() && options.robot_path.empty()) {
+    throw std::invalid_argument("--identify needs --robot (the a priori robot.yaml)");
+  }
+  if (!options.from_log.empty() && !options.lcm_url.empty()) {
+    throw std::invalid_argument("--from-log reads the log itself: do not give --lcm-url");
+  }
+  if (options.sequential.empty()) {
+    if (!options.camera_path.empty() || !options.board_path.empty()) {
+      throw std::invalid_argument(
+          "--camera and --board are what --sequential plans for: give --sequential FIRST,TOTAL "
+          "or leave them out");
+    }
+    return;
+  }
+  if (!options.plan_path.empty() || options.passive || !options.from_log.empty() ||
+      options.dry_run) {
+    throw std::invalid_argument(
+        "--sequential plans its own poses and drives the robot: not with --plan, --passive, "
+        "--from-log or --dry-run (to check a first stage first: h4cal plan --first-stage, then "
+        "collect --dry-run --plan)");
+  }
+  if (options.robot_path.empty() || options.camera_path.empty() || options.board_path.empty()) {
+    throw std::invalid_argument(
+        "--sequential plans on the a priori robot, camera and board: give --robot, --camera "
+        "and --board");
+  }
+}
+
+void Run(CollectOptions options, const std::string& command_line) {
+  CheckOptionCombinations(options);
+  const bool from_log = !options.from_log.empty();
+  if (!options.controller_path.empty()) {
+    if (options.manual || options.passive || from_log) {
+      throw std::invalid_argument(
+          "--controller drives the robot: not with --manual, --passive "
+          "or --from-log");
+    }
+    options.campaign.control_law = LoadControlLaw(options.controller_path, options.robot_path);
+  }
+  options.campaign.mode = (options.passive || from_log) ? CampaignMode::kPassive
+                          : options.manual              ? CampaignMode::kManual
+                                                        : CampaignMode::kActive;
+  if (options.corners_out_path.empty()) {
+    options.corners_out_path = CornersPathBeside(options.out_path);
+  }
+  RequireOutputIsNotAnInput({"--corners-out", options.corners_out_path},
+                            {{"--out", options.out_path},
+                             {"--plan", options.plan_path},
+                             {"--from-log", options.from_log}});
+  // Before the dataset is locked: a stop signal from then on must end the campaign as an
+  // interruption (130, resumable), not kill it with the default action (the
+  // second-campaign test interrupted the first right after it took the lock, and 1 run in
+  // 20 died of SIGINT).
+  const std::atomic<bool>& stop = h4::cli::InstallStopSignalHandlers();
+  const std::optional<CampaignEnd> end =
+      options.sequential.empty() ? RunPlannedCampaign(options, stop) : RunStages(options, stop);
+  if (!end) return;  // --dry-run
+  if (end->interrupted) {
     SetExitCode(h4::cli::kExitInterrupted);
     return;
   }
   if (!options.identify_dir.empty() && !IdentifyAndReport(options, command_line)) {
     SetExitCode(h4::cli::kExitNothingUsable);
   }
-  if (!campaign.finished() || !campaign.skipped().empty()) SetExitCode(h4::cli::kExitNothingUsable);
+  if (!end->complete) SetExitCode(h4::cli::kExitNothingUsable);
 }
 
 }  // namespace
@@ -381,6 +473,18 @@ void DeclareCollectCommand(CLI::App* command) {
                           "needed by --report-dir, and by --controller with a Model 31 result "
                           "(its frame B)");
   AddJointRangeOption(command, &options->joint_range_deg);
+  command
+      ->add_option("--sequential", options->sequential,
+                   "A sequential campaign of TOTAL poses: FIRST planned on the a priori robot "
+                   "inside the paper's grid box and measured, identified, then the rest "
+                   "planned on the identified robot and measured (as h4cal plan --from "
+                   "--existing; each stage's plan is written beside --out, and a resumed "
+                   "campaign keeps it). Needs --robot, --camera, --board; not with --plan")
+      ->delimiter(',')
+      ->expected(2);
+  h4::cli::AddCameraOption(command, &options->camera_path,
+                           "Camera intrinsics YAML the sequential campaign is planned for");
+  h4::cli::AddBoardOption(command, &options->board_path);
   command->add_flag("--dry-run", options->dry_run,
                     "Check the plan against --robot's reach (and --joint-range-deg), print the "
                     "poses out of reach and stop: nothing sent, nothing written (exit 3 when "

@@ -55,6 +55,9 @@ struct PlanCommandOptions {
   /// A verification campaign for `h4cal check` (a few poses): D-optimal, below the
   /// identification's minimum, no accuracy predicted.
   bool for_check = false;
+  /// A sequential campaign's first stage: candidates inside the target region only
+  /// (FirstStageOptions).
+  bool first_stage = false;
   /// The target region (TargetRegion): centre and full size of the box in B, mm, and the
   /// nacelle angle range, deg; the defaults are the paper's grid box.
   std::vector<double> region_centre_mm = {0.0, 0.0, -450.0};
@@ -108,6 +111,7 @@ PlanningProblemOptions ProblemOptions(const PlanCommandOptions& o) {
   options.candidates.joint_range = ParseJointRange(o.joint_range_deg);
   if (o.for_check) KeepToTheCalibratedRegion(&options.candidates);
   options.target = RegionOf(o);
+  if (o.first_stage) options = FirstStageOptions(options);
   options.robust.robots = o.robust_robots;
   options.corner_sigma_px = o.corner_sigma_px;
   options.robust.spread.camera_translation_std = 1e-3 * o.setup_sigma_mm;
@@ -179,10 +183,7 @@ RobotDescription PlanningRobot(const PlanCommandOptions& o, PlanningProblemOptio
   if (o.from_result_path.empty()) return apriori;
   const RobotDescription identified =
       IdentifiedDescription(apriori, ReadIdentificationResult(o.from_result_path));
-  options->existing_poses_B = MeasuredPoses(identified, ReadDatasetCsv(o.existing_dataset_path));
-  // The draws spread as an a priori's; around an identified robot they would plan for an
-  // uncertainty the first batch has removed.
-  options->robust.robots = 0;
+  *options = NextStageOptions(*options, identified, ReadDatasetCsv(o.existing_dataset_path));
   spdlog::info(
       "sequential campaign: planning on the robot of {} (Model {}), completing the {} poses of {}",
       o.from_result_path, ToString(identified.model31 ? ModelKind::k31 : ModelKind::k12),
@@ -324,6 +325,11 @@ void AddTargetAndRobustOptions(CLI::App* command, PlanCommandOptions* options) {
                    "for every pose, as a dataset without sigma columns)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  command->add_flag("--first-stage", options->first_stage,
+                    "Sequential campaign, first stage: candidates inside the target region only "
+                    "(a camera set up centimetres away still sees them); then identify, and "
+                    "plan the rest with --from and --existing (h4cal collect --sequential runs "
+                    "both stages)");
   command->add_option("--from", options->from_result_path,
                       "Sequential campaign: plan the rest on this result of the first batch "
                       "(with --existing)");

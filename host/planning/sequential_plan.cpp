@@ -1,12 +1,33 @@
-// The second stage of a sequential campaign (sequential_plan.h).
+// The stages of a sequential campaign (sequential_plan.h).
 #include "host/planning/sequential_plan.h"
 
+#include "common/units.h"
 #include "host/identification/identified_robot.h"
 #include "host/kinematics/measurement_chain.h"
 #include "host/kinematics/model12.h"
 #include "host/kinematics/model31.h"
 
 namespace h4::host {
+
+PlanningProblemOptions FirstStageOptions(PlanningProblemOptions options) {
+  options.candidates.centre = options.target.centre;
+  options.candidates.half_extent = options.target.half_extent;
+  options.candidates.theta.clear();
+  // The candidates' theta step (CandidateOptions::theta), over the region's range.
+  const double step = RadiansFromDegrees(10.0);
+  for (double t = options.target.theta_min; t <= options.target.theta_max + 1e-9; t += step) {
+    options.candidates.theta.push_back(t);
+  }
+  return options;
+}
+
+PlanningProblemOptions NextStageOptions(PlanningProblemOptions options,
+                                        const RobotDescription& identified,
+                                        const std::vector<DatasetRow>& measured) {
+  options.existing_poses_B = MeasuredPoses(identified, measured);
+  options.robust.robots = 0;
+  return options;
+}
 
 RobotDescription IdentifiedDescription(const RobotDescription& apriori,
                                        const IdentificationResult& result) {

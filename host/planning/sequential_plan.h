@@ -1,7 +1,10 @@
-// The second stage of a sequential campaign (`h4cal plan --from result.json --existing
-// dataset.csv`): the rest of the poses is planned on the robot the first batch identified,
-// not on the a priori, and completes the poses measured already. Here: that robot as a
-// description, and the poses the first batch was measured at.
+// A sequential campaign (`h4cal collect --sequential FIRST,TOTAL`; by hand `h4cal plan`, then
+// `h4cal plan --from result.json --existing dataset.csv`): a first batch planned on the a
+// priori robot inside the target region, measured and identified; the rest planned on the
+// robot the first batch identified, not on the a priori, completing the poses measured
+// already (docs/results.md#planned-poses-on-robots-the-planner-has-never-seen). Here: each
+// stage's planning problem, that robot as a description, and the poses the first batch was
+// measured at.
 #pragma once
 
 #include <vector>
@@ -10,8 +13,21 @@
 #include "common/formats/identification_result.h"
 #include "common/robot/robot_description.h"
 #include "host/kinematics/kinematic_model.h"
+#include "host/planning/pose_planner.h"
 
 namespace h4::host {
+
+/// The first stage plans among candidates inside the target region only: poses a camera set
+/// up centimetres and degrees from robot.yaml's X_BC still sees whole, so that the first
+/// batch identifies the robot and its camera before wider poses are chosen.
+PlanningProblemOptions FirstStageOptions(PlanningProblemOptions options);
+
+/// The next stage plans on `identified` (IdentifiedDescription), completing `measured`: no
+/// robots drawn, since draws spread as an a priori's would plan for an uncertainty the first
+/// batch has removed.
+PlanningProblemOptions NextStageOptions(PlanningProblemOptions options,
+                                        const RobotDescription& identified,
+                                        const std::vector<DatasetRow>& measured);
 
 /// `apriori` (robot.yaml: its model12 defines B, and its assembly signs) with the result's
 /// identified model (a Model 31 result as the model31 block, a Model 12 result as model12),

@@ -1,0 +1,149 @@
+// The stages of a sequential campaign, planned for `h4cal collect` (collect_stages.h).
+#include "host/cli/collect_stages.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "common/formats/board_yaml.h"
+#include "common/formats/camera_yaml.h"
+#include "common/formats/identification_result.h"
+#include "common/formats/poses_csv.h"
+#include "common/formats/robot_yaml.h"
+#include "host/cli/identification_print.h"
+#include "host/cli/plan_reach.h"
+#include "host/identification/identification.h"
+#include "host/planning/pose_planner.h"
+#include "host/planning/sequential_plan.h"
+
+namespace h4::host::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// `plan`'s defaults (the target region is the paper's grid box; robots drawn from the a
+/// priori uncertainty) with the campaign's joint range.
+PlanningProblemOptions StageProblemOptions(const CollectStagesOptions& options) {
+  PlanningProblemOptions problem;
+  problem.candidates.joint_range = ParseJointRange(options.joint_range_deg);
+  return problem;
+}
+
+PlannedCampaign PlanStage(const CollectStagesOptions& options, const RobotDescription& robot,
+                          const PlanningProblemOptions& problem_options, int count,
+                          int64_t first_id) {
+  const CameraModel camera(ReadCameraYaml(options.camera_path));
+  const BoardModel board(ReadBoardYaml(options.board_path));
+  const PlanningProblem problem = MakePlanningProblem(robot, camera, board, problem_options);
+  DesignOptions design;
+  design.pose_count = count;
+  const PlannedCampaign planned = PlanCampaign(problem, design, first_id, PlanCriterion::kAccuracy);
+  if (planned.plan.empty()) {
+    throw std::runtime_error(fmt::format("{}: no candidate pose to plan ({})", options.robot_path,
+                                         problem.candidates.Summary()));
+  }
+  return planned;
+}
+
+/// The plan an earlier run of the same campaign wrote, if any (its poses, not planned again).
+std::optional<PosePlan> ReadEarlierPlan(const std::string& path, const char* stage) {
+  if (!fs::exists(path)) return std::nullopt;
+  PosePlan plan = PosePlanFromRows(ReadPosesCsv(path));
+  std::printf("%s: %zu poses, planned by an earlier run (%s)\n", stage, plan.size(), path.c_str());
+  return plan;
+}
+
+/// Model 12, then Model 31 from it, as `collect --report-dir` identifies; the Model 31 result
+/// when it is usable, else Model 12's.
+IdentificationResult IdentifyFirstStage(const RobotDescription& apriori,
+                                        const std::vector<DatasetRow>& rows,
+                                        const std::string& result_path) {
+  const IdentificationOptions id_options;
+  const IdentificationOutcome m12 = IdentifyRobot(apriori, ModelKind::k12, rows, id_options);
+  PrintHeadline(m12);
+  const IdentificationOutcome m31 =
+      IdentifyModel31FromModel12(apriori, m12.result, rows, id_options);
+  PrintHeadline(m31);
+  const IdentificationOutcome* kept = m31.summary.usable   ? &m31
+                                      : m12.summary.usable ? &m12
+                                                           : nullptr;
+  if (kept == nullptr) {
+    throw std::runtime_error(fmt::format(
+        "the first stage's {} poses identify neither model ({}): measure more poses in the "
+        "first stage (--sequential FIRST,TOTAL with a larger FIRST)",
+        rows.size(), m31.summary.message));
+  }
+  WriteIdentificationResult(result_path, kept->result);
+  return kept->result;
+}
+
+}  // namespace
+
+void ParseStageCounts(const std::vector<int>& counts, CollectStagesOptions* options) {
+  if (counts.size() != 2 || counts[0] < 1 || counts[0] >= counts[1]) {
+    throw std::invalid_argument(
+        "--sequential FIRST,TOTAL: FIRST poses in the first stage, TOTAL in the campaign, "
+        "0 < FIRST < TOTAL (e.g. 20,71)");
+  }
+  options->first_count = counts[0];
+  options->total_count = counts[1];
+}
+
+StageFiles StageFilesBeside(const std::string& dataset_path) {
+  const fs::path dataset(dataset_path);
+  const fs::path stem = dataset.parent_path() / dataset.stem();
+  return {stem.string() + ".stage1.plan.csv", stem.string() + ".stage2.plan.csv",
+          stem.string() + ".stage1.result.json"};
+}
+
+PosePlan FirstStagePlan(const CollectStagesOptions& options) {
+  const StageFiles files = StageFilesBeside(options.dataset_path);
+  if (std::optional<PosePlan> earlier = ReadEarlierPlan(files.first_plan, "stage 1 of 2")) {
+    return *earlier;
+  }
+  const RobotDescription apriori = ReadRobotYaml(options.robot_path);
+  const PlannedCampaign planned = PlanStage(
+      options, apriori, FirstStageOptions(StageProblemOptions(options)), options.first_count, 1);
+  WritePosesCsv(files.first_plan, RowsFromPosePlan(planned.plan));
+  std::printf(
+      "stage 1 of 2: %zu poses planned on the a priori robot inside the target region "
+      "(predicted %.4f mm alone), written to %s\n",
+      planned.plan.size(), planned.predicted_position_rms * 1e3, files.first_plan.c_str());
+  return planned.plan;
+}
+
+PosePlan SecondStagePlan(const CollectStagesOptions& options, const PosePlan& first_stage,
+                         const std::vector<DatasetRow>& first_stage_rows) {
+  const StageFiles files = StageFilesBeside(options.dataset_path);
+  if (std::optional<PosePlan> earlier = ReadEarlierPlan(files.second_plan, "stage 2 of 2")) {
+    return *earlier;
+  }
+  std::printf("stage 1 of 2 measured: identifying its %zu poses to plan the rest on\n",
+              first_stage_rows.size());
+  const RobotDescription apriori = ReadRobotYaml(options.robot_path);
+  const IdentificationResult first =
+      IdentifyFirstStage(apriori, first_stage_rows, files.first_result);
+  const RobotDescription identified = IdentifiedDescription(apriori, first);
+  int64_t last_id = 0;
+  for (const PlannedPose& pose : first_stage) last_id = std::max(last_id, pose.pose_id);
+  for (const DatasetRow& row : first_stage_rows) last_id = std::max(last_id, row.pose_id);
+  const int count = std::max(1, options.total_count - static_cast<int>(first_stage_rows.size()));
+  const PlannedCampaign planned =
+      PlanStage(options, identified,
+                NextStageOptions(StageProblemOptions(options), identified, first_stage_rows), count,
+                last_id + 1);
+  WritePosesCsv(files.second_plan, RowsFromPosePlan(planned.plan));
+  std::printf(
+      "stage 2 of 2: %zu poses planned on the robot stage 1 identified (%s), predicted %.4f mm "
+      "with the %zu measured, written to %s\n",
+      planned.plan.size(), files.first_result.c_str(), planned.predicted_position_rms * 1e3,
+      first_stage_rows.size(), files.second_plan.c_str());
+  return planned.plan;
+}
+
+}  // namespace h4::host::cli
