@@ -1,5 +1,7 @@
 // h4cal: the workstation program. Parses the command line, hands over to one
 // subcommand (host/cli/*_command.cpp), and reports any error once, here.
+#include <cstdio>
+
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
@@ -9,6 +11,9 @@
 
 int main(int argc, char** argv) {
   // Results go to stdout, the log to stderr, so a script can capture one without the other.
+  // Line by line, so that both sent to one file (2>&1) interleave in the order they happened
+  // rather than stdout's lines arriving in 4 KiB blocks cut mid-line.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   h4::host::cli::UseProgramLogStyle("h4cal");
   CLI::App app{
       "h4cal: vision-based kinematic calibration of H4 parallel robots (Renaud et al., ICRA "

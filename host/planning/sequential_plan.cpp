@@ -25,7 +25,7 @@ PlanningProblemOptions NextStageOptions(PlanningProblemOptions options,
                                         const RobotDescription& identified,
                                         const std::vector<DatasetRow>& measured) {
   options.existing_poses_B = MeasuredPoses(identified, measured);
-  options.robust.robots = 0;
+  options.robust.average = false;
   return options;
 }
 

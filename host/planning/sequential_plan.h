@@ -22,9 +22,12 @@ namespace h4::host {
 /// batch identifies the robot and its camera before wider poses are chosen.
 PlanningProblemOptions FirstStageOptions(PlanningProblemOptions options);
 
-/// The next stage plans on `identified` (IdentifiedDescription), completing `measured`: no
-/// robots drawn, since draws spread as an a priori's would plan for an uncertainty the first
-/// batch has removed.
+/// The next stage plans on `identified` (IdentifiedDescription), completing `measured`. Its
+/// criterion is the identified robot's alone: draws spread as an a priori's would plan for an
+/// uncertainty the first batch has removed. They still keep out the candidates one of them
+/// does not reach or see whole: planned on 12 poses' identification without them, 4 of the
+/// 12 poses of the next stage were out of the true robot's reach
+/// (tests/integration/sequential_campaign_test.sh).
 PlanningProblemOptions NextStageOptions(PlanningProblemOptions options,
                                         const RobotDescription& identified,
                                         const std::vector<DatasetRow>& measured);

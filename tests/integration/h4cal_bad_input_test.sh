@@ -190,10 +190,21 @@ expect_error "collect --auth-key mode 644" "open.key: auth key: mode 0644" \
 expect_error "collect --auth-key of 16 bytes" "short.key: auth key: 16 bytes; expected 32" \
   "$h4cal" collect --out "$dir/c.csv" --lcm-url memq:// --auth-key "$dir/short.key"
 [ ! -e "$dir/c.csv" ] || fail "collect made a dataset with a refused key"
+# A sequential campaign (issue 29): counts out of order, and what it plans for missing.
+boards=$(cd "$(dirname "$0")/../../boards" && pwd)
+expect_error "collect --sequential 20,10" "0 < FIRST < TOTAL" \
+  "$h4cal" collect --out "$dir/c.csv" --lcm-url memq:// --sequential 20,10 --robot "$robot" \
+  --camera "$boards/sim_camera_1024x768.yaml" --board "$boards/aprilgrid_6x6_30mm.yaml"
+expect_error "collect --sequential without --camera" "give --robot, --camera and --board" \
+  "$h4cal" collect --out "$dir/c.csv" --lcm-url memq:// --sequential 12,24 --robot "$robot"
+expect_error "collect --sequential with --plan" "not with --plan" \
+  "$h4cal" collect --out "$dir/c.csv" --lcm-url memq:// --sequential 12,24 --robot "$robot" \
+  --camera "$boards/sim_camera_1024x768.yaml" --board "$boards/aprilgrid_6x6_30mm.yaml" \
+  --plan "$dir/sim/heldout_truth.csv"
+[ ! -e "$dir/c.csv" ] || fail "collect made a dataset with refused --sequential options"
 # Issue 27 point 4: plan accepted one pose (exit 0, "inf mm" predicted for 40 free
 # parameters) and boards h4cam cannot measure (a family it does not detect, ids past the
 # family's codes).
-boards=$(cd "$(dirname "$0")/../../boards" && pwd)
 plan_inputs=(--robot "$robot" --camera "$boards/sim_camera_1024x768.yaml" --step 0.1)
 expect_error "plan --count 1" "1 poses are too few: Model 31 needs at least 20" \
   "$h4cal" plan "${plan_inputs[@]}" --board "$boards/aprilgrid_6x6_30mm.yaml" --count 1 \
