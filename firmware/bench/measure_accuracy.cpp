@@ -7,13 +7,17 @@
 // come, OpenCV's IPPE + Levenberg-Marquardt with the same intrinsics). Prints a markdown
 // table: position and rotation error RMS, reported sigma / actual error, CPU time per pose.
 //
-// Usage: h4_measure_accuracy [condition=NAME|every] [depth=range|near|far|every]
+// Usage: h4_measure_accuracy [condition=NAME|every] [depth=range|near|far|close|every]
 //                            [scenes=20] [seed=1] [refinement=edge|subpix|none] [rows]
 //                            [corner_floor_px=0.0015] [covariance=edge_noise|residual|group]
 //                            [corner_floor_erosion_gain=0.02] (PoseOptions' fields)
+//                            [camera=FILE] (a camera YAML instead of the paper's: e.g.
+//                            boards/sim_fisheye_190deg_1024x1024.yaml renders and measures
+//                            through the equidistant fisheye)
 // Conditions: clean, blur1.4, gamma0.7+blur0.7, srgb+blur1.0, gradient, all (the
 // "processed" preset: sRGB, defocus, gradient, vignetting, shot noise). Depths: range
-// 0.45-0.65 m, near 0.44-0.46 m, far 0.64-0.66 m. `rows` prints every scene.
+// 0.45-0.65 m, near 0.44-0.46 m, far 0.64-0.66 m, close 0.25-0.35 m. `rows` prints every
+// scene.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -24,6 +28,8 @@
 
 #include <opencv2/calib3d.hpp>
 
+#include "common/camera/camera_model.h"
+#include "common/formats/camera_yaml.h"
 #include "common/geometry/rotation.h"
 #include "common/units.h"
 #include "firmware/pose/measure_pipeline.h"
@@ -59,8 +65,10 @@ struct DepthRange {
   double min_depth, max_depth;  // m
 };
 
+// "close": where a wide-angle lens (e.g. the 190-degree fisheye, f 309 px) images the 30 mm
+// tags as large as the paper's camera does at 0.45-0.65 m (25-37 px).
 const std::vector<DepthRange> kDepths = {
-    {"range", 0.45, 0.65}, {"near", 0.44, 0.46}, {"far", 0.64, 0.66}};
+    {"range", 0.45, 0.65}, {"near", 0.44, 0.46}, {"far", 0.64, 0.66}, {"close", 0.25, 0.35}};
 
 struct Args {
   std::string condition = "every", depth = "range", refinement = "edge";
@@ -70,6 +78,7 @@ struct Args {
   double corner_floor_px = PoseOptions{}.corner_floor_px;
   double corner_floor_erosion_gain = PoseOptions{}.corner_floor_erosion_gain;
   std::string covariance;
+  std::string camera_path;  ///< "" = scenes::PaperCamera()
 };
 
 bool ParseArgs(int argc, char** argv, Args* args) {
@@ -95,6 +104,8 @@ bool ParseArgs(int argc, char** argv, Args* args) {
       args->covariance = value;
     } else if (key == "corner_floor_erosion_gain") {
       args->corner_floor_erosion_gain = std::atof(value.c_str());
+    } else if (key == "camera" && !value.empty()) {
+      args->camera_path = value;
     } else if (key == "corner_floor_px") {
       args->corner_floor_px = std::atof(value.c_str());
     } else {
@@ -127,22 +138,11 @@ struct Tally {
   }
 };
 
-// The plain baseline on the averaged image: AprilTag corners, IPPE, then LM on all of them.
-std::optional<RigidTransform> BaselinePose(const BoardDetector& detector,
-                                           const CameraIntrinsics& camera, const cv::Mat& mean) {
-  const BoardDetection detection = detector.Detect(mean);
-  if (detection.corners.size() < 4) return std::nullopt;
-  std::vector<cv::Point3d> object;
-  std::vector<cv::Point2d> image;
-  for (const CornerObservation& c : detection.corners) {
-    object.emplace_back(c.p_TQ.x(), c.p_TQ.y(), c.p_TQ.z());
-    image.emplace_back(c.uv.x(), c.uv.y());
-  }
-  cv::Mat K(3, 3, CV_64F), distortion(static_cast<int>(camera.distortion.size()), 1, CV_64F);
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) K.at<double>(r, c) = camera.K(r, c);
-  }
-  for (int k = 0; k < distortion.rows; ++k) distortion.at<double>(k) = camera.distortion(k);
+// OpenCV's IPPE, then Levenberg-Marquardt on all the points, in `K`'s pixels with
+// `distortion` (radtan).
+std::optional<RigidTransform> SolvePlainPnP(const std::vector<cv::Point3d>& object,
+                                            const std::vector<cv::Point2d>& image, const cv::Mat& K,
+                                            const cv::Mat& distortion) {
   cv::Mat rvec, tvec;
   if (!cv::solvePnP(object, image, K, distortion, rvec, tvec, false, cv::SOLVEPNP_IPPE)) {
     return std::nullopt;
@@ -153,6 +153,34 @@ std::optional<RigidTransform> BaselinePose(const BoardDetector& detector,
   return RigidTransform(So3Exp(r), p_CT);
 }
 
+// The plain baseline on the averaged image: AprilTag corners, IPPE, then LM on all of them;
+// radtan through OpenCV's own distortion, the equidistant fisheye on the corners' rays
+// (CameraModel::RayFromPixel: cv::solvePnP has no fisheye model) with an identity K.
+std::optional<RigidTransform> BaselinePose(const BoardDetector& detector,
+                                           const CameraIntrinsics& camera, const cv::Mat& mean) {
+  const BoardDetection detection = detector.Detect(mean);
+  if (detection.corners.size() < 4) return std::nullopt;
+  const CameraModel model(camera);
+  const bool radtan = camera.distortion_model == DistortionModel::kRadTan;
+  std::vector<cv::Point3d> object;
+  std::vector<cv::Point2d> image;
+  for (const CornerObservation& c : detection.corners) {
+    Eigen::Vector3d ray_C;
+    if (!radtan && (!model.RayFromPixel(c.uv, &ray_C) || ray_C.z() <= 0)) continue;
+    object.emplace_back(c.p_TQ.x(), c.p_TQ.y(), c.p_TQ.z());
+    image.emplace_back(radtan ? cv::Point2d(c.uv.x(), c.uv.y())
+                              : cv::Point2d(ray_C.x() / ray_C.z(), ray_C.y() / ray_C.z()));
+  }
+  if (object.size() < 4) return std::nullopt;
+  if (!radtan) return SolvePlainPnP(object, image, cv::Mat::eye(3, 3, CV_64F), cv::Mat());
+  cv::Mat K(3, 3, CV_64F), distortion(static_cast<int>(camera.distortion.size()), 1, CV_64F);
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) K.at<double>(r, c) = camera.K(r, c);
+  }
+  for (int k = 0; k < distortion.rows; ++k) distortion.at<double>(k) = camera.distortion(k);
+  return SolvePlainPnP(object, image, K, distortion);
+}
+
 struct Result {
   Tally pipeline, baseline;
   int scenes = 0;
@@ -161,7 +189,8 @@ struct Result {
 Result RunCondition(const Condition& condition, const DepthRange& depth, const Args& args,
                     const PipelineOptions& options) {
   const AprilGridSpec board = scenes::PaperBoard();
-  const CameraIntrinsics camera = scenes::PaperCamera();
+  const CameraIntrinsics camera =
+      args.camera_path.empty() ? scenes::PaperCamera() : ReadCameraYaml(args.camera_path);
   SimSourceOptions sim;
   sim.seed = args.seed;
   sim.render = condition.render;
@@ -255,10 +284,10 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::printf(
-      "%d scenes per row, seed %llu, %d frames averaged, h4cam refinement %s; "
+      "%d scenes per row, seed %llu, %d frames averaged, h4cam refinement %s, camera %s; "
       "baseline: AprilTag corners + IPPE + LM\n\n",
       args.scenes, static_cast<unsigned long long>(args.seed), options.frames,
-      args.refinement.c_str());
+      args.refinement.c_str(), args.camera_path.empty() ? "the paper's" : args.camera_path.c_str());
   std::printf(
       "| condition | depth | method | measured | position RMS mm | rotation RMS deg | "
       "sigma/actual pos / rot | CPU ms/pose |\n");
