@@ -1,4 +1,4 @@
-// The check study (`h4cal check`, host/planning/check_trial.h): over simulated Model 31
+// The check study (`h4cal check`, host/validation/check_trial.h): over simulated Model 31
 // robots and noise seeds, how often the check is right end to end. Each trial simulates
 // the paper's 81-pose grid on the robot (the noise of `h4cal simulate`), identifies it as
 // `h4cal identify` does (Model 12, then Model 31 from it, every default), reads the result
@@ -27,7 +27,7 @@
 #include "common/formats/camera_yaml.h"
 #include "common/timing/clock.h"
 #include "host/bench/study_main.h"
-#include "host/planning/check_trial.h"
+#include "host/validation/check_trial.h"
 #include "host/planning/pose_planner.h"
 #include "host/simulation/paper_scenario.h"
 

@@ -2,7 +2,7 @@
 // verification campaign (a dataset CSV, e.g. 5 poses from `h4cal plan --count 5 --for-check` measured
 // with `h4cal collect --plan`), compares each measured board pose with the result's
 // prediction from the joints and flags the poses whose error exceeds what the measurement
-// noise and the result's uncertainty allow (host/planning/drift_check.h). Exit 3 on drift.
+// noise and the result's uncertainty allow (host/validation/drift_check.h). Exit 3 on drift.
 #include <cstdio>
 #include <stdexcept>
 
@@ -16,7 +16,7 @@
 #include "common/formats/robot_yaml.h"
 #include "common/units.h"
 #include "host/cli/commands.h"
-#include "host/planning/drift_check.h"
+#include "host/validation/drift_check.h"
 
 namespace h4::host::cli {
 namespace {

@@ -3,7 +3,7 @@
 // unchanged robot and on the robot after a 3-sigma joint offset drift. A few seeded trials
 // here (at most one wrong verdict each way in 10); the full rate over many trials is
 // h4_check_study's (docs/results.md#checking-for-drift-h4cal-check).
-#include "host/planning/check_trial.h"
+#include "host/validation/check_trial.h"
 
 #include <gtest/gtest.h>
 

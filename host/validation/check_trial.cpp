@@ -1,5 +1,5 @@
 // One simulated trial of `h4cal check` end to end (check_trial.h).
-#include "host/planning/check_trial.h"
+#include "host/validation/check_trial.h"
 
 #include <cmath>
 #include <stdexcept>

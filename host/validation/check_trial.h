@@ -14,7 +14,7 @@
 #include <string>
 
 #include "host/identification/identification.h"
-#include "host/planning/drift_check.h"
+#include "host/validation/drift_check.h"
 #include "host/simulation/dataset_simulator.h"
 #include "host/simulation/true_robot.h"
 

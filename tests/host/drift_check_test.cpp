@@ -3,7 +3,7 @@
 // whose joint offset moved enough to shift the board by 3 sigma (Mahalanobis, RMS over the
 // poses) is flagged, each in at least 95 % of 20 seeded trials; and the chi-square
 // quantiles are the textbook ones.
-#include "host/planning/drift_check.h"
+#include "host/validation/drift_check.h"
 
 #include <cmath>
 #include <string>

@@ -1,5 +1,5 @@
 // Whether a robot still matches an identification result (drift_check.h).
-#include "host/planning/drift_check.h"
+#include "host/validation/drift_check.h"
 
 #include <cmath>
 #include <stdexcept>
