@@ -238,7 +238,7 @@ PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraM
       MeasuredPoseSigmas(robot, camera, board, options, poses_B, problem.target_indices);
   problem.info =
       BuildInformationModel(robot, options.model, poses_B, analysed, options.cost, sigmas);
-  for (size_t k = 1; options.robust.average && k < drawn.size(); ++k) {
+  for (size_t k = 1; k < drawn.size(); ++k) {
     problem.drawn.push_back(BuildInformationModel(drawn[k].Description(), options.model, poses_B,
                                                   analysed, options.cost, sigmas));
   }

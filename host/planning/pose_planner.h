@@ -57,10 +57,6 @@ struct RobustOptions {
   /// is not where robot.yaml says.
   PerturbationOptions spread = {
       .seed = 1000, .camera_translation_std = 0.03, .camera_rotation_std = RadiansFromDegrees(3.0)};
-  /// False: the drawn robots only keep out the candidates one of them does not reach or see
-  /// whole, and the criterion is the robot's alone (a sequential campaign's next stage, on
-  /// an identified robot: sequential_plan.h).
-  bool average = true;
 };
 
 struct PlanningProblemOptions {

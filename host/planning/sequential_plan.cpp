@@ -25,7 +25,7 @@ PlanningProblemOptions NextStageOptions(PlanningProblemOptions options,
                                         const RobotDescription& identified,
                                         const std::vector<DatasetRow>& measured) {
   options.existing_poses_B = MeasuredPoses(identified, measured);
-  options.robust.average = false;
+  options.robust.robots = 0;
   return options;
 }
 
