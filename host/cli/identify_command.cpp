@@ -42,13 +42,14 @@ struct IdentifyCommandOptions {
   std::string data_path;
   std::string model = "12";  ///< the --model text, parsed in Run
   int validation = 0;
-  int folds = 10;
+  // The library's defaults (IdentificationOptions), not restated here.
+  int folds = IdentificationOptions{}.cross_validation.folds;
   bool validation_given = false;  ///< --validation on the command line (not the default)
   uint64_t seed = 1;
   std::string from_path;
   std::string out_path;
-  std::string estimator = "measurement";
-  std::string algorithm = "LD_LBFGS";
+  std::string estimator = kCostKindNames.NameOf(IdentificationOptions{}.estimator);
+  std::string algorithm = IdentificationOptions{}.nlopt.algorithm;
   std::vector<std::string> fix;
   bool no_outliers = false;
   bool no_polish = false;

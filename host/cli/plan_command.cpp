@@ -45,9 +45,10 @@ struct PlanCommandOptions {
   uint64_t seed = 1;
   int64_t first_id = 1;
   std::string joint_range_deg;  ///< "MIN,MAX", empty: no limit
-  double margin_px = 20.0;
-  double max_tilt_deg = 60.0;
-  double min_depth = 0.15, max_depth = 2.0;
+  // CandidateOptions' defaults, in the units of the command line.
+  double margin_px = CandidateOptions{}.image_margin_px;
+  double max_tilt_deg = DegreesFromRadians(CandidateOptions{}.max_tilt);
+  double min_depth = CandidateOptions{}.min_depth, max_depth = CandidateOptions{}.max_depth;
   double step = CandidateOptions{}.position_step;
   double max_theta_gain = CandidateOptions{}.max_theta_gain;
   std::string curve_path;  ///< CSV of predicted accuracy against N, empty: none
