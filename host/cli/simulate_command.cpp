@@ -24,6 +24,7 @@
 #include "host/simulation/dataset_simulator.h"
 #include "host/simulation/paper_scenario.h"
 #include "host/simulation/pose_plan.h"
+#include "host/simulation/simulation_folder.h"
 #include "host/simulation/true_robot.h"
 #include "host/simulation/truth_file.h"
 #include "host/validation/straightness.h"
@@ -70,7 +71,7 @@ SimulatedDataset SimulateThroughCamera(const SimulateOptions& options, const Sim
        .seed = options.seed,
        .valid_count = options.valid});
   std::filesystem::create_directories(dir);
-  WriteCornersCsv((dir / "corners.csv").string(), campaign.corners);
+  WriteCornersCsv(SimulationFolder{dir}.corners(), campaign.corners);
   SimulatedDataset dataset;
   dataset.rows = campaign.rows;
   dataset.truth = campaign.truth;
@@ -114,10 +115,11 @@ void Run(const SimulateOptions& options) {
   }
 
   fs::create_directories(options.out_dir);
-  WriteDatasetCsv((dir / "dataset.csv").string(), dataset.rows);
-  WriteRobotYaml((dir / "robot.yaml").string(), apriori);
+  const SimulationFolder folder{dir};
+  WriteDatasetCsv(folder.dataset(), dataset.rows);
+  WriteRobotYaml(folder.apriori_robot(), apriori);
   SimulationTruth truth{robot, dataset_options.noise, options.robot_seed, options.seed};
-  WriteTruthYaml((dir / "truth.yaml").string(), truth);
+  WriteTruthYaml(folder.truth(), truth);
 
   // The held-out poses' true joints and true board poses: `h4cal fk --result R
   // --joints heldout_joints.csv --compare heldout_truth.csv` scores an identification.
@@ -129,19 +131,19 @@ void Run(const SimulateOptions& options) {
     heldout_joints.push_back({t.pose_id, {t.q[0], t.q[1], t.q[2], t.q[3]}});
     heldout_truth.push_back({{t.pose_id, t.x_B[0], t.x_B[1], t.x_B[2], t.x_B[3]}, t.X_CT});
   }
-  WriteJointsCsv((dir / "heldout_joints.csv").string(), heldout_joints);
-  WriteFkCsv((dir / "heldout_truth.csv").string(), heldout_truth);
+  WriteJointsCsv(folder.heldout_joints(), heldout_joints);
+  WriteFkCsv(folder.heldout_truth(), heldout_truth);
 
   // The straightness experiment (paper IV.D, Table 4): the true robot slides along a
   // straight ruler in two directions while its (noisy) encoders are logged.
   const std::vector<RulerLine> rulers = PaperRulerLines();
   for (size_t k = 0; k < rulers.size(); ++k) {
-    const std::string name = "straightness_" + std::to_string(k + 1) + ".csv";
+    const std::string path = folder.straightness(static_cast<int>(k) + 1);
     try {
-      WriteJointsCsv((dir / name).string(),
+      WriteJointsCsv(path,
                      SimulateRulerRun(robot, rulers[k], options.sigma_q, options.seed + 1000 + k));
     } catch (const std::invalid_argument& e) {
-      spdlog::warn("{} not written: {}", name, e.what());
+      spdlog::warn("{} not written: {}", path, e.what());
     }
   }
 

@@ -15,20 +15,19 @@
 #include "common/formats/poses_csv.h"
 #include "common/formats/robot_yaml.h"
 #include "common/units.h"
+#include "host/simulation/simulation_folder.h"
 
 namespace h4::host::cli {
 namespace {
 
 namespace fs = std::filesystem;
 
-// `explicit_path`, else `name` in the sim dir when it exists there (or when required).
-std::string Resolve(const std::string& explicit_path, const std::string& sim_dir,
-                    const std::string& name, bool required, const std::string& option) {
+// `explicit_path`, else `in_sim_dir` (the file's place in --sim-dir; "" without one) when
+// it exists there (or when required).
+std::string Resolve(const std::string& explicit_path, const std::string& in_sim_dir, bool required,
+                    const std::string& option) {
   if (!explicit_path.empty()) return explicit_path;
-  if (!sim_dir.empty()) {
-    const fs::path candidate = fs::path(sim_dir) / name;
-    if (fs::exists(candidate) || required) return candidate.string();
-  }
+  if (!in_sim_dir.empty() && (fs::exists(in_sim_dir) || required)) return in_sim_dir;
   if (required) throw std::invalid_argument(option + " is required (or --sim-dir)");
   return "";
 }
@@ -150,11 +149,16 @@ std::pair<std::string, std::string> SplitSquareMeasured(const std::string& value
 
 ValidationInputs LoadValidationInputs(const ValidationFileOptions& o) {
   ValidationInputs in;
-  const std::string robot = Resolve(o.robot_path, o.sim_dir, "robot.yaml", true, "--robot");
-  const std::string data = Resolve(o.data_path, o.sim_dir, "dataset.csv", true, "--data");
-  const std::string r12 = Resolve(o.result12_path, o.sim_dir, "result12.json", false, "");
-  const std::string r31 = Resolve(o.result31_path, o.sim_dir, "result31.json", false, "");
-  const std::string truth = Resolve(o.truth_path, o.sim_dir, "truth.yaml", false, "");
+  const SimulationFolder sim{o.sim_dir};
+  const bool has_sim = !o.sim_dir.empty();
+  const std::string robot =
+      Resolve(o.robot_path, has_sim ? sim.apriori_robot() : "", true, "--robot");
+  const std::string data = Resolve(o.data_path, has_sim ? sim.dataset() : "", true, "--data");
+  const std::string r12 =
+      Resolve(o.result12_path, has_sim ? sim.result(ModelKind::k12) : "", false, "");
+  const std::string r31 =
+      Resolve(o.result31_path, has_sim ? sim.result(ModelKind::k31) : "", false, "");
+  const std::string truth = Resolve(o.truth_path, has_sim ? sim.truth() : "", false, "");
   // The square runs first: a missing --result12 is named before any file is read.
   in.square.side = o.square_mm * 1e-3;
   LoadSquareRuns(o, r12, &in);
@@ -170,9 +174,9 @@ ValidationInputs LoadValidationInputs(const ValidationFileOptions& o) {
   if (!truth.empty()) in.truth = ReadTruthYaml(truth);
   LoadCorners(o, &in);
   std::vector<std::string> runs = o.straightness_paths;
-  if (runs.empty() && !o.sim_dir.empty()) {
-    for (int k = 1; fs::exists(fs::path(o.sim_dir) / fmt::format("straightness_{}.csv", k)); ++k) {
-      runs.push_back((fs::path(o.sim_dir) / fmt::format("straightness_{}.csv", k)).string());
+  if (runs.empty() && has_sim) {
+    for (int k = 1; fs::exists(sim.straightness(k)); ++k) {
+      runs.push_back(sim.straightness(k));
     }
   }
   for (const auto& path : runs) {
