@@ -4,9 +4,8 @@
 // yac calibration toolbox's own detection of each (its corner CSVs), from the MIT-licensed
 // repository chutsu/yac (tests/data/real_frames/README.md says where exactly, which commit,
 // and under which licence). The frames are not in this repository: the test reads them from
-// the first folder that holds them of $H4_REAL_FRAMES_DIR, tests/data/real_frames and
-// ../shared/real_frames (the shared/ folder beside a clone), each with a yac_mocap_d435i/
-// folder inside, and skips itself, saying so, when none does.
+// the first folder that holds them of $H4_REAL_FRAMES_DIR and tests/data/real_frames, each
+// with a yac_mocap_d435i/ folder inside, and skips itself, saying so, when none does.
 //
 // The source publishes no intrinsics, so the camera is calibrated here from the even
 // frames (calibrate-intrinsics' path) and the poses are fitted on the odd ones: the
@@ -70,7 +69,6 @@ std::string SetDir() {
   std::vector<std::string> roots;
   if (const char* env = std::getenv("H4_REAL_FRAMES_DIR")) roots.emplace_back(env);
   roots.push_back(std::string(H4_SOURCE_DIR) + "/tests/data/real_frames");
-  roots.push_back(std::string(H4_SOURCE_DIR) + "/../shared/real_frames");
   for (const std::string& root : roots) {
     if (fs::is_directory(root + "/" + kSet)) return root + "/" + kSet;
   }
@@ -113,8 +111,8 @@ class RealFrames : public testing::Test {
   void SetUp() override {
     dir_ = SetDir();
     if (dir_.empty()) {
-      GTEST_SKIP() << "no " << kSet << "/ in $H4_REAL_FRAMES_DIR, tests/data/real_frames or "
-                   << "../shared/real_frames (tests/data/real_frames/README.md)";
+      GTEST_SKIP() << "no " << kSet << "/ in $H4_REAL_FRAMES_DIR or tests/data/real_frames "
+                   << "(tests/data/real_frames/README.md says where to get them)";
     }
     for (const Frame& frame : kFrames) {
       const std::string path = dir_ + "/" + frame.name + ".jpg";
