@@ -407,6 +407,50 @@ void Run(CollectOptions options, const std::string& command_line) {
   if (!end->complete) SetExitCode(h4::cli::kExitNothingUsable);
 }
 
+// How each pose is measured: frames, timeouts, retries, pairing.
+void AddCampaignOptions(CLI::App* command, CampaignOptions* campaign) {
+  h4::cli::AddFramesOption(command, &campaign->frame_count,
+                           "Frames averaged per measurement (0: the camera's default)")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  command
+      ->add_option("--settle-timeout", campaign->settle_timeout_s,
+                   "Seconds to wait for the robot to settle at a pose")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command
+      ->add_option("--capture-timeout", campaign->capture_timeout_s,
+                   "Seconds to wait for a measurement")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command
+      ->add_option("--retries", campaign->retries,
+                   "Extra attempts per pose (timeouts, moved, partial) before skipping it")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  command
+      ->add_option("--pair-tolerance", campaign->pair_tolerance_s,
+                   "Max seconds between a measurement and its joint reading")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+}
+
+// A sequential campaign's stages, and what they are planned for.
+void AddSequentialOptions(CLI::App* command, CollectOptions* options) {
+  command
+      ->add_option("--sequential", options->sequential,
+                   "A sequential campaign of TOTAL poses: FIRST planned on the a priori robot "
+                   "inside the paper's grid box and measured, identified, then the rest "
+                   "planned on the identified robot and measured (as h4cal plan --from "
+                   "--existing; each stage's plan is written beside --out, and a resumed "
+                   "campaign keeps it). Needs --robot, --camera, --board; not with --plan")
+      ->delimiter(',')
+      ->expected(2);
+  h4::cli::AddCameraOption(command, &options->camera_path,
+                           "Camera intrinsics YAML the sequential campaign is planned for");
+  h4::cli::AddBoardOption(command, &options->board_path);
+}
+
 }  // namespace
 
 void DeclareCollectCommand(CLI::App* command) {
@@ -437,30 +481,7 @@ void DeclareCollectCommand(CLI::App* command) {
       "controller)");
   h4::cli::AddLcmUrlOption(command, &options->lcm_url);
   h4::cli::AddAuthKeyOption(command, &options->auth_key_path, "off");
-  h4::cli::AddFramesOption(command, &options->campaign.frame_count,
-                           "Frames averaged per measurement (0: the camera's default)")
-      ->check(CLI::Range(0, 1000))
-      ->capture_default_str();
-  command
-      ->add_option("--settle-timeout", options->campaign.settle_timeout_s,
-                   "Seconds to wait for the robot to settle at a pose")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  command
-      ->add_option("--capture-timeout", options->campaign.capture_timeout_s,
-                   "Seconds to wait for a measurement")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  command
-      ->add_option("--retries", options->campaign.retries,
-                   "Extra attempts per pose (timeouts, moved, partial) before skipping it")
-      ->check(CLI::Range(0, 100))
-      ->capture_default_str();
-  command
-      ->add_option("--pair-tolerance", options->campaign.pair_tolerance_s,
-                   "Max seconds between a measurement and its joint reading")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  AddCampaignOptions(command, &options->campaign);
   // --report-dir as in identify, validate and report (the old spelling --identify stays).
   command->add_option("--report-dir,--identify", options->identify_dir,
                       "After the campaign: identify Models 12 and 31 (each printed with its "
@@ -473,18 +494,7 @@ void DeclareCollectCommand(CLI::App* command) {
                           "needed by --report-dir, and by --controller with a Model 31 result "
                           "(its frame B)");
   AddJointRangeOption(command, &options->joint_range_deg);
-  command
-      ->add_option("--sequential", options->sequential,
-                   "A sequential campaign of TOTAL poses: FIRST planned on the a priori robot "
-                   "inside the paper's grid box and measured, identified, then the rest "
-                   "planned on the identified robot and measured (as h4cal plan --from "
-                   "--existing; each stage's plan is written beside --out, and a resumed "
-                   "campaign keeps it). Needs --robot, --camera, --board; not with --plan")
-      ->delimiter(',')
-      ->expected(2);
-  h4::cli::AddCameraOption(command, &options->camera_path,
-                           "Camera intrinsics YAML the sequential campaign is planned for");
-  h4::cli::AddBoardOption(command, &options->board_path);
+  AddSequentialOptions(command, options.get());
   command->add_flag("--dry-run", options->dry_run,
                     "Check the plan against --robot's reach (and --joint-range-deg), print the "
                     "poses out of reach and stop: nothing sent, nothing written (exit 3 when "
