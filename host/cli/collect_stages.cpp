@@ -110,10 +110,15 @@ PosePlan FirstStagePlan(const CollectStagesOptions& options) {
   const PlannedCampaign planned = PlanStage(
       options, apriori, FirstStageOptions(StageProblemOptions(options)), options.first_count, 1);
   WritePosesCsv(files.first_plan, RowsFromPosePlan(planned.plan));
+  // Fewer poses than Model 31's free parameters predict no accuracy alone: said in words.
+  const std::string predicted =
+      std::isfinite(planned.predicted_position_rms)
+          ? fmt::format("predicted {:.4f} mm alone", planned.predicted_position_rms * 1e3)
+          : "too few to predict an accuracy alone";
   std::printf(
-      "stage 1 of 2: %zu poses planned on the a priori robot inside the target region "
-      "(predicted %.4f mm alone), written to %s\n",
-      planned.plan.size(), planned.predicted_position_rms * 1e3, files.first_plan.c_str());
+      "stage 1 of 2: %zu poses planned on the a priori robot inside the target region (%s), "
+      "written to %s\n",
+      planned.plan.size(), predicted.c_str(), files.first_plan.c_str());
   return planned.plan;
 }
 
