@@ -28,8 +28,8 @@ PlanningProblemOptions FirstStageOptions(PlanningProblemOptions options);
 /// (20 + 51 poses, 20 robots per prior: median ratio to the grid 0.77 and 0.70, worst 1.75
 /// and 1.54, against 0.67 and 0.70, worst 1.18 and 1.18 without;
 /// docs/results.md#planned-poses-on-robots-the-planner-has-never-seen). A pose out of the
-/// true robot's reach is refused at once and skipped (sequential_campaign_test.sh: 0 to 4
-/// of its 12 second-stage poses, run to run).
+/// true robot's reach is refused at once and skipped (live, after a 12-pose first stage: 0
+/// to 4 of 12 second-stage poses, run to run).
 PlanningProblemOptions NextStageOptions(PlanningProblemOptions options,
                                         const RobotDescription& identified,
                                         const std::vector<DatasetRow>& measured);
