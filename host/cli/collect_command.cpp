@@ -297,7 +297,18 @@ std::optional<CampaignEnd> RunPlannedCampaign(CollectOptions options,
   return RunCampaignOver(options, plan, stop);
 }
 
-/// The poses of `plan` the dataset holds.
+/// The rows of the dataset measured at poses of `plan`.
+std::vector<DatasetRow> RowsOfPlan(const std::vector<DatasetRow>& rows, const PosePlan& plan) {
+  std::set<int64_t> planned;
+  for (const PlannedPose& pose : plan) planned.insert(pose.pose_id);
+  std::vector<DatasetRow> of_plan;
+  for (const DatasetRow& row : rows) {
+    if (planned.count(row.pose_id)) of_plan.push_back(row);
+  }
+  return of_plan;
+}
+
+/// The poses of `plan` that `rows` hold.
 PosePlan MeasuredPart(const PosePlan& plan, const std::vector<DatasetRow>& rows) {
   std::set<int64_t> measured;
   for (const DatasetRow& row : rows) measured.insert(row.pose_id);
@@ -323,13 +334,14 @@ std::optional<CampaignEnd> RunStages(CollectOptions options, const std::atomic<b
   CheckPlanBeforeMoving(&options, first);
   const CampaignEnd first_end = RunCampaignOver(options, first, stop);
   if (first_end.interrupted) return first_end;
-  const std::vector<DatasetRow> rows = ReadDatasetCsv(options.out_path);
-  PosePlan both = MeasuredPart(first, rows);
-  const PosePlan second = SecondStagePlan(stages, first, rows);
+  // Only stage 1's rows: a resumed campaign's dataset may hold stage 2's already.
+  const std::vector<DatasetRow> first_rows = RowsOfPlan(ReadDatasetCsv(options.out_path), first);
+  PosePlan both = MeasuredPart(first, first_rows);
+  const PosePlan second = SecondStagePlan(stages, first, first_rows);
   both.insert(both.end(), second.begin(), second.end());
   CheckPlanBeforeMoving(&options, both);
   std::printf("stage 2 of 2: measuring %zu poses beside the %zu of stage 1\n", second.size(),
-              rows.size());
+              first_rows.size());
   CampaignEnd end = RunCampaignOver(options, both, stop);
   end.complete = end.complete && first_end.complete;
   return end;

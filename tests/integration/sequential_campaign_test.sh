@@ -74,6 +74,9 @@ interrupted=$(rows dataset.csv)
 ! grep -q "poses planned on the" resumed.log || fail "the resumed campaign planned again"
 grep -q "$interrupted already in dataset.csv" resumed.log ||
   fail "the resumed campaign did not start from the $interrupted rows measured"
+first_rows=$(ids dataset.csv | awk -v last="$last_first" '$1 <= last' | wc -l)
+grep -q "^stage 2 of 2: measuring .* beside the $first_rows of stage 1" resumed.log ||
+  fail "the resumed stage 2 does not count stage 1's $first_rows rows alone"
 total=$(rows dataset.csv)
 [ "$(ids dataset.csv | uniq | wc -l)" -eq "$total" ] || fail "dataset.csv holds a pose twice"
 skipped=$(grep -c "skipped pose" resumed.log || true)
