@@ -30,7 +30,7 @@ void ExpectSigmaHonest(double sig_t2, double err_t2, double sig_r2, double err_r
   EXPECT_LT(ratio_r, 2.0);
 }
 
-TEST(MeasurePipelineTest, PaperScenesMeetAccuracyGoalsAndSigmaIsHonest) {
+TEST(MeasurePipelineStudy, PaperScenesMeetAccuracyGoalsAndSigmaIsHonest) {
   const AprilGridSpec board = scenes::PaperBoard();
   const CameraIntrinsics camera = scenes::PaperCamera();
   SimSourceOptions sim;
@@ -62,7 +62,7 @@ TEST(MeasurePipelineTest, PaperScenesMeetAccuracyGoalsAndSigmaIsHonest) {
   ExpectSigmaHonest(sig_t2, err_t2, sig_r2, err_r2);
 }
 
-TEST(MeasurePipelineTest, UnknownResponseBlurAndGradientKeepThePoseWithinGoals) {
+TEST(MeasurePipelineStudy, UnknownResponseBlurAndGradientKeepThePoseWithinGoals) {
   // Scenes whose response (gamma 0.45-0.8), blur (0.6-1.5 px), +-20 %
   // illumination gradient and shot noise the pipeline is not told about. Without the
   // erosion parameters the position error is ~0.3-0.5 mm here (tags look eroded, the board

@@ -32,7 +32,7 @@ std::string ReadText(const fs::path& path) {
   return text.str();
 }
 
-class SimIntrinsicsRehearsal : public ::testing::Test {
+class SimIntrinsicsRehearsalStudy : public ::testing::Test {
  public:
   static void SetUpTestSuite() {
     // One folder per process: ctest runs each test of the suite as its own process, in
@@ -88,90 +88,94 @@ class SimIntrinsicsRehearsal : public ::testing::Test {
 };
 
 void ExpectEveryFrameShowsTheWholeChessboard() {
-  const std::string& output = *SimIntrinsicsRehearsal::capture_output_;
+  const std::string& output = *SimIntrinsicsRehearsalStudy::capture_output_;
   for (const char* summary :
        {"captured 11 frame(s), 11 showing the board", "captured 1 frame(s), 1 showing the board",
         "frame 11: board ok, chessboard: 54/54 corners"}) {
     EXPECT_NE(output.find(summary), std::string::npos) << summary << "\n" << output;
   }
   EXPECT_EQ(output.find("0/0 tags"), std::string::npos) << output;
-  std::istringstream lines(*SimIntrinsicsRehearsal::capture_output_);
+  std::istringstream lines(*SimIntrinsicsRehearsalStudy::capture_output_);
   int whole = 0;
   for (std::string line; std::getline(lines, line);) {
     if (line.find("board ok, chessboard: 54/54 corners") != std::string::npos) ++whole;
   }
-  EXPECT_EQ(whole, 12) << *SimIntrinsicsRehearsal::capture_output_;
+  EXPECT_EQ(whole, 12) << *SimIntrinsicsRehearsalStudy::capture_output_;
 }
 
 void ExpectCalibrationGivesBackTheRenderingCameraWithinItsSigmas() {
-  ASSERT_NE(SimIntrinsicsRehearsal::result_, nullptr) << *SimIntrinsicsRehearsal::calibrate_output_;
-  ASSERT_TRUE(SimIntrinsicsRehearsal::result_->ok()) << *SimIntrinsicsRehearsal::calibrate_output_;
-  EXPECT_EQ(SimIntrinsicsRehearsal::result_->views_used, 12)
-      << *SimIntrinsicsRehearsal::calibrate_output_;
-  const CameraIntrinsics truth = ReadCameraYaml(SimIntrinsicsRehearsal::kCamera);
-  const std::vector<ParameterRow> rows = ParameterRows(*SimIntrinsicsRehearsal::result_);
+  ASSERT_NE(SimIntrinsicsRehearsalStudy::result_, nullptr)
+      << *SimIntrinsicsRehearsalStudy::calibrate_output_;
+  ASSERT_TRUE(SimIntrinsicsRehearsalStudy::result_->ok())
+      << *SimIntrinsicsRehearsalStudy::calibrate_output_;
+  EXPECT_EQ(SimIntrinsicsRehearsalStudy::result_->views_used, 12)
+      << *SimIntrinsicsRehearsalStudy::calibrate_output_;
+  const CameraIntrinsics truth = ReadCameraYaml(SimIntrinsicsRehearsalStudy::kCamera);
+  const std::vector<ParameterRow> rows = ParameterRows(*SimIntrinsicsRehearsalStudy::result_);
   ASSERT_GE(rows.size(), 5u);
   const double true_values[] = {truth.K(0, 0), truth.K(1, 1), truth.K(0, 2), truth.K(1, 2),
                                 truth.distortion(0)};
   for (size_t i = 0; i < 5; ++i) {
     ASSERT_TRUE(rows[i].has_sigma) << rows[i].name << "\n"
-                                   << *SimIntrinsicsRehearsal::calibrate_output_;
+                                   << *SimIntrinsicsRehearsalStudy::calibrate_output_;
     const double error = rows[i].value - true_values[i];
     EXPECT_LT(std::abs(error), 3.0 * rows[i].sigma)
         << rows[i].name << ": error " << error << ", sigma " << rows[i].sigma << "\n"
-        << *SimIntrinsicsRehearsal::calibrate_output_;
+        << *SimIntrinsicsRehearsalStudy::calibrate_output_;
   }
   // Not absurdly large: 25 such views state 0.09 px on fx (README); 12 views a few times that.
   EXPECT_GT(rows[0].sigma, 0.0);
-  EXPECT_LT(rows[0].sigma, 1.0) << *SimIntrinsicsRehearsal::calibrate_output_;
-  EXPECT_LT(rows[2].sigma, 1.0) << *SimIntrinsicsRehearsal::calibrate_output_;
-  EXPECT_LT(SimIntrinsicsRehearsal::result_->rms_px, 0.3)
-      << *SimIntrinsicsRehearsal::calibrate_output_;
+  EXPECT_LT(rows[0].sigma, 1.0) << *SimIntrinsicsRehearsalStudy::calibrate_output_;
+  EXPECT_LT(rows[2].sigma, 1.0) << *SimIntrinsicsRehearsalStudy::calibrate_output_;
+  EXPECT_LT(SimIntrinsicsRehearsalStudy::result_->rms_px, 0.3)
+      << *SimIntrinsicsRehearsalStudy::calibrate_output_;
 }
 
 void ExpectTheCornersReachEveryRegionOfTheImage() {
-  ASSERT_NE(SimIntrinsicsRehearsal::result_, nullptr) << *SimIntrinsicsRehearsal::calibrate_output_;
-  const CoverageGrid grid = CornerCoverage(*SimIntrinsicsRehearsal::result_, 8, 6);
+  ASSERT_NE(SimIntrinsicsRehearsalStudy::result_, nullptr)
+      << *SimIntrinsicsRehearsalStudy::calibrate_output_;
+  const CoverageGrid grid = CornerCoverage(*SimIntrinsicsRehearsalStudy::result_, 8, 6);
   EXPECT_EQ(grid.EmptyCells(), 0) << CoverageSummary(grid);
-  EXPECT_NE(SimIntrinsicsRehearsal::calibrate_output_->find("coverage: corners in 48 of 48 cells"),
-            std::string::npos)
-      << *SimIntrinsicsRehearsal::calibrate_output_;
+  EXPECT_NE(
+      SimIntrinsicsRehearsalStudy::calibrate_output_->find("coverage: corners in 48 of 48 cells"),
+      std::string::npos)
+      << *SimIntrinsicsRehearsalStudy::calibrate_output_;
 }
 
 void ExpectPrintsEachParameterWithItsSigmaAndChessboardLines() {
-  EXPECT_NE(
-      SimIntrinsicsRehearsal::calibrate_output_->find("parameter          value       1-sigma"),
-      std::string::npos)
-      << *SimIntrinsicsRehearsal::calibrate_output_;
-  EXPECT_NE(SimIntrinsicsRehearsal::calibrate_output_->find("scaled by the residual variance"),
+  EXPECT_NE(SimIntrinsicsRehearsalStudy::calibrate_output_->find(
+                "parameter          value       1-sigma"),
+            std::string::npos)
+      << *SimIntrinsicsRehearsalStudy::calibrate_output_;
+  EXPECT_NE(SimIntrinsicsRehearsalStudy::calibrate_output_->find("scaled by the residual variance"),
             std::string::npos);
-  EXPECT_NE(SimIntrinsicsRehearsal::calibrate_output_->find(
+  EXPECT_NE(SimIntrinsicsRehearsalStudy::calibrate_output_->find(
                 "frame_0000.png: board found, chessboard: 54/54 corners"),
             std::string::npos)
-      << *SimIntrinsicsRehearsal::calibrate_output_;
+      << *SimIntrinsicsRehearsalStudy::calibrate_output_;
 }
 
 void ExpectWritesTheReportBesideTheCameraFileNamedAfterIt() {
   for (const char* name : {"camera.yaml", "camera-report.html", "camera-coverage.svg",
                            "camera-residuals.svg", "camera-report.txt"}) {
-    EXPECT_TRUE(fs::exists(*SimIntrinsicsRehearsal::dir_ / name))
+    EXPECT_TRUE(fs::exists(*SimIntrinsicsRehearsalStudy::dir_ / name))
         << name << "\n"
-        << *SimIntrinsicsRehearsal::calibrate_output_;
+        << *SimIntrinsicsRehearsalStudy::calibrate_output_;
   }
-  const std::string html = ReadText(*SimIntrinsicsRehearsal::dir_ / "camera-report.html");
+  const std::string html = ReadText(*SimIntrinsicsRehearsalStudy::dir_ / "camera-report.html");
   for (const char* link : {"href=\"camera-coverage.svg\"", "src=\"camera-coverage.svg\"",
                            "href=\"camera-residuals.svg\"", "href=\"camera.yaml\""}) {
     EXPECT_NE(html.find(link), std::string::npos) << link;
   }
   EXPECT_NE(html.find("<td>fx</td>"), std::string::npos);
   for (const char* svg : {"camera-coverage.svg", "camera-residuals.svg"}) {
-    const std::string text = ReadText(*SimIntrinsicsRehearsal::dir_ / svg);
+    const std::string text = ReadText(*SimIntrinsicsRehearsalStudy::dir_ / svg);
     EXPECT_EQ(text.rfind("<?xml", 0), 0u) << svg;
     EXPECT_NE(text.find("</svg>"), std::string::npos) << svg;
     EXPECT_EQ(text.find("nan"), std::string::npos) << svg;
   }
   // One dot per corner of the 12 views.
-  const std::string coverage = ReadText(*SimIntrinsicsRehearsal::dir_ / "camera-coverage.svg");
+  const std::string coverage = ReadText(*SimIntrinsicsRehearsalStudy::dir_ / "camera-coverage.svg");
   size_t dots = 0;
   for (size_t at = coverage.find("<circle"); at != std::string::npos;
        at = coverage.find("<circle", at + 1)) {
@@ -182,7 +186,7 @@ void ExpectWritesTheReportBesideTheCameraFileNamedAfterIt() {
 
 // One capture and calibration for every check: each is a few seconds optimised, minutes
 // under the sanitizers and qemu, and ctest runs each test of a suite as its own process.
-TEST_F(SimIntrinsicsRehearsal, GivesBackTheRenderingCameraAndReportsWhatItSaw) {
+TEST_F(SimIntrinsicsRehearsalStudy, GivesBackTheRenderingCameraAndReportsWhatItSaw) {
   {
     SCOPED_TRACE("EveryFrameShowsTheWholeChessboard");
     ExpectEveryFrameShowsTheWholeChessboard();

@@ -161,7 +161,7 @@ TEST(CornerCost, JacobianMatchesCentralDifferences) {
 // same file is several times worse (the scene can embarrass the code). On an exact camera
 // kept exact (--camera-fixed) the corner path is at least as accurate as the pose path (it is
 // the efficient estimate), within 1.2x in geometric mean over the three campaigns.
-TEST(CornerPath, CorrectsATypicalIntrinsicCalibrationError) {
+TEST(CornerPathStudy, CorrectsATypicalIntrinsicCalibrationError) {
   double log_corner = 0, log_wrong_pose = 0, log_exact_corner = 0;
   const int robots = 3;
   for (int k = 0; k < robots; ++k) {
@@ -298,7 +298,7 @@ TEST(CornerResidualMap, ShowsTheFilesErrorAndNotTheRefinedCameras) {
 
 // The encoder noise the corner residuals show is the simulated one (joint_noise.h), and none
 // when the encoders are exact.
-TEST(JointNoise, IsSeenInTheCornerResidualsAtItsSimulatedSize) {
+TEST(JointNoiseStudy, IsSeenInTheCornerResidualsAtItsSimulatedSize) {
   const SimulatedRobot truth = Robot(21);
   for (const double sigma_q : {0.0, 2e-5, 6e-5}) {
     const PathAccuracies run =

@@ -92,7 +92,7 @@ TEST(PoseDesign, EndsWhereAddingTheBestCandidateAndDroppingAnyPoseDoesNotHelp) {
   EXPECT_GT(design.log_det, LogDet(InformationMatrix(problem.info, start)));
 }
 
-TEST(PoseDesign, TheAccuracyCriterionPredictsNoWorseThanDOptimality) {
+TEST(PoseDesignStudy, TheAccuracyCriterionPredictsNoWorseThanDOptimality) {
   const PlanningProblem& problem = CoarseProblem();
   DesignOptions options;
   options.pose_count = 20;
