@@ -3,7 +3,6 @@
 
 #include <cmath>
 
-#include "common/formats/identification_result.h"
 #include "common/formats/number_text.h"
 #include "common/geometry/rotation.h"
 

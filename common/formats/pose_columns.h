@@ -11,6 +11,10 @@
 
 namespace h4 {
 
+/// No H4 parameter, placement or board pose is larger than this (m): the bound every file's
+/// lengths and positions are read against (robot.yaml, the result, the pose columns).
+inline constexpr double kMaxRobotSize_m = 10.0;
+
 /// The column names, in the order written.
 const std::vector<std::string>& PoseColumnNames();
 

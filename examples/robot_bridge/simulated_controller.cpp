@@ -1,7 +1,7 @@
 // The simulated controller of the robot bridge example; see simulated_controller.h.
 #include "examples/robot_bridge/simulated_controller.h"
 
-#include "common/formats/robot_yaml.h"
+#include "host/formats/robot_yaml.h"
 #include "host/simulation/truth_file.h"
 
 namespace h4::example {

@@ -24,8 +24,8 @@
 #include "common/board/board_model.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
-#include "common/formats/poses_csv.h"
 #include "host/bench/study_main.h"
+#include "host/formats/poses_csv.h"
 #include "host/identification/corner_identification.h"
 #include "host/identification/identification.h"
 #include "host/simulation/calibration_draw.h"
@@ -48,10 +48,10 @@ struct StudyOptions {
 
 struct CameraError {
   const char* name;
-  double fx = 0, fy = 0;  // relative
-  double cx = 0, cy = 0;  // px
-  double k1 = 0;          // relative
-  bool drawn = false;     // a draw from the 25-view calibration's covariance instead
+  double fx = 0, fy = 0;       // relative
+  double cx = 0, cy = 0;       // px
+  double k1 = 0;               // relative
+  bool drawn = false;          // a draw from the 25-view calibration's covariance instead
   const char* file = nullptr;  // a camera file of boards/ instead, with its own covariance
 };
 
@@ -134,10 +134,8 @@ void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed
   IdentificationOptions id_options;
   // The pose path knows the file's covariance: its predicted accuracy carries it.
   id_options.camera_file = CameraFileUncertainty{file_camera, board.corners()};
-  const IdentificationOutcome m12 =
-      IdentifyRobot(apriori, ModelKind::k12, campaign.rows, id_options);
   const IdentificationOutcome m31 =
-      IdentifyModel31FromModel12(apriori, m12.result, campaign.rows, id_options);
+      IdentifyModel12Then31(apriori, campaign.rows, id_options).model31;
   const TrueAccuracy pose = TrueAccuracyOfResult(m31.result, truth, grid);
   // A pose path that fails (a start the fit cannot leave, `inconsistent_with_apriori`) is no
   // start for the corner path: the row is named and left out of the means (the whole robot
@@ -186,7 +184,8 @@ void Run(const StudyOptions& options) {
         ReadCameraYaml(std::string(H4_SOURCE_DIR) + "/boards/sim_camera_1024x768.yaml");
     const Eigen::VectorXd sigma = ChessboardCalibrationCovariance(camera).diagonal().cwiseSqrt();
     std::printf(
-        "the stated errors and the draws carry a 25-view chessboard calibration's covariance (the files their own): sigma fx %.0f "
+        "the stated errors and the draws carry a 25-view chessboard calibration's covariance (the "
+        "files their own): sigma fx %.0f "
         "ppm, fy %.0f ppm, cx %.2f px, cy %.2f px, k1 %.2f %%\n",
         1e6 * sigma[0] / camera.K(0, 0), 1e6 * sigma[1] / camera.K(1, 1), sigma[2], sigma[3],
         100 * sigma[4] / std::abs(camera.distortion[0]));

@@ -284,12 +284,9 @@ const CornerProblem& GetCornerProblem() {
         MakeTrueRobot(PaperAprioriRobot(), TrueGeometry::kPerturbedModel31, {.seed = 1});
     const CornerCampaign campaign =
         SimulateCornerCampaign(truth, GridPosePlan(), board, true_camera, file_camera, {});
-    const IdentificationOutcome m12 =
-        IdentifyRobot(PaperAprioriRobot(), ModelKind::k12, campaign.rows, {});
     return CornerProblem{
-        campaign.rows, GroupCornersByRow(campaign.rows, campaign.corners, board, 0.05),
-        file_camera,
-        IdentifyModel31FromModel12(PaperAprioriRobot(), m12.result, campaign.rows, {})};
+        campaign.rows, GroupCornersByRow(campaign.rows, campaign.corners, board, 0.05), file_camera,
+        IdentifyModel12Then31(PaperAprioriRobot(), campaign.rows, {}).model31};
   }();
   return problem;
 }

@@ -160,8 +160,7 @@ IdentificationOutcome IdentifyLikeTheDemo(const RobotDescription& apriori,
                                           bool model31_from_apriori) {
   const IdentificationOptions options;
   if (model31_from_apriori) return IdentifyRobot(apriori, ModelKind::k31, rows, options);
-  const IdentificationOutcome model12 = IdentifyRobot(apriori, ModelKind::k12, rows, options);
-  return IdentifyModel31FromModel12(apriori, model12.result, rows, options);
+  return IdentifyModel12Then31(apriori, rows, options).model31;
 }
 
 std::vector<DatasetRow> CalibrationRowsOnly(std::vector<DatasetRow> rows) {

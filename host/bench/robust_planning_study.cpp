@@ -301,9 +301,7 @@ CampaignFigures IdentifyAndJudge(const std::vector<DatasetRow>& rows,
   CampaignFigures figures;
   figures.poses = static_cast<int>(rows.size());
   const IdentificationOptions options;
-  const IdentificationOutcome model12 = IdentifyRobot(apriori, ModelKind::k12, rows, options);
-  const IdentificationOutcome model31 =
-      IdentifyModel31FromModel12(apriori, model12.result, rows, options);
+  const auto [model12, model31] = IdentifyModel12Then31(apriori, rows, options);
   figures.verdict12 = VerdictCode(model12.verdict);
   figures.verdict31 = VerdictCode(model31.verdict);
   figures.usable = model31.summary.usable;

@@ -15,8 +15,8 @@
 
 #include <sys/types.h>
 
-#include "common/formats/dataset_csv.h"
 #include "host/campaign/journal_file.h"  // JournalFileOps
+#include "host/formats/dataset_csv.h"
 
 namespace h4::host {
 

@@ -14,7 +14,7 @@
 #include <h4msgs/board_pose_t.hpp>
 #include <h4msgs/joint_state_t.hpp>
 
-#include "common/formats/dataset_csv.h"
+#include "host/formats/dataset_csv.h"
 
 namespace h4::host {
 
@@ -93,7 +93,8 @@ class JointHistory {
 
 /// The dataset row of a measurement and its joint reading: utime and X_CT from the camera,
 /// q from the encoders, sigma_t / sigma_r from the covariance's translation and rotation
-/// blocks (root of the mean diagonal: one std per axis, as common/formats/README.md's columns mean).
+/// blocks (root of the mean diagonal: one std per axis, as common/formats/README.md's columns
+/// mean).
 DatasetRow MakeDatasetRow(const h4msgs::board_pose_t& measurement, const JointReading& joints);
 
 }  // namespace h4::host

@@ -20,8 +20,8 @@
 #include <string>
 
 #include "common/geometry/rigid_transform.h"
-#include "common/robot/robot_description.h"
 #include "host/kinematics/kinematic_model.h"
+#include "host/kinematics/robot_description.h"
 #include "host/simulation/true_robot.h"
 
 namespace h4::host {

@@ -5,10 +5,10 @@
 
 #include "common/cli/shared_options.h"
 #include "common/cli/subcommand.h"
-#include "common/formats/dataset_csv.h"
-#include "common/formats/robot_yaml.h"
 #include "common/units.h"
 #include "host/cli/commands.h"
+#include "host/formats/dataset_csv.h"
+#include "host/formats/robot_yaml.h"
 #include "host/identification/prior_analysis.h"
 
 namespace h4::host::cli {

@@ -1,6 +1,6 @@
 // `h4cal check`: does the robot still match an identification result? Reads a short
-// verification campaign (a dataset CSV, e.g. 5 poses from `h4cal plan --count 5 --for-check` measured
-// with `h4cal collect --plan`), compares each measured board pose with the result's
+// verification campaign (a dataset CSV, e.g. 5 poses from `h4cal plan --count 5 --for-check`
+// measured with `h4cal collect --plan`), compares each measured board pose with the result's
 // prediction from the joints and flags the poses whose error exceeds what the measurement
 // noise and the result's uncertainty allow (host/validation/drift_check.h). Exit 3 on drift.
 #include <cstdio>
@@ -11,11 +11,11 @@
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
 #include "common/cli/subcommand.h"
-#include "common/formats/dataset_csv.h"
-#include "common/formats/identification_result.h"
-#include "common/formats/robot_yaml.h"
 #include "common/units.h"
 #include "host/cli/commands.h"
+#include "host/formats/dataset_csv.h"
+#include "host/formats/identification_result.h"
+#include "host/formats/robot_yaml.h"
 #include "host/validation/drift_check.h"
 
 namespace h4::host::cli {
@@ -44,9 +44,8 @@ void Run(const CheckCommandOptions& o) {
   const Assembly assembly =
       o.robot_path.empty() ? Assembly{} : ReadRobotYaml(o.robot_path).assembly;
   const std::vector<DatasetRow> rows = ReadDatasetCsv(o.data_path);
-  const DriftCheckResult check =
-      CheckResultForDrift(result, assembly, rows, o.check, !o.no_parameter_sigmas,
-                          !o.stated_camera_covariance);
+  const DriftCheckResult check = CheckResultForDrift(
+      result, assembly, rows, o.check, !o.no_parameter_sigmas, !o.stated_camera_covariance);
   std::printf("check of %s against %s (Model %s), %zu poses:\n", o.data_path.c_str(),
               o.result_path.c_str(), ToString(result.model), rows.size());
   if (check.evaluable) PrintPoses(check);

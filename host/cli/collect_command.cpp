@@ -23,9 +23,6 @@
 #include "common/cli/stop_signal.h"
 #include "common/cli/subcommand.h"
 #include "common/formats/file_output.h"
-#include "common/formats/identification_result.h"
-#include "common/formats/poses_csv.h"
-#include "common/formats/robot_yaml.h"
 #include "host/campaign/campaign.h"
 #include "host/campaign/control_law.h"
 #include "host/cli/collect_stages.h"
@@ -35,6 +32,9 @@
 #include "host/cli/progress.h"
 #include "host/cli/robot_source.h"
 #include "host/cli/validation_inputs.h"
+#include "host/formats/identification_result.h"
+#include "host/formats/poses_csv.h"
+#include "host/formats/robot_yaml.h"
 #include "host/identification/identification.h"
 #include "host/kinematics/model31.h"
 #include "host/report/html_report.h"
@@ -181,15 +181,13 @@ bool IdentifyAndReport(const CollectOptions& options, const std::string& command
   fs::create_directories(options.identify_dir);
   const RobotDescription robot = ReadRobotYaml(options.robot_path);
   const std::vector<DatasetRow> rows = ReadDatasetCsv(options.out_path);
-  const IdentificationOptions id_options;
   const std::string result12 = (fs::path(options.identify_dir) / "result12.json").string();
   const std::string result31 = (fs::path(options.identify_dir) / "result31.json").string();
-  const IdentificationOutcome m12 = IdentifyRobot(robot, ModelKind::k12, rows, id_options);
+  const auto [m12, m31] = IdentifyModel12Then31(robot, rows, IdentificationOptions{});
   WriteIdentificationResult(result12, m12.result);
   PrintHeadline(m12);
   spdlog::info("Model 12 result written to {}", result12);
   if (!m12.summary.usable) throw std::runtime_error("Model 12 identification not usable");
-  const IdentificationOutcome m31 = IdentifyModel31FromModel12(robot, m12.result, rows, id_options);
   WriteIdentificationResult(result31, m31.result);
   PrintHeadline(m31);
   spdlog::info("Model 31 result written to {}", result31);

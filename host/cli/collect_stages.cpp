@@ -13,11 +13,11 @@
 
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
-#include "common/formats/identification_result.h"
-#include "common/formats/poses_csv.h"
-#include "common/formats/robot_yaml.h"
 #include "host/cli/identification_print.h"
 #include "host/cli/plan_reach.h"
+#include "host/formats/identification_result.h"
+#include "host/formats/poses_csv.h"
+#include "host/formats/robot_yaml.h"
 #include "host/identification/identification.h"
 #include "host/planning/pose_planner.h"
 #include "host/planning/sequential_plan.h"
@@ -64,11 +64,8 @@ std::optional<PosePlan> ReadEarlierPlan(const std::string& path, const char* sta
 IdentificationResult IdentifyFirstStage(const RobotDescription& apriori,
                                         const std::vector<DatasetRow>& rows,
                                         const std::string& result_path) {
-  const IdentificationOptions id_options;
-  const IdentificationOutcome m12 = IdentifyRobot(apriori, ModelKind::k12, rows, id_options);
+  const auto [m12, m31] = IdentifyModel12Then31(apriori, rows, IdentificationOptions{});
   PrintHeadline(m12);
-  const IdentificationOutcome m31 =
-      IdentifyModel31FromModel12(apriori, m12.result, rows, id_options);
   PrintHeadline(m31);
   const IdentificationOutcome* kept = m31.summary.usable   ? &m31
                                       : m12.summary.usable ? &m12

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "common/formats/dataset_csv.h"
+#include "host/formats/dataset_csv.h"
 #include "host/simulation/pose_plan.h"
 
 namespace h4::host::cli {

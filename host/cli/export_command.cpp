@@ -12,9 +12,9 @@
 #include "common/cli/shared_options.h"
 #include "common/cli/subcommand.h"
 #include "common/formats/file_output.h"
-#include "common/formats/identification_result.h"
-#include "common/formats/robot_yaml.h"
 #include "host/cli/commands.h"
+#include "host/formats/identification_result.h"
+#include "host/formats/robot_yaml.h"
 #include "host/identification/identified_robot.h"
 #include "host/kinematics/model12.h"
 #include "host/kinematics/model31.h"
@@ -32,8 +32,8 @@ struct ExportOptions {
 // silently: the verdict and its advice are repeated, and the exit is 3 as identify's was.
 void WarnUnlessGood(const IdentificationResult& result, const std::string& path) {
   if (!result.verdict || result.verdict->code == "good") return;
-  spdlog::warn("{}: its verdict is {}, not good: {} Export the result whose verdict is good.",
-               path, result.verdict->code, result.verdict->text);
+  spdlog::warn("{}: its verdict is {}, not good: {} Export the result whose verdict is good.", path,
+               result.verdict->code, result.verdict->text);
   SetExitCode(h4::cli::kExitNothingUsable);
 }
 

@@ -6,10 +6,10 @@
 #include "common/cli/shared_options.h"
 #include "common/cli/subcommand.h"
 #include "common/formats/file_output.h"
-#include "common/formats/joints_csv.h"
-#include "common/formats/poses_csv.h"
 #include "host/cli/commands.h"
 #include "host/cli/robot_source.h"
+#include "host/formats/joints_csv.h"
+#include "host/formats/poses_csv.h"
 
 namespace h4::host::cli {
 namespace {

@@ -10,7 +10,7 @@
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
 
-#include "common/robot/robot_description.h"
+#include "host/kinematics/robot_description.h"
 #include "host/simulation/pose_plan.h"
 
 namespace h4::host::cli {

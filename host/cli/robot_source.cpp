@@ -2,8 +2,8 @@
 #include "host/cli/robot_source.h"
 
 #include "common/cli/shared_options.h"
-#include "common/formats/identification_result.h"
-#include "common/formats/robot_yaml.h"
+#include "host/formats/identification_result.h"
+#include "host/formats/robot_yaml.h"
 #include "host/kinematics/model12.h"
 #include "host/kinematics/model31.h"
 

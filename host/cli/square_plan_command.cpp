@@ -14,9 +14,9 @@
 
 #include "common/cli/shared_options.h"
 #include "common/cli/subcommand.h"
-#include "common/formats/poses_csv.h"
 #include "common/units.h"
 #include "host/cli/commands.h"
+#include "host/formats/poses_csv.h"
 #include "host/validation/measured_square.h"
 
 namespace h4::host::cli {

@@ -12,9 +12,9 @@
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/formats/corners_csv.h"
-#include "common/formats/poses_csv.h"
-#include "common/formats/robot_yaml.h"
 #include "common/units.h"
+#include "host/formats/poses_csv.h"
+#include "host/formats/robot_yaml.h"
 #include "host/simulation/simulation_folder.h"
 
 namespace h4::host::cli {

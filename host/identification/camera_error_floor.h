@@ -14,8 +14,8 @@
 
 #include <Eigen/Core>
 
-#include "common/formats/dataset_csv.h"
-#include "common/formats/identification_result.h"
+#include "host/formats/dataset_csv.h"
+#include "host/formats/identification_result.h"
 #include "host/identification/identification_cost.h"
 #include "host/identification/parameter_vector.h"
 

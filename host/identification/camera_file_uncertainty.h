@@ -16,7 +16,7 @@
 #include <Eigen/Core>
 
 #include "common/camera/camera_intrinsics.h"
-#include "common/formats/dataset_csv.h"
+#include "host/formats/dataset_csv.h"
 #include "host/identification/identification_cost.h"
 #include "host/identification/parameter_vector.h"
 #include "host/identification/uncertainty.h"

@@ -16,7 +16,7 @@
 #include "common/camera/board_pose_fit.h"
 #include "common/camera/camera_intrinsics.h"
 #include "common/camera/camera_model.h"
-#include "common/formats/dataset_csv.h"
+#include "host/formats/dataset_csv.h"
 #include "host/identification/parameter_vector.h"
 #include "host/identification/pose_chain.h"
 #include "host/identification/warm_forward_kinematics.h"

@@ -12,8 +12,7 @@
 #include "common/camera/board_pose_fit.h"
 #include "common/camera/camera_intrinsics.h"
 #include "common/formats/corners_csv.h"
-#include "common/formats/dataset_csv.h"
-#include "common/robot/model_kind.h"
+#include "host/formats/dataset_csv.h"
 #include "host/identification/corner_cost.h"
 #include "host/identification/identifiability.h"
 #include "host/identification/identification.h"
@@ -21,6 +20,7 @@
 #include "host/identification/least_squares.h"
 #include "host/identification/parameter_vector.h"
 #include "host/identification/uncertainty.h"
+#include "host/kinematics/model_kind.h"
 
 namespace h4::host {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "common/formats/dataset_csv.h"
+#include "host/formats/dataset_csv.h"
 #include "host/identification/identification_cost.h"
 #include "host/identification/least_squares.h"
 #include "host/identification/parameter_vector.h"

@@ -11,8 +11,8 @@
 
 #include <Eigen/Core>
 
-#include "common/robot/model_kind.h"
 #include "host/identification/parameter_vector.h"
+#include "host/kinematics/model_kind.h"
 
 namespace h4::host {
 

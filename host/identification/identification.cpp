@@ -572,6 +572,14 @@ IdentificationOutcome IdentifyModel31FromModel12(const RobotDescription& robot,
   return out;
 }
 
+ModelPairOutcome IdentifyModel12Then31(const RobotDescription& robot,
+                                       const std::vector<DatasetRow>& rows,
+                                       const IdentificationOptions& options) {
+  IdentificationOutcome model12 = IdentifyRobot(robot, ModelKind::k12, rows, options);
+  IdentificationOutcome model31 = IdentifyModel31FromModel12(robot, model12.result, rows, options);
+  return {std::move(model12), std::move(model31)};
+}
+
 std::string IdentificationSummary::FullReport() const {
   std::ostringstream s;
   s << "identification: " << (usable ? "usable" : "NOT usable") << " (" << message << "), "

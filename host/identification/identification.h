@@ -15,9 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "common/formats/dataset_csv.h"
-#include "common/formats/identification_result.h"
-#include "common/robot/robot_description.h"
+#include "host/formats/dataset_csv.h"
+#include "host/formats/identification_result.h"
 #include "host/identification/camera_file_uncertainty.h"
 #include "host/identification/cross_validation.h"
 #include "host/identification/identifiability.h"
@@ -28,6 +27,7 @@
 #include "host/identification/prior_analysis.h"
 #include "host/identification/uncertainty.h"
 #include "host/identification/verdict.h"
+#include "host/kinematics/robot_description.h"
 
 namespace h4::host {
 
@@ -196,5 +196,16 @@ IdentificationOutcome IdentifyModel31FromModel12(const RobotDescription& robot,
                                                  const IdentificationResult& model12_result,
                                                  const std::vector<DatasetRow>& rows,
                                                  const IdentificationOptions& options);
+
+/// Both models as the demo, `collect --identify` and the studies run them (paper III.C):
+/// Model 12 from the a priori robot, then Model 31 from its result
+/// (IdentifyModel31FromModel12), whether or not Model 12 was usable: the caller judges.
+struct ModelPairOutcome {
+  IdentificationOutcome model12;
+  IdentificationOutcome model31;
+};
+ModelPairOutcome IdentifyModel12Then31(const RobotDescription& robot,
+                                       const std::vector<DatasetRow>& rows,
+                                       const IdentificationOptions& options);
 
 }  // namespace h4::host

@@ -17,9 +17,9 @@
 
 #include <Eigen/Core>
 
-#include "common/formats/dataset_csv.h"
 #include "common/text/enum_names.h"
 #include "common/units.h"
+#include "host/formats/dataset_csv.h"
 #include "host/identification/parameter_vector.h"
 #include "host/identification/pose_chain.h"
 #include "host/identification/warm_forward_kinematics.h"
@@ -30,8 +30,8 @@ namespace h4::host {
 enum class CostKind { kJointSpace, kImplicit, kMeasurement };
 
 /// The estimator names of IdentificationResult and of `h4cal identify --estimator`.
-inline constexpr EnumNames<CostKind, CostKind::kMeasurement> kCostKindNames = {
-    "joint", "implicit", "measurement"};
+inline constexpr EnumNames<CostKind, CostKind::kMeasurement> kCostKindNames = {"joint", "implicit",
+                                                                               "measurement"};
 
 /// kCostKindNames' name of `kind`.
 const char* ToString(CostKind kind);

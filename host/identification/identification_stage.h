@@ -10,7 +10,7 @@
 
 #include <Eigen/Core>
 
-#include "common/formats/dataset_csv.h"
+#include "host/formats/dataset_csv.h"
 #include "host/identification/identifiability.h"
 #include "host/identification/identification_cost.h"
 #include "host/identification/parameter_vector.h"

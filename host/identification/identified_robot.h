@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "common/formats/dataset_csv.h"
-#include "common/formats/identification_result.h"
 #include "common/geometry/rigid_transform.h"
+#include "host/formats/dataset_csv.h"
+#include "host/formats/identification_result.h"
 #include "host/identification/parameter_vector.h"
 #include "host/kinematics/kinematic_model.h"
 
@@ -31,8 +31,9 @@ struct IdentifiedRobot {
 IdentifiedRobot RebuildFromResult(const IdentificationResult& result,
                                   const Assembly& assembly = Assembly{});
 
-/// The one check that a result is Model 12's (the --from start of Model 31): throws std::invalid_argument "SOURCE: USE needs a Model 12 result, this is Model
-/// 31" (without "SOURCE: " when source is empty).
+/// The one check that a result is Model 12's (the --from start of Model 31): throws
+/// std::invalid_argument "SOURCE: USE needs a Model 12 result, this is Model 31" (without "SOURCE:
+/// " when source is empty).
 void RequireModel12Result(const IdentificationResult& result, const std::string& source,
                           const std::string& use);
 

@@ -12,9 +12,9 @@
 
 #include <Eigen/Core>
 
-#include "common/formats/dataset_csv.h"
 #include "common/geometry/rigid_transform.h"
 #include "common/units.h"
+#include "host/formats/dataset_csv.h"
 
 namespace h4::host {
 

@@ -10,7 +10,7 @@
 #include <optional>
 #include <vector>
 
-#include "common/formats/dataset_csv.h"
+#include "host/formats/dataset_csv.h"
 #include "host/identification/parameter_vector.h"
 #include "host/identification/uncertainty.h"
 #include "host/kinematics/kinematic_model.h"

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/formats/dataset_csv.h"
+#include "host/formats/dataset_csv.h"
 #include "host/identification/identification.h"
 #include "host/identification/identification_stage.h"
 

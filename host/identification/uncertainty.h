@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-#include "common/formats/identification_result.h"
+#include "host/formats/identification_result.h"
 #include "host/identification/parameter_vector.h"
 
 namespace h4::host {

@@ -11,8 +11,8 @@
 #include <utility>
 #include <vector>
 
-#include "common/formats/identification_result.h"
-#include "common/robot/model_kind.h"
+#include "host/formats/identification_result.h"
+#include "host/kinematics/model_kind.h"
 
 namespace h4::host {
 

@@ -6,8 +6,8 @@
 #include <memory>
 #include <string>
 
-#include "common/robot/parameter_names.h"
 #include "host/identification/identified_robot.h"
+#include "host/kinematics/model_parameters.h"
 
 namespace h4::host {
 namespace {
@@ -18,7 +18,8 @@ void FillDepartures(const SolutionToJudge& s, VerdictInputs* in) {
     const std::string& name = s.p.names()[static_cast<size_t>(k)];
     const double before = s.apriori.values()[k];
     const double change = std::abs(s.p.values()[k] - before);
-    if (IsPositiveLengthParameter(name) && before > 0 && change / before > in->largest_length_change) {
+    if (IsPositiveLengthParameter(name) && before > 0 &&
+        change / before > in->largest_length_change) {
       in->largest_length_change = change / before;
       in->largest_length_parameter = name;
     } else if (IsModelAngleParameter(name) && change > in->largest_angle_change) {

@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "common/formats/dataset_csv.h"
+#include "host/formats/dataset_csv.h"
 #include "host/identification/identification_cost.h"
 #include "host/identification/parameter_vector.h"
 #include "host/identification/uncertainty.h"

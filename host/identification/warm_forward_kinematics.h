@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "common/formats/dataset_csv.h"
+#include "host/formats/dataset_csv.h"
 #include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/kinematic_model.h"
 

@@ -10,8 +10,8 @@
 
 #include <Eigen/Core>
 
-#include "common/robot/model_kind.h"
-#include "common/robot/robot_description.h"
+#include "host/kinematics/model_kind.h"
+#include "host/kinematics/robot_description.h"
 
 namespace h4::host {
 

@@ -7,6 +7,7 @@
 
 #include "common/geometry/rotation.h"
 #include "host/kinematics/leg_angle.h"
+#include "host/kinematics/model_parameters.h"
 
 namespace h4::host {
 namespace {
@@ -31,9 +32,11 @@ Model12::Model12(const Model12Parameters& parameters, const Assembly& assembly)
     : p_(parameters), assembly_(assembly) {}
 
 const std::vector<std::string>& Model12::ParameterNames() {
-  static const std::vector<std::string> names = {"h",      "arm",    "forearm", "R",      "d",
-                                                 "alpha1", "alpha2", "alpha3",  "alpha4", "q01",
-                                                 "q02",    "q03",    "q04"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> from_table;
+    for (const ModelParameter& p : Model12ParameterTable()) from_table.emplace_back(p.name);
+    return from_table;
+  }();
   return names;
 }
 

@@ -10,6 +10,7 @@
 #include "common/geometry/rotation.h"
 #include "host/kinematics/leg_angle.h"
 #include "host/kinematics/measurement_chain.h"
+#include "host/kinematics/model_parameters.h"
 
 namespace h4::host {
 namespace {
@@ -34,11 +35,11 @@ Model31::Model31(const Model31Parameters& parameters, const Assembly& assembly)
 }
 
 const std::vector<std::string>& Model31::ParameterNames() {
-  static const std::vector<std::string> names = {
-      "x2",    "y2",       "z2",       "x3",       "y3",       "z3",    "x4",    "y4",
-      "z4",    "psi1",     "psi2",     "psi3",     "psi4",     "beta1", "beta2", "beta3",
-      "beta4", "q01",      "q02",      "q03",      "q04",      "arm1",  "arm2",  "arm3",
-      "arm4",  "forearm1", "forearm2", "forearm3", "forearm4", "h",     "d"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> from_table;
+    for (const ModelParameter& p : Model31ParameterTable()) from_table.emplace_back(p.name);
+    return from_table;
+  }();
   return names;
 }
 

@@ -16,10 +16,10 @@
 
 #include "common/board/board_model.h"
 #include "common/camera/camera_model.h"
-#include "common/robot/robot_description.h"
 #include "common/text/enum_names.h"
 #include "common/units.h"
 #include "host/kinematics/kinematic_model.h"
+#include "host/kinematics/robot_description.h"
 
 namespace h4::host {
 

@@ -13,10 +13,10 @@
 
 #include <Eigen/Core>
 
-#include "common/robot/model_kind.h"
-#include "common/robot/robot_description.h"
 #include "host/identification/identification_cost.h"
 #include "host/kinematics/kinematic_model.h"
+#include "host/kinematics/model_kind.h"
+#include "host/kinematics/robot_description.h"
 #include "host/planning/pose_noise.h"
 
 namespace h4::host {

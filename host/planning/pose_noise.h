@@ -9,8 +9,8 @@
 
 #include "common/board/board_model.h"
 #include "common/camera/camera_model.h"
-#include "common/robot/robot_description.h"
 #include "host/kinematics/kinematic_model.h"
+#include "host/kinematics/robot_description.h"
 
 namespace h4::host {
 

@@ -11,9 +11,9 @@
 
 #include "common/board/board_model.h"
 #include "common/camera/camera_model.h"
-#include "common/robot/robot_description.h"
 #include "common/units.h"
 #include "host/identification/identification_cost.h"
+#include "host/kinematics/robot_description.h"
 #include "host/planning/candidate_poses.h"
 #include "host/planning/information_model.h"
 #include "host/planning/pose_design.h"

@@ -12,8 +12,8 @@
 
 #include <Eigen/Core>
 
-#include "common/robot/robot_description.h"
 #include "host/kinematics/kinematic_model.h"
+#include "host/kinematics/robot_description.h"
 #include "host/simulation/pose_plan.h"
 
 namespace h4::host {

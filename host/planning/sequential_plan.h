@@ -9,10 +9,10 @@
 
 #include <vector>
 
-#include "common/formats/dataset_csv.h"
-#include "common/formats/identification_result.h"
-#include "common/robot/robot_description.h"
+#include "host/formats/dataset_csv.h"
+#include "host/formats/identification_result.h"
 #include "host/kinematics/kinematic_model.h"
+#include "host/kinematics/robot_description.h"
 #include "host/planning/pose_planner.h"
 
 namespace h4::host {

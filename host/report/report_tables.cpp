@@ -9,9 +9,9 @@
 
 #include <spdlog/fmt/fmt.h>
 
-#include "common/robot/parameter_names.h"
 #include "common/text/markup_escape.h"
 #include "common/units.h"
+#include "host/kinematics/model_parameters.h"
 #include "host/report/html_table.h"
 #include "host/report/paper_numbers.h"
 #include "host/simulation/paper_scenario.h"
@@ -284,8 +284,8 @@ std::string AccuracyMapTable(const ValidationReport& report) {
     t << fmt::format(
         "</table>\n<p>{}: {} poses, median {:.4f} mm, largest {:.4f} mm; {} grid poses out of "
         "reach or singular left out.</p>\n",
-        v.label, map.points.size(), map.MedianPositionSigma() * 1e3,
-        map.MaxPositionSigma() * 1e3, map.left_out);
+        v.label, map.points.size(), map.MedianPositionSigma() * 1e3, map.MaxPositionSigma() * 1e3,
+        map.left_out);
   }
   return t.str();
 }

@@ -11,7 +11,7 @@
 #include "common/board/board_model.h"
 #include "common/camera/camera_intrinsics.h"
 #include "common/formats/corners_csv.h"
-#include "common/formats/dataset_csv.h"
+#include "host/formats/dataset_csv.h"
 #include "host/simulation/dataset_simulator.h"
 
 namespace h4::host {

@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/formats/dataset_csv.h"
 #include "common/units.h"
+#include "host/formats/dataset_csv.h"
 #include "host/kinematics/kinematic_model.h"
 #include "host/simulation/pose_plan.h"
 #include "host/simulation/true_robot.h"

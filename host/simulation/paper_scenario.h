@@ -1,13 +1,13 @@
 // The robot of the reference paper (Renaud et al., ICRA 2003): Table 2's a priori and
 // "Identified" Model 12 parameters, and a default camera/board placement consistent with
-// common/formats/README.md's robot.yaml example (camera 1.05 m below the base looking up at the board
-// under the nacelle).
+// common/formats/README.md's robot.yaml example (camera 1.05 m below the base looking up at the
+// board under the nacelle).
 #pragma once
 
 #include <numbers>
 
 #include "common/geometry/rigid_transform.h"
-#include "common/robot/robot_description.h"
+#include "host/kinematics/robot_description.h"
 
 namespace h4::host {
 

@@ -1,11 +1,12 @@
 // Pose plans: the end-effector poses a campaign or a simulation visits, independent of how
-// they were loaded (the poses CSV of common/formats/README.md, or generated), and the paper's 81-pose grid.
+// they were loaded (the poses CSV of common/formats/README.md, or generated), and the paper's
+// 81-pose grid.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
-#include "common/formats/poses_csv.h"
+#include "host/formats/poses_csv.h"
 #include "host/kinematics/kinematic_model.h"
 
 namespace h4::host {

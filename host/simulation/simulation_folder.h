@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "common/robot/model_kind.h"
+#include "host/kinematics/model_kind.h"
 
 namespace h4::host {
 

@@ -8,9 +8,9 @@
 #include <optional>
 
 #include "common/geometry/rigid_transform.h"
-#include "common/robot/model_kind.h"
-#include "common/robot/robot_description.h"
 #include "host/kinematics/kinematic_model.h"
+#include "host/kinematics/model_kind.h"
+#include "host/kinematics/robot_description.h"
 
 namespace h4::host {
 

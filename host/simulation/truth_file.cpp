@@ -7,8 +7,8 @@
 #include "common/formats/file_output.h"
 #include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
-#include "common/formats/robot_yaml.h"
 #include "common/formats/yaml_map.h"
+#include "host/formats/robot_yaml.h"
 
 namespace h4::host {
 namespace {

@@ -27,9 +27,9 @@
 
 #include <Eigen/Core>
 
-#include "common/formats/identification_result.h"
-#include "common/robot/robot_description.h"
+#include "host/formats/identification_result.h"
 #include "host/kinematics/kinematic_model.h"
+#include "host/kinematics/robot_description.h"
 
 namespace h4::host {
 
@@ -49,9 +49,9 @@ struct AccuracyMapOptions {
 };
 
 struct AccuracyMapPoint {
-  EePose x = EePose::Zero();          ///< commanded pose in the model's base frame
-  double position_sigma_m = 0.0;      ///< sqrt(trace) of the position covariance
-  double theta_sigma_rad = 0.0;       ///< one sigma of theta
+  EePose x = EePose::Zero();      ///< commanded pose in the model's base frame
+  double position_sigma_m = 0.0;  ///< sqrt(trace) of the position covariance
+  double theta_sigma_rad = 0.0;   ///< one sigma of theta
 };
 
 struct AccuracyMap {

@@ -6,7 +6,7 @@
 
 #include <Eigen/Cholesky>
 
-#include "common/formats/identification_result.h"
+#include "host/formats/identification_result.h"
 
 namespace h4::host {
 
@@ -74,11 +74,8 @@ std::vector<DatasetRow> NoiseFreeRows(const SimulatedRobot& robot, const PosePla
 std::optional<IdentificationResult> IdentifyAsTheCliDoes(const RobotDescription& apriori,
                                                          const std::vector<DatasetRow>& rows,
                                                          const IdentificationOptions& options) {
-  const IdentificationOutcome model12 = IdentifyRobot(apriori, ModelKind::k12, rows, options);
-  if (!model12.summary.usable) return std::nullopt;
-  const IdentificationOutcome model31 =
-      IdentifyModel31FromModel12(apriori, model12.result, rows, options);
-  if (!model31.summary.usable) return std::nullopt;
+  const auto [model12, model31] = IdentifyModel12Then31(apriori, rows, options);
+  if (!model12.summary.usable || !model31.summary.usable) return std::nullopt;
   return ParseIdentificationResult(FormatIdentificationResult(model31.result), "trial.json");
 }
 

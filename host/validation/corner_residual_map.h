@@ -15,9 +15,9 @@
 #include "common/board/board_model.h"
 #include "common/camera/camera_intrinsics.h"
 #include "common/formats/corners_csv.h"
-#include "common/formats/dataset_csv.h"
-#include "common/formats/identification_result.h"
-#include "common/robot/robot_description.h"
+#include "host/formats/dataset_csv.h"
+#include "host/formats/identification_result.h"
+#include "host/kinematics/robot_description.h"
 
 namespace h4::host {
 

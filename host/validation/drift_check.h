@@ -24,11 +24,11 @@
 
 #include <Eigen/Core>
 
-#include "common/formats/dataset_csv.h"
-#include "common/formats/identification_result.h"
-#include "common/robot/robot_description.h"
+#include "host/formats/dataset_csv.h"
+#include "host/formats/identification_result.h"
 #include "host/identification/identification_cost.h"
 #include "host/identification/parameter_vector.h"
+#include "host/kinematics/robot_description.h"
 
 namespace h4::host {
 

@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/formats/dataset_csv.h"
 #include "common/geometry/rigid_transform.h"
+#include "host/formats/dataset_csv.h"
 #include "host/kinematics/kinematic_model.h"
 
 namespace h4::host {

@@ -1,10 +1,10 @@
 // The square path measured by the camera (paper IV.D, last experiment, on a real robot): the
-// plan of commanded points (`h4cal square-plan`, a common/formats/README.md poses CSV), the robot driven
-// through them by an IK control law, Model 12 or 31 (`h4cal collect --plan --controller`), and the
-// board measured at each point (a paired dataset CSV with the plan's pose ids). The measured
-// end-effector position is the translation of X_BE = X_BC * X_CT * X_TE (eq. (6)), with the
-// placement X_BC, X_TE of a Model 12 identification; the side errors are those of the
-// simulated run (square_path.h, SquareErrorsOf).
+// plan of commanded points (`h4cal square-plan`, a common/formats/README.md poses CSV), the robot
+// driven through them by an IK control law, Model 12 or 31 (`h4cal collect --plan --controller`),
+// and the board measured at each point (a paired dataset CSV with the plan's pose ids). The
+// measured end-effector position is the translation of X_BE = X_BC * X_CT * X_TE (eq. (6)), with
+// the placement X_BC, X_TE of a Model 12 identification; the side errors are those of the simulated
+// run (square_path.h, SquareErrorsOf).
 #pragma once
 
 #include <cstdint>
@@ -13,9 +13,9 @@
 
 #include <Eigen/Core>
 
-#include "common/formats/dataset_csv.h"
-#include "common/formats/poses_csv.h"
 #include "common/geometry/rigid_transform.h"
+#include "host/formats/dataset_csv.h"
+#include "host/formats/poses_csv.h"
 #include "host/validation/square_path.h"
 
 namespace h4::host {

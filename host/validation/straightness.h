@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-#include "common/formats/joints_csv.h"
+#include "host/formats/joints_csv.h"
 #include "host/kinematics/kinematic_model.h"
 #include "host/simulation/true_robot.h"
 

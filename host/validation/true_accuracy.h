@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "common/formats/identification_result.h"
+#include "host/formats/identification_result.h"
 #include "host/simulation/true_robot.h"
 
 namespace h4::host {

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/common/format_error_helpers.h"
+#include "tests/support/format_error_helpers.h"
 
 namespace h4 {
 namespace {

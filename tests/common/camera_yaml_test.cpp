@@ -12,7 +12,7 @@
 
 #include "common/formats/csv_table.h"
 #include "common/formats/number_text.h"
-#include "tests/common/format_error_helpers.h"
+#include "tests/support/format_error_helpers.h"
 
 #ifdef H4_TEST_WITH_OPENCV
 #include <opencv2/core.hpp>

@@ -12,7 +12,7 @@
 #include <unistd.h>
 
 #include "common/formats/csv_table.h"
-#include "tests/common/format_error_helpers.h"
+#include "tests/support/format_error_helpers.h"
 
 namespace h4 {
 namespace {

@@ -1,6 +1,6 @@
 // Fuzz target: the paired dataset CSV reader; what it accepts must write and read back
 // to the same rows.
-#include "common/formats/dataset_csv.h"
+#include "host/formats/dataset_csv.h"
 #include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -1,6 +1,6 @@
 // Fuzz target: the identification result JSON reader; what it accepts must write and read
 // back.
-#include "common/formats/identification_result.h"
+#include "host/formats/identification_result.h"
 #include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -3,8 +3,8 @@
 // and read back.
 #include "common/formats/board_poses_csv.h"
 #include "common/formats/corners_csv.h"
-#include "common/formats/joints_csv.h"
-#include "common/formats/poses_csv.h"
+#include "host/formats/joints_csv.h"
+#include "host/formats/poses_csv.h"
 #include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

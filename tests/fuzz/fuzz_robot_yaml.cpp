@@ -1,6 +1,6 @@
 // Fuzz target: the robot description YAML reader; what it accepts must write and read
 // back.
-#include "common/formats/robot_yaml.h"
+#include "host/formats/robot_yaml.h"
 #include "tests/fuzz/fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

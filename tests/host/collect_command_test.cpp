@@ -27,8 +27,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "common/formats/dataset_csv.h"
-#include "common/formats/robot_yaml.h"
+#include "host/formats/dataset_csv.h"
+#include "host/formats/robot_yaml.h"
 #include "host/simulation/paper_scenario.h"
 #include "messages/channels.h"
 #include "tests/support/test_dir.h"

@@ -6,8 +6,8 @@
 #include <memory>
 #include <vector>
 
-#include "common/formats/dataset_csv.h"
 #include "common/geometry/rigid_transform.h"
+#include "host/formats/dataset_csv.h"
 #include "host/kinematics/kinematic_model.h"
 
 namespace h4::host::testing {

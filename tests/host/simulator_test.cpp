@@ -6,8 +6,8 @@
 #include <gtest/gtest.h>
 
 #include "common/formats/format_error.h"
-#include "common/formats/robot_yaml.h"
 #include "common/geometry/rotation.h"
+#include "host/formats/robot_yaml.h"
 #include "host/kinematics/measurement_chain.h"
 #include "host/kinematics/model31.h"
 #include "host/simulation/dataset_simulator.h"

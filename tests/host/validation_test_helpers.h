@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "common/formats/identification_result.h"
+#include "host/formats/identification_result.h"
 #include "host/simulation/dataset_simulator.h"
 #include "host/simulation/true_robot.h"
 #include "host/validation/validation.h"

@@ -70,8 +70,8 @@ struct PathAccuracies {
 PathAccuracies RunBothPaths(const SimulatedRobot& truth, const CameraIntrinsics& file_camera,
                             uint64_t seed, bool camera_fixed = false, double sigma_q = 2e-5) {
   const BoardModel board = LegacyBoard();
-  const CornerCampaign campaign = SimulateCornerCampaign(truth, GridPosePlan(), board, TrueCamera(),
-                                                         file_camera, {.sigma_q = sigma_q, .seed = seed});
+  const CornerCampaign campaign = SimulateCornerCampaign(
+      truth, GridPosePlan(), board, TrueCamera(), file_camera, {.sigma_q = sigma_q, .seed = seed});
   const RobotDescription apriori = PaperAprioriRobot();
   IdentificationOptions options;
   const IdentificationOutcome m12 = IdentifyRobot(apriori, ModelKind::k12, campaign.rows, options);
@@ -209,8 +209,8 @@ TEST(CameraFileUncertainty, ThePosePathsPredictionCarriesTheFilesCovariance) {
     const SimulatedRobot truth = Robot(41 + static_cast<uint64_t>(k));
     CameraIntrinsics file = DrawnFromCovariance(TrueCamera(), calibration, 51 + k);
     file.intrinsics_covariance = calibration;
-    const CornerCampaign campaign = SimulateCornerCampaign(truth, GridPosePlan(), board,
-                                                           TrueCamera(), file, {.seed = 61u + k});
+    const CornerCampaign campaign =
+        SimulateCornerCampaign(truth, GridPosePlan(), board, TrueCamera(), file, {.seed = 61u + k});
     IdentificationOptions options;
     const IdentificationOutcome m12 =
         IdentifyRobot(apriori, ModelKind::k12, campaign.rows, options);
@@ -247,17 +247,17 @@ TEST(CornerResidualMap, ShowsTheFilesErrorAndNotTheRefinedCameras) {
   const SimulatedRobot truth = Robot(71);
   const BoardModel board = LegacyBoard();
   const CameraIntrinsics file = TypicalMixFile(TrueCamera());
-  const CornerCampaign campaign = SimulateCornerCampaign(truth, GridPosePlan(), board, TrueCamera(),
-                                                         file, {.seed = 73});
+  const CornerCampaign campaign =
+      SimulateCornerCampaign(truth, GridPosePlan(), board, TrueCamera(), file, {.seed = 73});
   const RobotDescription apriori = PaperAprioriRobot();
   IdentificationOptions options;
   const IdentificationOutcome m12 = IdentifyRobot(apriori, ModelKind::k12, campaign.rows, options);
   const IdentificationOutcome m31 =
       IdentifyModel31FromModel12(apriori, m12.result, campaign.rows, options);
-  const CornerPathOutcome path = IdentifyOnCorners(
-      AprioriModelOf(apriori, ModelKind::k31), ModelKind::k31, m31, campaign.rows,
-      GroupCornersByRow(campaign.rows, campaign.corners, board, 0.05), file, options,
-      CornerOptions(false));
+  const CornerPathOutcome path =
+      IdentifyOnCorners(AprioriModelOf(apriori, ModelKind::k31), ModelKind::k31, m31, campaign.rows,
+                        GroupCornersByRow(campaign.rows, campaign.corners, board, 0.05), file,
+                        options, CornerOptions(false));
   ASSERT_TRUE(path.fit.ok) << path.fit.message;
 
   const CornerResidualMap through_file = ComputeCornerResidualMap(
@@ -271,12 +271,13 @@ TEST(CornerResidualMap, ShowsTheFilesErrorAndNotTheRefinedCameras) {
     }
     return largest;
   };
-  std::printf("corner residual RMS: through the file %.3f px (inner %.3f, outer %.3f, largest "
-              "cell mean %.3f), refined %.3f px (inner %.3f, outer %.3f, largest cell mean "
-              "%.3f)\n",
-              through_file.rms_px, through_file.inner_rms_px, through_file.outer_rms_px,
-              largest_mean(through_file), refined.rms_px, refined.inner_rms_px,
-              refined.outer_rms_px, largest_mean(refined));
+  std::printf(
+      "corner residual RMS: through the file %.3f px (inner %.3f, outer %.3f, largest "
+      "cell mean %.3f), refined %.3f px (inner %.3f, outer %.3f, largest cell mean "
+      "%.3f)\n",
+      through_file.rms_px, through_file.inner_rms_px, through_file.outer_rms_px,
+      largest_mean(through_file), refined.rms_px, refined.inner_rms_px, refined.outer_rms_px,
+      largest_mean(refined));
   EXPECT_FALSE(through_file.refined_camera);
   EXPECT_TRUE(refined.refined_camera);
   EXPECT_GT(refined.corners, 70 * 12);

@@ -1,11 +1,11 @@
-// A program that uses only the kinematics (h4::kinematics), as a user embedding h4cal's
-// models in a controller would: robot.yaml in, the joints at the workspace centre and the
-// forward kinematics back. kinematics_only_test.sh checks it runs and that its link brought
-// no LCM, NLopt, OpenCV or camera library (cmake/H4Libraries.cmake).
+// A program that uses only the kinematics and the robot file's reader (h4::kinematics,
+// h4::host_formats), as a user embedding h4cal's models in a controller would: robot.yaml in, the
+// joints at the workspace centre and the forward kinematics back. kinematics_only_test.sh checks it
+// runs and that its link brought no LCM, NLopt, OpenCV or camera library (cmake/H4Libraries.cmake).
 #include <cstdio>
 #include <exception>
 
-#include "common/formats/robot_yaml.h"
+#include "host/formats/robot_yaml.h"
 #include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/model12.h"
 
@@ -24,8 +24,8 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "forward kinematics failed: %s\n", fk.message.c_str());
       return 1;
     }
-    std::printf("workspace centre %.6f %.6f %.6f %.6f, round trip error %.3g m\n", x[0], x[1],
-                x[2], x[3], (fk.x - x).head<3>().norm());
+    std::printf("workspace centre %.6f %.6f %.6f %.6f, round trip error %.3g m\n", x[0], x[1], x[2],
+                x[3], (fk.x - x).head<3>().norm());
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());

@@ -1,5 +1,5 @@
 // Path-aware JSON field access; see json_fields.h.
-#include "common/formats/json_fields.h"
+#include "host/formats/json_fields.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // The paired dataset CSV: known values, exact round trip, and one test per kind of
 // malformed input, each checking the reported line and field.
-#include "common/formats/dataset_csv.h"
+#include "host/formats/dataset_csv.h"
 
 #include <numbers>
 #include <random>
@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "common/geometry/rotation.h"
-#include "tests/common/format_error_helpers.h"
+#include "tests/support/format_error_helpers.h"
 
 namespace h4 {
 namespace {

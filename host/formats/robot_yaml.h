@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "common/robot/robot_description.h"
+#include "host/kinematics/robot_description.h"
 
 namespace h4 {
 

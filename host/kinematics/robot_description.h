@@ -1,5 +1,6 @@
 // The a priori description of an H4 and of its measurement set-up (robot.yaml,
-// common/formats/README.md), with the parameters of Models 12 and 31 as common/README.md names them.
+// common/formats/README.md), with the parameters of Models 12 and 31 as common/README.md names
+// them.
 #pragma once
 
 #include <array>
@@ -13,11 +14,11 @@ namespace h4 {
 
 /// Model 12, the design model (paper eq. (1)-(2)); lengths in m, angles in rad.
 struct Model12Parameters {
-  double h = 0.06;         ///< half-length of the nacelle's central bar, m
-  double arm = 0.26;       ///< arm length (the paper's l in eq. (1)), m
-  double forearm = 0.48;   ///< forearm length (the paper's L), m
-  double R = 0.14;         ///< distance from base joint P_i to nacelle joint A_i0, m
-  double d = 0.0;          ///< nacelle dimension d, m (no influence on Model 12)
+  double h = 0.06;        ///< half-length of the nacelle's central bar, m
+  double arm = 0.26;      ///< arm length (the paper's l in eq. (1)), m
+  double forearm = 0.48;  ///< forearm length (the paper's L), m
+  double R = 0.14;        ///< distance from base joint P_i to nacelle joint A_i0, m
+  double d = 0.0;         ///< nacelle dimension d, m (no influence on Model 12)
   std::array<double, 4> alpha{0.0, 3.1416, 4.7124, 4.7124};  ///< leg directions, rad
   std::array<double, 4> q0{0.0, 0.0, 0.0, 0.0};              ///< joint offsets, rad
 };

@@ -1,5 +1,5 @@
-// The joints CSV (common/formats/README.md): `pose_id,q1,q2,q3,q4`, encoder readings in rad. Input of
-// `h4cal fk`, output of `h4cal ik`.
+// The joints CSV (common/formats/README.md): `pose_id,q1,q2,q3,q4`, encoder readings in rad. Input
+// of `h4cal fk`, output of `h4cal ik`.
 #pragma once
 
 #include <array>

@@ -1,5 +1,5 @@
 // Duplicate pose id detection; see pose_id_check.h.
-#include "common/formats/pose_id_check.h"
+#include "host/formats/pose_id_check.h"
 
 #include <string>
 

@@ -1,6 +1,6 @@
 // Identification result JSON: common/formats/README.md's keys read with known values, exact round
 // trip, and malformed documents with the JSON path and the line of a syntax error.
-#include "common/formats/identification_result.h"
+#include "host/formats/identification_result.h"
 
 #include <cmath>
 #include <map>
@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "common/geometry/rotation.h"
-#include "tests/common/format_error_helpers.h"
+#include "tests/support/format_error_helpers.h"
 
 namespace h4 {
 namespace {
@@ -164,13 +164,11 @@ TEST(IdentificationResult, CameraErrorFloorRoundTripsAndAbsentReadsAsAbsent) {
 TEST(IdentificationResultErrors, ANegativeOrHugeCameraErrorFloorNamesTheField) {
   IdentificationResult r = FullResult();
   r.camera_error_floor = CameraErrorFloor{1e-4, -1e-6};
-  EXPECT_TRUE(
-      FailsWith([&] { ParseIdentificationResult(FormatIdentificationResult(r), "r.json"); },
-                "r.json", 0, "camera_error_floor.translation_m", "non-negative"));
+  EXPECT_TRUE(FailsWith([&] { ParseIdentificationResult(FormatIdentificationResult(r), "r.json"); },
+                        "r.json", 0, "camera_error_floor.translation_m", "non-negative"));
   r.camera_error_floor = CameraErrorFloor{7.0, 1e-6};
-  EXPECT_TRUE(
-      FailsWith([&] { ParseIdentificationResult(FormatIdentificationResult(r), "r.json"); },
-                "r.json", 0, "camera_error_floor.rotation_rad", "at most 2 pi"));
+  EXPECT_TRUE(FailsWith([&] { ParseIdentificationResult(FormatIdentificationResult(r), "r.json"); },
+                        "r.json", 0, "camera_error_floor.rotation_rad", "at most 2 pi"));
 }
 
 TEST(IdentificationResult, OlderResultsWithoutAVerdictStillRead) {
@@ -247,8 +245,8 @@ TEST(IdentificationResult, CameraExactCovarianceRoundTripsAndIsBoundedByTheSigma
   const IdentificationResult b = ParseIdentificationResult(text, "result.json");
   ASSERT_TRUE(b.parameter_covariance_camera_exact.has_value());
   EXPECT_EQ(*b.parameter_covariance_camera_exact, exact);
-  EXPECT_FALSE(ParseIdentificationResult(kResult, "old.json")
-                   .parameter_covariance_camera_exact.has_value());
+  EXPECT_FALSE(
+      ParseIdentificationResult(kResult, "old.json").parameter_covariance_camera_exact.has_value());
 
   const auto fails = [](const IdentificationResult& bad, const std::string& field,
                         const std::string& expected) {

@@ -4,10 +4,10 @@
 
 #include <gtest/gtest.h>
 
-#include "common/formats/joints_csv.h"
-#include "common/formats/poses_csv.h"
 #include "common/geometry/rotation.h"
-#include "tests/common/format_error_helpers.h"
+#include "host/formats/joints_csv.h"
+#include "host/formats/poses_csv.h"
+#include "tests/support/format_error_helpers.h"
 
 namespace h4 {
 namespace {

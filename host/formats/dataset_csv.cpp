@@ -1,5 +1,5 @@
 // The paired dataset CSV (common/formats/README.md#paired-dataset-csv); see dataset_csv.h.
-#include "common/formats/dataset_csv.h"
+#include "host/formats/dataset_csv.h"
 
 #include <cmath>
 #include <numbers>
@@ -10,7 +10,7 @@
 #include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
 #include "common/formats/pose_columns.h"
-#include "common/formats/pose_id_check.h"
+#include "host/formats/pose_id_check.h"
 
 namespace h4 {
 namespace {

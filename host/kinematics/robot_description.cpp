@@ -1,5 +1,5 @@
 // Nominal Model 31 from Model 12 (common/README.md#model-31-calibration-model-31-parameters).
-#include "common/robot/robot_description.h"
+#include "host/kinematics/robot_description.h"
 
 #include <cmath>
 #include <numbers>
@@ -12,8 +12,8 @@ Model31Parameters NominalModel31(const Model12Parameters& m12) {
   const double a1 = m12.alpha[0];
   for (int i = 1; i < 4; ++i) {
     const double ai = m12.alpha[static_cast<size_t>(i)];
-    m31.P[static_cast<size_t>(i - 1)] = Eigen::Vector3d(R * (std::cos(a1) - std::cos(ai)),
-                                                        R * (std::sin(a1) - std::sin(ai)), 0.0);
+    m31.P[static_cast<size_t>(i - 1)] =
+        Eigen::Vector3d(R * (std::cos(a1) - std::cos(ai)), R * (std::sin(a1) - std::sin(ai)), 0.0);
   }
   for (size_t i = 0; i < 4; ++i) {
     m31.psi[i] = m12.alpha[i];

@@ -1,5 +1,5 @@
 // Robot description YAML; see robot_yaml.h.
-#include "common/formats/robot_yaml.h"
+#include "host/formats/robot_yaml.h"
 
 #include <cmath>
 #include <numbers>
@@ -8,9 +8,10 @@
 #include "common/formats/csv_table.h"
 #include "common/formats/file_kind.h"
 #include "common/formats/format_error.h"
-#include "common/formats/identification_result.h"
 #include "common/formats/number_text.h"
+#include "common/formats/pose_columns.h"
 #include "common/formats/yaml_map.h"
+#include "host/kinematics/model_parameters.h"
 
 namespace h4 {
 namespace {
@@ -21,26 +22,24 @@ namespace {
 // of inf and NaN and `analyze` print NaN. Each check names the file, line and field.
 constexpr double kTurn = 2.0 * std::numbers::pi;
 
-enum class Quantity { kLength, kPosition, kAngle };
-
 void CheckBound(const YamlMap& map, const std::string& key, std::optional<size_t> index,
-                double value, Quantity quantity) {
+                double value, ParameterKind kind) {
   const auto fail = [&](const std::string& what) {
     if (index) map.FailElement(key, *index, what);
     map.Fail(key, what);
   };
   const std::string field = map.FieldOf(key);
-  switch (quantity) {
-    case Quantity::kLength:
+  switch (kind) {
+    case ParameterKind::kPositiveLength:
       if (!(value > 0.0)) fail("expected a positive length, got " + FormatDouble(value, field));
       [[fallthrough]];
-    case Quantity::kPosition:
+    case ParameterKind::kLength:
       if (!(std::abs(value) <= kMaxRobotSize_m)) {
         fail("expected a length within " + FormatDouble(kMaxRobotSize_m, field) + " m, got " +
              FormatDouble(value, field));
       }
       break;
-    case Quantity::kAngle:
+    case ParameterKind::kAngle:
       if (!(std::abs(value) <= kTurn)) {
         fail("expected an angle within one turn (|a| <= 2 pi rad), got " +
              FormatDouble(value, field));
@@ -49,22 +48,32 @@ void CheckBound(const YamlMap& map, const std::string& key, std::optional<size_t
   }
 }
 
-double Bounded(const YamlMap& map, const std::string& key, Quantity quantity) {
+double Bounded(const YamlMap& map, const std::string& key, ParameterKind kind) {
   const double value = map.Double(key);
-  CheckBound(map, key, std::nullopt, value, quantity);
+  CheckBound(map, key, std::nullopt, value, kind);
   return value;
 }
 
 std::vector<double> BoundedList(const YamlMap& map, const std::string& key, size_t count,
-                                Quantity quantity) {
+                                ParameterKind kind) {
   const std::vector<double> values = map.Doubles(key, count);
-  for (size_t i = 0; i < count; ++i) CheckBound(map, key, i, values[i], quantity);
+  for (size_t i = 0; i < count; ++i) CheckBound(map, key, i, values[i], kind);
   return values;
 }
 
-std::array<double, 4> Four(const YamlMap& map, const std::string& key, Quantity quantity) {
-  const std::vector<double> values = BoundedList(map, key, 4, quantity);
+std::array<double, 4> Four(const YamlMap& map, const std::string& key, ParameterKind kind) {
+  const std::vector<double> values = BoundedList(map, key, 4, kind);
   return {values[0], values[1], values[2], values[3]};
+}
+
+// A model parameter (or robot.yaml's list of four, "psi" for psi1..psi4), bounded as its kind
+// in the models' table says (host/kinematics/model_parameters.h).
+double ModelValue(const YamlMap& map, const std::string& key) {
+  return Bounded(map, key, ModelParameterKind(key).value());
+}
+
+std::array<double, 4> FourModelValues(const YamlMap& map, const std::string& key) {
+  return Four(map, key, ModelParameterKind(key).value());
 }
 
 std::array<int, 4> Signs(const YamlMap& map, const std::string& key) {
@@ -81,8 +90,8 @@ std::array<int, 4> Signs(const YamlMap& map, const std::string& key) {
 
 RigidTransform ReadTransform(const YamlMap& map) {
   map.RejectUnknownKeys({"translation", "rpy"});
-  const std::vector<double> t = BoundedList(map, "translation", 3, Quantity::kPosition);
-  const std::vector<double> rpy = BoundedList(map, "rpy", 3, Quantity::kAngle);
+  const std::vector<double> t = BoundedList(map, "translation", 3, ParameterKind::kLength);
+  const std::vector<double> rpy = BoundedList(map, "rpy", 3, ParameterKind::kAngle);
   return RigidTransform::FromTranslationRpy({t[0], t[1], t[2]}, {rpy[0], rpy[1], rpy[2]});
 }
 
@@ -92,17 +101,16 @@ Model31Parameters ReadModel31(const YamlMap& map) {
   Model31Parameters m31;
   for (size_t j = 0; j < 3; ++j) {
     const std::string n = std::to_string(j + 2);
-    m31.P[j] = Eigen::Vector3d(Bounded(map, "x" + n, Quantity::kPosition),
-                               Bounded(map, "y" + n, Quantity::kPosition),
-                               Bounded(map, "z" + n, Quantity::kPosition));
+    m31.P[j] = Eigen::Vector3d(ModelValue(map, "x" + n), ModelValue(map, "y" + n),
+                               ModelValue(map, "z" + n));
   }
-  m31.psi = Four(map, "psi", Quantity::kAngle);
-  m31.beta = Four(map, "beta", Quantity::kAngle);
-  m31.q0 = Four(map, "q0", Quantity::kAngle);
-  m31.arm = Four(map, "arm", Quantity::kLength);
-  m31.forearm = Four(map, "forearm", Quantity::kLength);
-  m31.h = Bounded(map, "h", Quantity::kLength);
-  m31.d = Bounded(map, "d", Quantity::kPosition);
+  m31.psi = FourModelValues(map, "psi");
+  m31.beta = FourModelValues(map, "beta");
+  m31.q0 = FourModelValues(map, "q0");
+  m31.arm = FourModelValues(map, "arm");
+  m31.forearm = FourModelValues(map, "forearm");
+  m31.h = ModelValue(map, "h");
+  m31.d = ModelValue(map, "d");
   return m31;
 }
 
@@ -144,13 +152,13 @@ RobotDescription ParseRobotYaml(const std::string& text, const std::string& sour
   RobotDescription robot;
   const YamlMap m12 = root.Map("model12");
   m12.RejectUnknownKeys({"h", "arm", "forearm", "R", "d", "alpha", "q0"});
-  robot.model12.h = Bounded(m12, "h", Quantity::kLength);
-  robot.model12.arm = Bounded(m12, "arm", Quantity::kLength);
-  robot.model12.forearm = Bounded(m12, "forearm", Quantity::kLength);
-  robot.model12.R = Bounded(m12, "R", Quantity::kLength);
-  robot.model12.d = Bounded(m12, "d", Quantity::kPosition);
-  robot.model12.alpha = Four(m12, "alpha", Quantity::kAngle);
-  robot.model12.q0 = Four(m12, "q0", Quantity::kAngle);
+  robot.model12.h = ModelValue(m12, "h");
+  robot.model12.arm = ModelValue(m12, "arm");
+  robot.model12.forearm = ModelValue(m12, "forearm");
+  robot.model12.R = ModelValue(m12, "R");
+  robot.model12.d = ModelValue(m12, "d");
+  robot.model12.alpha = FourModelValues(m12, "alpha");
+  robot.model12.q0 = FourModelValues(m12, "q0");
   if (root.Has("assembly")) {
     const YamlMap assembly = root.Map("assembly");
     assembly.RejectUnknownKeys({"bar", "elbow"});

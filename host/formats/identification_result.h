@@ -11,9 +11,10 @@
 
 #include <Eigen/Core>
 
-#include "common/formats/result_camera.h"
+#include "common/formats/pose_columns.h"
 #include "common/geometry/rigid_transform.h"
-#include "common/robot/model_kind.h"
+#include "host/formats/result_camera.h"
+#include "host/kinematics/model_kind.h"
 
 namespace h4 {
 
@@ -100,9 +101,9 @@ struct IdentificationResult {
   /// on the calibration poses after the rigid registration of the base frame (what
   /// host/validation/true_accuracy.h measures against a known robot), m.
   std::optional<double> predicted_robot_accuracy_m;
-  std::vector<std::string> log;                         ///< solver stages, one line each
-  std::optional<ResultVerdict> verdict;                 ///< absent in older results
-  std::vector<RejectedPose> rejected_details;           ///< one per rejected pose
+  std::vector<std::string> log;                ///< solver stages, one line each
+  std::optional<ResultVerdict> verdict;        ///< absent in older results
+  std::vector<RejectedPose> rejected_details;  ///< one per rejected pose
   std::optional<ResultProvenance> provenance;
   std::optional<CrossValidationFigures> cross_validation;
   std::optional<CameraErrorFloor> camera_error_floor;  ///< absent in older results
@@ -136,12 +137,11 @@ struct IdentificationResult {
 /// positive semi-definite, its diagonal the square of each `std` (relative 1e-6) and zero for a
 /// parameter without one; `parameter_covariance_camera_exact` only beside it, n x n,
 /// symmetric, positive semi-definite, its diagonal at most `std` squared;
-/// `camera_error_floor`'s rotation within 2 pi and translation within kMaxRobotSize_m, both >= 0. The extra keys may be absent or null. The writer writes every key (absent
-/// optionals as null, std as null for fixed parameters), shortest round-trip numbers, and throws
-/// std::invalid_argument on a non-finite number (JSON has no NaN).
+/// `camera_error_floor`'s rotation within 2 pi and translation within kMaxRobotSize_m, both >= 0.
+/// The extra keys may be absent or null. The writer writes every key (absent optionals as null, std
+/// as null for fixed parameters), shortest round-trip numbers, and throws std::invalid_argument on
+/// a non-finite number (JSON has no NaN).
 IdentificationResult ReadIdentificationResult(const std::string& path);
-/// No H4 parameter or placement is larger than this (m): a bound on values read back.
-inline constexpr double kMaxRobotSize_m = 10.0;
 IdentificationResult ParseIdentificationResult(const std::string& text,
                                                const std::string& source_name);
 void WriteIdentificationResult(const std::string& path, const IdentificationResult& result);

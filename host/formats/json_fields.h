@@ -1,7 +1,7 @@
 // Strict access to JSON values with errors that name the file and the JSON path
 // ("parameters[3].value") and what was expected. JSON keeps no line numbers after
 // parsing, so semantic errors carry line 0; a syntax error carries the line computed from
-// nlohmann's byte offset. Internal to h4::common (nlohmann-json is a private dependency).
+// nlohmann's byte offset. Internal to h4::host_formats (nlohmann-json is a private dependency).
 #pragma once
 
 #include <cstdint>

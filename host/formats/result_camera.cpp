@@ -1,12 +1,12 @@
 // See result_camera.h.
-#include "common/formats/result_camera.h"
+#include "host/formats/result_camera.h"
 
 #include <cmath>
 
 #include <nlohmann/json.hpp>
 
-#include "common/formats/json_fields.h"
 #include "common/formats/number_text.h"
+#include "host/formats/json_fields.h"
 
 namespace h4 {
 namespace {

@@ -1,11 +1,11 @@
-// Robot description YAML: common/formats/README.md's example, the optional blocks, exact round trip,
-// and every kind of malformed value with its line and field.
-#include "common/formats/robot_yaml.h"
+// Robot description YAML: common/formats/README.md's example, the optional blocks, exact round
+// trip, and every kind of malformed value with its line and field.
+#include "host/formats/robot_yaml.h"
 
 #include <gtest/gtest.h>
 
 #include "common/geometry/rotation.h"
-#include "tests/common/format_error_helpers.h"
+#include "tests/support/format_error_helpers.h"
 
 namespace h4 {
 namespace {

@@ -1,9 +1,9 @@
 // The joints CSV; see joints_csv.h.
-#include "common/formats/joints_csv.h"
+#include "host/formats/joints_csv.h"
 
 #include "common/formats/csv_table.h"
 #include "common/formats/number_text.h"
-#include "common/formats/pose_id_check.h"
+#include "host/formats/pose_id_check.h"
 
 namespace h4 {
 

@@ -1,5 +1,5 @@
 // Poses CSV and fk output; see poses_csv.h.
-#include "common/formats/poses_csv.h"
+#include "host/formats/poses_csv.h"
 
 #include <cmath>
 #include <numbers>
@@ -7,7 +7,7 @@
 #include "common/formats/csv_table.h"
 #include "common/formats/number_text.h"
 #include "common/formats/pose_columns.h"
-#include "common/formats/pose_id_check.h"
+#include "host/formats/pose_id_check.h"
 
 namespace h4 {
 namespace {

@@ -2,7 +2,7 @@
 // (common/formats/README.md#identification-result-json-h4cal-identify---out); see
 // identification_result.h. Keys are written in the order common/formats/README.md lists them, then
 // the extra keys of the solver's account.
-#include "common/formats/identification_result.h"
+#include "host/formats/identification_result.h"
 
 #include <cmath>
 #include <numbers>
@@ -13,9 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include "common/formats/csv_table.h"
-#include "common/formats/json_fields.h"
 #include "common/formats/number_text.h"
-#include "common/robot/parameter_names.h"
+#include "host/formats/json_fields.h"
+#include "host/kinematics/model_parameters.h"
 
 namespace h4 {
 namespace {
@@ -366,8 +366,7 @@ Ordered Covariance(const IdentificationResult& result, const std::optional<Eigen
   const Eigen::MatrixXd& C = *matrix;
   const Eigen::Index n = static_cast<Eigen::Index>(result.parameters.size());
   if (C.rows() != n || C.cols() != n) {
-    throw std::invalid_argument(std::string(key) +
-                                ": expected one row and column per parameter");
+    throw std::invalid_argument(std::string(key) + ": expected one row and column per parameter");
   }
   Ordered rows = Ordered::array();
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -459,9 +458,8 @@ std::string FormatIdentificationResult(const IdentificationResult& result) {
   WriteJudgement(result, &root);
   root["parameter_covariance"] =
       Covariance(result, result.parameter_covariance, "parameter_covariance");
-  root["parameter_covariance_camera_exact"] =
-      Covariance(result, result.parameter_covariance_camera_exact,
-                 "parameter_covariance_camera_exact");
+  root["parameter_covariance_camera_exact"] = Covariance(
+      result, result.parameter_covariance_camera_exact, "parameter_covariance_camera_exact");
   root["camera"] = result.camera ? ResultCameraJson(*result.camera) : Ordered(nullptr);
   return root.dump(2) + "\n";
 }

@@ -47,8 +47,7 @@ template <typename Call>
 
 /// `text` with its first `from` replaced by `to` (a test failure when there is none): a
 /// known-good file made malformed in one place.
-inline std::string ReplacedOnce(std::string text, const std::string& from,
-                                const std::string& to) {
+inline std::string ReplacedOnce(std::string text, const std::string& from, const std::string& to) {
   const size_t at = text.find(from);
   EXPECT_NE(at, std::string::npos) << from;
   return at == std::string::npos ? text : text.replace(at, from.size(), to);
