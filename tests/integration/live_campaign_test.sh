@@ -20,37 +20,16 @@
 # slower, so a 10-frame capture takes longer than the plain build's 10 s capture timeout).
 set -euo pipefail
 h4cal=$(realpath "$1") h4cam=$(realpath "$2") src=$(realpath "$3") dir=$(realpath -m "$4")
-scale=${H4_TEST_TIME_SCALE:-1}
-[[ "$scale" =~ ^[1-9][0-9]*$ ]] || { echo "FAIL: H4_TEST_TIME_SCALE='$scale' is not a positive integer"; exit 1; }
-
-if [ -z "${H4_IN_NETNS:-}" ]; then
-  rm -rf "$dir"; mkdir -p "$dir"
-  for tool in lcm-logger lcm-logplayer; do
-    command -v $tool > /dev/null || { echo "FAIL: $tool not installed"; exit 1; }
-  done
-  # The namespace (loopback with a multicast route) comes from scripts/in-private-netns.
-  netns=$src/scripts/in-private-netns
-  status=0
-  reason=$("$netns" --check 2>&1) || status=$?
-  if [ $status -eq 77 ]; then
-    # lcm_spy_test.sh reads this to skip for the same reason rather than fail.
-    echo "$reason" > "$dir/SKIPPED"
-    echo "SKIP: $reason"; exit 77
-  fi
-  [ $status -eq 0 ] || { echo "FAIL: $reason"; exit 1; }
-  exec "$netns" env H4_IN_NETNS=1 "$0" "$@"
-fi
+source "$src/tests/integration/live_test_lib.sh"
+enter_private_netns "$0" "$@"
+for tool in lcm-logger lcm-logplayer; do
+  command -v $tool > /dev/null || { echo "FAIL: $tool not installed"; exit 1; }
+done
 
 fail() { echo "FAIL: $*" >&2; for f in "$dir"/*.log; do echo "--- $f"; tail -n 5 "$f"; done >&2; exit 1; }
 below() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a <= b) }'; }
 rows() { [ -f "$1" ] && echo $(( $(wc -l < "$1") - 1 )) || echo 0; }
 corner_poses() { tail -n +2 "$1" | cut -d, -f1 | sort -n | uniq | wc -l; }
-pids=()
-cleanup() { for p in "${pids[@]}"; do kill "$p" 2> /dev/null || true; done; wait 2> /dev/null || true; }
-trap cleanup EXIT
-
-export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0"
-cd "$dir"
 
 # The pre-shared key, made as messages/README.md says.
 (umask 077; head -c 32 /dev/urandom > h4.key)

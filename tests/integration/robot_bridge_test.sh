@@ -9,24 +9,10 @@
 set -euo pipefail
 h4cal=$(realpath "$1") h4cam=$(realpath "$2") bridge=$(realpath "$3") src=$(realpath "$4")
 dir=$(realpath -m "$5")
-scale=${H4_TEST_TIME_SCALE:-1}
-
-if [ -z "${H4_IN_NETNS:-}" ]; then
-  rm -rf "$dir"; mkdir -p "$dir"
-  netns=$src/scripts/in-private-netns
-  status=0
-  reason=$("$netns" --check 2>&1) || status=$?
-  [ $status -eq 77 ] && { echo "SKIP: $reason"; exit 77; }
-  [ $status -eq 0 ] || { echo "FAIL: $reason"; exit 1; }
-  exec "$netns" env H4_IN_NETNS=1 "$0" "$@"
-fi
+source "$src/tests/integration/live_test_lib.sh"
+enter_private_netns "$0" "$@"
 
 fail() { echo "FAIL: $*" >&2; for f in "$dir"/*.log; do echo "--- $f"; tail -n 5 "$f"; done >&2; exit 1; }
-pids=()
-cleanup() { for p in "${pids[@]}"; do kill "$p" 2> /dev/null || true; done; wait 2> /dev/null || true; }
-trap cleanup EXIT
-export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0"
-cd "$dir"
 
 "$h4cal" simulate --truth 12 --seed 3 --robot-seed 3 --out-dir sim 2> simulate.log
 cat > plan.csv <<'PLAN'

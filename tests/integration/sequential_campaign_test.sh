@@ -12,24 +12,11 @@
 # Time limits are multiplied by $H4_TEST_TIME_SCALE (default 1; the sanitizer build sets it).
 set -euo pipefail
 h4cal=$(realpath "$1") h4cam=$(realpath "$2") src=$(realpath "$3") dir=$(realpath -m "$4")
-scale=${H4_TEST_TIME_SCALE:-1}
-if [ -z "${H4_IN_NETNS:-}" ]; then
-  rm -rf "$dir"; mkdir -p "$dir"
-  netns=$src/scripts/in-private-netns
-  status=0
-  reason=$("$netns" --check 2>&1) || status=$?
-  [ $status -eq 77 ] && { echo "SKIP: $reason"; exit 77; }
-  [ $status -eq 0 ] || { echo "FAIL: $reason"; exit 1; }
-  exec "$netns" env H4_IN_NETNS=1 "$0" "$@"
-fi
+source "$src/tests/integration/live_test_lib.sh"
+enter_private_netns "$0" "$@"
 fail() { echo "FAIL: $*" >&2; for f in "$dir"/*.log; do echo "--- $f"; tail -n 8 "$f"; done >&2; exit 1; }
 rows() { [ -f "$1" ] && echo $(( $(wc -l < "$1") - 1 )) || echo 0; }
 ids() { tail -n +2 "$1" | cut -d, -f1 | sort -n; }
-pids=()
-cleanup() { for p in "${pids[@]}"; do kill "$p" 2> /dev/null || true; done; wait 2> /dev/null || true; }
-trap cleanup EXIT
-export LCM_DEFAULT_URL="udpm://239.255.76.67:7667?ttl=0"
-cd "$dir"
 camera_file=$src/boards/sim_camera_1024x768.yaml board=$src/boards/aprilgrid_6x6_30mm.yaml
 "$h4cal" simulate --truth-model 31 --seed 5 --robot-seed 5 --out-dir sim 2> simulate.log > /dev/null
 "$h4cal" sim-robot --truth sim/truth.yaml --joint-speed 2 --settle-time 0.1 > sim_robot.log 2>&1 &
