@@ -6,7 +6,6 @@
 #include "common/cli/subcommand.h"
 #include "firmware/cli/calibrate_intrinsics_command.h"
 #include "firmware/cli/capture_command.h"
-#include "firmware/cli/exit_code.h"
 #include "firmware/cli/list_cameras_command.h"
 #include "firmware/cli/make_board_command.h"
 #include "firmware/cli/measure_command.h"
@@ -49,5 +48,5 @@ int main(int argc, char** argv) {
   CLI::App app{"h4cam: camera module of the H4 calibration (measure the board pose X_CT)"};
   h4::cli::SetUpProgram(&app, "h4cam", H4_VERSION);
   h4::cli::AddCommands(app, kCommands);
-  return h4::cli::RunCommandLine(&app, "h4cam", argc, argv, h4::cam::ExitCode);
+  return h4::cli::RunCommandLine(&app, "h4cam", argc, argv);
 }

@@ -25,5 +25,5 @@ int main(int argc, char** argv) {
   app.parse_complete_callback(
       [&verbose] { spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::info); });
   h4::host::cli::AddAllCommands(app);
-  return h4::cli::RunCommandLine(&app, "h4cal", argc, argv, h4::host::cli::ExitCode);
+  return h4::cli::RunCommandLine(&app, "h4cal", argc, argv);
 }

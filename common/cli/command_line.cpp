@@ -25,17 +25,18 @@ std::string ErrorLine(const std::string& program, const std::string& what) {
   return program + ": error: " + what;
 }
 
-int RunCommandLine(CLI::App* app, const std::string& program, int argc, char** argv,
-                   const std::function<int()>& command_exit_code) {
+int RunCommandLine(CLI::App* app, const std::string& program, int argc, char** argv) {
   try {
     app->parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app->exit(e);  // help, version, or a usage error (100 and above)
+    // Help, version, a usage error (100 and above), or a command's own exit code
+    // (CLI::RuntimeError, which CLI::App::exit returns without printing).
+    return app->exit(e);
   } catch (const std::exception& e) {
     std::cerr << ErrorLine(program, e.what()) << "\n";
     return kExitError;
   }
-  return command_exit_code();
+  return kExitSuccess;
 }
 
 }  // namespace h4::cli

@@ -12,6 +12,7 @@
 namespace h4::cli {
 
 /// Exit codes, the same for both programs (README.md#using-h4cal).
+constexpr int kExitSuccess = 0;
 constexpr int kExitError = 1;
 /// The command ran but nothing usable came out (skipped poses, no board seen, a verdict
 /// other than good); what it wrote stays written.
@@ -35,8 +36,8 @@ std::string ErrorLine(const std::string& program, const std::string& what);
 
 /// Parses and runs the chosen subcommand. Usage errors, --help and --version go through
 /// CLI11 (exit 0, or 100 and above); an exception a command throws is printed once as
-/// ErrorLine on stderr (exit 1); otherwise the code `command_exit_code` returns.
-int RunCommandLine(CLI::App* app, const std::string& program, int argc, char** argv,
-                   const std::function<int()>& command_exit_code);
+/// ErrorLine on stderr (exit 1); otherwise the code the command returned
+/// (common/cli/subcommand.h, RunWhenParsed), 0 for a command that returns nothing.
+int RunCommandLine(CLI::App* app, const std::string& program, int argc, char** argv);
 
 }  // namespace h4::cli

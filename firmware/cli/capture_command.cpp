@@ -24,8 +24,8 @@
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/geometry/rotation.h"
-#include "firmware/cli/exit_code.h"
 #include "firmware/cli/frame_check.h"
+#include "firmware/sources/frame_source_spec.h"
 #include "firmware/sources/image_file_source.h"
 #include "firmware/sources/libcamera_source.h"
 #include "firmware/sources/sim_capture_poses.h"
@@ -47,7 +47,8 @@ RigidTransform CentredBoardPose(const BoardSpec& board, double depth) {
 /// Whether the sim source shows capture's pose sequence (sim_capture_poses.h) rather than
 /// one pose: saving frames without --sim-pose, so that the intrinsics step can be rehearsed.
 bool SimShowsPoseSequence(const CaptureArgs& args, bool save_frames) {
-  return save_frames && args.source == "sim" && args.sim_pose.empty();
+  const std::optional<FrameSourceSpec> spec = ParseFrameSourceSpec(args.source, nullptr);
+  return save_frames && spec && spec->kind == FrameSourceSpec::Kind::kSim && args.sim_pose.empty();
 }
 
 RigidTransform SimPose(const CaptureArgs& args, const BoardSpec& board) {
@@ -81,16 +82,16 @@ std::unique_ptr<SimSource> MakeSimSource(const CaptureArgs& args, const BoardSpe
 
 std::unique_ptr<FrameSource> MakeSource(const CaptureArgs& args, const BoardSpec& board,
                                         const CameraIntrinsics& camera) {
-  if (args.source == "sim") {
+  std::string why;
+  const std::optional<FrameSourceSpec> spec = ParseFrameSourceSpec(args.source, &why);
+  if (!spec) throw std::runtime_error("--" + why);
+  if (spec->kind == FrameSourceSpec::Kind::kSim) {
     std::unique_ptr<SimSource> sim = MakeSimSource(args, board, camera);
     sim->SetPose(SimPose(args, board));
     return sim;
   }
-  if (args.source.rfind("dir:", 0) == 0) {
-    return std::make_unique<ImageFileSource>(std::vector<std::string>{args.source.substr(4)});
-  }
-  if (args.source != "libcamera") {
-    throw std::runtime_error("--source '" + args.source + "': expected libcamera, sim or dir:PATH");
+  if (spec->kind == FrameSourceSpec::Kind::kImageFiles) {
+    return std::make_unique<ImageFileSource>(std::vector<std::string>{spec->path});
   }
   LibcameraSourceOptions options;
   options.camera_id = args.camera_id;
@@ -299,13 +300,11 @@ void AddCaptureOptions(CLI::App* command, CaptureArgs* args) {
       ->capture_default_str();
 }
 
-void SetCaptureExitCode(const CaptureSummary& summary, const std::atomic<bool>& stopped) {
-  if (summary.frames == 0 && stopped.load()) {
-    SetExitCode(h4::cli::kExitInterrupted);
-  } else if (summary.with_board == 0) {
-    std::cerr << "h4cam: no frame showed the board\n";
-    SetExitCode(kExitNothingUsable);
-  }
+int CaptureExitCode(const CaptureSummary& summary, const std::atomic<bool>& stopped) {
+  if (summary.frames == 0 && stopped.load()) return h4::cli::kExitInterrupted;
+  if (summary.with_board > 0) return h4::cli::kExitSuccess;
+  std::cerr << "h4cam: no frame showed the board\n";
+  return h4::cli::kExitNothingUsable;
 }
 
 /// What `h4cam capture` and `h4cam preview` differ in; both take AddCaptureOptions and run
@@ -333,7 +332,7 @@ void DeclareCaptureOrPreviewCommand(CLI::App* command, const CaptureCommandText&
       command, args, [save_frames = text.save_frames](const CaptureArgs& parsed) {
         // The capture loop polls the flag between frames.
         const std::atomic<bool>& stop = h4::cli::InstallStopSignalHandlers();
-        SetCaptureExitCode(RunCapture(parsed, save_frames, std::cout, stop), stop);
+        return CaptureExitCode(RunCapture(parsed, save_frames, std::cout, stop), stop);
       });
 }
 

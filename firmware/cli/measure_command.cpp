@@ -14,7 +14,6 @@
 #include "common/formats/camera_yaml.h"
 #include "common/formats/corners_csv.h"
 #include "common/formats/file_output.h"
-#include "firmware/cli/exit_code.h"
 #include "firmware/pose/measure_pipeline.h"
 #include "firmware/sources/image_file_source.h"
 
@@ -143,11 +142,10 @@ void DeclareMeasureCommand(CLI::App* command) {
       "Exit codes: 0 at least one row has a pose, 3 no image showed the board (the rows are "
       "written, without poses), 1 error.");
   h4::cli::RunWhenParsed(command, args, [](const MeasureArgs& parsed) {
-    if (RunMeasure(parsed, std::cerr) == 0) {
-      std::cerr << "h4cam measure: no image shows the board " << parsed.board_path
-                << ": nothing usable measured\n";
-      SetExitCode(kExitNothingUsable);
-    }
+    if (RunMeasure(parsed, std::cerr) > 0) return h4::cli::kExitSuccess;
+    std::cerr << "h4cam measure: no image shows the board " << parsed.board_path
+              << ": nothing usable measured\n";
+    return h4::cli::kExitNothingUsable;
   });
 }
 

@@ -17,7 +17,6 @@
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/geometry/rotation.h"
-#include "firmware/cli/exit_code.h"
 #include "firmware/render/board_renderer.h"
 
 namespace h4::cam {
@@ -168,7 +167,7 @@ void DeclareRenderCommand(CLI::App* command) {
       "Exit codes: 0 frames written, 3 the board is not in view at --pose (behind the "
       "camera or off the image; nothing written), 1 error.");
   h4::cli::RunWhenParsed(command, args, [](const RenderArgs& parsed) {
-    if (!RunRender(parsed, std::cout)) SetExitCode(kExitNothingUsable);
+    return RunRender(parsed, std::cout) ? h4::cli::kExitSuccess : h4::cli::kExitNothingUsable;
   });
 }
 

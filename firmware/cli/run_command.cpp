@@ -17,6 +17,7 @@
 #include "firmware/service/camera_service.h"
 #include "firmware/service/sd_notify.h"
 #include "firmware/service/service_node.h"
+#include "firmware/sources/frame_source_spec.h"
 #include "firmware/sources/image_file_source.h"
 #include "firmware/sources/libcamera_source.h"
 #include "firmware/sources/sim_source.h"
@@ -56,6 +57,31 @@ int Fail(bus::LcmBus* bus, const ServiceConfig& config, const std::string& why, 
   return 1;
 }
 
+// The renderer as a camera, in real time, showing the board where the sim robot puts it.
+std::unique_ptr<SimSource> MakeRealTimeSimSource(const ServiceConfig& config,
+                                                 const BoardSpec& board,
+                                                 const CameraIntrinsics& rendered_camera) {
+  SimSourceOptions sim_options;
+  sim_options.render = config.sim_render;
+  sim_options.frame_rate_hz = 1e6 / config.frame_duration_us;
+  sim_options.start_utime = NowUtime();
+  sim_options.real_time = true;
+  return std::make_unique<SimSource>(board, rendered_camera, sim_options);
+}
+
+CameraServiceOptions ServiceOptionsOf(const ServiceConfig& config, const FrameSourceSpec& spec) {
+  CameraServiceOptions options;
+  options.camera_id = config.MessageCameraId();
+  options.board_id = std::filesystem::path(config.board_path).stem().string();
+  options.default_frames = config.frames_averaged;
+  options.free_run_hz = config.free_run_hz;
+  options.max_spread_px = config.max_spread_px;
+  options.exposure_us = config.exposure_time_us;
+  options.analogue_gain = config.analogue_gain;
+  options.drain_when_idle = spec.kind == FrameSourceSpec::Kind::kLibcamera;
+  return options;
+}
+
 }  // namespace
 
 ServiceConfig ResolveRunConfig(const RunArgs& args) {
@@ -89,9 +115,12 @@ int RunService(const ServiceConfig& config, std::ostream& err, const std::atomic
   bus::LcmBus bus(config.lcm_url, bus::WireLimits{}, std::move(auth));
   if (!bus.good()) return Fail(nullptr, config, bus.error(), err);
 
+  std::string why;
+  const std::optional<FrameSourceSpec> spec = ParseFrameSourceSpec(config.source, &why);
+  if (!spec) return Fail(&bus, config, why, err);
   std::unique_ptr<FrameSource> source;
   SimSource* sim = nullptr;
-  if (config.source == "libcamera") {
+  if (spec->kind == FrameSourceSpec::Kind::kLibcamera) {
     // The camera first: on a machine without one, that is the error to report, whatever
     // the state of the board and intrinsics files.
     auto camera = std::make_unique<LibcameraSource>(LibcameraOptions(config));
@@ -114,32 +143,23 @@ int RunService(const ServiceConfig& config, std::ostream& err, const std::atomic
   } catch (const std::exception& e) {
     return Fail(&bus, config, e.what(), err);
   }
-  if (config.source == "sim") {
-    SimSourceOptions sim_options;
-    sim_options.render = config.sim_render;
-    sim_options.frame_rate_hz = 1e6 / config.frame_duration_us;
-    sim_options.start_utime = NowUtime();
-    sim_options.real_time = true;
-    auto sim_source = std::make_unique<SimSource>(board, rendered_camera, sim_options);
+  if (spec->kind == FrameSourceSpec::Kind::kSim) {
+    std::unique_ptr<SimSource> sim_source = MakeRealTimeSimSource(config, board, rendered_camera);
     sim = sim_source.get();
     source = std::move(sim_source);
-  } else if (config.source.rfind("dir:", 0) == 0) {
-    source = std::make_unique<ImageFileSource>(std::vector<std::string>{config.source.substr(4)});
+  } else if (spec->kind == FrameSourceSpec::Kind::kImageFiles) {
+    source = std::make_unique<ImageFileSource>(std::vector<std::string>{spec->path});
   }
 
-  CameraServiceOptions options;
-  options.camera_id = config.MessageCameraId();
-  options.board_id = std::filesystem::path(config.board_path).stem().string();
-  options.default_frames = config.frames_averaged;
-  options.free_run_hz = config.free_run_hz;
-  options.max_spread_px = config.max_spread_px;
-  options.exposure_us = config.exposure_time_us;
-  options.analogue_gain = config.analogue_gain;
-  options.drain_when_idle = config.source == "libcamera";
+  const CameraServiceOptions options = ServiceOptionsOf(config, *spec);
   CameraService service(options, *source, board, intrinsics);
   if (!service.Start()) return Fail(&bus, config, service.last_error(), err);
 
-  ServiceNode node(bus, service, sim, std::chrono::duration<double>(config.heartbeat_period_s));
+  // The sim source renders the board where H4_SIM_BOARD_TRUTH puts it.
+  ServiceNode::ShowTruth show_truth;
+  if (sim != nullptr) show_truth = [sim](const RigidTransform& X_CT) { sim->SetPose(X_CT); };
+  ServiceNode node(bus, service, show_truth,
+                   std::chrono::duration<double>(config.heartbeat_period_s));
   NotifyReady();
   NotifyStatus("running: " + source->Describe() + " on " + bus.url());
   err << "h4cam run: " << source->Describe() << ", board " << options.board_id << ", LCM "
@@ -183,10 +203,7 @@ void DeclareRunCommand(CLI::App* command) {
   h4::cli::RunWhenParsed(command, args, [](const RunArgs& parsed) {
     // The service's loop polls the flag at least every 100 ms.
     const std::atomic<bool>& stop = h4::cli::InstallStopSignalHandlers();
-    const ServiceConfig config = ResolveRunConfig(parsed);
-    if (const int code = RunService(config, std::cerr, stop); code != 0) {
-      throw CLI::RuntimeError(code);
-    }
+    return RunService(ResolveRunConfig(parsed), std::cerr, stop);
   });
 }
 

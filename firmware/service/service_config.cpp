@@ -9,6 +9,7 @@
 #include "common/formats/csv_table.h"
 #include "common/formats/format_error.h"
 #include "common/formats/yaml_map.h"
+#include "firmware/sources/frame_source_spec.h"
 
 namespace h4::cam {
 namespace {
@@ -118,11 +119,8 @@ bool ServiceConfig::IsValid(std::string* why) const {
     if (why) *why = text;
     return false;
   };
-  if (source != "libcamera" && source != "sim" && source.rfind("dir:", 0) != 0) {
-    return fail("source '" + source + "': expected libcamera, sim or dir:PATH");
-  }
-  if (source.rfind("dir:", 0) == 0 && source.size() == 4)
-    return fail("source 'dir:' names no folder");
+  std::string source_why;
+  if (!ParseFrameSourceSpec(source, &source_why)) return fail(source_why);
   if (frames_averaged < 1 || frames_averaged > 1000) {
     return fail("frames averaged " + std::to_string(frames_averaged) + ": expected 1..1000");
   }

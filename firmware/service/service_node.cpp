@@ -2,6 +2,7 @@
 #include "firmware/service/service_node.h"
 
 #include <cmath>
+#include <utility>
 
 #include <spdlog/spdlog.h>
 
@@ -25,16 +26,16 @@ std::optional<RigidTransform> TruthPose(const h4msgs::sim_board_truth_t& truth, 
   return RigidTransform::FromTranslationQuaternion(p, q);
 }
 
-ServiceNode::ServiceNode(bus::LcmBus& bus, CameraService& service, SimSource* sim,
+ServiceNode::ServiceNode(bus::LcmBus& bus, CameraService& service, ShowTruth show_truth,
                          std::chrono::duration<double> heartbeat_period)
     : bus_(bus),
       service_(service),
-      sim_(sim),
+      show_truth_(std::move(show_truth)),
       heartbeats_(std::chrono::duration_cast<Clock::duration>(heartbeat_period)) {
   bus_.Subscribe<h4msgs::capture_request_t>(
       channels::kCaptureRequest,
       [this](const h4msgs::capture_request_t& request) { service_.SubmitRequest(request); });
-  if (sim_ != nullptr) {
+  if (show_truth_) {
     bus_.Subscribe<h4msgs::sim_board_truth_t>(
         channels::kSimBoardTruth,
         [this](const h4msgs::sim_board_truth_t& truth) { OnTruth(truth); });
@@ -71,7 +72,7 @@ void ServiceNode::Poll(std::chrono::milliseconds timeout) {
   }
   bus_.Handle(wait);
   if (pending_truth_) {
-    sim_->SetPose(*pending_truth_);
+    show_truth_(*pending_truth_);
     pending_truth_.reset();
   }
   if (std::optional<h4msgs::board_pose_t> pose = service_.Step(Clock::now())) {

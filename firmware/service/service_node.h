@@ -7,13 +7,16 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
 
 #include <h4msgs/sim_board_truth_t.hpp>
 
+#include "common/geometry/rigid_transform.h"
 #include "common/timing/clock.h"  // NowUtime, for the node and its users
 #include "common/timing/periodic_schedule.h"
 #include "firmware/service/camera_service.h"
-#include "firmware/sources/sim_source.h"
 #include "messages/bus/lcm_bus.h"
 
 namespace h4::cam {
@@ -22,8 +25,12 @@ class ServiceNode {
  public:
   using Clock = std::chrono::steady_clock;
 
-  /// Subscribes on `bus`; `sim` (may be null) receives the true poses of H4_SIM_BOARD_TRUTH.
-  ServiceNode(bus::LcmBus& bus, CameraService& service, SimSource* sim,
+  /// Where the synthetic camera's board is to be seen next (X_CT): the sim source's SetPose.
+  using ShowTruth = std::function<void(const RigidTransform& X_CT)>;
+
+  /// Subscribes on `bus`; a `show_truth` (the sim source's; empty for a real camera) is
+  /// given the true poses of H4_SIM_BOARD_TRUTH.
+  ServiceNode(bus::LcmBus& bus, CameraService& service, ShowTruth show_truth,
               std::chrono::duration<double> heartbeat_period);
 
   /// One loop iteration: dispatches the bus messages (waiting up to `timeout` when the
@@ -44,7 +51,7 @@ class ServiceNode {
 
   bus::LcmBus& bus_;
   CameraService& service_;
-  SimSource* sim_;
+  ShowTruth show_truth_;
   PeriodicSchedule heartbeats_;
   int64_t board_poses_published_ = 0;
   int64_t board_corners_published_ = 0;

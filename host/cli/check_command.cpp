@@ -39,7 +39,7 @@ void PrintPoses(const DriftCheckResult& check) {
   }
 }
 
-void Run(const CheckCommandOptions& o) {
+int Run(const CheckCommandOptions& o) {
   const IdentificationResult result = ReadIdentificationResult(o.result_path);
   const Assembly assembly =
       o.robot_path.empty() ? Assembly{} : ReadRobotYaml(o.robot_path).assembly;
@@ -50,7 +50,7 @@ void Run(const CheckCommandOptions& o) {
               o.result_path.c_str(), ToString(result.model), rows.size());
   if (check.evaluable) PrintPoses(check);
   std::printf("%s\n", check.Summary().c_str());
-  if (check.drift) SetExitCode(h4::cli::kExitNothingUsable);
+  return check.drift ? h4::cli::kExitNothingUsable : h4::cli::kExitSuccess;
 }
 
 }  // namespace
@@ -84,7 +84,7 @@ void DeclareCheckCommand(CLI::App* command) {
   h4::cli::RunWhenParsed(command, options, [](const CheckCommandOptions& parsed) {
     std::string why;
     if (!parsed.check.IsValid(&why)) throw std::invalid_argument("check: " + why);
-    Run(parsed);
+    return Run(parsed);
   });
 }
 

@@ -66,7 +66,8 @@ struct CollectOptions {
 /// How a campaign over one plan ended.
 struct CampaignEnd {
   bool interrupted = false;
-  bool complete = false;  ///< every planned pose recorded, none skipped
+  bool complete = false;  ///< every planned pose recorded, none skipped; --dry-run: all in reach
+  bool dry_run = false;   ///< --dry-run: the plan was checked, nothing moved or measured
 };
 
 /// The a priori Model 12 a Model 31 control law maps the planned poses through: the
@@ -130,7 +131,6 @@ bool CheckPlanBeforeMoving(CollectOptions* options, const PosePlan& plan) {
   std::printf("collect --dry-run: %zu of %zu planned poses out of the a priori robot's reach%s\n",
               unreachable.size(), plan.size(), unreachable.empty() ? "" : " (not sent):");
   for (const auto& [pose_id, why] : unreachable) std::printf("  %s\n", why.c_str());
-  if (!unreachable.empty()) SetExitCode(h4::cli::kExitNothingUsable);
   return false;
 }
 
@@ -284,14 +284,15 @@ CampaignEnd RunCampaignOver(const CollectOptions& options, const PosePlan& plan,
   return {interrupted, campaign.finished() && campaign.skipped().empty()};
 }
 
-/// --plan's poses, or the paper's grid; nullopt for --dry-run (the check was all).
-std::optional<CampaignEnd> RunPlannedCampaign(CollectOptions options,
-                                              const std::atomic<bool>& stop) {
+/// --plan's poses, or the paper's grid; for --dry-run the check is all.
+CampaignEnd RunPlannedCampaign(CollectOptions options, const std::atomic<bool>& stop) {
   const PosePlan plan = options.plan_path.empty()
                             ? GridPosePlan()
                             : PosePlanFromRows(ReadPosesCsv(options.plan_path));
   if (plan.empty()) throw std::invalid_argument(options.plan_path + ": the pose plan is empty");
-  if (!CheckPlanBeforeMoving(&options, plan)) return std::nullopt;
+  if (!CheckPlanBeforeMoving(&options, plan)) {
+    return {.complete = options.campaign.unreachable.empty(), .dry_run = true};
+  }
   return RunCampaignOver(options, plan, stop);
 }
 
@@ -320,7 +321,7 @@ PosePlan MeasuredPart(const PosePlan& plan, const std::vector<DatasetRow>& rows)
 /// --sequential FIRST,TOTAL: the first stage planned and measured, then the second planned
 /// on the robot the first identifies and measured with it (collect_stages.h); a pose the
 /// first stage skipped is not measured again in the second.
-std::optional<CampaignEnd> RunStages(CollectOptions options, const std::atomic<bool>& stop) {
+CampaignEnd RunStages(CollectOptions options, const std::atomic<bool>& stop) {
   CollectStagesOptions stages;
   ParseStageCounts(options.sequential, &stages);
   stages.robot_path = options.robot_path;
@@ -378,7 +379,8 @@ void CheckOptionCombinations(const CollectOptions& options) {
   }
 }
 
-void Run(CollectOptions options, const std::string& command_line) {
+/// The exit code (the footer of DeclareCollectCommand).
+int Run(CollectOptions options, const std::string& command_line) {
   CheckOptionCombinations(options);
   const bool from_log = !options.from_log.empty();
   if (!options.controller_path.empty()) {
@@ -404,17 +406,12 @@ void Run(CollectOptions options, const std::string& command_line) {
   // second-campaign test interrupted the first right after it took the lock, and 1 run in
   // 20 died of SIGINT).
   const std::atomic<bool>& stop = h4::cli::InstallStopSignalHandlers();
-  const std::optional<CampaignEnd> end =
+  const CampaignEnd end =
       options.sequential.empty() ? RunPlannedCampaign(options, stop) : RunStages(options, stop);
-  if (!end) return;  // --dry-run
-  if (end->interrupted) {
-    SetExitCode(h4::cli::kExitInterrupted);
-    return;
-  }
-  if (!options.identify_dir.empty() && !IdentifyAndReport(options, command_line)) {
-    SetExitCode(h4::cli::kExitNothingUsable);
-  }
-  if (!end->complete) SetExitCode(h4::cli::kExitNothingUsable);
+  if (end.interrupted) return h4::cli::kExitInterrupted;
+  const bool identified_good =
+      end.dry_run || options.identify_dir.empty() || IdentifyAndReport(options, command_line);
+  return end.complete && identified_good ? h4::cli::kExitSuccess : h4::cli::kExitNothingUsable;
 }
 
 // How each pose is measured: frames, timeouts, retries, pairing.
@@ -516,7 +513,7 @@ void DeclareCollectCommand(CLI::App* command) {
   // through a lambda, since in a unity batch other files' Run overloads are in scope too.
   RunWithCommandLineWhenParsed(
       command, options,
-      [](const CollectOptions& parsed, const std::string& line) { Run(parsed, line); });
+      [](const CollectOptions& parsed, const std::string& line) { return Run(parsed, line); });
 }
 
 }  // namespace h4::host::cli

@@ -1,11 +1,7 @@
-// Registration of every h4cal subcommand, the command line a report shows, and the run's exit
-// code.
+// Registration of every h4cal subcommand, and the command line a report shows.
 #include "host/cli/commands.h"
 
 namespace h4::host::cli {
-namespace {
-int g_exit_code = 0;
-}  // namespace
 
 std::string ReportCommandLine(const CLI::App& command) {
   std::string line;
@@ -64,8 +60,5 @@ constexpr h4::cli::CommandEntry kCommands[] = {
 };
 
 void AddAllCommands(CLI::App& app) { h4::cli::AddCommands(app, kCommands); }
-
-int ExitCode() { return g_exit_code; }
-void SetExitCode(int code) { g_exit_code = code; }
 
 }  // namespace h4::host::cli

@@ -1,7 +1,8 @@
 // The h4cal subcommands. Each lives in its own <name>_command.cpp, which declares its
 // options and what it runs (Declare*Command); commands.cpp lists them with their names in
 // the program's command table. A command reports a failure by throwing (main prints it
-// once) or, for "ran but the result is not usable", by SetExitCode.
+// once) or, for "ran but the result is not usable", by returning its exit code
+// (common/cli/subcommand.h).
 #pragma once
 
 #include <memory>
@@ -32,19 +33,16 @@ void DeclareCheckCommand(CLI::App* command);
 std::string ReportCommandLine(const CLI::App& command);
 
 /// Has `command` call run(options, "h4cal <command> <its ReportCommandLine>") once the
-/// command line is parsed: the commands whose report shows how it was made.
+/// command line is parsed: the commands whose report shows how it was made. A `run` that
+/// returns an int returns the exit code, as for h4::cli::RunWhenParsed.
 template <typename Options, typename Run = void (*)(const Options&, const std::string&)>
 void RunWithCommandLineWhenParsed(CLI::App* command, std::shared_ptr<Options> options, Run run) {
   h4::cli::RunWhenParsed(command, std::move(options), [command, run](Options& parsed) {
-    run(parsed, "h4cal " + command->get_name() + " " + ReportCommandLine(*command));
+    return run(parsed, "h4cal " + command->get_name() + " " + ReportCommandLine(*command));
   });
 }
 
 /// Registers every command above.
 void AddAllCommands(CLI::App& app);
-
-/// Exit code of the run: 0 unless a command set one (e.g. 3: finished, result unusable).
-int ExitCode();
-void SetExitCode(int code);
 
 }  // namespace h4::host::cli

@@ -30,14 +30,14 @@ struct ExportOptions {
 
 // A result the verdict does not call good is written (the user may want it) but not
 // silently: the verdict and its advice are repeated, and the exit is 3 as identify's was.
-void WarnUnlessGood(const IdentificationResult& result, const std::string& path) {
-  if (!result.verdict || result.verdict->code == "good") return;
+int WarnUnlessGood(const IdentificationResult& result, const std::string& path) {
+  if (!result.verdict || result.verdict->code == "good") return h4::cli::kExitSuccess;
   spdlog::warn("{}: its verdict is {}, not good: {} Export the result whose verdict is good.", path,
                result.verdict->code, result.verdict->text);
-  SetExitCode(h4::cli::kExitNothingUsable);
+  return h4::cli::kExitNothingUsable;
 }
 
-void Run(const ExportOptions& options) {
+int Run(const ExportOptions& options) {
   RequireOutputIsNotAnInput({"--out", options.out_path},
                             {{"--result", options.result_path}, {"--robot", options.robot_path}});
   const IdentificationResult result = ReadIdentificationResult(options.result_path);
@@ -70,7 +70,7 @@ void Run(const ExportOptions& options) {
   WriteFileAtomically(options.out_path, header + FormatRobotYaml(out, "identified"));
   spdlog::info("wrote the Model {} controller parameters to {}", ToString(result.model),
                options.out_path);
-  WarnUnlessGood(result, options.result_path);
+  return WarnUnlessGood(result, options.result_path);
 }
 
 }  // namespace
@@ -82,7 +82,7 @@ void DeclareExportCommand(CLI::App* command) {
                           "A priori robot.yaml: assembly signs (and the model12 block of a Model "
                           "31 export)");
   h4::cli::AddOutOption(command, &options->out_path, "controller.yaml to write");
-  h4::cli::RunWhenParsed(command, options, Run);
+  h4::cli::RunWhenParsedForExitCode(command, options, Run);
 }
 
 }  // namespace h4::host::cli

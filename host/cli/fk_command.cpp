@@ -54,7 +54,7 @@ void Compare(const std::vector<FkRow>& predicted, const std::string& reference_p
               DegreesFromRadians(std::sqrt(sum_r2 / n)));
 }
 
-void Run(const FkCommandOptions& options) {
+int Run(const FkCommandOptions& options) {
   RequireOutputIsNotAnInput({"--out", options.out_path},
                             {{"--joints", options.joints_path},
                              {"--compare", options.compare_path},
@@ -89,8 +89,9 @@ void Run(const FkCommandOptions& options) {
   if (!options.compare_path.empty()) Compare(rows, options.compare_path);
   if (!failed.empty()) {
     spdlog::error("{} rows had no forward kinematic solution (not written)", failed.size());
-    SetExitCode(h4::cli::kExitNothingUsable);
+    return h4::cli::kExitNothingUsable;
   }
+  return h4::cli::kExitSuccess;
 }
 
 }  // namespace
@@ -108,7 +109,7 @@ void DeclareFkCommand(CLI::App* command) {
                               "heldout_truth.csv): print the RMS position and rotation error");
   command->footer(
       "Rows without a solution are reported and left out (exit code 3), never written as NaN.");
-  h4::cli::RunWhenParsed(command, options, Run);
+  h4::cli::RunWhenParsedForExitCode(command, options, Run);
 }
 
 }  // namespace h4::host::cli

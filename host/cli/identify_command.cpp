@@ -165,10 +165,10 @@ std::optional<CameraFileUncertainty> CameraFileOf(const IdentifyCommandOptions& 
   return file;
 }
 
-void RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription& robot,
-                   ModelKind model, const std::vector<DatasetRow>& rows,
-                   const IdentificationOutcome& pose_path, const IdentificationOptions& id_options,
-                   const std::string& command_line);
+int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription& robot,
+                  ModelKind model, const std::vector<DatasetRow>& rows,
+                  const IdentificationOutcome& pose_path, const IdentificationOptions& id_options,
+                  const std::string& command_line);
 
 void RequireValidInputs(const IdentifyCommandOptions& options) {
   std::string algorithm_why;
@@ -244,7 +244,7 @@ void WriteReport(const IdentifyCommandOptions& options, ModelKind model,
   PrintAccuracyMapLine(report.models.back());
 }
 
-void Run(const IdentifyCommandOptions& options, const std::string& command_line) {
+int Run(const IdentifyCommandOptions& options, const std::string& command_line) {
   RequireValidInputs(options);
   const RobotDescription robot = ReadRobotYaml(options.robot_path);
   const std::vector<DatasetRow> rows = ReadDatasetCsv(options.data_path);
@@ -255,8 +255,7 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
   const IdentificationOutcome outcome = IdentifyAsAsked(options, robot, model, rows, id_options);
   progress.Finish(outcome.summary.message);
   if (!options.corners_path.empty()) {
-    RunCornerPath(options, robot, model, rows, outcome, id_options, command_line);
-    return;
+    return RunCornerPath(options, robot, model, rows, outcome, id_options, command_line);
   }
   IdentificationResult result = outcome.result;
   result.provenance = ProvenanceOf(options);
@@ -264,20 +263,19 @@ void Run(const IdentifyCommandOptions& options, const std::string& command_line)
   spdlog::debug("{}", outcome.summary.FullReport());
   PrintHeadline(outcome);
   spdlog::info("result written to {}", options.out_path);
-  if (outcome.verdict != Verdict::kGood) SetExitCode(h4::cli::kExitNothingUsable);
   if (!outcome.summary.usable) {
     spdlog::error("the identification is not usable: {}", outcome.summary.message);
-    SetExitCode(h4::cli::kExitNothingUsable);
     if (!options.report_dir.empty()) spdlog::error("no report written for an unusable result");
-    return;
+    return h4::cli::kExitNothingUsable;
   }
   if (!options.report_dir.empty()) WriteReport(options, model, command_line);
+  return outcome.verdict == Verdict::kGood ? h4::cli::kExitSuccess : h4::cli::kExitNothingUsable;
 }
 
-void RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription& robot,
-                   ModelKind model, const std::vector<DatasetRow>& rows,
-                   const IdentificationOutcome& pose_path, const IdentificationOptions& id_options,
-                   const std::string& command_line) {
+int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription& robot,
+                  ModelKind model, const std::vector<DatasetRow>& rows,
+                  const IdentificationOutcome& pose_path, const IdentificationOptions& id_options,
+                  const std::string& command_line) {
   if (!pose_path.summary.usable) {
     PrintHeadline(pose_path);
     throw std::runtime_error("the pose path, the corner path's start, is not usable: " +
@@ -295,7 +293,6 @@ void RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription
                         id_options, corner_options);
   if (!path.fit.ok) {
     PrintCornerFit(path);
-    SetExitCode(h4::cli::kExitNothingUsable);
     throw std::runtime_error("the corner fit failed: " + path.fit.message);
   }
   IdentificationResult result = path.outcome.result;
@@ -310,10 +307,10 @@ void RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription
   PrintHeadline(path.outcome);
   PrintCornerFit(path);
   spdlog::info("result written to {}", options.out_path);
-  if (path.outcome.verdict != Verdict::kGood || !path.outcome.summary.usable) {
-    SetExitCode(h4::cli::kExitNothingUsable);
-  }
-  if (options.report_dir.empty() || !path.outcome.summary.usable) return;
+  const int exit_code = path.outcome.verdict == Verdict::kGood && path.outcome.summary.usable
+                            ? h4::cli::kExitSuccess
+                            : h4::cli::kExitNothingUsable;
+  if (options.report_dir.empty() || !path.outcome.summary.usable) return exit_code;
   // The report validates against the poses measured again with the refined camera, the
   // ones the result was fitted to; they are kept beside the report.
   std::filesystem::create_directories(options.report_dir);
@@ -330,6 +327,7 @@ void RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription
   const ValidationReport report = Validate(inputs);
   spdlog::info("wrote {}", WriteHtmlReport(options.report_dir, inputs, report, command_line));
   PrintAccuracyMapLine(report.models.back());
+  return exit_code;
 }
 
 }  // namespace
@@ -400,7 +398,7 @@ void DeclareIdentifyCommand(CLI::App* command) {
   RunWithCommandLineWhenParsed(
       command, options, [command](IdentifyCommandOptions& parsed, const std::string& command_line) {
         parsed.validation_given = command->count("--validation") > 0;
-        Run(parsed, command_line);
+        return Run(parsed, command_line);
       });
 }
 

@@ -20,7 +20,7 @@ struct IkCommandOptions {
   std::string out_path;
 };
 
-void Run(const IkCommandOptions& options) {
+int Run(const IkCommandOptions& options) {
   RequireOutputIsNotAnInput({"--out", options.out_path},
                             {{"--poses", options.poses_path},
                              {"--result", options.robot.result_path},
@@ -50,8 +50,9 @@ void Run(const IkCommandOptions& options) {
                options.out_path);
   if (unreachable > 0) {
     spdlog::error("{} poses are out of reach (not written)", unreachable);
-    SetExitCode(h4::cli::kExitNothingUsable);
+    return h4::cli::kExitNothingUsable;
   }
+  return h4::cli::kExitSuccess;
 }
 
 }  // namespace
@@ -64,7 +65,7 @@ void DeclareIkCommand(CLI::App* command) {
       ->required();
   h4::cli::AddOutOption(command, &options->out_path, "Output joints CSV: pose_id,q1,q2,q3,q4");
   command->footer("Unreachable rows are reported and left out (exit code 3).");
-  h4::cli::RunWhenParsed(command, options, Run);
+  h4::cli::RunWhenParsedForExitCode(command, options, Run);
 }
 
 }  // namespace h4::host::cli

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include <unistd.h>
 
 #include "common/cli/shared_options.h"
+#include "common/cli/subcommand.h"
 #include "common/formats/format_error.h"
 
 namespace h4::cli {
@@ -31,8 +33,7 @@ struct Program {
   int Run(std::vector<std::string> args) {
     std::vector<char*> argv = {program_name.data()};
     for (std::string& arg : args) argv.push_back(arg.data());
-    return RunCommandLine(&app, "prog", static_cast<int>(argv.size()), argv.data(),
-                          [] { return 0; });
+    return RunCommandLine(&app, "prog", static_cast<int>(argv.size()), argv.data());
   }
 
   std::string program_name = "prog";
@@ -99,14 +100,26 @@ TEST(CommandLineTest, TheCameraOptionTakesAKalibrCameraAfterTheFile) {
   std::remove(file.c_str());
 }
 
+// A command's run returns its exit code (RunWhenParsed): nothing printed, and what it did
+// stays done; a run that returns nothing exits 0.
 TEST(CommandLineTest, ExitCodeOfTheCommandIsReturned) {
-  Program program;
-  std::vector<std::string> args = {"prog", "render", "--out-dir", "x"};
-  std::vector<char*> argv;
-  for (std::string& arg : args) argv.push_back(arg.data());
-  EXPECT_EQ(RunCommandLine(&program.app, "prog", static_cast<int>(argv.size()), argv.data(),
-                           [] { return kExitNothingUsable; }),
-            kExitNothingUsable);
+  for (const int code : {kExitSuccess, kExitNothingUsable, kExitInterrupted}) {
+    Program program;
+    auto ran = std::make_shared<std::string>();
+    RunWhenParsed(program.command, ran, [code](std::string& what) {
+      what = "ran";
+      return code;
+    });
+    testing::internal::CaptureStdout();
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(program.Run({"render", "--out-dir", "x"}), code);
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+    EXPECT_EQ(testing::internal::GetCapturedStdout(), "");
+    EXPECT_EQ(*ran, "ran");
+  }
+  Program returns_nothing;
+  RunWhenParsed(returns_nothing.command, std::make_shared<int>(0), [](int& n) { n = 1; });
+  EXPECT_EQ(returns_nothing.Run({"render", "--out-dir", "x"}), kExitSuccess);
 }
 
 }  // namespace

@@ -61,7 +61,9 @@ class ServiceFixture : public ::testing::Test {
       : bus_("memq://", bus::WireLimits{}, std::move(auth)),
         sim_(scenes::PaperBoard(), scenes::PaperCamera(), SimOptions()),
         service_(Options(free_run_hz), sim_, scenes::PaperBoard(), scenes::PaperCamera()),
-        node_(bus_, service_, &sim_, std::chrono::seconds(1)) {
+        node_(
+            bus_, service_, [this](const RigidTransform& X_CT) { sim_.SetPose(X_CT); },
+            std::chrono::seconds(1)) {
     bus_.Subscribe<h4msgs::board_pose_t>(
         channels::kBoardPose, [this](const h4msgs::board_pose_t& m) { poses_.push_back(m); });
     bus_.Subscribe<h4msgs::camera_status_t>(
