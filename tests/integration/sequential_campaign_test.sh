@@ -45,6 +45,10 @@ grep -q "^stage 1 of 2: 8 poses planned on the a priori robot" stages.log ||
   fail "collect did not say it planned stage 1 on the a priori robot"
 grep -q "^stage 1 of 2 measured: identifying its" stages.log || fail "no identification line"
 grep -q "^VERDICT: " stages.log || fail "the first stage's identification printed no verdict"
+# The rest is planned on the model that predicts the first stage's poses best (with 8 poses
+# Model 31 fits them and predicts nothing, and a plan on its camera found no candidate).
+grep -q "^stage 1 of 2: the rest is planned on the Model 12 result" stages.log ||
+  fail "stage 2 was not planned on Model 12's result: $(grep 'rest is planned' stages.log)"
 [ -s dataset.stage1.result.json ] || fail "the first stage's result was not written"
 second=$(sed -nE 's/^stage 2 of 2: ([0-9]+) poses planned on the robot stage 1 identified.*/\1/p' stages.log)
 [ -n "$second" ] || fail "collect did not say it planned stage 2 on the identified robot"
