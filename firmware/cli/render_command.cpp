@@ -12,6 +12,7 @@
 
 #include "common/board/board_model.h"
 #include "common/camera/camera_model.h"
+#include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
 #include "common/cli/subcommand.h"
 #include "common/formats/board_yaml.h"
