@@ -175,7 +175,9 @@ TEST(OptimalDesignBound, NoDesignOfThePlannerBeatsIt) {
   DesignOptions design;
   design.pose_count = 25;
   DesignBound bound;
-  const double lower = PredictedTargetRmsBound(problem, 25, &bound);
+  BoundOptions options;
+  options.pose_count = 25;
+  const double lower = PredictedTargetRmsBound(problem, options, &bound);
   const PlannedCampaign planned = PlanCampaign(problem, design, 1, PlanCriterion::kAccuracy);
   EXPECT_GT(lower, 0.0);
   EXPECT_LE(lower, planned.predicted_position_rms);
