@@ -22,10 +22,13 @@
 //   h4_robust_planning_study [--priors wide,rough-camera] [--robots R] [--first-robot S]
 //       [--noise constant|renderer] [--n 25,71] [--heldout 40] [--robust-robots K]
 //       [--lattice P,T] [--sequential FIRST] [--criterion accuracy|d] [--sigma-px P]
-//       [--plan-corner-sigma-px P] [--setup-sigma MM,DEG] [--source-dir DIR]
+//       [--plan-corner-sigma-px P] [--setup-sigma MM,DEG] [--bound on|off] [--source-dir DIR]
 // --sequential FIRST: also a sequential campaign of each N above FIRST: FIRST poses planned
 // within the target region, identified, the rest planned on the identified robot with
 // them (`h4cal plan --from --existing`), then all identified together.
+// --bound on: also, for each N, the certified bound no N candidates can beat
+// (host/planning/design_bound.h) over the planner's models and over the a priori alone, and
+// the fewest N whose bound reaches the grid's prediction (with --robots 0: that alone).
 // --robust-robots 0 --lattice 3,3 is the planner before issue 29: the a priori alone, the
 // accuracy over the grid's own 81 poses (the 3 x 3 x 3 x 3 lattice of the grid's box).
 #include <algorithm>
@@ -68,6 +71,9 @@ struct RobustStudyOptions {
   /// Poses of a sequential campaign's first batch (0: none run); each N above it is also
   /// run sequentially, N - first batch planned on the identified robot.
   int sequential_first = 0;
+  /// Also the bound no N candidates can beat (design_bound.h), over the planner's models and
+  /// the a priori alone, beside the exchange's and the grid's predictions.
+  bool bound = false;
 };
 
 std::vector<std::string> SplitWords(const std::string& text) {
@@ -119,6 +125,8 @@ RobustStudyOptions ParseRobustStudyOptions(int argc, char** argv) {
       o.problem.target.theta_count = std::stoi(counts[1]);
     } else if (flag == "--criterion") {
       o.criterion = value == "d" ? PlanCriterion::kDOptimal : PlanCriterion::kAccuracy;
+    } else if (flag == "--bound" && (value == "on" || value == "off")) {
+      o.bound = value == "on";
     } else if (flag == "--source-dir") {
       o.source_dir = value;
     } else {
@@ -419,6 +427,80 @@ PlannedDesigns PlanOnce(const PlanningProblem& problem, const RobustStudyOptions
   return designs;
 }
 
+// The problem judged on the a priori robot alone (its candidates unchanged): the drawn robots
+// out of the criterion, the prediction and the bound.
+PlanningProblem AprioriAlone(const PlanningProblem& problem) {
+  PlanningProblem alone = problem;
+  alone.drawn.clear();
+  return alone;
+}
+
+// The bound no n candidates can beat over `problem`'s models (design_bound.h), m: distinct
+// poses (as the exchange chooses), or repeats allowed.
+double TargetBound(const PlanningProblem& problem, int n, bool distinct,
+                   DesignBound* bound = nullptr) {
+  BoundOptions options;
+  options.pose_count = n;
+  options.distinct = distinct;
+  return PredictedTargetRmsBound(problem, options, bound);
+}
+
+// One row of the bound table: the exchange's n poses, the bounds, the grid's 71.
+void PrintBoundRow(const std::string& models, const PlanningProblem& problem, int n,
+                   const RobustStudyOptions& options, double grid) {
+  DesignOptions design;
+  design.pose_count = n;
+  const double planned = PlanCampaign(problem, design, 1, options.criterion).predicted_position_rms;
+  DesignBound bound;
+  const double distinct = TargetBound(problem, n, true, &bound);
+  const double repeats = TargetBound(problem, n, false);
+  const double cap = 1.0 / n;
+  const auto at_cap = std::count_if(bound.weights.begin(), bound.weights.end(),
+                                    [cap](double w) { return w >= (1.0 - 1e-6) * cap; });
+  std::printf("| %s | %d | %.4f | %.4f | %.4f | %.3f | %.4f | %zu (%td at 1/N) | %.4f | %d%s |\n",
+              models.c_str(), n, planned * 1e3, distinct * 1e3, repeats * 1e3, planned / distinct,
+              grid * 1e3, bound.support.size(), at_cap, bound.Efficiency(), bound.iterations,
+              bound.converged ? "" : " (not converged)");
+}
+
+// The fewest poses whose bound reaches the grid's prediction: below N_repeats even the bound
+// with repeats, which scales exactly as 1 / sqrt(N) with nothing measured (design_bound.h),
+// is above it; from there the distinct-pose bound, N by N.
+void PrintFewestPosesReachingTheGrid(const std::string& models, const PlanningProblem& problem,
+                                     double grid) {
+  const int first = 25;
+  const double repeats = TargetBound(problem, first, false);
+  const int n_repeats = static_cast<int>(std::ceil(first * std::pow(repeats / grid, 2)));
+  int n = std::max(first, n_repeats);
+  while (n < problem.candidate_count() && TargetBound(problem, n, true) > grid) ++n;
+  std::printf(
+      "%s: the grid's 71 predict %.4f mm; no N < %d poses can (bound with repeats), and the "
+      "distinct-pose bound first reaches it at N = %d\n",
+      models.c_str(), grid * 1e3, n_repeats, n);
+}
+
+// For each N: the exchange's prediction beside the bounds no N candidates can beat
+// (design_bound.h) and the grid's 71, over `problem`'s models; then the fewest N whose bound
+// reaches the grid.
+void PrintBounds(const std::string& models, const PlanningProblem& problem,
+                 const RobustStudyOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const double grid = GridPredictedPositionRms(problem, 71, 1);
+  for (int n : options.pose_counts) PrintBoundRow(models, problem, n, options, grid);
+  PrintFewestPosesReachingTheGrid(models, problem, grid);
+  std::printf("(%.0f s)\n", SecondsSince(start));
+}
+
+// The bounds over the planner's models and over the a priori robot alone.
+void PrintBoundTable(const PlanningProblem& problem, const RobustStudyOptions& options) {
+  std::printf(
+      "| models | N | exchange, mm | bound (distinct poses), mm | bound (repeats allowed), mm | "
+      "exchange / bound | grid 71, mm | support | efficiency | iterations |\n"
+      "|---|---|---|---|---|---|---|---|---|---|\n");
+  PrintBounds("a priori and " + std::to_string(problem.drawn.size()) + " drawn", problem, options);
+  PrintBounds("a priori alone", AprioriAlone(problem), options);
+}
+
 // One robot of one prior: the grid and every planned campaign, with their own noise.
 void RunRobot(const std::string& prior, int robot, const PlannedDesigns& designs,
               const CampaignSetting& setting, std::map<std::string, CampaignTally>* tallies) {
@@ -473,6 +555,7 @@ void RunRobustStudy(const RobustStudyOptions& options) {
   std::printf("%s; %d robots drawn for the criterion\n", problem.candidates.Summary().c_str(),
               static_cast<int>(problem.drawn.size()));
   PlannedDesigns designs = PlanOnce(problem, options);
+  if (options.bound) PrintBoundTable(problem, options);
   if (options.sequential_first > 0) {
     const PlanningProblem first_problem = MakePlanningProblem(
         PaperAprioriRobot(), setting.camera, setting.board, FirstStageOptions(options.problem));
