@@ -435,68 +435,47 @@ PlanningProblem AprioriAlone(const PlanningProblem& problem) {
   return alone;
 }
 
-// The bound no n candidates can beat over `problem`'s models (design_bound.h), m: distinct
-// poses (as the exchange chooses), or repeats allowed.
-double TargetBound(const PlanningProblem& problem, int n, bool distinct,
-                   DesignBound* bound = nullptr) {
-  BoundOptions options;
-  options.pose_count = n;
-  options.distinct = distinct;
-  return PredictedTargetRmsBound(problem, options, bound);
-}
-
-// One row of the bound table: the exchange's n poses, the bounds, the grid's 71.
-void PrintBoundRow(const std::string& models, const PlanningProblem& problem, int n,
-                   const RobustStudyOptions& options, double grid) {
+// One row of the bound table: the exchange's n poses, the bound no n distinct candidates can
+// beat over `problem`'s models (design_bound.h), the grid's 71. Returns the bound, m.
+double PrintBoundRow(const std::string& models, const PlanningProblem& problem, int n,
+                     const RobustStudyOptions& options, double grid) {
   DesignOptions design;
   design.pose_count = n;
   const double planned = PlanCampaign(problem, design, 1, options.criterion).predicted_position_rms;
+  BoundOptions bound_options;
+  bound_options.pose_count = n;
   DesignBound bound;
-  const double distinct = TargetBound(problem, n, true, &bound);
-  const double repeats = TargetBound(problem, n, false);
-  const double cap = 1.0 / n;
-  const auto at_cap = std::count_if(bound.weights.begin(), bound.weights.end(),
-                                    [cap](double w) { return w >= (1.0 - 1e-6) * cap; });
-  std::printf("| %s | %d | %.4f | %.4f | %.4f | %.3f | %.4f | %zu (%td at 1/N) | %.4f | %d%s |\n",
-              models.c_str(), n, planned * 1e3, distinct * 1e3, repeats * 1e3, planned / distinct,
-              grid * 1e3, bound.support.size(), at_cap, bound.Efficiency(), bound.iterations,
-              bound.converged ? "" : " (not converged)");
+  const double lower = PredictedTargetRmsBound(problem, bound_options, &bound);
+  std::printf("| %s | %d | %.4f | %.4f | %.3f | %.4f | %zu | %.4f | %d%s |\n", models.c_str(), n,
+              planned * 1e3, lower * 1e3, planned / lower, grid * 1e3, bound.support.size(),
+              bound.Efficiency(), bound.iterations, bound.converged ? "" : " (not converged)");
+  return lower;
 }
 
-// The fewest poses whose bound reaches the grid's prediction: below N_repeats even the bound
-// with repeats, which scales exactly as 1 / sqrt(N) with nothing measured (design_bound.h),
-// is above it; from there the distinct-pose bound, N by N.
-void PrintFewestPosesReachingTheGrid(const std::string& models, const PlanningProblem& problem,
-                                     double grid) {
-  const int first = 25;
-  const double repeats = TargetBound(problem, first, false);
-  const int n_repeats = static_cast<int>(std::ceil(first * std::pow(repeats / grid, 2)));
-  int n = std::max(first, n_repeats);
-  while (n < problem.candidate_count() && TargetBound(problem, n, true) > grid) ++n;
-  std::printf(
-      "%s: the grid's 71 predict %.4f mm; no N < %d poses can (bound with repeats), and the "
-      "distinct-pose bound first reaches it at N = %d\n",
-      models.c_str(), grid * 1e3, n_repeats, n);
-}
-
-// For each N: the exchange's prediction beside the bounds no N candidates can beat
-// (design_bound.h) and the grid's 71, over `problem`'s models; then the fewest N whose bound
-// reaches the grid.
+// For each N: the exchange's prediction beside the bound and the grid's 71; then the fewest
+// N the bound allows to reach the grid. For N' >= N distinct poses the bound is at least
+// bound(N) sqrt(N / N') (nothing measured: the criterion of N' poses is f / N', and the cap
+// 1/N' only raises the relaxation's optimum f), and fewer than N poses do no better than N.
 void PrintBounds(const std::string& models, const PlanningProblem& problem,
                  const RobustStudyOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const double grid = GridPredictedPositionRms(problem, 71, 1);
-  for (int n : options.pose_counts) PrintBoundRow(models, problem, n, options, grid);
-  PrintFewestPosesReachingTheGrid(models, problem, grid);
-  std::printf("(%.0f s)\n", SecondsSince(start));
+  int fewest = 1;
+  for (int n : options.pose_counts) {
+    const double lower = PrintBoundRow(models, problem, n, options, grid);
+    if (lower > grid)
+      fewest = std::max(fewest, static_cast<int>(std::ceil(n * std::pow(lower / grid, 2))));
+  }
+  std::printf(
+      "%s: no design of fewer than %d candidates reaches the grid's 71 (%.4f mm) (%.0f s)\n",
+      models.c_str(), fewest, grid * 1e3, SecondsSince(start));
 }
 
 // The bounds over the planner's models and over the a priori robot alone.
 void PrintBoundTable(const PlanningProblem& problem, const RobustStudyOptions& options) {
   std::printf(
-      "| models | N | exchange, mm | bound (distinct poses), mm | bound (repeats allowed), mm | "
-      "exchange / bound | grid 71, mm | support | efficiency | iterations |\n"
-      "|---|---|---|---|---|---|---|---|---|---|\n");
+      "| models | N | exchange, mm | bound, mm | exchange / bound | grid 71, mm | support | "
+      "efficiency | iterations |\n|---|---|---|---|---|---|---|---|---|\n");
   PrintBounds("a priori and " + std::to_string(problem.drawn.size()) + " drawn", problem, options);
   PrintBounds("a priori alone", AprioriAlone(problem), options);
 }
