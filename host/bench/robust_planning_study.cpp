@@ -22,10 +22,13 @@
 //   h4_robust_planning_study [--priors wide,rough-camera] [--robots R] [--first-robot S]
 //       [--noise constant|renderer] [--n 25,71] [--heldout 40] [--robust-robots K]
 //       [--lattice P,T] [--sequential FIRST] [--criterion accuracy|d] [--sigma-px P]
-//       [--plan-corner-sigma-px P] [--setup-sigma MM,DEG] [--source-dir DIR]
+//       [--plan-corner-sigma-px P] [--setup-sigma MM,DEG] [--bound on|off] [--source-dir DIR]
 // --sequential FIRST: also a sequential campaign of each N above FIRST: FIRST poses planned
 // within the target region, identified, the rest planned on the identified robot with
 // them (`h4cal plan --from --existing`), then all identified together.
+// --bound on: also, for each N, the certified bound no N candidates can beat
+// (host/planning/design_bound.h) over the planner's models and over the a priori alone, and
+// the fewest N whose bound reaches the grid's prediction (with --robots 0: that alone).
 // --robust-robots 0 --lattice 3,3 is the planner before issue 29: the a priori alone, the
 // accuracy over the grid's own 81 poses (the 3 x 3 x 3 x 3 lattice of the grid's box).
 #include <algorithm>
@@ -68,6 +71,9 @@ struct RobustStudyOptions {
   /// Poses of a sequential campaign's first batch (0: none run); each N above it is also
   /// run sequentially, N - first batch planned on the identified robot.
   int sequential_first = 0;
+  /// Also the bound no N candidates can beat (design_bound.h), over the planner's models and
+  /// the a priori alone, beside the exchange's and the grid's predictions.
+  bool bound = false;
 };
 
 std::vector<std::string> SplitWords(const std::string& text) {
@@ -119,6 +125,8 @@ RobustStudyOptions ParseRobustStudyOptions(int argc, char** argv) {
       o.problem.target.theta_count = std::stoi(counts[1]);
     } else if (flag == "--criterion") {
       o.criterion = value == "d" ? PlanCriterion::kDOptimal : PlanCriterion::kAccuracy;
+    } else if (flag == "--bound" && (value == "on" || value == "off")) {
+      o.bound = value == "on";
     } else if (flag == "--source-dir") {
       o.source_dir = value;
     } else {
@@ -417,6 +425,59 @@ PlannedDesigns PlanOnce(const PlanningProblem& problem, const RobustStudyOptions
   return designs;
 }
 
+// The problem judged on the a priori robot alone (its candidates unchanged): the drawn robots
+// out of the criterion, the prediction and the bound.
+PlanningProblem AprioriAlone(const PlanningProblem& problem) {
+  PlanningProblem alone = problem;
+  alone.drawn.clear();
+  return alone;
+}
+
+// One row of the bound table: the exchange's n poses, the bound no n distinct candidates can
+// beat over `problem`'s models (design_bound.h), the grid's 71. Returns the bound, m.
+double PrintBoundRow(const std::string& models, const PlanningProblem& problem, int n,
+                     const RobustStudyOptions& options, double grid) {
+  DesignOptions design;
+  design.pose_count = n;
+  const double planned = PlanCampaign(problem, design, 1, options.criterion).predicted_position_rms;
+  BoundOptions bound_options;
+  bound_options.pose_count = n;
+  DesignBound bound;
+  const double lower = PredictedTargetRmsBound(problem, bound_options, &bound);
+  std::printf("| %s | %d | %.4f | %.4f | %.3f | %.4f | %zu | %.4f | %d%s |\n", models.c_str(), n,
+              planned * 1e3, lower * 1e3, planned / lower, grid * 1e3, bound.support.size(),
+              bound.Efficiency(), bound.iterations, bound.converged ? "" : " (not converged)");
+  return lower;
+}
+
+// For each N: the exchange's prediction beside the bound and the grid's 71; then the fewest
+// N the bound allows to reach the grid. For N' >= N distinct poses the bound is at least
+// bound(N) sqrt(N / N') (nothing measured: the criterion of N' poses is f / N', and the cap
+// 1/N' only raises the relaxation's optimum f), and fewer than N poses do no better than N.
+void PrintBounds(const std::string& models, const PlanningProblem& problem,
+                 const RobustStudyOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  const double grid = GridPredictedPositionRms(problem, 71, 1);
+  int fewest = 1;
+  for (int n : options.pose_counts) {
+    const double lower = PrintBoundRow(models, problem, n, options, grid);
+    if (lower > grid)
+      fewest = std::max(fewest, static_cast<int>(std::ceil(n * std::pow(lower / grid, 2))));
+  }
+  std::printf(
+      "%s: no design of fewer than %d candidates reaches the grid's 71 (%.4f mm) (%.0f s)\n",
+      models.c_str(), fewest, grid * 1e3, SecondsSince(start));
+}
+
+// The bounds over the planner's models and over the a priori robot alone.
+void PrintBoundTable(const PlanningProblem& problem, const RobustStudyOptions& options) {
+  std::printf(
+      "| models | N | exchange, mm | bound, mm | exchange / bound | grid 71, mm | support | "
+      "efficiency | iterations |\n|---|---|---|---|---|---|---|---|---|\n");
+  PrintBounds("a priori and " + std::to_string(problem.drawn.size()) + " drawn", problem, options);
+  PrintBounds("a priori alone", AprioriAlone(problem), options);
+}
+
 // One robot of one prior: the grid and every planned campaign, with their own noise.
 void RunRobot(const std::string& prior, int robot, const PlannedDesigns& designs,
               const CampaignSetting& setting, std::map<std::string, CampaignTally>* tallies) {
@@ -471,6 +532,7 @@ void RunRobustStudy(const RobustStudyOptions& options) {
   std::printf("%s; %d robots drawn for the criterion\n", problem.candidates.Summary().c_str(),
               static_cast<int>(problem.drawn.size()));
   PlannedDesigns designs = PlanOnce(problem, options);
+  if (options.bound) PrintBoundTable(problem, options);
   if (options.sequential_first > 0) {
     const PlanningProblem first_problem = MakePlanningProblem(
         PaperAprioriRobot(), setting.camera, setting.board, FirstStageOptions(options.problem));

@@ -154,6 +154,25 @@ void PrintPlan(const PlannedCampaign& campaign, const PlanningProblem& problem, 
       campaign.plan.size(), with_existing.c_str(), grid_rms * 1e3, grid_calibration);
 }
 
+// What no design of as many candidates can beat (host/planning/design_bound.h: the optimal
+// approximate design of the same criterion, certified), so that the user sees how close the
+// plan is to what is possible, not only to the grid.
+void PrintBound(const PlannedCampaign& campaign, const PlanningProblem& problem) {
+  DesignBound bound;
+  BoundOptions options;
+  options.pose_count = static_cast<int>(campaign.plan.size());
+  const double lower = PredictedTargetRmsBound(problem, options, &bound);
+  const std::string with_existing =
+      problem.existing_indices.empty()
+          ? ""
+          : fmt::format(" with the {} measured", problem.existing_indices.size());
+  std::printf(
+      "no %d poses of these %d candidates%s can predict better than %.4f mm over the region "
+      "(convex bound, %zu candidates in the optimal design's support); this plan: %.4f mm\n",
+      options.pose_count, problem.candidate_count(), with_existing.c_str(), lower * 1e3,
+      bound.support.size(), campaign.predicted_position_rms * 1e3);
+}
+
 void WriteCurve(const PlanCommandOptions& o, const PlanningProblem& problem) {
   std::string csv = "n,planned_position_rms_m,grid_position_rms_m\n";
   std::printf("predicted board position error against the number of poses (one sigma, mm):\n");
@@ -253,6 +272,7 @@ void Run(const PlanCommandOptions& o) {
   }
   WritePosesCsv(o.out_path, RowsFromPosePlan(campaign.plan));
   PrintPlan(campaign, problem, o.seed);
+  PrintBound(campaign, problem);
   spdlog::info("wrote {} poses to {}", campaign.plan.size(), o.out_path);
   if (!o.curve_path.empty()) WriteCurve(o, problem);
 }

@@ -345,4 +345,16 @@ double PredictedTargetRms(const PlanningProblem& problem, std::vector<int> chose
   return TargetRmsOf(problem, chosen);
 }
 
+double PredictedTargetRmsBound(const PlanningProblem& problem, BoundOptions options,
+                               DesignBound* bound) {
+  options.existing = problem.existing_indices;
+  const DesignBound design = OptimalDesignBound(problem.Models(), problem.candidate_count(),
+                                                problem.target_indices, options);
+  if (bound) *bound = design;
+  // PredictedPositionRms's scaling: the criterion is mean_k trace(A_k S_k^-1), the sum over
+  // the target poses of their variance in sigma_t units.
+  const double target_poses = static_cast<double>(problem.target_indices.size());
+  return problem.info.sigma_t * std::sqrt(design.criterion_lower / target_poses);
+}
+
 }  // namespace h4::host

@@ -15,6 +15,7 @@
 #include "host/identification/identification_cost.h"
 #include "host/kinematics/robot_description.h"
 #include "host/planning/candidate_poses.h"
+#include "host/planning/design_bound.h"
 #include "host/planning/information_model.h"
 #include "host/planning/pose_design.h"
 #include "host/simulation/pose_plan.h"
@@ -146,6 +147,14 @@ void CheckPlannedPoseCount(const PlanningProblem& problem, int pose_count);
 /// the target region with the existing poses, RMS over its poses and over problem.Models();
 /// infinity when the poses do not determine the parameters of one of them.
 double PredictedTargetRms(const PlanningProblem& problem, std::vector<int> chosen);
+
+/// What no options.pose_count candidates (with the existing poses, which replace
+/// options.existing) can beat: a certified lower bound (design_bound.h, the optimal
+/// approximate design of the planner's criterion) on the one-sigma board position error (m)
+/// PredictedTargetRms gives any of their designs, sigma_t sqrt(criterion_lower / target
+/// poses). *bound (when given) receives the design.
+double PredictedTargetRmsBound(const PlanningProblem& problem, BoundOptions options,
+                               DesignBound* bound = nullptr);
 
 /// The same prediction for n grid poses drawn with `seed` (n = 71: the paper's calibration
 /// poses, 10 held out; at most the reachable grid poses).
