@@ -14,6 +14,7 @@
 #include "host/planning/pose_design.h"
 #include "host/planning/pose_planner.h"
 #include "host/simulation/paper_scenario.h"
+#include "tests/planning/coarse_problem.h"
 
 namespace h4::host {
 namespace {
@@ -152,19 +153,6 @@ TEST(OptimalDesignBound, WithMeasuredPosesBoundsTheBestExactDesign) {
   EXPECT_GT(bound.criterion_lower, 0.5 * best);
   options.existing = {3};  // a candidate
   EXPECT_THROW(OptimalDesignBound(info, 21, Range(21, 2), options), std::invalid_argument);
-}
-
-// A coarser candidate grid than the default, as pose_design_test.cpp's.
-const PlanningProblem& CoarseProblem() {
-  static const PlanningProblem problem = [] {
-    PlanningProblemOptions options;
-    options.candidates.position_step = 0.05;
-    return MakePlanningProblem(
-        PaperAprioriRobot(),
-        CameraModel(ReadCameraYaml(H4_SOURCE_DIR "/boards/sim_camera_1024x768.yaml")),
-        BoardModel(ReadBoardYaml(H4_SOURCE_DIR "/boards/aprilgrid_6x6_30mm.yaml")), options);
-  }();
-  return problem;
 }
 
 // On the planning problem: the exchange's 25 poses, and random 25, predict no better than the

@@ -17,22 +17,10 @@
 #include "host/simulation/dataset_simulator.h"
 #include "host/simulation/paper_scenario.h"
 #include "host/simulation/true_robot.h"
+#include "tests/planning/coarse_problem.h"
 
 namespace h4::host {
 namespace {
-
-// A coarser candidate grid than the default keeps the tests to a second.
-const PlanningProblem& CoarseProblem() {
-  static const PlanningProblem problem = [] {
-    PlanningProblemOptions options;
-    options.candidates.position_step = 0.05;
-    return MakePlanningProblem(
-        PaperAprioriRobot(),
-        CameraModel(ReadCameraYaml(H4_SOURCE_DIR "/boards/sim_camera_1024x768.yaml")),
-        BoardModel(ReadBoardYaml(H4_SOURCE_DIR "/boards/aprilgrid_6x6_30mm.yaml")), options);
-  }();
-  return problem;
-}
 
 TEST(PoseDesign, TheSameSeedGivesTheSameDesign) {
   DesignOptions options;
