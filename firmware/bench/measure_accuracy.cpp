@@ -8,12 +8,14 @@
 // table: position and rotation error RMS, reported sigma / actual error, CPU time per pose.
 //
 // Usage: h4_measure_accuracy [condition=NAME|every] [depth=range|near|far|close|every]
-//                            [scenes=20] [seed=1] [refinement=edge|subpix|none] [rows]
+//                            [scenes=20] [seed=1] [refinement=edge|xcorner|subpix|none] [rows]
 //                            [corner_floor_px=0.0015] [covariance=edge_noise|residual|group]
 //                            [corner_floor_erosion_gain=0.02] (PoseOptions' fields)
 //                            [camera=FILE] (a camera YAML instead of the paper's: e.g.
 //                            boards/sim_fisheye_190deg_1024x1024.yaml renders and measures
 //                            through the equidistant fisheye)
+//                            [board=legacy|kalibr] (the paper's 6 x 6 30 mm grid in h4cam's
+//                            earlier design, or in Kalibr's: 2-cell borders, corner squares)
 // Conditions: clean, blur1.4, gamma0.7+blur0.7, srgb+blur1.0, gradient, all (the
 // "processed" preset: sRGB, defocus, gradient, vignetting, shot noise). Depths: range
 // 0.45-0.65 m, near 0.44-0.46 m, far 0.64-0.66 m, close 0.25-0.35 m. `rows` prints every
@@ -32,6 +34,7 @@
 #include "common/formats/camera_yaml.h"
 #include "common/geometry/rotation.h"
 #include "common/units.h"
+#include "firmware/bench/bench_conditions.h"
 #include "firmware/pose/measure_pipeline.h"
 #include "firmware/render/paper_scenes.h"
 #include "firmware/sources/sim_source.h"
@@ -39,26 +42,8 @@
 namespace h4::cam {
 namespace {
 
-struct Condition {
-  const char* name;
-  RenderOptions render;
-};
-
-std::vector<Condition> AllConditions() {
-  const RenderOptions clean = RenderOptions::Clean();
-  RenderOptions blur = clean, gamma = clean, srgb = clean, gradient = clean;
-  blur.blur_sigma_px = 1.4;
-  gamma.response = ResponseCurve::kGamma;
-  gamma.response_gamma = 0.7;
-  gamma.blur_sigma_px = 0.7;
-  srgb.response = ResponseCurve::kSrgb;
-  srgb.blur_sigma_px = 1.0;
-  gradient.illumination_gradient = 0.3;
-  gradient.illumination_gradient_direction_deg = 30;
-  gradient.vignetting = 0.2;
-  return {{"clean", clean},       {"blur1.4", blur},      {"gamma0.7+blur0.7", gamma},
-          {"srgb+blur1.0", srgb}, {"gradient", gradient}, {"all", RenderOptions::Processed()}};
-}
+using bench::AllConditions;
+using bench::Condition;
 
 struct DepthRange {
   const char* name;
@@ -79,6 +64,7 @@ struct Args {
   double corner_floor_erosion_gain = PoseOptions{}.corner_floor_erosion_gain;
   std::string covariance;
   std::string camera_path;  ///< "" = scenes::PaperCamera()
+  AprilGridLayout layout = AprilGridLayout::kH4Legacy;
 };
 
 bool ParseArgs(int argc, char** argv, Args* args) {
@@ -106,6 +92,8 @@ bool ParseArgs(int argc, char** argv, Args* args) {
       args->corner_floor_erosion_gain = std::atof(value.c_str());
     } else if (key == "camera" && !value.empty()) {
       args->camera_path = value;
+    } else if (key == "board" && (value == "legacy" || value == "kalibr")) {
+      args->layout = value == "kalibr" ? AprilGridLayout::kKalibr : AprilGridLayout::kH4Legacy;
     } else if (key == "corner_floor_px") {
       args->corner_floor_px = std::atof(value.c_str());
     } else {
@@ -188,7 +176,8 @@ struct Result {
 
 Result RunCondition(const Condition& condition, const DepthRange& depth, const Args& args,
                     const PipelineOptions& options) {
-  const AprilGridSpec board = scenes::PaperBoard();
+  AprilGridSpec board = scenes::PaperBoard();
+  board.layout = args.layout;
   const CameraIntrinsics camera =
       args.camera_path.empty() ? scenes::PaperCamera() : ReadCameraYaml(args.camera_path);
   SimSourceOptions sim;
@@ -262,9 +251,10 @@ int main(int argc, char** argv) {
   Args args;
   if (!ParseArgs(argc, argv, &args)) return 1;
   PipelineOptions options;
-  options.detector.refinement = args.refinement == "subpix" ? CornerRefinement::kCornerSubPix
-                                : args.refinement == "none" ? CornerRefinement::kNone
-                                                            : CornerRefinement::kEdgeFit;
+  options.detector.refinement = args.refinement == "subpix"    ? CornerRefinement::kCornerSubPix
+                                : args.refinement == "none"    ? CornerRefinement::kNone
+                                : args.refinement == "xcorner" ? CornerRefinement::kXCorner
+                                                               : CornerRefinement::kEdgeFit;
   options.pose.corner_floor_px = args.corner_floor_px;
   options.pose.corner_floor_erosion_gain = args.corner_floor_erosion_gain;
   if (args.covariance == "residual") options.pose.covariance = CovarianceModel::kResidual;
@@ -284,10 +274,11 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::printf(
-      "%d scenes per row, seed %llu, %d frames averaged, h4cam refinement %s, camera %s; "
-      "baseline: AprilTag corners + IPPE + LM\n\n",
+      "%d scenes per row, seed %llu, %d frames averaged, h4cam refinement %s, camera %s, board "
+      "%s; baseline: AprilTag corners + IPPE + LM\n\n",
       args.scenes, static_cast<unsigned long long>(args.seed), options.frames,
-      args.refinement.c_str(), args.camera_path.empty() ? "the paper's" : args.camera_path.c_str());
+      args.refinement.c_str(), args.camera_path.empty() ? "the paper's" : args.camera_path.c_str(),
+      args.layout == h4::AprilGridLayout::kKalibr ? "Kalibr's design" : "h4cam's earlier design");
   std::printf(
       "| condition | depth | method | measured | position RMS mm | rotation RMS deg | "
       "sigma/actual pos / rot | CPU ms/pose |\n");

@@ -8,13 +8,14 @@
 // Usage: h4_measure_response [scenes=12] [erosion=affine|global|tag|none] [seed=1]
 //        [covariance=edge_noise|residual|group] [corner_floor_px=0.0015]
 //        [inner_clearance_px=2.5] [inner_clearance_blur=0] [conditions=all|blur|TEXT]
-//        [inner_edge=inner|clear] [band_px=2.5]
+//        [inner_edge=inner|clear] [band_px=2.5] [board=legacy|kalibr]
 // (the clearances: the edge fit's dark-side clearance from the tag border's inner edge,
 // edge_refinement.h; "blur" runs only the blur 1.4 rows, TEXT the rows whose name holds it).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -71,27 +72,64 @@ void MeasureScene(const MeasurePipeline& pipeline, const cv::Mat& mean, const Ri
   ++sums->used;
 }
 
+// The arguments as key=value; a bare value takes the next of scenes, erosion, seed (the
+// earlier positional form, docs/results.md's commands).
+std::map<std::string, std::string> ParseArgs(int argc, char** argv) {
+  std::map<std::string, std::string> args;
+  const char* positional[] = {"scenes", "erosion", "seed"};
+  size_t next_positional = 0;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const size_t eq = arg.find('=');
+    if (eq != std::string::npos) {
+      args[arg.substr(0, eq)] = arg.substr(eq + 1);
+    } else if (next_positional < 3) {
+      args[positional[next_positional++]] = arg;
+    }
+  }
+  return args;
+}
+
 }  // namespace
 }  // namespace h4::cam
 
 int main(int argc, char** argv) {
   using namespace h4;
   using namespace h4::cam;
-  const int count = argc > 1 ? std::atoi(argv[1]) : 12;
-  const std::string erosion = argc > 2 ? argv[2] : "affine";
-  const uint64_t seed = argc > 3 ? std::strtoull(argv[3], nullptr, 10) : 1;
-  const AprilGridSpec board = scenes::PaperBoard();
+  std::map<std::string, std::string> args = ParseArgs(argc, argv);
+  const auto value = [&](const char* key, const char* fallback) {
+    const auto it = args.find(key);
+    const std::string found = it == args.end() ? fallback : it->second;
+    if (it != args.end()) args.erase(it);
+    return found;
+  };
+  // A number, or `fallback` (the library's default) when not given.
+  const auto number = [&](const char* key, double fallback) {
+    const std::string text = value(key, "");
+    return text.empty() ? fallback : std::atof(text.c_str());
+  };
+  const int count = std::atoi(value("scenes", "12").c_str());
+  const std::string erosion = value("erosion", "affine");
+  const uint64_t seed = std::strtoull(value("seed", "1").c_str(), nullptr, 10);
+  const std::string covariance = value("covariance", "edge_noise");
+  AprilGridSpec board = scenes::PaperBoard();
+  board.layout =
+      value("board", "legacy") == "kalibr" ? AprilGridLayout::kKalibr : AprilGridLayout::kH4Legacy;
   const CameraIntrinsics camera = scenes::PaperCamera();
-  const std::string covariance = argc > 4 ? argv[4] : "edge_noise";
   PipelineOptions options;
-  if (argc > 5) options.pose.corner_floor_px = std::atof(argv[5]);
+  options.pose.corner_floor_px = number("corner_floor_px", options.pose.corner_floor_px);
   EdgeFitOptions& edge_fit = options.detector.edge_fit;
-  if (argc > 6) edge_fit.inner_clearance_px = std::atof(argv[6]);
-  if (argc > 7) edge_fit.inner_clearance_blur = std::atof(argv[7]);
+  edge_fit.inner_clearance_px = number("inner_clearance_px", edge_fit.inner_clearance_px);
+  edge_fit.inner_clearance_blur = number("inner_clearance_blur", edge_fit.inner_clearance_blur);
   // Rows: "all", "blur" (those starting with "blur 1.4") or any part of a row's name.
-  const std::string rows = argc > 8 ? argv[8] : "all";
-  if (argc > 9) edge_fit.model_inner_edge = std::string(argv[9]) != "clear";
-  if (argc > 10) edge_fit.band_px = std::atof(argv[10]);
+  const std::string rows = value("conditions", "all");
+  edge_fit.model_inner_edge = value("inner_edge", "inner") != "clear";
+  edge_fit.band_px = number("band_px", edge_fit.band_px);
+  if (!args.empty() || count < 1) {
+    std::fprintf(stderr, "unknown argument '%s' or scenes < 1 (see the comment at the top of %s)\n",
+                 args.empty() ? "" : args.begin()->first.c_str(), __FILE__);
+    return 1;
+  }
   options.pose.covariance = covariance == "group"        ? CovarianceModel::kEdgeGroup
                             : covariance == "edge_noise" ? CovarianceModel::kEdgeNoise
                                                          : CovarianceModel::kResidual;
@@ -106,8 +144,10 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::printf(
-      "erosion model %s, covariance %s, corner floor %.4f px, %d scenes per condition, seed %llu\n"
+      "board %s, erosion model %s, covariance %s, corner floor %.4f px, %d scenes per "
+      "condition, seed %llu\n"
       "dark-side clearance %.2f px + %.2f blur sigma, inner edge %s, band %.2f px\n",
+      board.layout == AprilGridLayout::kKalibr ? "Kalibr's design" : "h4cam's earlier design",
       erosion.c_str(), covariance.c_str(), options.pose.corner_floor_px, count,
       static_cast<unsigned long long>(seed), edge_fit.inner_clearance_px,
       edge_fit.inner_clearance_blur, edge_fit.model_inner_edge ? "modelled" : "kept clear",

@@ -2,7 +2,9 @@
 // frame-add path (must keep up with 30 fps: well under 33 ms), and the per-pose work
 // (average 10 frames -> detect -> motion check -> pose; target under 30 ms), with its parts.
 // The per-pose and pose benchmarks run with each erosion model (pose_estimator.h; argument
-// 0 none, 1 global, 2 affine) so that the cost of the erosion parameters shows in one run.
+// 0 none, 1 global, 2 affine) so that the cost of the erosion parameters shows in one run;
+// the per-pose work also on the same board in Kalibr's design (MeasureGroupOf10Kalibr:
+// 2-cell borders, corner squares, X-corners refined before the edge fit).
 #include <benchmark/benchmark.h>
 
 #include "firmware/detection/board_detector.h"
@@ -13,8 +15,15 @@
 namespace h4::cam {
 namespace {
 
+AprilGridSpec BoardIn(AprilGridLayout layout) {
+  AprilGridSpec board = scenes::PaperBoard();
+  board.layout = layout;
+  return board;
+}
+
 struct Scene {
-  Scene() : source(scenes::PaperBoard(), scenes::PaperCamera(), SimSourceOptions{}) {
+  explicit Scene(AprilGridLayout layout = AprilGridLayout::kH4Legacy)
+      : source(BoardIn(layout), scenes::PaperCamera(), SimSourceOptions{}) {
     source.SetPose(scenes::BoardPose(scenes::PaperBoard(), 0.55, 0.3, 0.8, 0.4));
     for (int k = 0; k < 10; ++k) frames.push_back(*source.Next(std::chrono::milliseconds(0)));
     FrameAverager averager(10);
@@ -58,6 +67,18 @@ void BM_MeasureGroupOf10(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_MeasureGroupOf10)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+void BM_MeasureGroupOf10Kalibr(benchmark::State& state) {
+  static const Scene scene(AprilGridLayout::kKalibr);
+  MeasurePipeline pipeline(BoardIn(AprilGridLayout::kKalibr), scenes::PaperCamera());
+  for (auto _ : state) {
+    std::optional<Measurement> m;
+    for (const Frame& f : scene.frames) m = pipeline.AddFrame(f);
+    if (!m || !m->ok()) state.SkipWithError("measurement failed");
+    benchmark::DoNotOptimize(m);
+  }
+}
+BENCHMARK(BM_MeasureGroupOf10Kalibr)->Unit(benchmark::kMillisecond);
 
 void BM_DetectEdgeFit(benchmark::State& state) {
   const Scene& scene = TheScene();

@@ -51,19 +51,17 @@ BoardDetector::BoardDetector(const BoardSpec& board, const CameraIntrinsics& cam
     }
     code_reader_ = std::make_unique<TagCodeReader>(board_, *grid);
     if (grid->design().corner_squares) {
-      if (options_.refinement == CornerRefinement::kEdgeFit) {
-        options_.refinement = CornerRefinement::kXCorner;
-      }
       x_radius_of_side_ =
           XRadiusOfSide(tag_options.border_cells, apriltag_->border_cells(), grid->tag_spacing);
     }
     std::string why;
-    if (options_.refinement == CornerRefinement::kXCorner && !options_.x_corner.IsValid(&why)) {
+    if (x_radius_of_side_ > 0 && !options_.x_corner.IsValid(&why)) {
       error_ = "x_corner options: " + why;
       return;
     }
     if (options.refinement == CornerRefinement::kEdgeFit) {
-      options_.edge_fit.border_cells = apriltag_->border_cells();
+      options_.edge_fit.tag_width_cells = apriltag_->border_cells();
+      options_.edge_fit.border_thickness_cells = grid->design().border_cells;
       ideal_map_ = std::make_unique<IdealPixelMap>(model);
     }
   }
@@ -111,7 +109,7 @@ BoardDetection BoardDetector::DetectAprilGrid(const cv::Mat& image8, const cv::M
   for (size_t index = 0; index < tag_count; ++index) {
     if (seen[2 * index] > 1 || seen[2 * index + 1] > 1) ++detection.ids_seen_twice;
   }
-  // Per tag, the candidate with the most refined corners (the first of equals).
+  // Per tag, the best candidate (RefinedTag::BetterThan; the first of equals).
   std::vector<std::optional<RefinedTag>> best(tag_count);
   std::vector<char> candidate(tag_count, 0);
   for (TagDetection& tag : tags) {
@@ -119,10 +117,10 @@ BoardDetection BoardDetector::DetectAprilGrid(const cv::Mat& image8, const cv::M
     if (first < 0) continue;
     const size_t index = static_cast<size_t>(first / 4);
     if (seen[index * 2 + (tag.search > 0 ? 1 : 0)] != 1) continue;
-    if (best[index] && best[index]->count == 4) continue;
+    if (best[index] && best[index]->edge_fitted) continue;  // none better
     candidate[index] = 1;
     std::optional<RefinedTag> refined = RefineTag(image32, &tag);
-    if (refined && (!best[index] || refined->count > best[index]->count)) best[index] = refined;
+    if (refined && (!best[index] || refined->BetterThan(*best[index]))) best[index] = refined;
   }
   RecoverMissedTags(image32, &best, &detection);
   std::vector<cv::Point2f> subpix;
@@ -164,17 +162,27 @@ std::optional<BoardDetector::RefinedTag> BoardDetector::RefineTag(const cv::Mat&
   for (Eigen::Vector2d& e : refined.erosion_px) e.setZero();
   for (CornerNoisePx& n : refined.noise_px) n.setZero();
   refined.refined = {true, true, true, true};
-  // Only edge-fitted corners know their sides, hence how they move under erosion;
-  // X-corners do not move under erosion (their directions stay zero).
-  refined.edge_fitted = options_.refinement == CornerRefinement::kEdgeFit;
-  if (refined.edge_fitted &&
-      !RefineQuadCorners(image32, *ideal_map_, options_.edge_fit, &tag->corners_px,
-                         &refined.erosion_px, &refined.noise_px)) {
-    return std::nullopt;
-  }
-  if (options_.refinement == CornerRefinement::kXCorner &&
-      !RefineTagXCorners(image32, tag, &refined.refined)) {
-    return std::nullopt;
+  // On a board with corner squares every corner is an X-corner: refined on its own first,
+  // it places the tag's sides for the edge fit (the quad search's corners of such tags can
+  // be 1.4 px inside, apriltag_detector.h open_contacts_px), and it is what a tag whose
+  // sides do not fit (a side cut by the image edge, an occluder) keeps.
+  const bool edge_fit = options_.refinement == CornerRefinement::kEdgeFit;
+  const bool wants_x_corners =
+      options_.refinement == CornerRefinement::kXCorner || (edge_fit && x_radius_of_side_ > 0);
+  const bool some_x_corners = wants_x_corners && RefineTagXCorners(image32, tag, &refined.refined);
+  if (options_.refinement == CornerRefinement::kXCorner && !some_x_corners) return std::nullopt;
+  if (edge_fit) {
+    // Only edge-fitted corners know their sides, hence how they move under erosion;
+    // X-corners do not move under erosion (their directions stay zero).
+    std::array<Eigen::Vector2d, 4> fitted = tag->corners_px;
+    refined.edge_fitted = RefineQuadCorners(image32, *ideal_map_, options_.edge_fit, &fitted,
+                                            &refined.erosion_px, &refined.noise_px);
+    if (refined.edge_fitted) {
+      tag->corners_px = fitted;
+      refined.refined = {true, true, true, true};
+    } else if (!some_x_corners) {
+      return std::nullopt;
+    }
   }
   refined.corners_px = tag->corners_px;
   refined.count =

@@ -31,9 +31,9 @@ enum class CornerRefinement {
                   ///< have their corners up to 1.4 px inside the tag)
   kCornerSubPix,  ///< cv::cornerSubPix on the averaged image
   kEdgeFit,       ///< blurred-step fit of the tag sides (edge_refinement.h): the most
-                  ///< accurate on rendered legacy boards (tests/firmware/board_detector_test.cpp);
-                  ///< on a board with corner squares (Kalibr's) it means kXCorner, as the
-                  ///< tag sides there have no free ends to fit
+                  ///< accurate (tests/firmware/board_detector_test.cpp); on a board with
+                  ///< corner squares (Kalibr's) the sides are fitted between the squares, and
+                  ///< a tag whose sides do not fit falls back on kXCorner
   kXCorner,       ///< cornerSubPix on each X-corner (x_corner_refinement.h), boards with
                   ///< corner squares only
 };
@@ -96,6 +96,11 @@ class BoardDetector {
     std::array<bool, 4> refined;  ///< false: an X-corner that failed (left out)
     int count = 0;                ///< corners refined
     bool edge_fitted = false;
+    /// Edge-fitted sides first (hundreds of pixels each against an X-corner's window),
+    /// then more refined corners.
+    bool BetterThan(const RefinedTag& other) const {
+      return edge_fitted != other.edge_fitted ? edge_fitted : count > other.count;
+    }
   };
   /// Refines a candidate's corners with the detector's refinement; nullopt drops it.
   std::optional<RefinedTag> RefineTag(const cv::Mat& image32, TagDetection* tag) const;

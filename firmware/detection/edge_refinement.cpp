@@ -28,8 +28,8 @@ struct Line {
 constexpr double kInvSqrt2 = 0.70710678118654752440;
 constexpr double kInvSqrt2Pi = 0.39894228040143267794;
 
-// Pixels of the band |distance| <= band around the line, between the corners a and b
-// (ideal) minus the clearance.
+// Pixels of the band -band_in <= distance <= band_px around the line, between the corners a
+// and b (ideal) less the corner clearance at each end.
 std::vector<Sample> SelectBand(const cv::Mat& image, const IdealPixelMap& map, const Line& line,
                                const Eigen::Vector2d& a_px, const Eigen::Vector2d& b_px,
                                const Eigen::Vector2d& a, const Eigen::Vector2d& b,
@@ -314,15 +314,18 @@ double PixelScaleAt(const IdealPixelMap& map, const Eigen::Vector2d& uv) {
 }
 
 // Thickness of the quad's black border next to side k (from corner k to k+1), ideal
-// coordinates: the distance to the opposite side over the cell count; 0 when unknown.
-double BorderThickness(const std::array<Eigen::Vector2d, 4>& ideal, size_t k, int border_cells) {
-  if (border_cells <= 0) return 0;
+// coordinates: the distance to the opposite side over the width in cells, times the
+// border's cells; 0 when unknown.
+double BorderThickness(const std::array<Eigen::Vector2d, 4>& ideal, size_t k,
+                       const EdgeFitOptions& options) {
+  if (options.tag_width_cells <= 0) return 0;
   const Eigen::Vector2d mid = 0.5 * (ideal[k] + ideal[(k + 1) % 4]);
   const Eigen::Vector2d& c = ideal[(k + 2) % 4];
   const Eigen::Vector2d& d = ideal[(k + 3) % 4];
   Eigen::Vector2d n_opposite(-(d - c).y(), (d - c).x());
   n_opposite.normalize();
-  return std::abs(n_opposite.dot(mid - c)) / border_cells;
+  return std::abs(n_opposite.dot(mid - c)) * options.border_thickness_cells /
+         options.tag_width_cells;
 }
 
 // How far the band reaches into the dark side: band_px, less where the border's inner
@@ -350,21 +353,22 @@ double ValueAt(const cv::Mat& image, const IdealPixelMap& map, const Eigen::Vect
 // border's own cells at both ends stay black.
 InnerEdge ReadInnerEdge(const cv::Mat& image, const IdealPixelMap& map, const Eigen::Vector2d& a,
                         const Eigen::Vector2d& b, const Eigen::Vector2d& n, double thickness,
-                        int border_cells) {
+                        const EdgeFitOptions& options) {
   InnerEdge inner;
-  if (border_cells < 3 || thickness <= 0) return inner;
+  const int width = options.tag_width_cells, border = options.border_thickness_cells;
+  if (width < 2 * border + 1 || thickness <= 0) return inner;
   const Eigen::Vector2d along = (b - a).normalized();
   inner.thickness = thickness;
-  inner.cell = (b - a).norm() / border_cells;
+  inner.cell = (b - a).norm() / width;
   const auto centre = [&](int j) {
-    return a + (j + 0.5) * inner.cell * along - 1.5 * thickness * n;
+    return a + (j + 0.5) * inner.cell * along - (thickness + 0.5 * inner.cell) * n;
   };
   const double black =
-      0.5 * (ValueAt(image, map, centre(0)) + ValueAt(image, map, centre(border_cells - 1)));
-  const double white = ValueAt(image, map, 0.5 * (a + b) + 1.5 * thickness * n);
+      0.5 * (ValueAt(image, map, centre(0)) + ValueAt(image, map, centre(width - 1)));
+  const double white = ValueAt(image, map, 0.5 * (a + b) + 1.5 * inner.cell * n);
   if (!(white - black > 1.0)) return inner;
-  inner.white.assign(static_cast<size_t>(border_cells), false);
-  for (int j = 1; j + 1 < border_cells; ++j) {
+  inner.white.assign(static_cast<size_t>(width), false);
+  for (int j = border; j + border < width; ++j) {
     inner.white[static_cast<size_t>(j)] = ValueAt(image, map, centre(j)) > 0.5 * (black + white);
   }
   inner.enabled = true;
@@ -404,11 +408,11 @@ bool FitSide(const cv::Mat& image32f, const IdealPixelMap& map, const EdgeFitOpt
   n.normalize();
   if (n.dot(line->mid - centre) < 0) n = -n;  // outward: from the dark border to the white
   line->phi = std::atan2(n.y(), n.x());
-  const double thickness = BorderThickness(ideal, k, options.border_cells);
+  const double thickness = BorderThickness(ideal, k, options);
   const double pixel_scale = PixelScaleAt(map, corners[k]);
-  const InnerEdge inner = options.model_inner_edge ? ReadInnerEdge(image32f, map, a, b, line->n(),
-                                                                   thickness, options.border_cells)
-                                                   : InnerEdge{};
+  const InnerEdge inner = options.model_inner_edge
+                              ? ReadInnerEdge(image32f, map, a, b, line->n(), thickness, options)
+                              : InnerEdge{};
   double level_a = 0, level_b = 0, s = 0.8;
   for (int pass = 0; pass < options.passes; ++pass) {
     // s is the previous pass's fitted blur (the initial guess on the first pass).

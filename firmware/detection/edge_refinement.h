@@ -20,21 +20,24 @@ namespace h4::cam {
 
 struct EdgeFitOptions {
   double band_px = 2.5;  ///< half width of the pixel band fitted around a side
-  /// Width of the quad in cells (libapriltag's width_at_border: 8 for tag36h11): the dark
-  /// side of the band stays clear of the black border's inner edge (one cell in), where a
-  /// white data cell would bias the fit. 0 = no such limit.
-  int border_cells = 0;
+  /// Width of the quad in cells (libapriltag's width_at_border: 8 for tag36h11, 10 with
+  /// Kalibr's 2-cell border): the dark side of the band stays clear of the black border's
+  /// inner edge, where a white data cell would bias the fit. 0 = no such limit.
+  int tag_width_cells = 0;
+  /// Thickness of the black border in cells (1: libapriltag's tags, 2: Kalibr's): the
+  /// inner edge lies this many cells inside each side.
+  int border_thickness_cells = 1;
   /// Clearance of the band's dark side from the border's inner edge: this many pixels plus
   /// `inner_clearance_blur` times the fitted blur sigma (the blurred inner edge's tail
   /// reaches ~3 sigma into the border; which data cells are white differs per side, so the
   /// tail pulls each side differently and the quad rotates). The dark side keeps at least
-  /// 1 px. Used only with border_cells > 0.
+  /// 1 px. Used only with tag_width_cells > 0.
   double inner_clearance_px = 2.5;
   double inner_clearance_blur = 0.0;
   /// Also fit the inner edge's tail that still reaches the band where the data cell next to
   /// the border is white (cells read from the image at their centres),
   /// I = a + b (F(d) + w(t) (1 - F(d + thickness))): a wider clearance would leave too few
-  /// dark pixels on borders of 5-7 px. Used only with border_cells > 0.
+  /// dark pixels on borders of 5-7 px. Used only with tag_width_cells > 0.
   bool model_inner_edge = true;
   double corner_clearance_px = 3.0;  ///< pixels this close to a corner (along the side) skipped
   int passes = 2;                    ///< select the band around the current line this many times
