@@ -26,6 +26,14 @@ AprilTagDetector::AprilTagDetector(const AprilTagOptions& options) {
   open_contacts_px_ = std::max(options.open_contacts_px, 0);
 }
 
+AprilTagOptions AprilTagOptionsFor(const AprilGridSpec& grid, AprilTagOptions base) {
+  base.family = grid.tag_family;
+  base.border_cells = grid.design().border_cells;
+  if (grid.design().corner_squares) base.open_contacts_px = std::max(base.open_contacts_px, 1);
+  if (grid.design().border_cells > 1) base.quad_decimate = std::min(base.quad_decimate, 1.5f);
+  return base;
+}
+
 int AprilTagDetector::border_cells() const { return family_ ? family_->width_at_border : 0; }
 
 AprilTagDetector::~AprilTagDetector() {

@@ -32,18 +32,7 @@ BoardDetector::BoardDetector(const BoardSpec& board, const CameraIntrinsics& cam
     return;
   }
   if (const auto* grid = std::get_if<AprilGridSpec>(&board)) {
-    AprilTagOptions tag_options = options.apriltag;
-    tag_options.family = grid->tag_family;
-    tag_options.border_cells = grid->design().border_cells;
-    if (grid->design().corner_squares) {
-      tag_options.open_contacts_px = std::max(tag_options.open_contacts_px, 1);
-    }
-    if (grid->design().border_cells > 1) {
-      // A 2-cell border makes the cells of a tag of a given size 20 % smaller (10 cells
-      // across instead of 8): a quad search decimated by 2 lost 2 of 36 tags on each gamma
-      // render of board_detector_test, 1.5 none, and took no longer than 2 there.
-      tag_options.quad_decimate = std::min(tag_options.quad_decimate, 1.5f);
-    }
+    const AprilTagOptions tag_options = AprilTagOptionsFor(*grid, options.apriltag);
     apriltag_ = std::make_unique<AprilTagDetector>(tag_options);
     if (!apriltag_->ok()) {
       error_ = apriltag_->error();
