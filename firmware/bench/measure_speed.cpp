@@ -4,7 +4,8 @@
 // The per-pose and pose benchmarks run with each erosion model (pose_estimator.h; argument
 // 0 none, 1 global, 2 affine) so that the cost of the erosion parameters shows in one run;
 // the per-pose work also on the same board in Kalibr's design (MeasureGroupOf10Kalibr:
-// 2-cell borders, corner squares, X-corners refined before the edge fit).
+// 2-cell borders, corner squares; argument 0 the edge fit from the X-corners, 1 the
+// X-corners alone).
 #include <benchmark/benchmark.h>
 
 #include "firmware/detection/board_detector.h"
@@ -68,9 +69,12 @@ void BM_MeasureGroupOf10(benchmark::State& state) {
 }
 BENCHMARK(BM_MeasureGroupOf10)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
+// Argument 0: the default refinement (edge fit from the X-corners); 1: the X-corners alone.
 void BM_MeasureGroupOf10Kalibr(benchmark::State& state) {
   static const Scene scene(AprilGridLayout::kKalibr);
-  MeasurePipeline pipeline(BoardIn(AprilGridLayout::kKalibr), scenes::PaperCamera());
+  PipelineOptions options;
+  if (state.range(0) == 1) options.detector.refinement = CornerRefinement::kXCorner;
+  MeasurePipeline pipeline(BoardIn(AprilGridLayout::kKalibr), scenes::PaperCamera(), options);
   for (auto _ : state) {
     std::optional<Measurement> m;
     for (const Frame& f : scene.frames) m = pipeline.AddFrame(f);
@@ -78,7 +82,7 @@ void BM_MeasureGroupOf10Kalibr(benchmark::State& state) {
     benchmark::DoNotOptimize(m);
   }
 }
-BENCHMARK(BM_MeasureGroupOf10Kalibr)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MeasureGroupOf10Kalibr)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 void BM_DetectEdgeFit(benchmark::State& state) {
   const Scene& scene = TheScene();
