@@ -32,8 +32,8 @@ endfunction()
 
 if(H4_UNITY_BUILD)
   get_property(folder_libraries GLOBAL PROPERTY H4_FOLDER_LIBRARIES)
-  foreach(target h4_common ${folder_libraries} h4_common_tests h4_messages_tests
-                 h4_host_tests h4_firmware_tests)
+  get_property(test_programs GLOBAL PROPERTY H4_TEST_PROGRAMS)  # tests/CMakeLists.txt
+  foreach(target h4_common ${folder_libraries} ${test_programs})
     if(TARGET ${target})
       get_target_property(type ${target} TYPE)
       if(NOT type STREQUAL "INTERFACE_LIBRARY")

@@ -34,6 +34,7 @@
 #include "common/formats/camera_yaml.h"
 #include "common/geometry/rotation.h"
 #include "common/units.h"
+#include "firmware/bench/bench_arguments.h"
 #include "firmware/bench/bench_conditions.h"
 #include "firmware/pose/measure_pipeline.h"
 #include "firmware/render/paper_scenes.h"
@@ -68,11 +69,8 @@ struct Args {
 };
 
 bool ParseArgs(int argc, char** argv, Args* args) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const size_t eq = arg.find('=');
-    const std::string key = arg.substr(0, eq),
-                      value = eq == std::string::npos ? "" : arg.substr(eq + 1);
+  for (const bench::Argument& a : bench::Arguments(argc, argv)) {
+    const std::string &arg = a.text, &key = a.key, &value = a.value;
     if (arg == "rows") {
       args->rows = true;
     } else if (key == "condition") {
@@ -81,8 +79,8 @@ bool ParseArgs(int argc, char** argv, Args* args) {
       args->depth = value;
     } else if (key == "refinement") {
       args->refinement = value;
-    } else if (key == "scenes" || (eq == std::string::npos && std::atoi(arg.c_str()) > 0)) {
-      args->scenes = std::atoi((eq == std::string::npos ? arg : value).c_str());
+    } else if (key == "scenes" || (!a.has_value && std::atoi(arg.c_str()) > 0)) {
+      args->scenes = std::atoi((a.has_value ? value : arg).c_str());
     } else if (key == "seed") {
       args->seed = std::strtoull(value.c_str(), nullptr, 10);
     } else if (key == "covariance" &&

@@ -18,6 +18,7 @@
 
 #include "common/camera/camera_model.h"
 #include "firmware/averaging/frame_averager.h"
+#include "firmware/bench/bench_arguments.h"
 #include "firmware/bench/bench_conditions.h"
 #include "firmware/detection/board_detector.h"
 #include "firmware/render/paper_scenes.h"
@@ -35,11 +36,8 @@ struct Args {
 };
 
 bool ParseArgs(int argc, char** argv, Args* args) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const size_t eq = arg.find('=');
-    const std::string key = arg.substr(0, eq),
-                      value = eq == std::string::npos ? "" : arg.substr(eq + 1);
+  for (const bench::Argument& a : bench::Arguments(argc, argv)) {
+    const std::string &arg = a.text, &key = a.key, &value = a.value;
     if (key == "board" && (value == "legacy" || value == "kalibr")) {
       args->layout = value == "kalibr" ? AprilGridLayout::kKalibr : AprilGridLayout::kH4Legacy;
     } else if (key == "condition" && !value.empty()) {

@@ -23,6 +23,7 @@
 #include "common/geometry/rotation.h"
 #include "common/timing/clock.h"
 #include "common/units.h"
+#include "firmware/bench/bench_arguments.h"
 #include "firmware/bench/degraded_scene.h"
 #include "firmware/pose/measure_pipeline.h"
 #include "firmware/render/paper_scenes.h"
@@ -78,13 +79,11 @@ std::map<std::string, std::string> ParseArgs(int argc, char** argv) {
   std::map<std::string, std::string> args;
   const char* positional[] = {"scenes", "erosion", "seed"};
   size_t next_positional = 0;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const size_t eq = arg.find('=');
-    if (eq != std::string::npos) {
-      args[arg.substr(0, eq)] = arg.substr(eq + 1);
+  for (const bench::Argument& a : bench::Arguments(argc, argv)) {
+    if (a.has_value) {
+      args[a.key] = a.value;
     } else if (next_positional < 3) {
-      args[positional[next_positional++]] = arg;
+      args[positional[next_positional++]] = a.text;
     }
   }
   return args;

@@ -19,6 +19,7 @@
 
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
+#include "firmware/bench/bench_arguments.h"
 #include "firmware/bench/tag_recall.h"
 #include "firmware/render/board_renderer.h"
 
@@ -35,11 +36,8 @@ struct Args {
 };
 
 bool ParseArgs(int argc, char** argv, Args* args) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const size_t eq = arg.find('=');
-    const std::string key = arg.substr(0, eq),
-                      value = eq == std::string::npos ? "" : arg.substr(eq + 1);
+  for (const bench::Argument& a : bench::Arguments(argc, argv)) {
+    const std::string &arg = a.text, &key = a.key, &value = a.value;
     if (key == "camera" && !value.empty()) {
       args->camera = value;
     } else if (key == "scenes") {
