@@ -124,10 +124,11 @@ int main(int argc, char** argv) {
     if (count.found < count.expected || count.misplaced > 0) {
       ++scenes_missing;
       std::printf(
-          "  scene %d (%.0f deg off-axis, azimuth %.0f, %.2f m, roll %.0f, tilt %.0f): %d of %d "
-          "found, %d misplaced\n",
+          "  scene %d (%.1f deg off-axis, azimuth %.1f, %.3f m, roll %.1f, tilt %.1f): %d of %d "
+          "found, %d misplaced (detection: %d tags, %d rejected, %d ids seen twice)\n",
           i, scene.off_axis_deg, scene.azimuth_deg, scene.distance, scene.roll_deg, scene.tilt_deg,
-          count.found, count.expected, count.misplaced);
+          count.found, count.expected, count.misplaced, detection.tags, detection.tags_rejected,
+          detection.ids_seen_twice);
     }
   }
   std::printf(

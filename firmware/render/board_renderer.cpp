@@ -103,11 +103,16 @@ BoardRenderer::Region BoardRenderer::BoardRegion(const RigidTransform& X_CT) con
           defocus_px, DefocusRadiusPx(options_, camera_.intrinsics().K(0, 0), FocusDistance(p_CQ)));
     }
   }
-  const int reach = static_cast<int>(std::ceil(4.0 * options_.blur_sigma_px + defocus_px)) + 2;
-  return {std::clamp(static_cast<int>(std::floor(pmin.x())) - reach, 0, width_),
-          std::clamp(static_cast<int>(std::floor(pmin.y())) - reach, 0, height_),
-          std::clamp(static_cast<int>(std::ceil(pmax.x())) + reach + 1, 0, width_),
-          std::clamp(static_cast<int>(std::ceil(pmax.y())) + reach + 1, 0, height_)};
+  const double reach = std::ceil(4.0 * options_.blur_sigma_px + defocus_px) + 2;
+  // Clamped before the conversion to int: a board reaching toward 90 degrees off-axis
+  // through a radtan lens images its far edge millions of pixels away (converting such a
+  // value is undefined, and made the region empty).
+  const auto in = [](double v, int size) {
+    return static_cast<int>(std::clamp(v, 0.0, static_cast<double>(size)));
+  };
+  return {in(std::floor(pmin.x() - reach), width_), in(std::floor(pmin.y() - reach), height_),
+          in(std::ceil(pmax.x() + reach + 1), width_),
+          in(std::ceil(pmax.y() + reach + 1), height_)};
 }
 
 // The distance a lens focuses on for the board point p_CQ: its depth z for a radtan lens,

@@ -104,6 +104,9 @@ TEST(FisheyeDetectionTest, FindsTheTagsOfAStronglyDistortedRadTanView) {
   const std::vector<Scene> scenes = {
       {"near the right edge, rolled 45 deg", 45, 0, 0.8, 45, 0},
       {"near view, tilted", 10, 90, 0.45, 0, 35},
+      // The board's far edge toward 90 degrees off-axis images millions of pixels away:
+      // the renderer once left such a board out (h4_measure_tag_recall found 3 of 200).
+      {"45 deg off-axis, far edge toward 90 deg", 45.3, 192.6, 0.59, 2.1, 10.8},
   };
   TagCount old_total, new_total;
   DetectScenes("sim_wide_radtan_120deg_960x600.yaml", scenes, &old_total, &new_total);
