@@ -89,12 +89,17 @@ std::map<std::string, std::string> ParseArgs(int argc, char** argv) {
   return args;
 }
 
-}  // namespace
-}  // namespace h4::cam
+// What one run measures: the scenes, the board and the pipeline's options.
+struct Setup {
+  int count = 12;
+  uint64_t seed = 1;
+  std::string erosion = "affine", covariance = "edge_noise";
+  std::string rows = "all";  ///< "all", "blur" (rows starting "blur 1.4") or part of a name
+  AprilGridSpec board = scenes::PaperBoard();
+  PipelineOptions options;
+};
 
-int main(int argc, char** argv) {
-  using namespace h4;
-  using namespace h4::cam;
+bool ReadSetup(int argc, char** argv, Setup* setup) {
   std::map<std::string, std::string> args = ParseArgs(argc, argv);
   const auto value = [&](const char* key, const char* fallback) {
     const auto it = args.find(key);
@@ -107,84 +112,104 @@ int main(int argc, char** argv) {
     const std::string text = value(key, "");
     return text.empty() ? fallback : std::atof(text.c_str());
   };
-  const int count = std::atoi(value("scenes", "12").c_str());
-  const std::string erosion = value("erosion", "affine");
-  const uint64_t seed = std::strtoull(value("seed", "1").c_str(), nullptr, 10);
-  const std::string covariance = value("covariance", "edge_noise");
-  AprilGridSpec board = scenes::PaperBoard();
-  board.layout =
+  setup->count = std::atoi(value("scenes", "12").c_str());
+  setup->erosion = value("erosion", "affine");
+  setup->seed = std::strtoull(value("seed", "1").c_str(), nullptr, 10);
+  setup->covariance = value("covariance", "edge_noise");
+  setup->board.layout =
       value("board", "legacy") == "kalibr" ? AprilGridLayout::kKalibr : AprilGridLayout::kH4Legacy;
-  const CameraIntrinsics camera = scenes::PaperCamera();
-  PipelineOptions options;
-  options.pose.corner_floor_px = number("corner_floor_px", options.pose.corner_floor_px);
-  EdgeFitOptions& edge_fit = options.detector.edge_fit;
+  PoseOptions& pose = setup->options.pose;
+  pose.corner_floor_px = number("corner_floor_px", pose.corner_floor_px);
+  EdgeFitOptions& edge_fit = setup->options.detector.edge_fit;
   edge_fit.inner_clearance_px = number("inner_clearance_px", edge_fit.inner_clearance_px);
   edge_fit.inner_clearance_blur = number("inner_clearance_blur", edge_fit.inner_clearance_blur);
-  // Rows: "all", "blur" (those starting with "blur 1.4") or any part of a row's name.
-  const std::string rows = value("conditions", "all");
+  setup->rows = value("conditions", "all");
   edge_fit.model_inner_edge = value("inner_edge", "inner") != "clear";
   edge_fit.band_px = number("band_px", edge_fit.band_px);
-  if (!args.empty() || count < 1) {
+  if (!args.empty() || setup->count < 1) {
     std::fprintf(stderr, "unknown argument '%s' or scenes < 1 (see the comment at the top of %s)\n",
                  args.empty() ? "" : args.begin()->first.c_str(), __FILE__);
-    return 1;
+    return false;
   }
-  options.pose.covariance = covariance == "group"        ? CovarianceModel::kEdgeGroup
-                            : covariance == "edge_noise" ? CovarianceModel::kEdgeNoise
-                                                         : CovarianceModel::kResidual;
-  options.pose.erosion = erosion == "none"     ? ErosionModel::kNone
-                         : erosion == "affine" ? ErosionModel::kAffine
-                         : erosion == "tag"    ? ErosionModel::kPerTag
-                         : erosion == "global" ? ErosionModel::kGlobal
-                                               : ErosionModel::kAffine;
-  MeasurePipeline pipeline(board, camera, options);
-  if (!pipeline.ok()) {
-    std::fprintf(stderr, "setup failed: %s\n", pipeline.error().c_str());
-    return 1;
-  }
+  const std::string& covariance = setup->covariance;
+  pose.covariance = covariance == "group"        ? CovarianceModel::kEdgeGroup
+                    : covariance == "edge_noise" ? CovarianceModel::kEdgeNoise
+                                                 : CovarianceModel::kResidual;
+  const std::string& erosion = setup->erosion;
+  pose.erosion = erosion == "none"     ? ErosionModel::kNone
+                 : erosion == "tag"    ? ErosionModel::kPerTag
+                 : erosion == "global" ? ErosionModel::kGlobal
+                                       : ErosionModel::kAffine;
+  return true;
+}
+
+void PrintSetup(const Setup& setup) {
+  const EdgeFitOptions& edge_fit = setup.options.detector.edge_fit;
   std::printf(
       "board %s, erosion model %s, covariance %s, corner floor %.4f px, %d scenes per "
       "condition, seed %llu\n"
       "dark-side clearance %.2f px + %.2f blur sigma, inner edge %s, band %.2f px\n",
-      board.layout == AprilGridLayout::kKalibr ? "Kalibr's design" : "h4cam's earlier design",
-      erosion.c_str(), covariance.c_str(), options.pose.corner_floor_px, count,
-      static_cast<unsigned long long>(seed), edge_fit.inner_clearance_px,
+      setup.board.layout == AprilGridLayout::kKalibr ? "Kalibr's design" : "h4cam's earlier design",
+      setup.erosion.c_str(), setup.covariance.c_str(), setup.options.pose.corner_floor_px,
+      setup.count, static_cast<unsigned long long>(setup.seed), edge_fit.inner_clearance_px,
       edge_fit.inner_clearance_blur, edge_fit.model_inner_edge ? "modelled" : "kept clear",
       edge_fit.band_px);
   std::printf("%-46s %6s %9s %10s %7s %7s %10s\n", "condition", "scenes", "e_t_mm", "e_r_deg",
               "sig/t", "sig/r", "erosion_px");
-  const auto poses = scenes::RandomPoses(count, seed);
-  cv::RNG rng(seed + 7);
+}
+
+// One condition's row: each scene rendered clean, degraded, averaged and measured.
+void MeasureCondition(const Condition& condition, const Setup& setup,
+                      const MeasurePipeline& pipeline, const std::vector<RigidTransform>& poses,
+                      cv::RNG& rng) {
+  const CameraIntrinsics camera = scenes::PaperCamera();
+  Sums sums;
+  for (size_t i = 0; i < poses.size(); ++i) {
+    RenderOptions render;
+    render.blur_sigma_px = rng.uniform(condition.blur_px_min, condition.blur_px_max + 1e-12);
+    const BoardRenderer renderer(setup.board, camera, render);
+    bench::DegradeOptions degrade;
+    degrade.gamma = rng.uniform(condition.gamma_min, condition.gamma_max + 1e-12);
+    degrade.gradient = condition.gradient;
+    degrade.gradient_angle = rng.uniform(0.0, 2 * std::numbers::pi);
+    degrade.read_noise = condition.read_noise;
+    degrade.shot_noise = condition.shot_noise;
+    const cv::Mat mean =
+        bench::DegradedMean(renderer.RenderClean(poses[i]), degrade, 10, setup.seed * 1000 + i);
+    MeasureScene(pipeline, mean, poses[i], &sums);
+  }
+  const int n = std::max(sums.used, 1);
+  std::printf("%-46s %3d/%-2d %9.5f %10.6f %7.2f %7.2f %10.4f\n", condition.name.c_str(), sums.used,
+              setup.count, std::sqrt(sums.err_t2 / n) * 1e3,
+              DegreesFromRadians(std::sqrt(sums.err_r2 / n)), std::sqrt(sums.sig_t2 / sums.err_t2),
+              std::sqrt(sums.sig_r2 / sums.err_r2), sums.erosion_px / n);
+  std::fflush(stdout);
+}
+
+}  // namespace
+}  // namespace h4::cam
+
+int main(int argc, char** argv) {
+  using namespace h4;
+  using namespace h4::cam;
+  Setup setup;
+  if (!ReadSetup(argc, argv, &setup)) return 1;
+  MeasurePipeline pipeline(setup.board, scenes::PaperCamera(), setup.options);
+  if (!pipeline.ok()) {
+    std::fprintf(stderr, "setup failed: %s\n", pipeline.error().c_str());
+    return 1;
+  }
+  PrintSetup(setup);
+  const auto poses = scenes::RandomPoses(setup.count, setup.seed);
+  cv::RNG rng(setup.seed + 7);
   const auto start = std::chrono::steady_clock::now();
   for (const Condition& condition : Conditions()) {
+    const std::string& rows = setup.rows;
     const bool wanted =
         rows == "all" || (rows == "blur" ? condition.name.rfind("blur 1.4", 0) == 0
                                          : condition.name.find(rows) != std::string::npos);
-    if (!wanted) continue;
-    Sums sums;
-    for (size_t i = 0; i < poses.size(); ++i) {
-      RenderOptions render;
-      render.blur_sigma_px = rng.uniform(condition.blur_px_min, condition.blur_px_max + 1e-12);
-      const BoardRenderer renderer(board, camera, render);
-      bench::DegradeOptions degrade;
-      degrade.gamma = rng.uniform(condition.gamma_min, condition.gamma_max + 1e-12);
-      degrade.gradient = condition.gradient;
-      degrade.gradient_angle = rng.uniform(0.0, 2 * std::numbers::pi);
-      degrade.read_noise = condition.read_noise;
-      degrade.shot_noise = condition.shot_noise;
-      const cv::Mat mean =
-          bench::DegradedMean(renderer.RenderClean(poses[i]), degrade, 10, seed * 1000 + i);
-      MeasureScene(pipeline, mean, poses[i], &sums);
-    }
-    const int n = std::max(sums.used, 1);
-    std::printf("%-46s %3d/%-2d %9.5f %10.6f %7.2f %7.2f %10.4f\n", condition.name.c_str(),
-                sums.used, count, std::sqrt(sums.err_t2 / n) * 1e3,
-                DegreesFromRadians(std::sqrt(sums.err_r2 / n)),
-                std::sqrt(sums.sig_t2 / sums.err_t2), std::sqrt(sums.sig_r2 / sums.err_r2),
-                sums.erosion_px / n);
-    std::fflush(stdout);
+    if (wanted) MeasureCondition(condition, setup, pipeline, poses, rng);
   }
-  const double seconds = SecondsSince(start);
-  std::printf("total %.1f s\n", seconds);
+  std::printf("total %.1f s\n", SecondsSince(start));
   return 0;
 }
