@@ -158,22 +158,32 @@ TEST(OptimalDesignBound, WithMeasuredPosesBoundsTheBestExactDesign) {
 // On the planning problem: the exchange's 25 poses, and random 25, predict no better than the
 // bound over the planner's models (the a priori and the drawn robots), nor over the a priori
 // alone.
-TEST(OptimalDesignBound, NoDesignOfThePlannerBeatsIt) {
+TEST(OptimalDesignBound, NoSeededDesignBeatsIt) {
   const PlanningProblem& problem = CoarseProblem();
-  DesignOptions design;
-  design.pose_count = 25;
   DesignBound bound;
   BoundOptions options;
   options.pose_count = 25;
   const double lower = PredictedTargetRmsBound(problem, options, &bound);
-  const PlannedCampaign planned = PlanCampaign(problem, design, 1, PlanCriterion::kAccuracy);
   EXPECT_GT(lower, 0.0);
-  EXPECT_LE(lower, planned.predicted_position_rms);
   EXPECT_GT(bound.Efficiency(), 0.99);
   for (uint64_t seed = 1; seed <= 5; ++seed) {
     EXPECT_LE(lower,
               PredictedTargetRms(problem, SeededSubset(problem.candidate_count(), 25, seed)));
   }
+}
+
+// The planner's own designs against the bound: the exchange runs over the whole coarse
+// problem (over 600 s under the sanitizers, which run the planner in the PoseDesign tests and
+// the bound in the ones above), hence a study (tests/CMakeLists.txt).
+TEST(OptimalDesignBoundStudy, NoDesignOfThePlannerBeatsIt) {
+  const PlanningProblem& problem = CoarseProblem();
+  DesignOptions design;
+  design.pose_count = 25;
+  BoundOptions options;
+  options.pose_count = 25;
+  const double lower = PredictedTargetRmsBound(problem, options);
+  const PlannedCampaign planned = PlanCampaign(problem, design, 1, PlanCriterion::kAccuracy);
+  EXPECT_LE(lower, planned.predicted_position_rms);
   const std::vector<int>& target = problem.target_indices;
   const Design alone = PlanForAccuracy(problem.info, problem.candidate_count(), target, design);
   BoundOptions alone_options;
