@@ -27,7 +27,8 @@ DatasetRow Row(int64_t id) {
   DatasetRow row;
   row.pose_id = id;
   row.utime = 1'700'000'000'000'000 + id;
-  row.q = {0.01 * static_cast<double>(id), 0.2, 0.3, 0.4};  // within a turn (the reader's bound)
+  // Within a turn (the reader's bound) however many rows a fast machine writes before a kill.
+  row.q = {0.01 * static_cast<double>(id % 600), 0.2, 0.3, 0.4};
   row.X_CT = RigidTransform::FromTranslationRpy(Eigen::Vector3d(0.01, 0.02, 0.5 + 0.01 * id),
                                                 Eigen::Vector3d(0.1, -0.2, 0.3));
   row.sigma_t = 2e-4;
