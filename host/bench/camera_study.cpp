@@ -25,13 +25,14 @@
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "host/bench/study_main.h"
+#include "host/formats/pose_plan_rows.h"
 #include "host/formats/poses_csv.h"
 #include "host/identification/corner_identification.h"
 #include "host/identification/identification.h"
+#include "host/kinematics/paper_robot.h"
+#include "host/kinematics/pose_plan.h"
 #include "host/simulation/calibration_draw.h"
 #include "host/simulation/corner_campaign.h"
-#include "host/simulation/paper_scenario.h"
-#include "host/simulation/pose_plan.h"
 #include "host/validation/true_accuracy.h"
 
 namespace h4::host {
@@ -184,7 +185,8 @@ void Run(const StudyOptions& options) {
         ReadCameraYaml(std::string(H4_SOURCE_DIR) + "/boards/sim_camera_1024x768.yaml");
     const Eigen::VectorXd sigma = ChessboardCalibrationCovariance(camera).diagonal().cwiseSqrt();
     std::printf(
-        "the stated errors and the draws carry a 25-view chessboard calibration's covariance (the "
+        "the stated errors and the draws carry a 25-view chessboard calibration's covariance "
+        "(the "
         "files their own): sigma fx %.0f "
         "ppm, fy %.0f ppm, cx %.2f px, cy %.2f px, k1 %.2f %%\n",
         1e6 * sigma[0] / camera.K(0, 0), 1e6 * sigma[1] / camera.K(1, 1), sigma[2], sigma[3],

@@ -27,9 +27,9 @@
 #include "common/formats/camera_yaml.h"
 #include "common/timing/clock.h"
 #include "host/bench/study_main.h"
-#include "host/validation/check_trial.h"
+#include "host/kinematics/paper_robot.h"
 #include "host/planning/pose_planner.h"
-#include "host/simulation/paper_scenario.h"
+#include "host/validation/check_trial.h"
 
 namespace h4::host {
 namespace {
@@ -140,9 +140,9 @@ void Run(const StudyOptions& study) {
   options.drift_sigmas = study.drift_sigmas;
   options.without_covariance = study.without_covariance;
   if (study.stated_fraction_r != 1.0 || study.stated_fraction_t != 1.0) {
-    options.stated_noise = NoiseOptions{options.noise.sigma_t * study.stated_fraction_t,
-                                        options.noise.sigma_r * study.stated_fraction_r,
-                                        options.noise.sigma_q};
+    options.stated_noise =
+        NoiseOptions{options.noise.sigma_t * study.stated_fraction_t,
+                     options.noise.sigma_r * study.stated_fraction_r, options.noise.sigma_q};
   }
   options.stated_camera_covariance = study.stated_camera_covariance;
   Tally tally;

@@ -30,11 +30,11 @@
 
 #include "host/identification/identification.h"
 #include "host/identification/identified_robot.h"
-#include "host/simulation/dataset_simulator.h"
-#include "host/simulation/paper_scenario.h"
-#include "host/simulation/pose_plan.h"
-#include "host/simulation/true_robot.h"
 #include "host/kinematics/forward_kinematics.h"
+#include "host/kinematics/paper_robot.h"
+#include "host/kinematics/pose_plan.h"
+#include "host/simulation/dataset_simulator.h"
+#include "host/simulation/true_robot.h"
 #include "host/validation/accuracy_map.h"
 
 namespace h4::host {
@@ -239,7 +239,8 @@ int main(int argc, char** argv) {
     } else if (flag == "--first-seed") {
       first_seed = std::strtoull(argv[i + 1], nullptr, 10);
     } else {
-      std::fprintf(stderr, "usage: %s [--campaigns N] [--first-seed S] [--map-in-model-frame]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--campaigns N] [--first-seed S] [--map-in-model-frame]\n",
+                   argv[0]);
       return 1;
     }
   }

@@ -25,10 +25,10 @@
 #include "host/identification/identification.h"
 #include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/model31.h"
+#include "host/kinematics/paper_robot.h"
+#include "host/kinematics/pose_plan.h"
 #include "host/simulation/corner_campaign.h"
 #include "host/simulation/dataset_simulator.h"
-#include "host/simulation/paper_scenario.h"
-#include "host/simulation/pose_plan.h"
 #include "host/simulation/true_robot.h"
 
 #ifdef H4_HAVE_CERES

@@ -47,11 +47,11 @@
 #include "common/timing/clock.h"
 #include "host/bench/study_main.h"
 #include "host/identification/identification.h"
+#include "host/kinematics/paper_robot.h"
 #include "host/planning/pose_planner.h"
 #include "host/planning/sequential_plan.h"
 #include "host/simulation/corner_campaign.h"
 #include "host/simulation/dataset_simulator.h"
-#include "host/simulation/paper_scenario.h"
 #include "host/simulation/true_robot.h"
 
 namespace h4::host {

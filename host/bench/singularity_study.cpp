@@ -19,8 +19,8 @@
 #include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/model12.h"
 #include "host/kinematics/model31.h"
+#include "host/kinematics/paper_robot.h"
 #include "host/planning/candidate_poses.h"
-#include "host/simulation/paper_scenario.h"
 #include "host/simulation/true_robot.h"
 
 namespace h4::host {

@@ -33,7 +33,7 @@
 #include "host/campaign/dataset_journal.h"
 #include "host/campaign/measurement_pairing.h"
 #include "host/campaign/stale_filter.h"
-#include "host/simulation/pose_plan.h"
+#include "host/kinematics/pose_plan.h"
 #include "messages/bus/lcm_bus.h"
 #include "messages/bus/warning_throttle.h"
 
@@ -195,7 +195,7 @@ class Campaign {
   bool settled_seen_ = false;                  ///< the robot reported settled at the current pose
   bool moved_since_capture_ = false;           ///< manual mode: the operator moved the robot
   std::optional<std::string> failed_attempt_;  ///< set by a handler, acted on by Step()
-  std::optional<std::string> refusal_;  ///< the robot refused the current target: why
+  std::optional<std::string> refusal_;         ///< the robot refused the current target: why
   bool recorded_current_ = false;              ///< set by a handler, acted on by Step()
   bool camera_heard_ = false;
   bool joints_heard_ = false;

@@ -33,6 +33,7 @@
 #include "host/cli/robot_source.h"
 #include "host/cli/validation_inputs.h"
 #include "host/formats/identification_result.h"
+#include "host/formats/pose_plan_rows.h"
 #include "host/formats/poses_csv.h"
 #include "host/formats/robot_yaml.h"
 #include "host/identification/identification.h"

@@ -18,6 +18,7 @@
 #include "host/cli/identification_print.h"
 #include "host/cli/plan_reach.h"
 #include "host/formats/identification_result.h"
+#include "host/formats/pose_plan_rows.h"
 #include "host/formats/poses_csv.h"
 #include "host/formats/robot_yaml.h"
 #include "host/identification/identification.h"

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "host/formats/dataset_csv.h"
-#include "host/simulation/pose_plan.h"
+#include "host/kinematics/pose_plan.h"
 
 namespace h4::host::cli {
 

@@ -24,11 +24,12 @@
 #include "host/cli/plan_reach.h"
 #include "host/formats/dataset_csv.h"
 #include "host/formats/identification_result.h"
+#include "host/formats/pose_plan_rows.h"
 #include "host/formats/poses_csv.h"
 #include "host/formats/robot_yaml.h"
+#include "host/kinematics/pose_plan.h"
 #include "host/planning/pose_planner.h"
 #include "host/planning/sequential_plan.h"
-#include "host/simulation/pose_plan.h"
 
 namespace h4::host::cli {
 namespace {
@@ -205,7 +206,8 @@ RobotDescription PlanningRobot(const PlanCommandOptions& o, PlanningProblemOptio
       IdentifiedDescription(apriori, ReadIdentificationResult(o.from_result_path));
   *options = NextStageOptions(*options, identified, ReadDatasetCsv(o.existing_dataset_path));
   spdlog::info(
-      "sequential campaign: planning on the robot of {} (Model {}), completing the {} poses of {}",
+      "sequential campaign: planning on the robot of {} (Model {}), completing the {} poses of "
+      "{}",
       o.from_result_path, ToString(identified.model31 ? ModelKind::k31 : ModelKind::k12),
       options->existing_poses_B.size(), o.existing_dataset_path);
   return identified;
@@ -366,7 +368,8 @@ std::string CandidateGridHelp() {
       "Candidates: a grid of (X, Y, Z, theta) around ({:g}, {:g}, {:g}) m (+-{:g}, +-{:g}, "
       "+-{:g} mm by {:g}, theta {:g}..{:g} deg by {:g}), away from the singularity where the "
       "joints stop holding theta. The predicted accuracy is the one-sigma board position error "
-      "the identification's covariance predicts, RMS over the target region (--region-*) and over "
+      "the identification's covariance predicts, RMS over the target region (--region-*) and "
+      "over "
       "robots drawn from the a priori uncertainty (--robust-robots).",
       grid.centre.x(), grid.centre.y(), grid.centre.z(), grid.half_extent.x() * 1e3,
       grid.half_extent.y() * 1e3, grid.half_extent.z() * 1e3, grid.position_step * 1e3,

@@ -10,8 +10,8 @@
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
 
+#include "host/kinematics/pose_plan.h"
 #include "host/kinematics/robot_description.h"
-#include "host/simulation/pose_plan.h"
 
 namespace h4::host::cli {
 

@@ -20,7 +20,7 @@
 #include "host/cli/commands.h"
 #include "host/cli/plan_reach.h"
 #include "host/formats/robot_yaml.h"
-#include "host/simulation/paper_scenario.h"
+#include "host/kinematics/paper_robot.h"
 #include "host/simulation/true_robot.h"
 #include "host/simulation/truth_file.h"
 #include "messages/bus/lcm_bus.h"

@@ -13,12 +13,12 @@
 #include "common/camera/camera_model.h"
 #include "common/units.h"
 #include "host/identification/identification_cost.h"
+#include "host/kinematics/pose_plan.h"
 #include "host/kinematics/robot_description.h"
 #include "host/planning/candidate_poses.h"
 #include "host/planning/design_bound.h"
 #include "host/planning/information_model.h"
 #include "host/planning/pose_design.h"
-#include "host/simulation/pose_plan.h"
 #include "host/simulation/true_robot.h"
 
 namespace h4::host {

@@ -13,8 +13,8 @@
 #include <Eigen/Core>
 
 #include "host/kinematics/kinematic_model.h"
+#include "host/kinematics/pose_plan.h"
 #include "host/kinematics/robot_description.h"
-#include "host/simulation/pose_plan.h"
 
 namespace h4::host {
 

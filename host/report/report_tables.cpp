@@ -12,9 +12,9 @@
 #include "common/text/markup_escape.h"
 #include "common/units.h"
 #include "host/kinematics/model_parameters.h"
+#include "host/kinematics/paper_robot.h"
 #include "host/report/html_table.h"
 #include "host/report/paper_numbers.h"
-#include "host/simulation/paper_scenario.h"
 
 namespace h4::host {
 namespace {

@@ -10,7 +10,7 @@
 #include "common/units.h"
 #include "host/formats/dataset_csv.h"
 #include "host/kinematics/kinematic_model.h"
-#include "host/simulation/pose_plan.h"
+#include "host/kinematics/pose_plan.h"
 #include "host/simulation/true_robot.h"
 
 namespace h4::host {

@@ -5,7 +5,7 @@
 
 #include "host/kinematics/model12.h"
 #include "host/kinematics/model31.h"
-#include "host/simulation/paper_scenario.h"
+#include "host/kinematics/paper_robot.h"
 
 namespace h4::host {
 namespace {

@@ -43,7 +43,7 @@ struct SimulatedRobot {
 };
 
 enum class TrueGeometry {
-  kPaperTable2,       ///< Model 12 = Table 2 "Identified" rows (paper_scenario.h)
+  kPaperTable2,       ///< Model 12 = Table 2 "Identified" rows (host/kinematics/paper_robot.h)
   kPerturbedModel12,  ///< a priori Model 12 perturbed (h, arm, forearm, R, alpha, q0)
   kPerturbedModel31,  ///< nominal Model 31 of the a priori perturbed (P_2..4, psi, beta,
                       ///< q0, arm_i, forearm_i, h)

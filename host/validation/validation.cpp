@@ -11,7 +11,7 @@
 #include "host/identification/identified_robot.h"
 #include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/model12.h"
-#include "host/simulation/paper_scenario.h"
+#include "host/kinematics/paper_robot.h"
 
 namespace h4::host {
 namespace {

@@ -13,7 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "host/kinematics/model12.h"
-#include "host/simulation/paper_scenario.h"
+#include "host/kinematics/paper_robot.h"
 
 namespace h4::host {
 namespace {

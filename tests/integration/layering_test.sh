@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The dependency rule of the layout (docs/architecture.md#libraries-and-their-dependencies): common
 # includes neither firmware, host nor messages; firmware never includes host; host never includes
-# firmware; examples/ (the workstation side of the bus) never includes firmware.
+# firmware; examples/ (the workstation side of the bus) never includes firmware; the host's
+# libraries include only what they use.
 set -uo pipefail
 src=$1
 status=0
@@ -15,7 +16,31 @@ check() {  # folder, forbidden include prefix regex
 check common 'firmware/|host/|messages/|h4msgs/|lcm/|opencv2/|apriltag|libcamera/|nlopt'
 check firmware 'host/'
 check host 'firmware/|opencv2/|apriltag|libcamera/'
+# Inside the host, each library (and its test folder, whose program links that library alone)
+# includes only the host libraries it uses: host/CMakeLists.txt, bottom up.
+declare -A host_uses=(
+  [kinematics]='kinematics'
+  [formats]='kinematics|formats'
+  [simulation]='kinematics|formats|simulation'
+  [identification]='kinematics|formats|identification'
+  [validation]='kinematics|formats|identification|simulation|validation'
+  [report]='kinematics|formats|identification|simulation|validation|report'
+  [planning]='kinematics|formats|identification|simulation|planning'
+  [campaign]='kinematics|formats|simulation|campaign'
+)
+declare -A test_folder_of=([formats]=host_formats)
+for library in "${!host_uses[@]}"; do
+  test_folder=tests/${test_folder_of[$library]:-$library}
+  for folder in "host/$library" "$test_folder"; do
+    [ -d "$src/$folder" ] || continue
+    hits=$(grep -rnE '#include "host/[a-z_]+/' "$src/$folder" --include='*.h' --include='*.cpp' |
+           grep -vE "#include \"host/(${host_uses[$library]})/" || true)
+    if [ -n "$hits" ]; then
+      echo "FAIL: $folder/ may include only host/{${host_uses[$library]}}:"; echo "$hits"; status=1
+    fi
+  done
+done
 # The robot bridge example is the workstation's side of the bus: never the camera's code.
 [ -d "$src/examples" ] && check examples 'firmware/|opencv2/|apriltag|libcamera/'
-[ $status -eq 0 ] && echo "PASS: common pure; firmware and host independent"
+[ $status -eq 0 ] && echo "PASS: common pure; firmware and host independent; host libraries one-way"
 exit $status

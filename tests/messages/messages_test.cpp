@@ -10,6 +10,7 @@
 #include "h4msgs/joint_state_t.hpp"
 #include "h4msgs/robot_target_t.hpp"
 #include "h4msgs/sim_board_truth_t.hpp"
+
 #include "tests/messages/wire_bytes.h"
 
 namespace {

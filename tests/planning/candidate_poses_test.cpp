@@ -13,7 +13,7 @@
 #include "common/formats/camera_yaml.h"
 #include "common/formats/number_text.h"
 #include "host/kinematics/model12.h"
-#include "host/simulation/paper_scenario.h"
+#include "host/kinematics/paper_robot.h"
 #include "tests/support/options_check.h"
 
 namespace h4::host {

@@ -7,8 +7,8 @@
 #include "common/camera/camera_model.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
+#include "host/kinematics/paper_robot.h"
 #include "host/planning/pose_planner.h"
-#include "host/simulation/paper_scenario.h"
 
 namespace h4::host {
 

@@ -11,9 +11,9 @@
 
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
+#include "host/kinematics/paper_robot.h"
 #include "host/planning/pose_design.h"
 #include "host/planning/pose_planner.h"
-#include "host/simulation/paper_scenario.h"
 #include "tests/planning/coarse_problem.h"
 
 namespace h4::host {

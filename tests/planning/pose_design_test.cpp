@@ -13,9 +13,9 @@
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "host/identification/identification.h"
+#include "host/kinematics/paper_robot.h"
 #include "host/planning/pose_planner.h"
 #include "host/simulation/dataset_simulator.h"
-#include "host/simulation/paper_scenario.h"
 #include "host/simulation/true_robot.h"
 #include "tests/planning/coarse_problem.h"
 

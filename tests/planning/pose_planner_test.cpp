@@ -12,7 +12,7 @@
 
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
-#include "host/simulation/paper_scenario.h"
+#include "host/kinematics/paper_robot.h"
 
 namespace h4::host {
 namespace {

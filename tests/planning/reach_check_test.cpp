@@ -8,8 +8,8 @@
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/units.h"
+#include "host/kinematics/paper_robot.h"
 #include "host/planning/candidate_poses.h"
-#include "host/simulation/paper_scenario.h"
 
 namespace h4::host {
 namespace {

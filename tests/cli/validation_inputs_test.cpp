@@ -1,0 +1,69 @@
+// Tests of validate's inputs and console text (host/cli/validation_inputs.h): what the
+// console says of held-out and in-sample poses and of measured squares, and how
+// --square-measured is split.
+#include "host/cli/validation_inputs.h"
+
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "host/validation/validation.h"
+#include "tests/validation/validation_test_helpers.h"
+
+namespace h4::host {
+namespace {
+
+// validate's console with every pose in the fit: the Table 3 and positioning figures are
+// in-sample and say so; the held-out accuracy is the cross-validated RMS; no "held out".
+TEST(ValidateText, EveryPoseInTheFitIsInSampleBesideTheCrossValidatedRms) {
+  const std::string text = cli::FormatValidationText(Validate(EveryPoseInTheFit()));
+  EXPECT_NE(text.find("Table 3: joint residuals, in-sample (81 poses, none held out of the "
+                      "fit) (deg, measured - model)"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("  Model 12   in-sample (81 poses, none held out of the fit): 0.0000 "
+                      "mm, 0.0000 deg\n"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("  Model 12   10-fold cross-validated (held-out) RMS over 81 poses: "
+                      "1.8734 mm, 0.1203 deg\n"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("held out:"), std::string::npos) << text;
+  EXPECT_EQ(text.find("held-out poses"), std::string::npos) << text;
+  EXPECT_EQ(text.find("(mean)"), std::string::npos) << "accuracy in RMS: " << text;
+}
+
+TEST(ValidateText, HeldOutPosesAreCountedAsNotInTheFit) {
+  const std::string text = cli::FormatValidationText(Validate(PaperValidationInputs()));
+  EXPECT_NE(text.find("Table 3: joint residuals, held out (10 poses not in the fit)"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("  Model 12   held out (10 poses not in the fit): 0.0000 mm, 0.0000 deg\n"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("in-sample"), std::string::npos) << text;
+}
+
+TEST(ValidateText, MeasuredSquaresArePrinted) {
+  const std::string text =
+      cli::FormatValidationText(Validate(WithMeasuredSquares(PaperValidationInputs())));
+  EXPECT_NE(text.find("Square (measured), a priori controller: side RMS"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("Square (measured), Model 12 controller: side RMS 0.00 0.00 0.00 0.00 mm"),
+            std::string::npos)
+      << text;
+}
+
+TEST(ValidationInputs, SquareMeasuredSplitsLabelAndDatasetAtTheFirstEquals) {
+  const auto [label, path] = cli::SplitSquareMeasured("Model 12=runs/a=b.csv");
+  EXPECT_EQ(label, "Model 12");
+  EXPECT_EQ(path, "runs/a=b.csv");
+  EXPECT_THROW(cli::SplitSquareMeasured("sq.csv"), std::invalid_argument);
+  EXPECT_THROW(cli::SplitSquareMeasured("=sq.csv"), std::invalid_argument);
+  EXPECT_THROW(cli::SplitSquareMeasured("a priori="), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace h4::host
