@@ -84,22 +84,21 @@ CameraServiceOptions ServiceOptionsOf(const ServiceConfig& config, const FrameSo
 
 }  // namespace
 
-ServiceConfig ResolveRunConfig(const RunArgs& args) {
-  ServiceConfig config;
-  if (!args.config_path.empty()) config = ReadServiceConfig(args.config_path);
-  if (args.source) config.source = *args.source;
-  if (args.board_path) config.board_path = *args.board_path;
-  if (args.camera_path) config.camera_intrinsics_path = *args.camera_path;
-  if (args.lcm_url) config.lcm_url = *args.lcm_url;
-  if (args.auth_key_path) config.auth_key_file = *args.auth_key_path;
-  if (args.camera_id) config.camera_id = *args.camera_id;
-  if (args.frames) config.frames_averaged = *args.frames;
-  if (args.free_run_hz) config.free_run_hz = *args.free_run_hz;
-  if (args.sim_camera_path) config.sim_camera_path = *args.sim_camera_path;
-  if (args.sim_preset && !RenderPresetByName(*args.sim_preset, &config.sim_render)) {
-    throw std::runtime_error("--sim-preset '" + *args.sim_preset +
-                             "': expected clean or processed");
+void RunFlags::ApplyTo(ServiceConfig* config) const {
+  for (const Binding& binding : bindings_) {
+    if (binding.option->count() > 0) binding.apply(config);
   }
+}
+
+CLI::Option* RunFlags::WhenGiven(CLI::Option* option, std::function<void(ServiceConfig*)> apply) {
+  bindings_.push_back({option, std::move(apply)});
+  return option;
+}
+
+ServiceConfig ResolveRunConfig(const RunFlags& flags) {
+  ServiceConfig config;
+  if (!flags.config_path.empty()) config = ReadServiceConfig(flags.config_path);
+  flags.ApplyTo(&config);
   std::string why;
   if (!config.IsValid(&why)) throw std::runtime_error("run: " + why);
   return config;
@@ -175,32 +174,67 @@ int RunService(const ServiceConfig& config, std::ostream& err, const std::atomic
   return 0;
 }
 
-void DeclareRunCommand(CLI::App* command) {
-  const auto args = std::make_shared<RunArgs>();
-  command->add_option("--config", args->config_path, "Service configuration YAML")
+namespace {
+
+// A flag with no shared declaration (common/cli/shared_options.h) that sets `field`.
+template <typename T>
+CLI::Option* BindOption(CLI::App* command, RunFlags* flags, const std::string& name,
+                        T ServiceConfig::*field, const std::string& help) {
+  return flags->Bind(field, [&](T* value) { return command->add_option(name, *value, help); });
+}
+
+// --sim-preset names a whole image formation (render_options.h), not one field: it
+// replaces the file's sim: block.
+void DeclareSimPresetOption(CLI::App* command, RunFlags* flags) {
+  const auto name = std::make_shared<std::string>();
+  CLI::Option* option =
+      command->add_option("--sim-preset", *name,
+                          "Rendered frames of --source sim: processed (default: a camera module's "
+                          "sRGB output with defocus, gradient, shot noise) or clean");
+  flags->WhenGiven(option, [name](ServiceConfig* config) {
+    if (!RenderPresetByName(*name, &config->sim_render)) {
+      throw std::runtime_error("--sim-preset '" + *name + "': expected clean or processed");
+    }
+  });
+}
+
+}  // namespace
+
+void DeclareRunOptions(CLI::App* command, RunFlags* flags) {
+  command->add_option("--config", flags->config_path, "Service configuration YAML")
       ->check(CLI::ExistingFile);
-  command->add_option("--source", args->source, "Frames: libcamera (default), sim or dir:PATH");
-  h4::cli::AddBoardOption(command, &args->board_path);
-  h4::cli::AddCameraOption(command, &args->camera_path);
-  h4::cli::AddFramesOption(command, &args->frames, "Frames averaged per measurement (default 10)")
-      ->check(CLI::Range(1, kMaxFramesPerRequest));
-  command->add_option("--free-run", args->free_run_hz, "Measure continuously at this rate, Hz")
+  BindOption(command, flags, "--source", &ServiceConfig::source,
+             "Frames: libcamera (default), sim or dir:PATH");
+  flags->Bind(&ServiceConfig::board_path,
+              [command](std::string* path) { return h4::cli::AddBoardOption(command, path); });
+  flags->Bind(&ServiceConfig::camera_intrinsics_path,
+              [command](std::string* path) { return h4::cli::AddCameraOption(command, path); });
+  flags->Bind(&ServiceConfig::frames_averaged, [command](int* frames) {
+    return h4::cli::AddFramesOption(command, frames, "Frames averaged per measurement (default 10)")
+        ->check(CLI::Range(1, kMaxFramesPerRequest));
+  });
+  BindOption(command, flags, "--free-run", &ServiceConfig::free_run_hz,
+             "Measure continuously at this rate, Hz")
       ->check(CLI::Range(0.0, 100.0));
-  command->add_option("--sim-preset", args->sim_preset,
-                      "Rendered frames of --source sim: processed (default: a camera module's "
-                      "sRGB output with defocus, gradient, shot noise) or clean");
-  command
-      ->add_option("--sim-camera", args->sim_camera_path,
-                   "Camera YAML --source sim renders through (the true camera; default: "
-                   "--camera). With a --camera that differs from it, the measurement "
-                   "assumes a wrong camera file, as a real intrinsic calibration does")
+  DeclareSimPresetOption(command, flags);
+  BindOption(command, flags, "--sim-camera", &ServiceConfig::sim_camera_path,
+             "Camera YAML --source sim renders through (the true camera; default: "
+             "--camera). With a --camera that differs from it, the measurement "
+             "assumes a wrong camera file, as a real intrinsic calibration does")
       ->check(CLI::ExistingFile);
-  h4::cli::AddLcmUrlOption(command, &args->lcm_url);
-  h4::cli::AddAuthKeyOption(command, &args->auth_key_path, "lcm.auth_key_file, else off");
-  command->add_option(
-      "--camera-id", args->camera_id,
-      "libcamera camera id (also the name in the messages unless camera.name is set)");
-  h4::cli::RunWhenParsed(command, args, [](const RunArgs& parsed) {
+  flags->Bind(&ServiceConfig::lcm_url,
+              [command](std::string* url) { return h4::cli::AddLcmUrlOption(command, url); });
+  flags->Bind(&ServiceConfig::auth_key_file, [command](std::string* path) {
+    return h4::cli::AddAuthKeyOption(command, path, "lcm.auth_key_file, else off");
+  });
+  BindOption(command, flags, "--camera-id", &ServiceConfig::camera_id,
+             "libcamera camera id (also the name in the messages unless camera.name is set)");
+}
+
+void DeclareRunCommand(CLI::App* command) {
+  const auto flags = std::make_shared<RunFlags>();
+  DeclareRunOptions(command, flags.get());
+  h4::cli::RunWhenParsed(command, flags, [](const RunFlags& parsed) {
     // The service's loop polls the flag at least every 100 ms.
     const std::atomic<bool>& stop = h4::cli::InstallStopSignalHandlers();
     return RunService(ResolveRunConfig(parsed), std::cerr, stop);
