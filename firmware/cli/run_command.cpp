@@ -18,8 +18,8 @@
 #include "firmware/service/sd_notify.h"
 #include "firmware/service/service_node.h"
 #include "firmware/sources/frame_source_spec.h"
-#include "firmware/sources/image_file_source.h"
 #include "firmware/sources/libcamera_source.h"
+#include "firmware/sources/make_frame_source.h"
 #include "firmware/sources/sim_source.h"
 #include "messages/bus/lcm_bus.h"
 #include "messages/channels.h"
@@ -57,16 +57,37 @@ int Fail(bus::LcmBus* bus, const ServiceConfig& config, const std::string& why, 
   return 1;
 }
 
-// The renderer as a camera, in real time, showing the board where the sim robot puts it.
-std::unique_ptr<SimSource> MakeRealTimeSimSource(const ServiceConfig& config,
-                                                 const BoardSpec& board,
-                                                 const CameraIntrinsics& rendered_camera) {
+// The renderer as a camera, in real time.
+SimSourceOptions RealTimeSimOptions(const ServiceConfig& config) {
   SimSourceOptions sim_options;
   sim_options.render = config.sim_render;
   sim_options.frame_rate_hz = 1e6 / config.frame_duration_us;
   sim_options.start_utime = NowUtime();
   sim_options.real_time = true;
-  return std::make_unique<SimSource>(board, rendered_camera, sim_options);
+  return sim_options;
+}
+
+// The files the service reads: the board, the intrinsics the measurement assumes and the
+// camera `--source sim` renders through.
+struct ServiceFiles {
+  BoardSpec board;
+  CameraIntrinsics intrinsics;
+  CameraIntrinsics rendered_camera;
+};
+
+// The files `config` names; "" when they were read, else the reason.
+std::string ReadServiceFiles(const ServiceConfig& config, ServiceFiles* files) {
+  if (config.board_path.empty()) return "no board file (--board)";
+  if (config.camera_intrinsics_path.empty()) return "no camera intrinsics file (--camera)";
+  try {
+    files->board = ReadBoardYaml(config.board_path);
+    files->intrinsics = ReadCameraYaml(config.camera_intrinsics_path);
+    files->rendered_camera =
+        config.sim_camera_path.empty() ? files->intrinsics : ReadCameraYaml(config.sim_camera_path);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
 }
 
 CameraServiceOptions ServiceOptionsOf(const ServiceConfig& config, const FrameSourceSpec& spec) {
@@ -117,41 +138,30 @@ int RunService(const ServiceConfig& config, std::ostream& err, const std::atomic
   std::string why;
   const std::optional<FrameSourceSpec> spec = ParseFrameSourceSpec(config.source, &why);
   if (!spec) return Fail(&bus, config, why, err);
+  FrameSourceParts parts;
+  parts.libcamera = LibcameraOptions(config);
   std::unique_ptr<FrameSource> source;
-  SimSource* sim = nullptr;
   if (spec->kind == FrameSourceSpec::Kind::kLibcamera) {
     // The camera first: on a machine without one, that is the error to report, whatever
     // the state of the board and intrinsics files.
-    auto camera = std::make_unique<LibcameraSource>(LibcameraOptions(config));
-    if (!camera->Open()) return Fail(&bus, config, camera->error(), err);
-    camera->Close();
-    source = std::move(camera);
+    source = MakeFrameSource(*spec, parts);
+    if (!source->Open()) return Fail(&bus, config, source->error(), err);
+    source->Close();
   }
-  if (config.board_path.empty()) return Fail(&bus, config, "no board file (--board)", err);
-  if (config.camera_intrinsics_path.empty()) {
-    return Fail(&bus, config, "no camera intrinsics file (--camera)", err);
+  ServiceFiles files;
+  why = ReadServiceFiles(config, &files);
+  if (!why.empty()) return Fail(&bus, config, why, err);
+  if (source == nullptr) {
+    parts.board = &files.board;
+    parts.rendered_camera = &files.rendered_camera;
+    parts.sim = RealTimeSimOptions(config);
+    source = MakeFrameSource(*spec, parts);
   }
-  BoardSpec board;
-  CameraIntrinsics intrinsics;
-  CameraIntrinsics rendered_camera;
-  try {
-    board = ReadBoardYaml(config.board_path);
-    intrinsics = ReadCameraYaml(config.camera_intrinsics_path);
-    rendered_camera =
-        config.sim_camera_path.empty() ? intrinsics : ReadCameraYaml(config.sim_camera_path);
-  } catch (const std::exception& e) {
-    return Fail(&bus, config, e.what(), err);
-  }
-  if (spec->kind == FrameSourceSpec::Kind::kSim) {
-    std::unique_ptr<SimSource> sim_source = MakeRealTimeSimSource(config, board, rendered_camera);
-    sim = sim_source.get();
-    source = std::move(sim_source);
-  } else if (spec->kind == FrameSourceSpec::Kind::kImageFiles) {
-    source = std::make_unique<ImageFileSource>(std::vector<std::string>{spec->path});
-  }
+  SimSource* sim =
+      spec->kind == FrameSourceSpec::Kind::kSim ? static_cast<SimSource*>(source.get()) : nullptr;
 
   const CameraServiceOptions options = ServiceOptionsOf(config, *spec);
-  CameraService service(options, *source, board, intrinsics);
+  CameraService service(options, *source, files.board, files.intrinsics);
   if (!service.Start()) return Fail(&bus, config, service.last_error(), err);
 
   // The sim source renders the board where H4_SIM_BOARD_TRUTH puts it.
