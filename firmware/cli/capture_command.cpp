@@ -26,8 +26,8 @@
 #include "common/geometry/rotation.h"
 #include "firmware/cli/frame_check.h"
 #include "firmware/sources/frame_source_spec.h"
-#include "firmware/sources/image_file_source.h"
 #include "firmware/sources/libcamera_source.h"
+#include "firmware/sources/make_frame_source.h"
 #include "firmware/sources/sim_capture_poses.h"
 #include "firmware/sources/sim_source.h"
 
@@ -44,13 +44,6 @@ RigidTransform CentredBoardPose(const BoardSpec& board, double depth) {
                         Eigen::Vector3d(-centre.x(), -centre.y(), depth));
 }
 
-/// Whether the sim source shows capture's pose sequence (sim_capture_poses.h) rather than
-/// one pose: saving frames without --sim-pose, so that the intrinsics step can be rehearsed.
-bool SimShowsPoseSequence(const CaptureArgs& args, bool save_frames) {
-  const std::optional<FrameSourceSpec> spec = ParseFrameSourceSpec(args.source, nullptr);
-  return save_frames && spec && spec->kind == FrameSourceSpec::Kind::kSim && args.sim_pose.empty();
-}
-
 RigidTransform SimPose(const CaptureArgs& args, const BoardSpec& board) {
   if (args.sim_pose.empty()) return CentredBoardPose(board, 0.5);
   if (args.sim_pose.size() != 7) {
@@ -65,8 +58,8 @@ RigidTransform SimPose(const CaptureArgs& args, const BoardSpec& board) {
   return RigidTransform(R_CT, Eigen::Vector3d(v[0], v[1], v[2]));
 }
 
-std::unique_ptr<SimSource> MakeSimSource(const CaptureArgs& args, const BoardSpec& board,
-                                         const CameraIntrinsics& camera) {
+/// sim: the preset's image formation, in more or less light (--sim-exposure).
+SimSourceOptions SimOptionsOf(const CaptureArgs& args) {
   SimSourceOptions options;
   if (!RenderPresetByName(args.sim_preset, &options.render)) {
     throw std::runtime_error("--sim-preset '" + args.sim_preset + "': expected clean or processed");
@@ -77,22 +70,11 @@ std::unique_ptr<SimSource> MakeSimSource(const CaptureArgs& args, const BoardSpe
   options.render.background_level *= args.sim_exposure;
   std::string why;
   if (!options.render.IsValid(&why)) throw std::runtime_error("--sim-exposure: " + why);
-  return std::make_unique<SimSource>(board, camera, options);
+  return options;
 }
 
-std::unique_ptr<FrameSource> MakeSource(const CaptureArgs& args, const BoardSpec& board,
-                                        const CameraIntrinsics& camera) {
-  std::string why;
-  const std::optional<FrameSourceSpec> spec = ParseFrameSourceSpec(args.source, &why);
-  if (!spec) throw std::runtime_error("--" + why);
-  if (spec->kind == FrameSourceSpec::Kind::kSim) {
-    std::unique_ptr<SimSource> sim = MakeSimSource(args, board, camera);
-    sim->SetPose(SimPose(args, board));
-    return sim;
-  }
-  if (spec->kind == FrameSourceSpec::Kind::kImageFiles) {
-    return std::make_unique<ImageFileSource>(std::vector<std::string>{spec->path});
-  }
+/// libcamera: the stream of the camera file's size, exposure as asked.
+LibcameraSourceOptions LibcameraOptionsOf(const CaptureArgs& args, const CameraIntrinsics& camera) {
   LibcameraSourceOptions options;
   options.camera_id = args.camera_id;
   options.width = camera.width;
@@ -100,7 +82,7 @@ std::unique_ptr<FrameSource> MakeSource(const CaptureArgs& args, const BoardSpec
   options.auto_exposure = args.exposure_us <= 0;
   options.exposure_time = std::chrono::microseconds(static_cast<int64_t>(args.exposure_us));
   options.analogue_gain = static_cast<float>(args.analogue_gain);
-  return std::make_unique<LibcameraSource>(options);
+  return options;
 }
 
 void StartSource(FrameSource& source) {
@@ -139,15 +121,32 @@ std::vector<std::string> FileNamesIn(const fs::path& dir) {
   return names;
 }
 
+/// The source --source names. A sim source shows the board at --sim-pose; saving frames
+/// without --sim-pose, it shows capture's pose sequence instead (sim_capture_poses.h), so
+/// that the intrinsics step can be rehearsed: it is then returned in `pose_sequence_sim`
+/// too, for the caller to pose frame by frame.
 std::unique_ptr<FrameSource> MakeCaptureSource(const CaptureArgs& args, bool save_frames,
                                                const BoardSpec& board,
                                                const CameraIntrinsics& camera,
                                                SimSource** pose_sequence_sim) {
   *pose_sequence_sim = nullptr;
-  if (!SimShowsPoseSequence(args, save_frames)) return MakeSource(args, board, camera);
-  std::unique_ptr<SimSource> sim = MakeSimSource(args, board, camera);
-  *pose_sequence_sim = sim.get();
-  return sim;
+  std::string why;
+  const std::optional<FrameSourceSpec> spec = ParseFrameSourceSpec(args.source, &why);
+  if (!spec) throw std::runtime_error("--" + why);
+  FrameSourceParts parts;
+  parts.libcamera = LibcameraOptionsOf(args, camera);
+  if (spec->kind != FrameSourceSpec::Kind::kSim) return MakeFrameSource(*spec, parts);
+  parts.board = &board;
+  parts.rendered_camera = &camera;
+  parts.sim = SimOptionsOf(args);
+  std::unique_ptr<FrameSource> source = MakeFrameSource(*spec, parts);
+  auto* sim = static_cast<SimSource*>(source.get());
+  if (save_frames && args.sim_pose.empty()) {
+    *pose_sequence_sim = sim;
+  } else {
+    sim->SetPose(SimPose(args, board));
+  }
+  return source;
 }
 
 void CheckFrameSize(const Frame& frame, const CameraIntrinsics& camera,

@@ -18,8 +18,8 @@
 #include "firmware/service/sd_notify.h"
 #include "firmware/service/service_node.h"
 #include "firmware/sources/frame_source_spec.h"
-#include "firmware/sources/image_file_source.h"
 #include "firmware/sources/libcamera_source.h"
+#include "firmware/sources/make_frame_source.h"
 #include "firmware/sources/sim_source.h"
 #include "messages/bus/lcm_bus.h"
 #include "messages/channels.h"
@@ -57,16 +57,37 @@ int Fail(bus::LcmBus* bus, const ServiceConfig& config, const std::string& why, 
   return 1;
 }
 
-// The renderer as a camera, in real time, showing the board where the sim robot puts it.
-std::unique_ptr<SimSource> MakeRealTimeSimSource(const ServiceConfig& config,
-                                                 const BoardSpec& board,
-                                                 const CameraIntrinsics& rendered_camera) {
+// The renderer as a camera, in real time.
+SimSourceOptions RealTimeSimOptions(const ServiceConfig& config) {
   SimSourceOptions sim_options;
   sim_options.render = config.sim_render;
   sim_options.frame_rate_hz = 1e6 / config.frame_duration_us;
   sim_options.start_utime = NowUtime();
   sim_options.real_time = true;
-  return std::make_unique<SimSource>(board, rendered_camera, sim_options);
+  return sim_options;
+}
+
+// The files the service reads: the board, the intrinsics the measurement assumes and the
+// camera `--source sim` renders through.
+struct ServiceFiles {
+  BoardSpec board;
+  CameraIntrinsics intrinsics;
+  CameraIntrinsics rendered_camera;
+};
+
+// The files `config` names; "" when they were read, else the reason.
+std::string ReadServiceFiles(const ServiceConfig& config, ServiceFiles* files) {
+  if (config.board_path.empty()) return "no board file (--board)";
+  if (config.camera_intrinsics_path.empty()) return "no camera intrinsics file (--camera)";
+  try {
+    files->board = ReadBoardYaml(config.board_path);
+    files->intrinsics = ReadCameraYaml(config.camera_intrinsics_path);
+    files->rendered_camera =
+        config.sim_camera_path.empty() ? files->intrinsics : ReadCameraYaml(config.sim_camera_path);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
 }
 
 CameraServiceOptions ServiceOptionsOf(const ServiceConfig& config, const FrameSourceSpec& spec) {
@@ -84,22 +105,21 @@ CameraServiceOptions ServiceOptionsOf(const ServiceConfig& config, const FrameSo
 
 }  // namespace
 
-ServiceConfig ResolveRunConfig(const RunArgs& args) {
-  ServiceConfig config;
-  if (!args.config_path.empty()) config = ReadServiceConfig(args.config_path);
-  if (args.source) config.source = *args.source;
-  if (args.board_path) config.board_path = *args.board_path;
-  if (args.camera_path) config.camera_intrinsics_path = *args.camera_path;
-  if (args.lcm_url) config.lcm_url = *args.lcm_url;
-  if (args.auth_key_path) config.auth_key_file = *args.auth_key_path;
-  if (args.camera_id) config.camera_id = *args.camera_id;
-  if (args.frames) config.frames_averaged = *args.frames;
-  if (args.free_run_hz) config.free_run_hz = *args.free_run_hz;
-  if (args.sim_camera_path) config.sim_camera_path = *args.sim_camera_path;
-  if (args.sim_preset && !RenderPresetByName(*args.sim_preset, &config.sim_render)) {
-    throw std::runtime_error("--sim-preset '" + *args.sim_preset +
-                             "': expected clean or processed");
+void RunFlags::ApplyTo(ServiceConfig* config) const {
+  for (const Binding& binding : bindings_) {
+    if (binding.option->count() > 0) binding.apply(config);
   }
+}
+
+CLI::Option* RunFlags::WhenGiven(CLI::Option* option, std::function<void(ServiceConfig*)> apply) {
+  bindings_.push_back({option, std::move(apply)});
+  return option;
+}
+
+ServiceConfig ResolveRunConfig(const RunFlags& flags) {
+  ServiceConfig config;
+  if (!flags.config_path.empty()) config = ReadServiceConfig(flags.config_path);
+  flags.ApplyTo(&config);
   std::string why;
   if (!config.IsValid(&why)) throw std::runtime_error("run: " + why);
   return config;
@@ -118,41 +138,30 @@ int RunService(const ServiceConfig& config, std::ostream& err, const std::atomic
   std::string why;
   const std::optional<FrameSourceSpec> spec = ParseFrameSourceSpec(config.source, &why);
   if (!spec) return Fail(&bus, config, why, err);
+  FrameSourceParts parts;
+  parts.libcamera = LibcameraOptions(config);
   std::unique_ptr<FrameSource> source;
-  SimSource* sim = nullptr;
   if (spec->kind == FrameSourceSpec::Kind::kLibcamera) {
     // The camera first: on a machine without one, that is the error to report, whatever
     // the state of the board and intrinsics files.
-    auto camera = std::make_unique<LibcameraSource>(LibcameraOptions(config));
-    if (!camera->Open()) return Fail(&bus, config, camera->error(), err);
-    camera->Close();
-    source = std::move(camera);
+    source = MakeFrameSource(*spec, parts);
+    if (!source->Open()) return Fail(&bus, config, source->error(), err);
+    source->Close();
   }
-  if (config.board_path.empty()) return Fail(&bus, config, "no board file (--board)", err);
-  if (config.camera_intrinsics_path.empty()) {
-    return Fail(&bus, config, "no camera intrinsics file (--camera)", err);
+  ServiceFiles files;
+  why = ReadServiceFiles(config, &files);
+  if (!why.empty()) return Fail(&bus, config, why, err);
+  if (source == nullptr) {
+    parts.board = &files.board;
+    parts.rendered_camera = &files.rendered_camera;
+    parts.sim = RealTimeSimOptions(config);
+    source = MakeFrameSource(*spec, parts);
   }
-  BoardSpec board;
-  CameraIntrinsics intrinsics;
-  CameraIntrinsics rendered_camera;
-  try {
-    board = ReadBoardYaml(config.board_path);
-    intrinsics = ReadCameraYaml(config.camera_intrinsics_path);
-    rendered_camera =
-        config.sim_camera_path.empty() ? intrinsics : ReadCameraYaml(config.sim_camera_path);
-  } catch (const std::exception& e) {
-    return Fail(&bus, config, e.what(), err);
-  }
-  if (spec->kind == FrameSourceSpec::Kind::kSim) {
-    std::unique_ptr<SimSource> sim_source = MakeRealTimeSimSource(config, board, rendered_camera);
-    sim = sim_source.get();
-    source = std::move(sim_source);
-  } else if (spec->kind == FrameSourceSpec::Kind::kImageFiles) {
-    source = std::make_unique<ImageFileSource>(std::vector<std::string>{spec->path});
-  }
+  SimSource* sim =
+      spec->kind == FrameSourceSpec::Kind::kSim ? static_cast<SimSource*>(source.get()) : nullptr;
 
   const CameraServiceOptions options = ServiceOptionsOf(config, *spec);
-  CameraService service(options, *source, board, intrinsics);
+  CameraService service(options, *source, files.board, files.intrinsics);
   if (!service.Start()) return Fail(&bus, config, service.last_error(), err);
 
   // The sim source renders the board where H4_SIM_BOARD_TRUTH puts it.
@@ -175,32 +184,67 @@ int RunService(const ServiceConfig& config, std::ostream& err, const std::atomic
   return 0;
 }
 
-void DeclareRunCommand(CLI::App* command) {
-  const auto args = std::make_shared<RunArgs>();
-  command->add_option("--config", args->config_path, "Service configuration YAML")
+namespace {
+
+// A flag with no shared declaration (common/cli/shared_options.h) that sets `field`.
+template <typename T>
+CLI::Option* BindOption(CLI::App* command, RunFlags* flags, const std::string& name,
+                        T ServiceConfig::*field, const std::string& help) {
+  return flags->Bind(field, [&](T* value) { return command->add_option(name, *value, help); });
+}
+
+// --sim-preset names a whole image formation (render_options.h), not one field: it
+// replaces the file's sim: block.
+void DeclareSimPresetOption(CLI::App* command, RunFlags* flags) {
+  const auto name = std::make_shared<std::string>();
+  CLI::Option* option =
+      command->add_option("--sim-preset", *name,
+                          "Rendered frames of --source sim: processed (default: a camera module's "
+                          "sRGB output with defocus, gradient, shot noise) or clean");
+  flags->WhenGiven(option, [name](ServiceConfig* config) {
+    if (!RenderPresetByName(*name, &config->sim_render)) {
+      throw std::runtime_error("--sim-preset '" + *name + "': expected clean or processed");
+    }
+  });
+}
+
+}  // namespace
+
+void DeclareRunOptions(CLI::App* command, RunFlags* flags) {
+  command->add_option("--config", flags->config_path, "Service configuration YAML")
       ->check(CLI::ExistingFile);
-  command->add_option("--source", args->source, "Frames: libcamera (default), sim or dir:PATH");
-  h4::cli::AddBoardOption(command, &args->board_path);
-  h4::cli::AddCameraOption(command, &args->camera_path);
-  h4::cli::AddFramesOption(command, &args->frames, "Frames averaged per measurement (default 10)")
-      ->check(CLI::Range(1, kMaxFramesPerRequest));
-  command->add_option("--free-run", args->free_run_hz, "Measure continuously at this rate, Hz")
+  BindOption(command, flags, "--source", &ServiceConfig::source,
+             "Frames: libcamera (default), sim or dir:PATH");
+  flags->Bind(&ServiceConfig::board_path,
+              [command](std::string* path) { return h4::cli::AddBoardOption(command, path); });
+  flags->Bind(&ServiceConfig::camera_intrinsics_path,
+              [command](std::string* path) { return h4::cli::AddCameraOption(command, path); });
+  flags->Bind(&ServiceConfig::frames_averaged, [command](int* frames) {
+    return h4::cli::AddFramesOption(command, frames, "Frames averaged per measurement (default 10)")
+        ->check(CLI::Range(1, kMaxFramesPerRequest));
+  });
+  BindOption(command, flags, "--free-run", &ServiceConfig::free_run_hz,
+             "Measure continuously at this rate, Hz")
       ->check(CLI::Range(0.0, 100.0));
-  command->add_option("--sim-preset", args->sim_preset,
-                      "Rendered frames of --source sim: processed (default: a camera module's "
-                      "sRGB output with defocus, gradient, shot noise) or clean");
-  command
-      ->add_option("--sim-camera", args->sim_camera_path,
-                   "Camera YAML --source sim renders through (the true camera; default: "
-                   "--camera). With a --camera that differs from it, the measurement "
-                   "assumes a wrong camera file, as a real intrinsic calibration does")
+  DeclareSimPresetOption(command, flags);
+  BindOption(command, flags, "--sim-camera", &ServiceConfig::sim_camera_path,
+             "Camera YAML --source sim renders through (the true camera; default: "
+             "--camera). With a --camera that differs from it, the measurement "
+             "assumes a wrong camera file, as a real intrinsic calibration does")
       ->check(CLI::ExistingFile);
-  h4::cli::AddLcmUrlOption(command, &args->lcm_url);
-  h4::cli::AddAuthKeyOption(command, &args->auth_key_path, "lcm.auth_key_file, else off");
-  command->add_option(
-      "--camera-id", args->camera_id,
-      "libcamera camera id (also the name in the messages unless camera.name is set)");
-  h4::cli::RunWhenParsed(command, args, [](const RunArgs& parsed) {
+  flags->Bind(&ServiceConfig::lcm_url,
+              [command](std::string* url) { return h4::cli::AddLcmUrlOption(command, url); });
+  flags->Bind(&ServiceConfig::auth_key_file, [command](std::string* path) {
+    return h4::cli::AddAuthKeyOption(command, path, "lcm.auth_key_file, else off");
+  });
+  BindOption(command, flags, "--camera-id", &ServiceConfig::camera_id,
+             "libcamera camera id (also the name in the messages unless camera.name is set)");
+}
+
+void DeclareRunCommand(CLI::App* command) {
+  const auto flags = std::make_shared<RunFlags>();
+  DeclareRunOptions(command, flags.get());
+  h4::cli::RunWhenParsed(command, flags, [](const RunFlags& parsed) {
     // The service's loop polls the flag at least every 100 ms.
     const std::atomic<bool>& stop = h4::cli::InstallStopSignalHandlers();
     return RunService(ResolveRunConfig(parsed), std::cerr, stop);

@@ -1,5 +1,7 @@
 // Configuration of the camera service (`h4cam run --config /etc/h4cam/h4cam.yaml`): the
-// YAML file of firmware/packaging/h4cam.yaml, then command-line overrides. Every error
+// YAML file of firmware/packaging/h4cam.yaml, then command-line overrides. Each option is
+// a field of ServiceConfig, with its default here: the file's key and the flag
+// (firmware/cli/run_command.cpp, DeclareRunOptions) both set that field. Every error
 // names the file, the line and the field (h4::FormatError).
 #pragma once
 

@@ -1,7 +1,13 @@
-// The frame source text of --source and `source:` (firmware/sources/frame_source_spec.h).
+// The frame source text of --source and `source:` (firmware/sources/frame_source_spec.h),
+// and the source it names (firmware/sources/make_frame_source.h).
 #include "firmware/sources/frame_source_spec.h"
 
+#include <stdexcept>
+
 #include <gtest/gtest.h>
+
+#include "firmware/render/paper_scenes.h"
+#include "firmware/sources/make_frame_source.h"
 
 namespace h4::cam {
 namespace {
@@ -25,6 +31,32 @@ TEST(FrameSourceSpec, AnythingElseSaysWhatWasExpected) {
     EXPECT_FALSE(ParseFrameSourceSpec(text, &why).has_value()) << text;
     EXPECT_EQ(why, "source '" + std::string(text) + "': expected libcamera, sim or dir:PATH");
   }
+}
+
+// Each kind takes its own part: the camera id, the folder, the board and the camera the
+// renderer draws through.
+TEST(MakeFrameSource, MakesTheKindTheSpecNamesFromItsPart) {
+  std::string why;
+  FrameSourceParts parts;
+  parts.libcamera.camera_id = "cam9";
+  EXPECT_EQ(MakeFrameSource(*ParseFrameSourceSpec("libcamera", &why), parts)->Describe(),
+            "libcamera cam9");
+  EXPECT_EQ(MakeFrameSource(*ParseFrameSourceSpec("dir:/data/frames", &why), parts)->Describe(),
+            "files: /data/frames");
+
+  const BoardSpec board = scenes::PaperBoard();
+  const CameraIntrinsics camera = scenes::PaperCamera();
+  const FrameSourceSpec sim_spec = *ParseFrameSourceSpec("sim", &why);
+  EXPECT_THROW(MakeFrameSource(sim_spec, parts), std::invalid_argument);
+  parts.board = &board;
+  parts.rendered_camera = &camera;
+  const std::unique_ptr<FrameSource> sim = MakeFrameSource(sim_spec, parts);
+  ASSERT_EQ(sim->Describe(), "sim");
+  ASSERT_TRUE(sim->Open());
+  const std::optional<Frame> frame = sim->Next(std::chrono::milliseconds(100));
+  ASSERT_TRUE(frame.has_value());
+  EXPECT_EQ(frame->image.cols, camera.width);
+  EXPECT_EQ(frame->image.rows, camera.height);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include <CLI/CLI.hpp>
 #include <gtest/gtest.h>
 
 #include "common/formats/format_error.h"
@@ -101,31 +102,76 @@ TEST(ServiceConfigTest, MisspeltKeyIsRejected) {
   }
 }
 
-TEST(ServiceConfigTest, FlagsOverrideTheFile) {
-  const std::string path =
-      (std::filesystem::temp_directory_path() / "h4cam_service_config_test.yaml").string();
-  {
-    std::ofstream out(path);
-    out << "source: libcamera\nboard: a.yaml\nmeasurement:\n  frames_averaged: 10\n";
+// A configuration file holding `text` for one test, removed after it.
+class ConfigFile {
+ public:
+  explicit ConfigFile(const std::string& text)
+      : path_((std::filesystem::temp_directory_path() /
+               ("h4cam_service_config_test_" +
+                std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+                ".yaml"))
+                  .string()) {
+    std::ofstream(path_) << text;
   }
-  RunArgs args;
-  args.config_path = path;
-  args.source = "dir:/tmp/images";
-  args.frames = 4;
-  args.camera_id = "cam7";
-  args.auth_key_path = "/tmp/h4.key";
-  const ServiceConfig c = ResolveRunConfig(args);
-  std::remove(path.c_str());
-  EXPECT_EQ(c.source, "dir:/tmp/images");
-  EXPECT_EQ(c.board_path, "a.yaml");
-  EXPECT_EQ(c.frames_averaged, 4);
-  EXPECT_EQ(c.camera_id, "cam7");
-  EXPECT_EQ(c.MessageCameraId(), "cam7");
-  EXPECT_EQ(c.auth_key_file, "/tmp/h4.key");
+  ~ConfigFile() { std::remove(path_.c_str()); }
+  const std::string& path() const { return path_; }
 
-  RunArgs bad;
-  bad.source = "webcam";
-  EXPECT_THROW(ResolveRunConfig(bad), std::runtime_error);
+ private:
+  std::string path_;
+};
+
+// `h4cam run`'s command line parsed as the program parses it, then resolved.
+ServiceConfig ResolveCommandLine(const std::string& line) {
+  CLI::App command;
+  RunFlags flags;
+  DeclareRunOptions(&command, &flags);
+  command.parse(line);
+  return ResolveRunConfig(flags);
+}
+
+TEST(ServiceConfigTest, FlagsOverrideTheFileWhereverConfigStands) {
+  const ConfigFile file("source: libcamera\nboard: a.yaml\nmeasurement:\n  frames_averaged: 10\n");
+  for (const std::string& line :
+       {"--source dir:/tmp/images --frames 4 --config " + file.path() +
+            " --camera-id cam7 --auth-key /tmp/h4.key",
+        "--config " + file.path() +
+            " --source dir:/tmp/images --frames 4 --camera-id cam7 --auth-key /tmp/h4.key"}) {
+    const ServiceConfig c = ResolveCommandLine(line);
+    EXPECT_EQ(c.source, "dir:/tmp/images") << line;
+    EXPECT_EQ(c.board_path, "a.yaml") << line;
+    EXPECT_EQ(c.frames_averaged, 4) << line;
+    EXPECT_EQ(c.camera_id, "cam7") << line;
+    EXPECT_EQ(c.MessageCameraId(), "cam7") << line;
+    EXPECT_EQ(c.auth_key_file, "/tmp/h4.key") << line;
+  }
+  EXPECT_THROW(ResolveCommandLine("--source webcam"), std::runtime_error);
+}
+
+// Only the flags given override: one left out keeps the file's value, and one given with
+// the default's value still replaces the file's.
+TEST(ServiceConfigTest, FlagsNotGivenKeepTheFileValues) {
+  const ConfigFile file(
+      "source: sim\nmeasurement:\n  frames_averaged: 5\n  free_run_hz: 2\n"
+      "lcm:\n  url: memq://\n");
+  const ServiceConfig c = ResolveCommandLine("--frames 10 --config " + file.path());
+  EXPECT_EQ(c.frames_averaged, 10);
+  EXPECT_EQ(c.source, "sim");
+  EXPECT_EQ(c.free_run_hz, 2);
+  EXPECT_EQ(c.lcm_url, "memq://");
+  EXPECT_EQ(ResolveCommandLine("--free-run 0.5").free_run_hz, 0.5);
+  EXPECT_EQ(ResolveCommandLine("").frames_averaged, ServiceConfig{}.frames_averaged);
+}
+
+TEST(ServiceConfigTest, FileErrorsStandWhateverTheFlags) {
+  const ConfigFile file("camera:\n  exposure_us: 100\n");
+  try {
+    ResolveCommandLine("--camera-id cam7 --config " + file.path());
+    FAIL() << "misspelt key accepted";
+  } catch (const FormatError& e) {
+    EXPECT_EQ(e.field(), "camera.exposure_us") << e.what();
+    EXPECT_EQ(e.line(), 2) << e.what();
+  }
+  EXPECT_THROW(ResolveCommandLine("--frames 0"), CLI::ValidationError);
 }
 
 TEST(ServiceConfigTest, SimRendersTheProcessedPresetUnlessToldOtherwise) {
@@ -145,12 +191,15 @@ TEST(ServiceConfigTest, SimRendersTheProcessedPresetUnlessToldOtherwise) {
   EXPECT_EQ(c.sim_render.noise_sigma, 0.5);
   EXPECT_EQ(c.sim_render.full_well_electrons, 0.0);  // the clean preset's
 
-  RunArgs args;
-  args.source = "sim";
-  args.sim_preset = "clean";
-  EXPECT_EQ(ResolveRunConfig(args).sim_render.response, ResponseCurve::kLinear);
-  args.sim_preset = "vivid";
-  EXPECT_THROW(ResolveRunConfig(args), std::runtime_error);
+  EXPECT_EQ(ResolveCommandLine("--source sim --sim-preset clean").sim_render.response,
+            ResponseCurve::kLinear);
+  EXPECT_THROW(ResolveCommandLine("--source sim --sim-preset vivid"), std::runtime_error);
+  // --sim-preset replaces the file's sim: block, the keys it sets over the preset too.
+  const ConfigFile file("source: sim\nsim:\n  preset: clean\n  blur_sigma_px: 1.4\n");
+  const RenderOptions render =
+      ResolveCommandLine("--sim-preset processed --config " + file.path()).sim_render;
+  EXPECT_EQ(render.blur_sigma_px, RenderOptions::Processed().blur_sigma_px);
+  EXPECT_EQ(render.response, ResponseCurve::kSrgb);
 }
 
 TEST(ServiceConfigTest, SimErrorsNameTheLineAndField) {
