@@ -10,7 +10,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "firmware/sources/frame_source.h"
+#include "firmware/frames/frame_source.h"
 
 namespace h4::cam {
 

@@ -1,7 +1,7 @@
 // libapriltag behind a small RAII wrapper: detects tags in an 8-bit image and returns
 // each tag's 4 corners in OpenCV's pixel convention ((0, 0) = centre of the top-left
 // pixel). libapriltag 3.3 reports corners shifted from that convention (measured on
-// rendered images with known truth, tests/firmware/apriltag_detector_test.cpp); the shift
+// rendered images with known truth, tests/render/apriltag_detector_test.cpp); the shift
 // is removed here, at the boundary, and nowhere else.
 #pragma once
 

@@ -31,7 +31,7 @@ enum class CornerRefinement {
                   ///< have their corners up to 1.4 px inside the tag)
   kCornerSubPix,  ///< cv::cornerSubPix on the averaged image
   kEdgeFit,       ///< blurred-step fit of the tag sides (edge_refinement.h): the most
-                  ///< accurate (tests/firmware/board_detector_test.cpp); on a board with
+                  ///< accurate (tests/camera_service/board_detector_test.cpp); on a board with
                   ///< corner squares (Kalibr's) the sides are fitted between the squares, and
                   ///< a tag whose sides do not fit falls back on kXCorner
   kXCorner,       ///< cornerSubPix on each X-corner (x_corner_refinement.h), boards with

@@ -38,7 +38,7 @@ struct TagPredictionOptions {
   /// differ in at least 11 bits, so a reading within 5 of the expected code is farther from
   /// every other (the decoding radius (11 - 1) / 2). Measured on 20 px tags of a rendered
   /// 512 x 512 fisheye view: true tags read with up to 5 cells wrong, other ids' codes
-  /// with 12 or more (tests/firmware/fisheye_detection_test.cpp).
+  /// with 12 or more (tests/render/fisheye_detection_test.cpp).
   int max_code_errors = 5;
   /// Black border cells that may read white (blur across a 2 px cell, a glint).
   int max_border_errors = 2;

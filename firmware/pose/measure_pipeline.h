@@ -17,7 +17,7 @@
 #include "firmware/detection/board_detector.h"
 #include "firmware/pose/measurement.h"
 #include "firmware/pose/pose_estimator.h"
-#include "firmware/sources/frame_source.h"
+#include "firmware/frames/frame_source.h"
 
 namespace h4::cam {
 

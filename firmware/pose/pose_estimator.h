@@ -65,7 +65,7 @@ struct PoseOptions {
   /// Error per corner coordinate (px) that neither the residuals nor the edge fits' noise
   /// can show, added to the covariance as independent: the part of the edge fit's bias
   /// that moves the pose along with the corners (the edge-fitted corners of clean renders
-  /// are within 0.004-0.009 px of the truth, tests/firmware/board_detector_test.cpp). 0 =
+  /// are within 0.004-0.009 px of the truth, tests/camera_service/board_detector_test.cpp). 0 =
   /// none.
   double corner_floor_px = 0.0015;
   /// The floor grows by this gain times the square of the fitted erosion (px, at the image

@@ -20,7 +20,7 @@
 #include "common/camera/camera_intrinsics.h"
 #include "common/timing/periodic_schedule.h"
 #include "firmware/pose/measure_pipeline.h"
-#include "firmware/sources/frame_source.h"
+#include "firmware/frames/frame_source.h"
 
 namespace h4::cam {
 

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "firmware/sources/frame_source.h"
+#include "firmware/frames/frame_source.h"
 
 namespace h4::cam {
 

@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "firmware/sources/frame_source.h"
+#include "firmware/frames/frame_source.h"
 #include "firmware/sources/libcamera_frame.h"
 
 namespace libcamera {

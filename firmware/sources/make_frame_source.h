@@ -6,7 +6,7 @@
 
 #include "common/board/board_spec.h"
 #include "common/camera/camera_intrinsics.h"
-#include "firmware/sources/frame_source.h"
+#include "firmware/frames/frame_source.h"
 #include "firmware/sources/frame_source_spec.h"
 #include "firmware/sources/libcamera_source.h"
 #include "firmware/sources/sim_source.h"

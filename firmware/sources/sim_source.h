@@ -14,7 +14,7 @@
 #include "common/camera/camera_intrinsics.h"
 #include "common/geometry/rigid_transform.h"
 #include "firmware/render/board_renderer.h"
-#include "firmware/sources/frame_source.h"
+#include "firmware/frames/frame_source.h"
 
 namespace h4::cam {
 

@@ -1,8 +1,8 @@
 // Tests for common/camera/camera_model: OpenCV's radial-tangential and equidistant
 // (fisheye) models by known values, their Jacobians against finite differences, and
 // undistortion inverting them over the whole image, failing where it must. (Agreement
-// with cv::projectPoints and cv::fisheye itself is checked in tests/firmware, which links
-// OpenCV.)
+// with cv::projectPoints and cv::fisheye itself is checked in
+// tests/detection/camera_projection_test.cpp, which links OpenCV.)
 #include "common/camera/camera_model.h"
 
 #include <cmath>

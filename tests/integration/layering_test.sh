@@ -29,18 +29,36 @@ declare -A host_uses=(
   [campaign]='kinematics|formats|simulation|campaign'
 )
 declare -A test_folder_of=([formats]=host_formats)
-for library in "${!host_uses[@]}"; do
-  test_folder=tests/${test_folder_of[$library]:-$library}
-  for folder in "host/$library" "$test_folder"; do
+# The same on the camera side: firmware/CMakeLists.txt, bottom up. firmware/bench holds the
+# benchmarks' scene helpers, which the tests of rendered scenes share.
+declare -A firmware_uses=(
+  [frames]='frames'
+  [detection]='detection'
+  [render]='detection|render|bench'
+  [sources]='frames|detection|render|sources'
+  [averaging]='frames|averaging'
+  [pose]='frames|averaging|detection|pose'
+  [calibration]='detection|calibration'
+  [board_print]='detection|board_print'
+  [service]='frames|averaging|detection|render|sources|pose|service|bench'
+)
+test_folder_of+=([sources]=frame_sources [service]=camera_service)
+check_uses() {  # side (host or firmware), library, its folders' allowed includes
+  local folder hits
+  for folder in "$1/$2" "tests/${test_folder_of[$2]:-$2}"; do
     [ -d "$src/$folder" ] || continue
-    hits=$(grep -rnE '#include "host/[a-z_]+/' "$src/$folder" --include='*.h' --include='*.cpp' |
-           grep -vE "#include \"host/(${host_uses[$library]})/" || true)
+    hits=$(grep -rnE "#include \"$1/[a-z_]+/" "$src/$folder" --include='*.h' --include='*.cpp' |
+           grep -vE "#include \"$1/($3)/" || true)
     if [ -n "$hits" ]; then
-      echo "FAIL: $folder/ may include only host/{${host_uses[$library]}}:"; echo "$hits"; status=1
+      echo "FAIL: $folder/ may include only $1/{$3}:"; echo "$hits"; status=1
     fi
   done
+}
+for library in "${!host_uses[@]}"; do check_uses host "$library" "${host_uses[$library]}"; done
+for library in "${!firmware_uses[@]}"; do
+  check_uses firmware "$library" "${firmware_uses[$library]}"
 done
 # The robot bridge example is the workstation's side of the bus: never the camera's code.
 [ -d "$src/examples" ] && check examples 'firmware/|opencv2/|apriltag|libcamera/'
-[ $status -eq 0 ] && echo "PASS: common pure; firmware and host independent; host libraries one-way"
+[ $status -eq 0 ] && echo "PASS: common pure; firmware and host independent; their libraries one-way"
 exit $status

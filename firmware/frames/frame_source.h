@@ -15,9 +15,9 @@ namespace h4::cam {
 /// Y plane out of its buffer, honouring the stride, before handing the frame over).
 struct Frame {
   cv::Mat image;
-  int64_t utime = 0;        ///< sensor timestamp mapped to microseconds since the epoch
-  int64_t sequence = 0;     ///< frame counter of the source
-  std::string origin;       ///< file name for file sources, empty otherwise
+  int64_t utime = 0;     ///< sensor timestamp mapped to microseconds since the epoch
+  int64_t sequence = 0;  ///< frame counter of the source
+  std::string origin;    ///< file name for file sources, empty otherwise
 };
 
 /// Explicit lifecycle (rpicam-apps): Open, Configure, Start, Next..., Stop, Close.

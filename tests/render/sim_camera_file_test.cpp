@@ -11,10 +11,10 @@
 namespace h4::cam {
 namespace {
 
-const std::string kBoards = std::string(H4_SOURCE_DIR) + "/boards/";
+const std::string kBoardsFolder = std::string(H4_SOURCE_DIR) + "/boards/";
 
 TEST(SimCameraFileTest, MatchesThePaperCameraOfTheTests) {
-  const CameraIntrinsics file = ReadCameraYaml(kBoards + "sim_camera_1024x768.yaml");
+  const CameraIntrinsics file = ReadCameraYaml(kBoardsFolder + "sim_camera_1024x768.yaml");
   const CameraIntrinsics paper = scenes::PaperCamera();
   EXPECT_EQ(file.width, paper.width);
   EXPECT_EQ(file.height, paper.height);
@@ -24,7 +24,7 @@ TEST(SimCameraFileTest, MatchesThePaperCameraOfTheTests) {
 }
 
 TEST(SimCameraFileTest, OpenCvReadsIt) {
-  cv::FileStorage fs(kBoards + "sim_camera_1024x768.yaml", cv::FileStorage::READ);
+  cv::FileStorage fs(kBoardsFolder + "sim_camera_1024x768.yaml", cv::FileStorage::READ);
   ASSERT_TRUE(fs.isOpened());
   cv::Mat K;
   fs["camera_matrix"] >> K;
@@ -35,7 +35,7 @@ TEST(SimCameraFileTest, OpenCvReadsIt) {
 // The printed board has 7.5 mm gaps (tagSpacing 0.25), the tests' scene 9 mm (0.3): the same
 // 6 x 6 grid of 30 mm tags otherwise, so the tests' accuracy figures carry over.
 TEST(SimCameraFileTest, TheBoardFileIsThePaperBoardsGrid) {
-  const BoardSpec file = ReadBoardYaml(kBoards + "aprilgrid_6x6_30mm.yaml");
+  const BoardSpec file = ReadBoardYaml(kBoardsFolder + "aprilgrid_6x6_30mm.yaml");
   const AprilGridSpec* grid = std::get_if<AprilGridSpec>(&file);
   ASSERT_NE(grid, nullptr);
   const AprilGridSpec paper = scenes::PaperBoard();

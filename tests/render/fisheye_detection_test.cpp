@@ -25,12 +25,11 @@ namespace {
 const std::string kBoards = std::string(H4_SOURCE_DIR) + "/boards/";
 using bench::BoardFacingCamera;
 using bench::CountTags;
-using bench::Scene;
 using bench::TagCount;
 
 // Renders each scene (the "processed" preset: sRGB response, defocus, light gradient, shot
 // noise) and detects it with and without prediction. Returns the totals of both.
-void DetectScenes(const std::string& camera_file, const std::vector<Scene>& scenes,
+void DetectScenes(const std::string& camera_file, const std::vector<bench::Scene>& scenes,
                   TagCount* old_total, TagCount* new_total) {
   const AprilGridSpec grid =
       std::get<AprilGridSpec>(ReadBoardYaml(kBoards + "kalibr_aprilgrid_6x6_88mm.yaml"));
@@ -41,7 +40,7 @@ void DetectScenes(const std::string& camera_file, const std::vector<Scene>& scen
   ASSERT_TRUE(renderer.ok()) << renderer.error();
   const BoardDetector detector(grid, intrinsics);
   ASSERT_TRUE(detector.ok()) << detector.error();
-  for (const Scene& scene : scenes) {
+  for (const bench::Scene& scene : scenes) {
     const RigidTransform X_CT = BoardFacingCamera(board, scene);
     const cv::Mat image = renderer.Render(X_CT, 11);
     const BoardDetection detection = detector.Detect(image);
@@ -75,7 +74,7 @@ void DetectScenes(const std::string& camera_file, const std::vector<Scene>& scen
 }
 
 TEST(FisheyeDetectionTest, FindsTheTagsA190DegreeFisheyeBendsOutOfTheQuadSearch) {
-  const std::vector<Scene> scenes = {
+  const std::vector<bench::Scene> scenes = {
       {"near the left edge, rolled 45 deg", 62, 180, 0.9, 45, 0},
       {"near the bottom-right corner, tilted", 60, 40, 0.9, 10, 30},
       {"rolled 45 deg, off-centre", 35, 250, 0.8, 45, 20},
@@ -89,7 +88,7 @@ TEST(FisheyeDetectionTest, FindsTheTagsA190DegreeFisheyeBendsOutOfTheQuadSearch)
 }
 
 TEST(FisheyeDetectionTest, FindsTwentyPixelTagsOnA512Fisheye) {
-  const std::vector<Scene> scenes = {
+  const std::vector<bench::Scene> scenes = {
       {"20 px tags, centred", 10, 30, 0.8, 0, 0},
       {"20 px tags, rolled 45 deg, off-centre", 40, 120, 0.7, 45, 10},
       {"18 px tags, 15 deg off-axis", 15, 166, 0.83, 10, 0},
@@ -101,7 +100,7 @@ TEST(FisheyeDetectionTest, FindsTwentyPixelTagsOnA512Fisheye) {
 }
 
 TEST(FisheyeDetectionTest, FindsTheTagsOfAStronglyDistortedRadTanView) {
-  const std::vector<Scene> scenes = {
+  const std::vector<bench::Scene> scenes = {
       {"near the right edge, rolled 45 deg", 45, 0, 0.8, 45, 0},
       {"near view, tilted", 10, 90, 0.45, 0, 35},
       // The board's far edge toward 90 degrees off-axis images millions of pixels away:
