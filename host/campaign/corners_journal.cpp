@@ -47,64 +47,39 @@ std::string WithoutCutPose(std::string text, const std::string& path) {
 
 }  // namespace
 
+// A Load that throws leaves file_ to close the file (and release its lock).
 CornersJournal::CornersJournal(std::string path, JournalFileOps ops)
-    : path_(std::move(path)), ops_(std::move(ops)) {
-  fd_ = OpenLocked(path_, "--corners-out");
-  try {
-    Load();
-  } catch (...) {
-    ::close(fd_);
-    fd_ = -1;
-    throw;
-  }
-}
-
-CornersJournal::~CornersJournal() {
-  if (fd_ >= 0) ::close(fd_);  // also releases the lock
+    : file_(std::move(path), std::move(ops), "--corners-out") {
+  Load();
 }
 
 void CornersJournal::Load() {
-  const std::string text = WithoutCutPose(ReadAll(fd_, path_), path_);
+  const std::string text = WithoutCutPose(file_.ReadAll(), path());
   const std::string header = CornersCsvHeader(kCornersWithSigma);
   if (!text.empty()) {
-    const std::string first_line = text.substr(0, text.find('\n'));
-    if (!IsJournalHeader(first_line, header)) {
-      throw std::runtime_error(path_ + ": exists with other columns (line 1: '" + first_line +
-                               "'; a campaign writes '" + header +
-                               "'): choose another --corners-out or move the file away");
-    }
-    for (const CornerObservation& c : ParseCornersCsv(text, path_)) pose_ids_.insert(c.pose_id);
+    file_.CheckHeader(text, header);
+    for (const CornerObservation& c : ParseCornersCsv(text, path())) pose_ids_.insert(c.pose_id);
   }
-  committed_size_ = static_cast<off_t>(text.size());
-  if (::ftruncate(fd_, committed_size_) != 0 || ::lseek(fd_, 0, SEEK_END) < 0) {
-    throw SystemError(path_, "truncate to its last complete row");
-  }
-  if (text.empty()) {
-    const std::string line = header + "\n";
-    AppendDurably(ops_, fd_, line, 0, path_);
-    committed_size_ = static_cast<off_t>(line.size());
-    FlushDirectoryEntry(path_);
-  }
+  file_.Start(text, header);
 }
 
 void CornersJournal::Append(const std::vector<CornerObservation>& corners) {
-  if (corners.empty()) throw std::invalid_argument(path_ + ": no corners to append");
+  if (corners.empty()) throw std::invalid_argument(path() + ": no corners to append");
   const int64_t pose_id = corners.front().pose_id;
   if (Contains(pose_id)) {
-    throw std::invalid_argument(path_ + ": the corners of pose " + std::to_string(pose_id) +
+    throw std::invalid_argument(path() + ": the corners of pose " + std::to_string(pose_id) +
                                 " are already recorded");
   }
   std::string text;
   for (const CornerObservation& c : corners) {
     if (c.pose_id != pose_id) {
-      throw std::invalid_argument(path_ + ": corners of poses " + std::to_string(pose_id) +
+      throw std::invalid_argument(path() + ": corners of poses " + std::to_string(pose_id) +
                                   " and " + std::to_string(c.pose_id) + " in one append");
     }
     text += CornersCsvLine(c, kCornersWithSigma) + "\n";
   }
   // One write per pose: a kill between poses leaves whole poses only.
-  AppendDurably(ops_, fd_, text, committed_size_, path_);
-  committed_size_ += static_cast<off_t>(text.size());
+  file_.Append(text);
   pose_ids_.insert(pose_id);
 }
 

@@ -12,8 +12,6 @@
 #include <string>
 #include <vector>
 
-#include <sys/types.h>
-
 #include "common/formats/corners_csv.h"
 #include "host/campaign/journal_file.h"
 
@@ -25,11 +23,8 @@ class CornersJournal {
   /// have the campaign's columns (pose_id,tag_id,corner,u,v,sigma_px) and parse; throws
   /// FormatError or std::runtime_error naming the file otherwise, or when it is locked.
   explicit CornersJournal(std::string path, JournalFileOps ops = {});
-  ~CornersJournal();
-  CornersJournal(const CornersJournal&) = delete;
-  CornersJournal& operator=(const CornersJournal&) = delete;
 
-  const std::string& path() const { return path_; }
+  const std::string& path() const { return file_.path(); }
   bool Contains(int64_t pose_id) const { return pose_ids_.count(pose_id) != 0; }
   /// Poses whose corners were in the file when it was opened, plus those appended since.
   size_t pose_count() const { return pose_ids_.size(); }
@@ -43,10 +38,7 @@ class CornersJournal {
  private:
   void Load();
 
-  std::string path_;
-  JournalFileOps ops_;
-  int fd_ = -1;
-  off_t committed_size_ = 0;
+  JournalFile file_;
   std::set<int64_t> pose_ids_;
 };
 

@@ -13,9 +13,7 @@
 #include <string>
 #include <vector>
 
-#include <sys/types.h>
-
-#include "host/campaign/journal_file.h"  // JournalFileOps
+#include "host/campaign/journal_file.h"
 #include "host/formats/dataset_csv.h"
 
 namespace h4::host {
@@ -29,11 +27,8 @@ class DatasetJournal {
   /// process holds the file (its pid named when /proc/locks tells it).
   /// `ops`: the write and fsync calls (the system's unless a test injects faults).
   explicit DatasetJournal(std::string path, JournalFileOps ops = {});
-  ~DatasetJournal();
-  DatasetJournal(const DatasetJournal&) = delete;
-  DatasetJournal& operator=(const DatasetJournal&) = delete;
 
-  const std::string& path() const { return path_; }
+  const std::string& path() const { return file_.path(); }
   /// Rows already in the file when it was opened, plus those appended since.
   const std::vector<DatasetRow>& rows() const { return rows_; }
   bool Contains(int64_t pose_id) const { return pose_ids_.count(pose_id) != 0; }
@@ -49,10 +44,7 @@ class DatasetJournal {
   /// Reads the file back (dropping a cut last line), or writes the header of a new one.
   void Load();
 
-  std::string path_;
-  JournalFileOps ops_;
-  int fd_ = -1;
-  off_t committed_size_ = 0;  ///< [bytes] the file up to its last complete, flushed row
+  JournalFile file_;
   std::vector<DatasetRow> rows_;
   std::set<int64_t> pose_ids_;
   size_t resumed_count_ = 0;

@@ -36,8 +36,6 @@ long FlockHolder(int fd) {
   return 0;
 }
 
-}  // namespace
-
 std::runtime_error SystemError(const std::string& path, const std::string& what) {
   return std::runtime_error(path + ": cannot " + what + ": " + std::strerror(errno));
 }
@@ -67,7 +65,7 @@ int OpenLocked(const std::string& path, const std::string& option) {
   return fd;
 }
 
-std::string ReadAll(int fd, const std::string& path) {
+std::string ReadWholeFile(int fd, const std::string& path) {
   std::string text;
   char buffer[65536];
   for (off_t offset = 0;;) {
@@ -124,6 +122,45 @@ bool IsJournalHeader(std::string_view first_line, std::string_view header) {
   if (first_line.starts_with("\xEF\xBB\xBF")) first_line.remove_prefix(3);
   if (first_line.ends_with('\r')) first_line.remove_suffix(1);
   return first_line == header;
+}
+
+}  // namespace
+
+JournalFile::JournalFile(std::string path, JournalFileOps ops, std::string option)
+    : path_(std::move(path)), ops_(std::move(ops)), option_(std::move(option)) {
+  fd_ = OpenLocked(path_, option_);
+}
+
+JournalFile::~JournalFile() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+std::string JournalFile::ReadAll() const { return ReadWholeFile(fd_, path_); }
+
+void JournalFile::CheckHeader(const std::string& text, const std::string& header) const {
+  const std::string first_line = text.substr(0, text.find('\n'));
+  if (!IsJournalHeader(first_line, header)) {
+    throw std::runtime_error(path_ + ": exists with other columns (line 1: '" + first_line +
+                             "'; a campaign writes '" + header + "'): choose another " + option_ +
+                             " or move the file away");
+  }
+}
+
+void JournalFile::Start(const std::string& text, const std::string& header) {
+  committed_size_ = static_cast<off_t>(text.size());
+  if (::ftruncate(fd_, committed_size_) != 0 || ::lseek(fd_, 0, SEEK_END) < 0) {
+    throw SystemError(path_, "truncate to its last complete row");
+  }
+  if (text.empty()) {
+    Append(header + "\n");
+    // A new file's name must survive a crash too: flush its directory entry.
+    FlushDirectoryEntry(path_);
+  }
+}
+
+void JournalFile::Append(const std::string& text) {
+  AppendDurably(ops_, fd_, text, committed_size_, path_);
+  committed_size_ += static_cast<off_t>(text.size());
 }
 
 }  // namespace h4::host

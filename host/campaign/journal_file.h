@@ -5,7 +5,6 @@
 #pragma once
 
 #include <functional>
-#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -22,30 +21,41 @@ struct JournalFileOps {
   std::function<int(int fd)> fsync = ::fsync;
 };
 
-/// "<path>: cannot <what>: <strerror(errno)>".
-std::runtime_error SystemError(const std::string& path, const std::string& what);
+/// One journal file, open and locked for the life of the object: what the dataset and
+/// the corners journals share. An exclusive flock(2) is held from construction to
+/// destruction: two campaigns on one file would interleave their rows.
+class JournalFile {
+ public:
+  /// Opens `path` for reading and writing (creating it) and locks it. Throws
+  /// std::runtime_error naming the file (and the process holding it, when /proc/locks
+  /// tells); `option` is the command-line option that chose the file, for the advice.
+  JournalFile(std::string path, JournalFileOps ops, std::string option);
+  ~JournalFile();  // closes the file, which releases the lock
+  JournalFile(const JournalFile&) = delete;
+  JournalFile& operator=(const JournalFile&) = delete;
 
-/// Opens `path` for reading and writing (creating it) and takes an exclusive lock for the
-/// life of the descriptor: two campaigns on one file would interleave their rows. Throws
-/// naming the file (and the process holding it, when /proc/locks tells); `option` is the
-/// command-line option that chose the file, for the advice.
-int OpenLocked(const std::string& path, const std::string& option = "--out");
+  const std::string& path() const { return path_; }
 
-/// The whole file of `fd`; throws naming `path` when it cannot be read.
-std::string ReadAll(int fd, const std::string& path);
+  /// The whole file; throws naming it when it cannot be read.
+  std::string ReadAll() const;
+  /// Refuses a file whose first line (of `text`, what was read) is not `header`, naming the
+  /// file, both headers and the option. A UTF-8 byte order mark and a CR line end, which an
+  /// editor or a spreadsheet may add, do not count.
+  void CheckHeader(const std::string& text, const std::string& header) const;
+  /// Starts appending after `text`, the complete rows read: cuts the file back to them and,
+  /// for a new file, writes `header` durably with its directory entry.
+  void Start(const std::string& text, const std::string& header);
+  /// Writes all of `text` at the end and flushes it to the disk; on any failure the file is
+  /// cut back to its last complete row and the error thrown names the file and the
+  /// system's reason.
+  void Append(const std::string& text);
 
-/// Writes all of `text` at the end of `fd` and flushes it to the disk; on any failure the
-/// file is cut back to `committed_size` (no part of the row stays behind) and the error
-/// thrown names the file and the system's reason.
-void AppendDurably(const JournalFileOps& ops, int fd, const std::string& text, off_t committed_size,
-                   const std::string& path);
-
-/// Whether the first line of a journal file is `header`, read as the CSV readers read it: a
-/// UTF-8 byte order mark and a CR line end, which an editor or a spreadsheet may add, do not
-/// count (else a resume is refused quoting two headers that print the same).
-bool IsJournalHeader(std::string_view first_line, std::string_view header);
-
-/// fsync of the directory holding `path`: a new file's name survives a crash too.
-void FlushDirectoryEntry(const std::string& path);
+ private:
+  std::string path_;
+  JournalFileOps ops_;
+  std::string option_;
+  int fd_ = -1;
+  off_t committed_size_ = 0;  ///< [bytes] the file up to its last complete, flushed row
+};
 
 }  // namespace h4::host
