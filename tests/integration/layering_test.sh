@@ -16,47 +16,42 @@ check() {  # folder, forbidden include prefix regex
 check common 'firmware/|host/|messages/|h4msgs/|lcm/|opencv2/|apriltag|libcamera/|nlopt'
 check firmware 'host/'
 check host 'firmware/|opencv2/|apriltag|libcamera/'
-# Inside the host, each library (and its test folder, whose program links that library alone)
-# includes only the host libraries it uses: host/CMakeLists.txt, bottom up.
-declare -A host_uses=(
-  [kinematics]='kinematics'
-  [formats]='kinematics|formats'
-  [simulation]='kinematics|formats|simulation'
-  [identification]='kinematics|formats|identification'
-  [validation]='kinematics|formats|identification|simulation|validation'
-  [report]='kinematics|formats|identification|simulation|validation|report'
-  [planning]='kinematics|formats|identification|simulation|planning'
-  [campaign]='kinematics|formats|simulation|campaign'
+# Inside each side, a library (and its test folder, whose program links that library alone)
+# includes only the libraries it uses, bottom up as host/CMakeLists.txt and
+# firmware/CMakeLists.txt list them. firmware/bench holds the benchmarks' scene helpers,
+# which the tests of rendered scenes share.
+declare -A uses=(
+  [host/kinematics]='kinematics'
+  [host/formats]='kinematics|formats'
+  [host/simulation]='kinematics|formats|simulation'
+  [host/identification]='kinematics|formats|identification'
+  [host/validation]='kinematics|formats|identification|simulation|validation'
+  [host/report]='kinematics|formats|identification|simulation|validation|report'
+  [host/planning]='kinematics|formats|identification|simulation|planning'
+  [host/campaign]='kinematics|formats|simulation|campaign'
+  [firmware/frames]='frames'
+  [firmware/detection]='detection'
+  [firmware/render]='detection|render|bench'
+  [firmware/sources]='frames|detection|render|sources'
+  [firmware/averaging]='frames|averaging'
+  [firmware/pose]='frames|averaging|detection|pose'
+  [firmware/calibration]='detection|calibration'
+  [firmware/board_print]='detection|board_print'
+  [firmware/service]='frames|averaging|detection|render|sources|pose|service|bench'
 )
-declare -A test_folder_of=([formats]=host_formats)
-# The same on the camera side: firmware/CMakeLists.txt, bottom up. firmware/bench holds the
-# benchmarks' scene helpers, which the tests of rendered scenes share.
-declare -A firmware_uses=(
-  [frames]='frames'
-  [detection]='detection'
-  [render]='detection|render|bench'
-  [sources]='frames|detection|render|sources'
-  [averaging]='frames|averaging'
-  [pose]='frames|averaging|detection|pose'
-  [calibration]='detection|calibration'
-  [board_print]='detection|board_print'
-  [service]='frames|averaging|detection|render|sources|pose|service|bench'
-)
-test_folder_of+=([sources]=frame_sources [service]=camera_service)
-check_uses() {  # side (host or firmware), library, its folders' allowed includes
-  local folder hits
-  for folder in "$1/$2" "tests/${test_folder_of[$2]:-$2}"; do
+declare -A test_folder_of=([host/formats]=host_formats [firmware/sources]=frame_sources
+                           [firmware/service]=camera_service)
+for library in "${!uses[@]}"; do
+  side=${library%%/*}
+  test_folder=tests/${test_folder_of[$library]:-${library#*/}}
+  for folder in "$library" "$test_folder"; do
     [ -d "$src/$folder" ] || continue
-    hits=$(grep -rnE "#include \"$1/[a-z_]+/" "$src/$folder" --include='*.h' --include='*.cpp' |
-           grep -vE "#include \"$1/($3)/" || true)
+    hits=$(grep -rnE "#include \"$side/[a-z_]+/" "$src/$folder" --include='*.h' --include='*.cpp' |
+           grep -vE "#include \"$side/(${uses[$library]})/" || true)
     if [ -n "$hits" ]; then
-      echo "FAIL: $folder/ may include only $1/{$3}:"; echo "$hits"; status=1
+      echo "FAIL: $folder/ may include only $side/{${uses[$library]}}:"; echo "$hits"; status=1
     fi
   done
-}
-for library in "${!host_uses[@]}"; do check_uses host "$library" "${host_uses[$library]}"; done
-for library in "${!firmware_uses[@]}"; do
-  check_uses firmware "$library" "${firmware_uses[$library]}"
 done
 # The robot bridge example is the workstation's side of the bus: never the camera's code.
 [ -d "$src/examples" ] && check examples 'firmware/|opencv2/|apriltag|libcamera/'
