@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A library folder's README names each of its headers, and names none that is gone.
+"""Each library folder has a README that names each of its headers, and none that is gone.
 
 host/<library>/README.md lists the headers other folders call and the internal ones
 (issue 30: which headers of a library are its interface was said nowhere). A header added
@@ -17,7 +17,9 @@ HEADER = re.compile(r'`([\w]+\.h)`')
 
 
 def check_folder(folder):
-    """Failures of one folder holding a README.md."""
+    """Failures of one library folder: a README.md naming each header, and no other."""
+    if not os.path.isfile(os.path.join(folder, 'README.md')):
+        return [f'{folder}: a library folder without a README.md']
     with open(os.path.join(folder, 'README.md'), encoding='utf-8') as f:
         named = set(HEADER.findall(f.read()))
     present = {n for n in os.listdir(folder) if n.endswith('.h')}
@@ -26,14 +28,21 @@ def check_folder(folder):
             [f'{where}: {h} is named but not in the folder' for h in sorted(named - present)])
 
 
+# The benchmarks' folders are programs, not a library (docs/development.md describes them).
+NOT_LIBRARIES = {'bench'}
+
+
 def library_folders(root):
-    # common/README.md and common/formats/README.md are the conventions and the file formats,
-    # not a library's map.
+    """Every folder of host/ and firmware/ that holds headers: each is a library.
+
+    common/README.md and common/formats/README.md are the conventions and the file formats,
+    not a library's map.
+    """
     for top in ('host', 'firmware'):
         base = os.path.join(root, top)
         for name in sorted(os.listdir(base)) if os.path.isdir(base) else []:
             folder = os.path.join(base, name)
-            if os.path.isfile(os.path.join(folder, 'README.md')) and any(
+            if name not in NOT_LIBRARIES and os.path.isdir(folder) and any(
                     n.endswith('.h') for n in os.listdir(folder)):
                 yield folder
 
