@@ -4,6 +4,8 @@ find_package(PkgConfig REQUIRED)
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(yaml-cpp REQUIRED)
 find_package(nlohmann_json 3.10 REQUIRED)
+# fmt: all text formatting (issue 30); spdlog uses the same Debian libfmt.
+find_package(fmt REQUIRED)
 find_package(spdlog REQUIRED)
 find_package(CLI11 REQUIRED)
 pkg_check_modules(LCM REQUIRED IMPORTED_TARGET lcm)

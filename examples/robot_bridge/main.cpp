@@ -13,6 +13,7 @@
 #include <string>
 
 #include <CLI/CLI.hpp>
+#include <fmt/core.h>
 #include <h4msgs/sim_board_truth_t.hpp>
 #include <lcm/lcm-cpp.hpp>
 
@@ -57,7 +58,7 @@ int Run(const BridgeArgs& args) {
   h4::example::SimulatedH4Controller controller(args.truth_path, robot_path, args.robot);
   lcm::LCM lcm(args.lcm_url);
   if (!lcm.good()) {
-    std::fprintf(stderr, "h4_robot_bridge: cannot open LCM '%s'\n", args.lcm_url.c_str());
+    fmt::print(stderr, "h4_robot_bridge: cannot open LCM '{}'\n", args.lcm_url);
     return 1;
   }
   h4::example::RobotBridge bridge(lcm, controller, args.bridge);
@@ -66,12 +67,12 @@ int Run(const BridgeArgs& args) {
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
-  std::fprintf(stderr, "h4_robot_bridge: simulated H4 (%s), %.0f Hz\n", args.truth_path.c_str(),
-               args.bridge.rate_hz);
+  fmt::print(stderr, "h4_robot_bridge: simulated H4 ({}), {:.0f} Hz\n", args.truth_path,
+             args.bridge.rate_hz);
   bridge.Run(g_stop, [&] { PublishBoardTruth(lcm, controller, bridge); });
-  std::fprintf(stderr, "h4_robot_bridge: stopped after %lld target(s), %lld refused\n",
-               static_cast<long long>(bridge.targets_received()),
-               static_cast<long long>(bridge.targets_refused()));
+  fmt::print(stderr, "h4_robot_bridge: stopped after {} target(s), {} refused\n",
+             static_cast<long long>(bridge.targets_received()),
+             static_cast<long long>(bridge.targets_refused()));
   return 0;
 }
 
@@ -101,7 +102,7 @@ int main(int argc, char** argv) {
   try {
     return Run(args);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "h4_robot_bridge: error: %s\n", e.what());
+    fmt::print(stderr, "h4_robot_bridge: error: {}\n", e.what());
     return 1;
   }
 }

@@ -3,6 +3,7 @@
 
 #include <cstdio>
 
+#include <fmt/core.h>
 #include <h4msgs/target_status_t.hpp>
 
 #include "common/timing/clock.h"
@@ -50,8 +51,8 @@ void RobotBridge::OnTarget(const h4msgs::robot_target_t* target) {
   refused_ = !accepted;
   if (refused_) {
     ++targets_refused_;
-    std::fprintf(stderr, "robot_bridge: pose %lld refused: %s\n", static_cast<long long>(pose_id_),
-                 why.c_str());
+    fmt::print(stderr, "robot_bridge: pose {} refused: {}\n", static_cast<long long>(pose_id_),
+               why);
   }
   // The campaign then skips a refused pose at once, showing `why`, instead of waiting for
   // it to settle (docs/robot-bridge.md).

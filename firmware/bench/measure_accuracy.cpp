@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <opencv2/calib3d.hpp>
 
 #include "common/camera/camera_model.h"
@@ -95,12 +96,12 @@ bool ParseArgs(int argc, char** argv, Args* args) {
     } else if (key == "corner_floor_px") {
       args->corner_floor_px = std::atof(value.c_str());
     } else {
-      std::fprintf(stderr, "unknown argument '%s'\n", arg.c_str());
+      fmt::print(stderr, "unknown argument '{}'\n", arg);
       return false;
     }
   }
   if (args->scenes < 1 || args->scenes > 10000) {
-    std::fprintf(stderr, "scenes: expected 1..10000\n");
+    fmt::print(stderr, "scenes: expected 1..10000\n");
     return false;
   }
   return true;
@@ -212,9 +213,9 @@ Result RunCondition(const Condition& condition, const DepthRange& depth, const A
       auto error_mm = [&](bool ok, const RigidTransform& X) {
         return ok ? (X.translation() - X_CT.translation()).norm() * 1e3 : NAN;
       };
-      std::printf(
-          "  %s %s scene %zu z %.3f m: h4cam %s %.4f mm (sigma %.4f mm, rms %.4f px, erosion "
-          "%.3f px), baseline %.4f mm\n",
+      fmt::print(
+          "  {} {} scene {} z {:.3f} m: h4cam {} {:.4f} mm (sigma {:.4f} mm, rms {:.4f} px, "
+          "erosion {:.3f} px), baseline {:.4f} mm\n",
           condition.name, depth.name, i, X_CT.translation().z(), ToString(m.status),
           error_mm(m.ok(), m.X_CT), m.sigma_t * 1e3, m.rms_px, m.erosion_px,
           error_mm(plain_pose.has_value(), plain_pose.value_or(X_CT)));
@@ -227,18 +228,18 @@ Result RunCondition(const Condition& condition, const DepthRange& depth, const A
 void PrintRow(const char* condition, const char* depth, const char* method, const Tally& t,
               int scenes) {
   if (t.measured == 0) {
-    std::printf("| %s | %s | %s | 0/%d | - | - | - | - |\n", condition, depth, method, scenes);
+    fmt::print("| {} | {} | {} | 0/{} | - | - | - | - |\n", condition, depth, method, scenes);
     return;
   }
   const double rms_t_mm = std::sqrt(t.err_t2 / t.measured) * 1e3;
   const double rms_r_deg = DegreesFromRadians(std::sqrt(t.err_r2 / t.measured));
-  char ratio[64] = "-";
+  std::string ratio = "-";
   if (t.has_sigma) {
-    std::snprintf(ratio, sizeof(ratio), "%.2f / %.2f", std::sqrt(t.sig_t2 / t.err_t2),
-                  std::sqrt(t.sig_r2 / t.err_r2));
+    ratio = fmt::format("{:.2f} / {:.2f}", std::sqrt(t.sig_t2 / t.err_t2),
+                        std::sqrt(t.sig_r2 / t.err_r2));
   }
-  std::printf("| %s | %s | %s | %d/%d | %.4f | %.5f | %s | %.1f |\n", condition, depth, method,
-              t.measured, scenes, rms_t_mm, rms_r_deg, ratio, t.cpu_s / scenes * 1e3);
+  fmt::print("| {} | {} | {} | {}/{} | {:.4f} | {:.5f} | {} | {:.1f} |\n", condition, depth, method,
+             t.measured, scenes, rms_t_mm, rms_r_deg, ratio, t.cpu_s / scenes * 1e3);
 }
 
 }  // namespace
@@ -267,20 +268,19 @@ int main(int argc, char** argv) {
     if (args.depth == "every" || args.depth == d.name) depths.push_back(d);
   }
   if (conditions.empty() || depths.empty()) {
-    std::fprintf(stderr, "unknown condition '%s' or depth '%s'\n", args.condition.c_str(),
-                 args.depth.c_str());
+    fmt::print(stderr, "unknown condition '{}' or depth '{}'\n", args.condition, args.depth);
     return 1;
   }
-  std::printf(
-      "%d scenes per row, seed %llu, %d frames averaged, h4cam refinement %s, camera %s, board "
-      "%s; baseline: AprilTag corners + IPPE + LM\n\n",
-      args.scenes, static_cast<unsigned long long>(args.seed), options.frames,
-      args.refinement.c_str(), args.camera_path.empty() ? "the paper's" : args.camera_path.c_str(),
+  fmt::print(
+      "{} scenes per row, seed {}, {} frames averaged, h4cam refinement {}, camera {}, board "
+      "{}; baseline: AprilTag corners + IPPE + LM\n\n",
+      args.scenes, static_cast<unsigned long long>(args.seed), options.frames, args.refinement,
+      args.camera_path.empty() ? "the paper's" : args.camera_path.c_str(),
       args.layout == h4::AprilGridLayout::kKalibr ? "Kalibr's design" : "h4cam's earlier design");
-  std::printf(
+  fmt::print(
       "| condition | depth | method | measured | position RMS mm | rotation RMS deg | "
       "sigma/actual pos / rot | CPU ms/pose |\n");
-  std::printf("|---|---|---|---|---|---|---|---|\n");
+  fmt::print("|---|---|---|---|---|---|---|---|\n");
   for (const Condition& condition : conditions) {
     for (const DepthRange& depth : depths) {
       const Result r = RunCondition(condition, depth, args, options);

@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/core.h>
+
 #include "common/camera/camera_model.h"
 #include "firmware/averaging/frame_averager.h"
 #include "firmware/bench/bench_arguments.h"
@@ -49,8 +51,8 @@ bool ParseArgs(int argc, char** argv, Args* args) {
     } else if (key == "refinement" && (value == "edge" || value == "xcorner")) {
       args->refinement = value == "edge" ? CornerRefinement::kEdgeFit : CornerRefinement::kXCorner;
     } else {
-      std::fprintf(stderr, "unknown argument '%s' (see the comment at the top of %s)\n",
-                   arg.c_str(), __FILE__);
+      fmt::print(stderr, "unknown argument '{}' (see the comment at the top of {})\n", arg,
+                 __FILE__);
       return false;
     }
   }
@@ -132,21 +134,21 @@ int main(int argc, char** argv) {
   using namespace h4::cam;
   Args args;
   if (!ParseArgs(argc, argv, &args)) return 1;
-  std::printf(
-      "%d scenes per row, seed %llu, board %s, refinement %s\n\n", args.scenes,
+  fmt::print(
+      "{} scenes per row, seed {}, board {}, refinement {}\n\n", args.scenes,
       static_cast<unsigned long long>(args.seed),
       args.layout == h4::AprilGridLayout::kKalibr ? "Kalibr's design" : "h4cam's earlier design",
       args.refinement == CornerRefinement::kEdgeFit ? "edge" : "xcorner");
-  std::printf(
+  fmt::print(
       "| condition | corners found | edge-fitted | RMS px | RMS less erosion px | tag rotation "
       "RMS urad |\n|---|---|---|---|---|---|\n");
   for (const bench::Condition& condition : bench::AllConditions()) {
     if (args.condition != "every" && args.condition != condition.name) continue;
     const CornerTally t = RunCondition(condition, args);
     const double n = std::max(t.found, 1);
-    std::printf("| %s | %d/%d | %d | %.4f | %.4f | %.1f |\n", condition.name, t.found, t.expected,
-                t.edge_fitted, std::sqrt(t.error2 / n), std::sqrt(t.after_erosion2 / n),
-                1e6 * std::sqrt(t.tag_rotation2 / std::max(t.tags, 1)));
+    fmt::print("| {} | {}/{} | {} | {:.4f} | {:.4f} | {:.1f} |\n", condition.name, t.found,
+               t.expected, t.edge_fitted, std::sqrt(t.error2 / n), std::sqrt(t.after_erosion2 / n),
+               1e6 * std::sqrt(t.tag_rotation2 / std::max(t.tags, 1)));
     std::fflush(stdout);
   }
   return 0;

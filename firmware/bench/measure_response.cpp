@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/core.h>
+
 #include "common/geometry/rotation.h"
 #include "common/timing/clock.h"
 #include "common/units.h"
@@ -127,8 +129,8 @@ bool ReadSetup(int argc, char** argv, Setup* setup) {
   edge_fit.model_inner_edge = value("inner_edge", "inner") != "clear";
   edge_fit.band_px = number("band_px", edge_fit.band_px);
   if (!args.empty() || setup->count < 1) {
-    std::fprintf(stderr, "unknown argument '%s' or scenes < 1 (see the comment at the top of %s)\n",
-                 args.empty() ? "" : args.begin()->first.c_str(), __FILE__);
+    fmt::print(stderr, "unknown argument '{}' or scenes < 1 (see the comment at the top of {})\n",
+               args.empty() ? "" : args.begin()->first.c_str(), __FILE__);
     return false;
   }
   const std::string& covariance = setup->covariance;
@@ -145,17 +147,17 @@ bool ReadSetup(int argc, char** argv, Setup* setup) {
 
 void PrintSetup(const Setup& setup) {
   const EdgeFitOptions& edge_fit = setup.options.detector.edge_fit;
-  std::printf(
-      "board %s, erosion model %s, covariance %s, corner floor %.4f px, %d scenes per "
-      "condition, seed %llu\n"
-      "dark-side clearance %.2f px + %.2f blur sigma, inner edge %s, band %.2f px\n",
+  fmt::print(
+      "board {}, erosion model {}, covariance {}, corner floor {:.4f} px, {} scenes per "
+      "condition, seed {}\n"
+      "dark-side clearance {:.2f} px + {:.2f} blur sigma, inner edge {}, band {:.2f} px\n",
       setup.board.layout == AprilGridLayout::kKalibr ? "Kalibr's design" : "h4cam's earlier design",
-      setup.erosion.c_str(), setup.covariance.c_str(), setup.options.pose.corner_floor_px,
-      setup.count, static_cast<unsigned long long>(setup.seed), edge_fit.inner_clearance_px,
+      setup.erosion, setup.covariance, setup.options.pose.corner_floor_px, setup.count,
+      static_cast<unsigned long long>(setup.seed), edge_fit.inner_clearance_px,
       edge_fit.inner_clearance_blur, edge_fit.model_inner_edge ? "modelled" : "kept clear",
       edge_fit.band_px);
-  std::printf("%-46s %6s %9s %10s %7s %7s %10s\n", "condition", "scenes", "e_t_mm", "e_r_deg",
-              "sig/t", "sig/r", "erosion_px");
+  fmt::print("{:<46} {:>6} {:>9} {:>10} {:>7} {:>7} {:>10}\n", "condition", "scenes", "e_t_mm",
+             "e_r_deg", "sig/t", "sig/r", "erosion_px");
 }
 
 // One condition's row: each scene rendered clean, degraded, averaged and measured.
@@ -179,10 +181,10 @@ void MeasureCondition(const Condition& condition, const Setup& setup,
     MeasureScene(pipeline, mean, poses[i], &sums);
   }
   const int n = std::max(sums.used, 1);
-  std::printf("%-46s %3d/%-2d %9.5f %10.6f %7.2f %7.2f %10.4f\n", condition.name.c_str(), sums.used,
-              setup.count, std::sqrt(sums.err_t2 / n) * 1e3,
-              DegreesFromRadians(std::sqrt(sums.err_r2 / n)), std::sqrt(sums.sig_t2 / sums.err_t2),
-              std::sqrt(sums.sig_r2 / sums.err_r2), sums.erosion_px / n);
+  fmt::print("{:<46} {:3}/{:<2} {:>9.5f} {:>10.6f} {:>7.2f} {:>7.2f} {:>10.4f}\n", condition.name,
+             sums.used, setup.count, std::sqrt(sums.err_t2 / n) * 1e3,
+             DegreesFromRadians(std::sqrt(sums.err_r2 / n)), std::sqrt(sums.sig_t2 / sums.err_t2),
+             std::sqrt(sums.sig_r2 / sums.err_r2), sums.erosion_px / n);
   std::fflush(stdout);
 }
 
@@ -196,7 +198,7 @@ int main(int argc, char** argv) {
   if (!ReadSetup(argc, argv, &setup)) return 1;
   MeasurePipeline pipeline(setup.board, scenes::PaperCamera(), setup.options);
   if (!pipeline.ok()) {
-    std::fprintf(stderr, "setup failed: %s\n", pipeline.error().c_str());
+    fmt::print(stderr, "setup failed: {}\n", pipeline.error());
     return 1;
   }
   PrintSetup(setup);
@@ -210,6 +212,6 @@ int main(int argc, char** argv) {
                                          : condition.name.find(rows) != std::string::npos);
     if (wanted) MeasureCondition(condition, setup, pipeline, poses, rng);
   }
-  std::printf("total %.1f s\n", SecondsSince(start));
+  fmt::print("total {:.1f} s\n", SecondsSince(start));
   return 0;
 }

@@ -15,6 +15,7 @@
 #include <map>
 #include <string>
 
+#include <fmt/core.h>
 #include <opencv2/core.hpp>
 
 #include "common/formats/board_yaml.h"
@@ -51,13 +52,13 @@ bool ParseArgs(int argc, char** argv, Args* args) {
     } else if (key == "preset" && (value == "processed" || value == "clean")) {
       args->clean = value == "clean";
     } else {
-      std::fprintf(stderr, "unknown argument '%s' (see the comment at the top of %s)\n",
-                   arg.c_str(), __FILE__);
+      fmt::print(stderr, "unknown argument '{}' (see the comment at the top of {})\n", arg,
+                 __FILE__);
       return false;
     }
   }
   if (args->scenes < 1 || !(args->min_distance > 0 && args->min_distance <= args->max_distance)) {
-    std::fprintf(stderr, "scenes must be >= 1 and distance MIN,MAX with 0 < MIN <= MAX\n");
+    fmt::print(stderr, "scenes must be >= 1 and distance MIN,MAX with 0 < MIN <= MAX\n");
     return false;
   }
   return true;
@@ -97,14 +98,13 @@ int main(int argc, char** argv) {
                                args.clean ? RenderOptions::Clean() : RenderOptions::Processed());
   const BoardDetector detector(grid, intrinsics);
   if (!renderer.ok() || !detector.ok()) {
-    std::fprintf(stderr, "setup failed: %s%s\n", renderer.error().c_str(),
-                 detector.error().c_str());
+    fmt::print(stderr, "setup failed: {}{}\n", renderer.error(), detector.error());
     return 1;
   }
-  std::printf("%s, %d scenes, seed %llu, off-axis up to %.0f deg, %.2f-%.2f m, %s preset\n",
-              args.camera.c_str(), args.scenes, static_cast<unsigned long long>(args.seed),
-              args.max_off_axis_deg, args.min_distance, args.max_distance,
-              args.clean ? "clean" : "processed");
+  fmt::print("{}, {} scenes, seed {}, off-axis up to {:.0f} deg, {:.2f}-{:.2f} m, {} preset\n",
+             args.camera, args.scenes, static_cast<unsigned long long>(args.seed),
+             args.max_off_axis_deg, args.min_distance, args.max_distance,
+             args.clean ? "clean" : "processed");
   cv::RNG rng(args.seed);
   bench::TagCount total;
   int quad_search_found = 0, scenes_with_tags = 0, scenes_missing = 0;
@@ -123,20 +123,20 @@ int main(int argc, char** argv) {
     for (const MissedTag& miss : detection.missed) ++why_missed[miss.why];
     if (count.found < count.expected || count.misplaced > 0) {
       ++scenes_missing;
-      std::printf(
-          "  scene %d (%.1f deg off-axis, azimuth %.1f, %.3f m, roll %.1f, tilt %.1f): %d of %d "
-          "found, %d misplaced (detection: %d tags, %d rejected, %d ids seen twice)\n",
+      fmt::print(
+          "  scene {} ({:.1f} deg off-axis, azimuth {:.1f}, {:.3f} m, roll {:.1f}, tilt {:.1f}): "
+          "{} of {} found, {} misplaced (detection: {} tags, {} rejected, {} ids seen twice)\n",
           i, scene.off_axis_deg, scene.azimuth_deg, scene.distance, scene.roll_deg, scene.tilt_deg,
           count.found, count.expected, count.misplaced, detection.tags, detection.tags_rejected,
           detection.ids_seen_twice);
     }
   }
-  std::printf(
-      "tags wholly in the image: %d in %d scenes; found %d (%.2f %%), quad search alone %d "
-      "(%.2f %%); tags misplaced %d; scenes missing a tag %d\n",
+  fmt::print(
+      "tags wholly in the image: {} in {} scenes; found {} ({:.2f} %), quad search alone {} "
+      "({:.2f} %); tags misplaced {}; scenes missing a tag {}\n",
       total.expected, scenes_with_tags, total.found,
       100.0 * total.found / std::max(total.expected, 1), quad_search_found,
       100.0 * quad_search_found / std::max(total.expected, 1), total.misplaced, scenes_missing);
-  for (const auto& [why, n] : why_missed) std::printf("  missed, %s: %d\n", ToString(why), n);
+  for (const auto& [why, n] : why_missed) fmt::print("  missed, {}: {}\n", ToString(why), n);
   return 0;
 }

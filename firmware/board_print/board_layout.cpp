@@ -5,9 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include <apriltag/apriltag.h>
+#include <fmt/format.h>
 
 #include "common/board/board_model.h"
 #include "firmware/detection/tag_family.h"
@@ -25,11 +25,7 @@ constexpr double kCaptionHeight = 2 * kLineGap + 1.0 * kMm + kBarHeight + 1.5 * 
 // The caption needs this much width (text and bar) even for a small board.
 constexpr double kMinCaptionWidth = 150 * kMm;
 
-std::string Mm(double metres) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.1f mm", metres / kMm);
-  return buffer;
-}
+std::string Mm(double metres) { return fmt::format("{:.1f} mm", metres / kMm); }
 
 // Black cells of one tag, merged into runs along each row of cells.
 void AddTag(const std::vector<bool>& cells, int width, double x0, double y0, double cell,
@@ -102,8 +98,7 @@ bool BoardPrintOptions::IsValid(std::string* why) const {
 
 std::string DescribeBoard(const BoardSpec& board) {
   if (const auto* grid = std::get_if<AprilGridSpec>(&board)) {
-    char spacing[32];
-    std::snprintf(spacing, sizeof(spacing), "%g", grid->tag_spacing);
+    const std::string spacing = fmt::format("{:g}", grid->tag_spacing);
     return "aprilgrid " + std::to_string(grid->cols) + "x" + std::to_string(grid->rows) + " " +
            grid->tag_family + " (ids " + std::to_string(grid->first_id) + "-" +
            std::to_string(grid->first_id + grid->cols * grid->rows - 1) + "), tag " +

@@ -4,6 +4,8 @@
 #include <sstream>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "common/text/markup_escape.h"
 #include "firmware/board_print/board_print.h"
 
@@ -15,9 +17,7 @@ constexpr double kPointsPerMm = 72.0 / 25.4;
 
 // mm with 4 decimals (0.1 um): far below any printer's resolution, short files.
 std::string Num(double mm) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof(buffer), "%.4f", mm);
-  std::string s(buffer);
+  std::string s = fmt::format("{:.4f}", mm);
   while (!s.empty() && s.back() == '0') s.pop_back();
   if (!s.empty() && s.back() == '.') s.pop_back();
   return s == "-0" ? "0" : s;
@@ -98,9 +98,7 @@ std::string BoardPdf(const BoardLayout& layout) {
   const size_t xref = pdf.size();
   pdf += "xref\n0 " + std::to_string(objects.size() + 1) + "\n0000000000 65535 f \n";
   for (const size_t offset : offsets) {
-    char entry[32];
-    std::snprintf(entry, sizeof(entry), "%010zu 00000 n \n", offset);  // 20 bytes each
-    pdf += entry;
+    pdf += fmt::format("{:010} 00000 n \n", offset);  // 20 bytes each
   }
   pdf += "trailer\n<< /Size " + std::to_string(objects.size() + 1) +
          " /Root 1 0 R >>\nstartxref\n" + std::to_string(xref) + "\n%%EOF\n";

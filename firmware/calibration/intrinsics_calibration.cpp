@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <opencv2/calib3d.hpp>
 
 #include "common/camera/intrinsics_uncertainty.h"
@@ -214,15 +214,12 @@ std::string ParameterTable(const IntrinsicsCalibrationResult& result) {
   std::ostringstream out;
   out << "  parameter          value       1-sigma\n";
   for (const ParameterRow& row : ParameterRows(result)) {
-    char line[96];
     if (row.has_sigma) {
-      std::snprintf(line, sizeof(line), "  %-9s %14.6f %13.6f %s\n", row.name.c_str(), row.value,
-                    row.sigma, row.unit.c_str());
+      out << fmt::format("  {:<9} {:>14.6f} {:>13.6f} {}\n", row.name, row.value, row.sigma,
+                         row.unit);
     } else {
-      std::snprintf(line, sizeof(line), "  %-9s %14.6f %13s %s\n", row.name.c_str(), row.value, "-",
-                    row.unit.c_str());
+      out << fmt::format("  {:<9} {:>14.6f} {:>13} {}\n", row.name, row.value, "-", row.unit);
     }
-    out << line;
   }
   out.setf(std::ios::fixed);
   out.precision(4);

@@ -3,9 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numbers>
 #include <sstream>
+
+#include <fmt/format.h>
 
 #include "common/text/markup_escape.h"
 
@@ -26,9 +27,7 @@ std::vector<std::string> DistortionCoefficientNames(IntrinsicsModel model) {
 
 /// A number for SVG and HTML: fixed, `decimals` after the point.
 std::string Decimal(double value, int decimals = 2) {
-  char text[48];
-  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
-  return text;
+  return fmt::format("{:.{}f}", value, decimals);
 }
 
 /// One colour per view, hues spread around the wheel.

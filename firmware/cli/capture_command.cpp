@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 
 #include "common/board/board_model.h"
@@ -106,9 +107,7 @@ void ReplacePng(const fs::path& path, const cv::Mat& image) {
 }
 
 std::string Numbered(const char* stem, int index) {
-  char name[48];
-  std::snprintf(name, sizeof(name), "%s_%04d.png", stem, index);
-  return name;
+  return fmt::format("{}_{:04}.png", stem, index);
 }
 
 /// The folder's file names (none when it does not exist yet).

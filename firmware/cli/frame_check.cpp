@@ -2,11 +2,11 @@
 #include "firmware/cli/frame_check.h"
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include <fmt/format.h>
 #include <opencv2/imgproc.hpp>
 
 #include "firmware/pose/pose_estimator.h"
@@ -86,14 +86,8 @@ namespace {
 /// "36/36 tags, 144/144 corners"; a chessboard has no tags to count: "chessboard: 54/54
 /// corners" (not "0/0 tags").
 std::string FeaturesFound(const FrameFigures& f) {
-  char text[96];
-  if (f.chessboard) {
-    std::snprintf(text, sizeof(text), "chessboard: %d/%d corners", f.corners, f.corners_total);
-  } else {
-    std::snprintf(text, sizeof(text), "%d/%d tags, %d/%d corners", f.tags, f.tags_total, f.corners,
-                  f.corners_total);
-  }
-  return text;
+  if (f.chessboard) return fmt::format("chessboard: {}/{} corners", f.corners, f.corners_total);
+  return fmt::format("{}/{} tags, {}/{} corners", f.tags, f.tags_total, f.corners, f.corners_total);
 }
 
 // Each tag the detection expected wholly in the image but left out: its predicted outline in
@@ -118,16 +112,12 @@ void DrawMissedTags(const BoardDetection& detection, cv::Mat* overlay) {
 }  // namespace
 
 std::string FormatFrameFigures(const FrameFigures& f) {
-  char rms[32] = "rms -";
-  if (f.rms_px) std::snprintf(rms, sizeof(rms), "rms %.3f px", *f.rms_px);
-  char line[320];
-  std::snprintf(line, sizeof(line),
-                "%s%s, %s, %s, sharpness %.0f, mean level %.1f, saturated %.2f %%, "
-                "coverage %.1f %%",
-                f.status == BoardDetection::Status::kNoBoard ? "" : "board ", ToString(f.status),
-                FeaturesFound(f).c_str(), rms, f.sharpness, f.mean_level,
-                100.0 * f.saturated_fraction, 100.0 * f.coverage);
-  return line;
+  const std::string rms = f.rms_px ? fmt::format("rms {:.3f} px", *f.rms_px) : "rms -";
+  return fmt::format(
+      "{}{}, {}, {}, sharpness {:.0f}, mean level {:.1f}, saturated {:.2f} %, coverage {:.1f} %",
+      f.status == BoardDetection::Status::kNoBoard ? "" : "board ", ToString(f.status),
+      FeaturesFound(f), rms, f.sharpness, f.mean_level, 100.0 * f.saturated_fraction,
+      100.0 * f.coverage);
 }
 
 cv::Mat DrawFrameFigures(const cv::Mat& image, const BoardDetection& detection,

@@ -1,13 +1,13 @@
 // `h4cam render`; see render_command.h.
 #include "firmware/cli/render_command.h"
 
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 
 #include "common/board/board_model.h"
@@ -126,8 +126,7 @@ bool RunRender(const RenderArgs& args, std::ostream& out) {
   const cv::Mat clean = renderer.RenderClean(X_CT);
   cv::RNG rng(args.seed);
   for (int k = 0; k < args.frames; ++k) {
-    char name[32];
-    std::snprintf(name, sizeof(name), "frame_%04d.png", k);
+    const std::string name = fmt::format("frame_{:04}.png", k);
     const std::string path = (std::filesystem::path(args.out_dir) / name).string();
     if (!cv::imwrite(path, renderer.Expose(clean, rng))) {
       throw std::runtime_error(path + ": cannot write the image");

@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/core.h>
+
 #include "common/board/board_model.h"
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
@@ -144,8 +146,8 @@ void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed
   const bool wrong_start =
       m31.result.verdict && m31.result.verdict->code == "inconsistent_with_apriori";
   if (!m31.summary.usable || wrong_start || !(pose.position_rms_m > 0)) {
-    std::printf("| %-20s | %s | not usable: left out of the means | | | | | | | | |\n", error.name,
-                m31.result.verdict ? m31.result.verdict->code.c_str() : "-");
+    fmt::print("| {:<20} | {} | not usable: left out of the means | | | | | | | | |\n", error.name,
+               m31.result.verdict ? m31.result.verdict->code.c_str() : "-");
     return;
   }
   const double start = CpuSeconds();
@@ -167,9 +169,9 @@ void RunOne(const SimulatedRobot& truth, const CameraError& error, uint64_t seed
   ++tally.robots;
   const double pose_pred = m31.result.predicted_robot_accuracy_m.value_or(NAN);
   const double corner_pred = path.outcome.result.predicted_robot_accuracy_m.value_or(NAN);
-  std::printf(
-      "| %-20s | %s | %.4f (%+6.0f ppm) | %.4f | %.4f (%+6.0f ppm) | %.4f | %.0f ppm | %.3f px | "
-      "%.3f %% | %.1f urad | %.2f s |\n",
+  fmt::print(
+      "| {:<20} | {} | {:.4f} ({:>+6.0f} ppm) | {:.4f} | {:.4f} ({:>+6.0f} ppm) | {:.4f} | {:.0f} "
+      "ppm | {:.3f} px | {:.3f} % | {:.1f} urad | {:.2f} s |\n",
       error.name, m31.result.verdict ? m31.result.verdict->code.c_str() : "-",
       1e3 * pose.position_rms_m, pose.z_scale_ppm, 1e3 * pose_pred, 1e3 * corner.position_rms_m,
       corner.z_scale_ppm, 1e3 * corner_pred, 1e6 * sigma(0) / true_camera.K(0, 0), sigma(2),
@@ -184,16 +186,16 @@ void Run(const StudyOptions& options) {
     const CameraIntrinsics camera =
         ReadCameraYaml(std::string(H4_SOURCE_DIR) + "/boards/sim_camera_1024x768.yaml");
     const Eigen::VectorXd sigma = ChessboardCalibrationCovariance(camera).diagonal().cwiseSqrt();
-    std::printf(
+    fmt::print(
         "the stated errors and the draws carry a 25-view chessboard calibration's covariance "
         "(the "
-        "files their own): sigma fx %.0f "
-        "ppm, fy %.0f ppm, cx %.2f px, cy %.2f px, k1 %.2f %%\n",
+        "files their own): sigma fx {:.0f} "
+        "ppm, fy {:.0f} ppm, cx {:.2f} px, cy {:.2f} px, k1 {:.2f} %\n",
         1e6 * sigma[0] / camera.K(0, 0), 1e6 * sigma[1] / camera.K(1, 1), sigma[2], sigma[3],
         100 * sigma[4] / std::abs(camera.distortion[0]));
   }
-  std::printf(
-      "prior %s, corner noise %.3g px, encoder noise %.3g rad, %s (%zu poses), legacy 6x6 "
+  fmt::print(
+      "prior {}, corner noise {:.3g} px, encoder noise {:.3g} rad, {} ({} poses), legacy 6x6 "
       "board\n\n"
       "| camera file error | pose-path verdict | pose path TRUE RMS mm (Z scale) | pose path "
       "predicted mm | corner path TRUE RMS mm (Z scale) | corner path predicted mm | sigma fx | "
@@ -206,17 +208,17 @@ void Run(const StudyOptions& options) {
     const uint64_t seed = options.first_seed + static_cast<uint64_t>(r);
     const SimulatedRobot truth =
         MakeTrueRobot(PaperAprioriRobot(), TrueGeometry::kPerturbedModel31, Prior(options, seed));
-    std::printf("| **robot %llu** | | | | | | | | | | |\n", static_cast<unsigned long long>(seed));
+    fmt::print("| **robot {}** | | | | | | | | | | |\n", static_cast<unsigned long long>(seed));
     g_exact_pose_rms = 0;
     for (const CameraError& error : CameraErrors()) RunOne(truth, error, seed, options);
   }
-  std::printf(
+  fmt::print(
       "\nGeometric mean over the robots of TRUE RMS / the exact camera's pose-path RMS:\n\n"
       "| camera file error | pose path | corner path |\n|---|---|---|\n");
   for (size_t k = 0; k < CameraErrors().size(); ++k) {
     const RatioTally& t = g_tally[k];
-    std::printf("| %s | %.2f | %.2f |\n", CameraErrors()[k].name, std::exp(t.log_pose / t.robots),
-                std::exp(t.log_corner / t.robots));
+    fmt::print("| {} | {:.2f} | {:.2f} |\n", CameraErrors()[k].name,
+               std::exp(t.log_pose / t.robots), std::exp(t.log_corner / t.robots));
   }
 }
 

@@ -23,6 +23,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <fmt/core.h>
+
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/timing/clock.h"
@@ -104,9 +106,9 @@ struct Tally {
 };
 
 void PrintTrial(int robot, int seed, const CheckTrialOutcome& outcome) {
-  std::printf(
-      "robot %d seed %d: joint %d offset %+.4f mrad; unchanged chi2 %.1f %s, drifted chi2 "
-      "%.1f %s (%d dof)\n",
+  fmt::print(
+      "robot {} seed {}: joint {} offset {:+.4f} mrad; unchanged chi2 {:.1f} {}, drifted chi2 "
+      "{:.1f} {} ({} dof)\n",
       robot, seed, outcome.drifted_joint + 1, outcome.joint_offset_change * 1e3,
       outcome.unchanged.chi2, outcome.unchanged.drift ? "FLAGGED" : "passed", outcome.drifted.chi2,
       outcome.drifted.drift ? "flagged" : "MISSED", outcome.unchanged.dof);
@@ -114,15 +116,15 @@ void PrintTrial(int robot, int seed, const CheckTrialOutcome& outcome) {
 }
 
 void PrintTally(const StudyOptions& study, const Tally& tally, double seconds) {
-  std::printf("\n| trials | unchanged robot passed | %.3g-sigma drift flagged |\n",
-              study.drift_sigmas);
-  std::printf("|---|---|---|\n");
-  std::printf("| %d | %d (%.1f %%) | %d (%.1f %%) |\n", tally.trials, tally.unchanged_passed,
-              100.0 * tally.unchanged_passed / std::max(tally.trials, 1), tally.drifted_flagged,
-              100.0 * tally.drifted_flagged / std::max(tally.trials, 1));
-  std::printf(
-      "%d unusable identifications; %d robots x %d seeds, %s check poses; stated sigmas %.3g x "
-      "the rotation noise, %.3g x the translation noise, checked %s; %.0f s\n",
+  fmt::print("\n| trials | unchanged robot passed | {:.3g}-sigma drift flagged |\n",
+             study.drift_sigmas);
+  fmt::print("|---|---|---|\n");
+  fmt::print("| {} | {} ({:.1f} %) | {} ({:.1f} %) |\n", tally.trials, tally.unchanged_passed,
+             100.0 * tally.unchanged_passed / std::max(tally.trials, 1), tally.drifted_flagged,
+             100.0 * tally.drifted_flagged / std::max(tally.trials, 1));
+  fmt::print(
+      "{} unusable identifications; {} robots x {} seeds, {} check poses; stated sigmas {:.3g} x "
+      "the rotation noise, {:.3g} x the translation noise, checked {}; {:.0f} s\n",
       tally.unusable, study.robots, study.seeds, study.planned_check_poses ? "planned" : "grid",
       study.stated_fraction_r, study.stated_fraction_t,
       study.stated_camera_covariance ? "against the stated covariance alone"
@@ -156,7 +158,7 @@ void Run(const StudyOptions& study) {
       const CheckTrialOutcome outcome = RunCheckTrial(apriori, truth, trial_seed, options);
       if (!outcome.identified) {
         ++tally.unusable;
-        std::printf("robot %d seed %d: %s\n", robot, seed, outcome.message.c_str());
+        fmt::print("robot {} seed {}: {}\n", robot, seed, outcome.message);
         continue;
       }
       ++tally.trials;

@@ -28,6 +28,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "host/identification/identification.h"
 #include "host/identification/identified_robot.h"
 #include "host/kinematics/forward_kinematics.h"
@@ -178,21 +180,20 @@ void PrintRow(const std::string& truth, const std::string& model, const Tally& t
   for (const auto& [code, n] : t.verdicts) {
     verdicts += (verdicts.empty() ? "" : ", ") + code + " " + std::to_string(n);
   }
-  char coverage[64] = "n/a (no true Model 12)";
+  std::string coverage = "n/a (no true Model 12)";
   if (t.intervals > 0) {
-    std::snprintf(coverage, sizeof coverage, "%.1f %% (%d)", 100.0 * t.covered / t.intervals,
-                  t.intervals);
+    coverage = fmt::format("{:.1f} % ({})", 100.0 * t.covered / t.intervals, t.intervals);
   }
-  char map[96] = "n/a (other base frame)";
+  std::string map = "n/a (other base frame)";
   if (t.map_poses > 0) {
     const double map_predicted = std::sqrt(t.map_predicted_sq / t.map_poses);
     const double map_actual = std::sqrt(t.map_actual_sq / t.map_poses);
-    std::snprintf(map, sizeof map, "%.4f / %.4f = %.2f", map_predicted * 1e3, map_actual * 1e3,
-                  map_predicted / map_actual);
+    map = fmt::format("{:.4f} / {:.4f} = {:.2f}", map_predicted * 1e3, map_actual * 1e3,
+                      map_predicted / map_actual);
   }
-  std::printf("| %s | %s | %d | %.4f | %.4f | %.2f | %s | %s | %s |\n", truth.c_str(),
-              model.c_str(), t.campaigns, predicted * 1e3, actual * 1e3, predicted / actual,
-              coverage, map, verdicts.c_str());
+  fmt::print("| {} | {} | {} | {:.4f} | {:.4f} | {:.2f} | {} | {} | {} |\n", truth, model,
+             t.campaigns, predicted * 1e3, actual * 1e3, predicted / actual, coverage, map,
+             verdicts);
 }
 
 int Run(int campaigns, uint64_t first_seed) {
@@ -206,12 +207,12 @@ int Run(int campaigns, uint64_t first_seed) {
     Count(out12, c31, &m12_on_31);
     Count(IdentifyModel31FromModel12(PaperAprioriRobot(), out12.result, c31.data.rows, {}), c31,
           &m31_from_12);
-    std::fprintf(stderr, "\rcampaign %llu", static_cast<unsigned long long>(seed));
+    fmt::print(stderr, "\rcampaign {}", static_cast<unsigned long long>(seed));
   }
-  std::fprintf(stderr, "\n");
-  std::printf(
+  fmt::print(stderr, "\n");
+  fmt::print(
       "| truth | identified with | campaigns | predicted accuracy, RMS (mm) | actual held-out "
-      "error, RMS (mm) | predicted / actual | 95 %% intervals holding the truth (intervals) | "
+      "error, RMS (mm) | predicted / actual | 95 % intervals holding the truth (intervals) | "
       "accuracy map: predicted / actual positioning error, RMS (mm) | verdicts |\n"
       "|---|---|---|---|---|---|---|---|---|\n");
   PrintRow("Model 12", "Model 12", m12);
@@ -232,20 +233,20 @@ int main(int argc, char** argv) {
       h4::host::g_register_base_frame = false;
       --i;
     } else if (i + 1 >= argc) {
-      std::fprintf(stderr, "%s needs a value\n", flag.c_str());
+      fmt::print(stderr, "{} needs a value\n", flag);
       return 1;
     } else if (flag == "--campaigns") {
       campaigns = std::atoi(argv[i + 1]);
     } else if (flag == "--first-seed") {
       first_seed = std::strtoull(argv[i + 1], nullptr, 10);
     } else {
-      std::fprintf(stderr, "usage: %s [--campaigns N] [--first-seed S] [--map-in-model-frame]\n",
-                   argv[0]);
+      fmt::print(stderr, "usage: {} [--campaigns N] [--first-seed S] [--map-in-model-frame]\n",
+                 argv[0]);
       return 1;
     }
   }
   if (campaigns < 1) {
-    std::fprintf(stderr, "--campaigns must be at least 1\n");
+    fmt::print(stderr, "--campaigns must be at least 1\n");
     return 1;
   }
   return h4::host::Run(campaigns, first_seed);

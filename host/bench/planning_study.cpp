@@ -25,6 +25,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/core.h>
+
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/timing/clock.h"
@@ -135,7 +137,7 @@ std::vector<DatasetRow> TrueHeldOutRows(const SimulatedDataset& grid) {
 double HeldOutPositionRms(const IdentificationOutcome& outcome, const RobotDescription& apriori,
                           const std::vector<DatasetRow>& heldout) {
   if (!outcome.summary.usable) {
-    std::fprintf(stderr, "unusable identification: %s\n", outcome.summary.message.c_str());
+    fmt::print(stderr, "unusable identification: {}\n", outcome.summary.message);
     return NAN;
   }
   const AprioriModel model = AprioriModelOf(apriori, ModelKind::k31);
@@ -143,7 +145,7 @@ double HeldOutPositionRms(const IdentificationOutcome& outcome, const RobotDescr
   Eigen::VectorXd r;
   std::string why;
   if (!cost.Evaluate(outcome.parameters, &r, nullptr, &why)) {
-    std::fprintf(stderr, "held-out poses not evaluable: %s\n", why.c_str());
+    fmt::print(stderr, "held-out poses not evaluable: {}\n", why);
     return NAN;
   }
   const double sigma_t = CostOptions{}.default_sigma_t;  // the rows carry no sigma
@@ -182,7 +184,7 @@ void Run(const StudyOptions& options) {
       apriori, CameraModel(ReadCameraYaml(options.source_dir + "/boards/sim_camera_1024x768.yaml")),
       BoardModel(ReadBoardYaml(options.source_dir + "/boards/aprilgrid_6x6_30mm.yaml")),
       options.problem);
-  std::printf("%s\n", problem.candidates.Summary().c_str());
+  fmt::print("{}\n", problem.candidates.Summary());
   std::map<int, PosePlan> plans;
   for (int n : options.pose_counts) {
     DesignOptions design;
@@ -190,9 +192,9 @@ void Run(const StudyOptions& options) {
     design.restarts = options.restarts;
     const PlannedCampaign campaign = PlanCampaign(problem, design, 1, options.criterion);
     plans[n] = campaign.plan;
-    std::printf("planned %d poses: predicted %.4f mm\n", n, campaign.predicted_position_rms * 1e3);
+    fmt::print("planned {} poses: predicted {:.4f} mm\n", n, campaign.predicted_position_rms * 1e3);
   }
-  std::printf("grid 71: predicted %.4f mm\n", GridPredictedPositionRms(problem, 71, 1) * 1e3);
+  fmt::print("grid 71: predicted {:.4f} mm\n", GridPredictedPositionRms(problem, 71, 1) * 1e3);
   // errors[0]: the grid; errors[n]: planned N. Ratios planned / grid per trial.
   std::map<int, std::vector<double>> errors, ratios;
   for (int robot = 1; robot <= options.robots; ++robot) {
@@ -209,7 +211,7 @@ void Run(const StudyOptions& options) {
       const double grid_error = HeldOutPositionRms(
           IdentifyLikeTheDemo(apriori, grid.rows, options.model31_from_apriori), apriori, heldout);
       errors[0].push_back(grid_error);
-      std::printf("robot %d seed %d: grid-71 %.4f mm", robot, seed, grid_error * 1e3);
+      fmt::print("robot {} seed {}: grid-71 {:.4f} mm", robot, seed, grid_error * 1e3);
       for (int n : options.pose_counts) {
         data.valid_count = 0;
         const SimulatedDataset planned = SimulateDataset(truth, plans[n], data);
@@ -219,21 +221,21 @@ void Run(const StudyOptions& options) {
                                apriori, heldout);
         errors[n].push_back(error);
         ratios[n].push_back(error / grid_error);
-        std::printf(", planned-%d %.4f mm", n, error * 1e3);
+        fmt::print(", planned-{} {:.4f} mm", n, error * 1e3);
       }
-      std::printf("\n");
+      fmt::print("\n");
       std::fflush(stdout);
     }
   }
-  std::printf("\n| campaign | median held-out position RMS, mm | median planned / grid |\n");
-  std::printf("|---|---|---|\n");
-  std::printf("| grid, 71 calibration poses | %.4f | 1 |\n", Median(errors[0]) * 1e3);
+  fmt::print("\n| campaign | median held-out position RMS, mm | median planned / grid |\n");
+  fmt::print("|---|---|---|\n");
+  fmt::print("| grid, 71 calibration poses | {:.4f} | 1 |\n", Median(errors[0]) * 1e3);
   for (int n : options.pose_counts) {
-    std::printf("| planned, %d poses | %.4f | %.3f |\n", n, Median(errors[n]) * 1e3,
-                Median(ratios[n]));
+    fmt::print("| planned, {} poses | {:.4f} | {:.3f} |\n", n, Median(errors[n]) * 1e3,
+               Median(ratios[n]));
   }
   const double seconds = SecondsSince(start);
-  std::printf("%d robots x %d seeds, %.0f s\n", options.robots, options.seeds, seconds);
+  fmt::print("{} robots x {} seeds, {:.0f} s\n", options.robots, options.seeds, seconds);
 }
 
 }  // namespace

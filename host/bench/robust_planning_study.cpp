@@ -42,6 +42,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/core.h>
+
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "common/timing/clock.h"
@@ -282,7 +284,7 @@ void JudgeOnHeldOut(const IdentificationOutcome& outcome, const RobotDescription
   Eigen::MatrixXd J;
   std::string why;
   if (!cost.Evaluate(outcome.parameters, &r, &J, &why)) {
-    std::fprintf(stderr, "held-out poses not evaluable: %s\n", why.c_str());
+    fmt::print(stderr, "held-out poses not evaluable: {}\n", why);
     figures->usable = false;
     return;
   }
@@ -314,7 +316,7 @@ CampaignFigures IdentifyAndJudge(const std::vector<DatasetRow>& rows,
   figures.verdict31 = VerdictCode(model31.verdict);
   figures.usable = model31.summary.usable;
   if (!figures.usable) {
-    std::fprintf(stderr, "unusable identification: %s\n", model31.summary.message.c_str());
+    fmt::print(stderr, "unusable identification: {}\n", model31.summary.message);
   } else {
     JudgeOnHeldOut(model31, apriori, heldout, &figures);
   }
@@ -398,10 +400,10 @@ struct CampaignTally {
   void PrintRow(const std::string& prior, const std::string& name) const {
     const double worst =
         ratio_to_grid.empty() ? NAN : *std::max_element(ratio_to_grid.begin(), ratio_to_grid.end());
-    std::printf("| %s | %s | %.4f | %.3f | %.3f | %.2f | %.2f | %d of %d | %d |\n", prior.c_str(),
-                name.c_str(), Median(realised) * 1e3, Median(ratio_to_grid), worst,
-                GeometricMean(plan_over_realised), GeometricMean(identify_over_realised), unusable,
-                trials, model12_inconsistent);
+    fmt::print("| {} | {} | {:.4f} | {:.3f} | {:.3f} | {:.2f} | {:.2f} | {} of {} | {} |\n", prior,
+               name, Median(realised) * 1e3, Median(ratio_to_grid), worst,
+               GeometricMean(plan_over_realised), GeometricMean(identify_over_realised), unusable,
+               trials, model12_inconsistent);
   }
 };
 
@@ -417,11 +419,11 @@ PlannedDesigns PlanOnce(const PlanningProblem& problem, const RobustStudyOptions
     DesignOptions design;
     design.pose_count = n;
     designs.by_count[n] = PlanCampaign(problem, design, 1, options.criterion);
-    std::printf("planned %d poses: predicted %.4f mm over the target region\n", n,
-                designs.by_count[n].predicted_position_rms * 1e3);
+    fmt::print("planned {} poses: predicted {:.4f} mm over the target region\n", n,
+               designs.by_count[n].predicted_position_rms * 1e3);
   }
   designs.grid_predicted = GridPredictedPositionRms(problem, 71, 1);
-  std::printf("grid 71: predicted %.4f mm over the target region\n", designs.grid_predicted * 1e3);
+  fmt::print("grid 71: predicted {:.4f} mm over the target region\n", designs.grid_predicted * 1e3);
   return designs;
 }
 
@@ -444,9 +446,9 @@ double PrintBoundRow(const std::string& models, const PlanningProblem& problem, 
   bound_options.pose_count = n;
   DesignBound bound;
   const double lower = PredictedTargetRmsBound(problem, bound_options, &bound);
-  std::printf("| %s | %d | %.4f | %.4f | %.3f | %.4f | %zu | %.4f | %d%s |\n", models.c_str(), n,
-              planned * 1e3, lower * 1e3, planned / lower, grid * 1e3, bound.support.size(),
-              bound.Efficiency(), bound.iterations, bound.converged ? "" : " (not converged)");
+  fmt::print("| {} | {} | {:.4f} | {:.4f} | {:.3f} | {:.4f} | {} | {:.4f} | {}{} |\n", models, n,
+             planned * 1e3, lower * 1e3, planned / lower, grid * 1e3, bound.support.size(),
+             bound.Efficiency(), bound.iterations, bound.converged ? "" : " (not converged)");
   return lower;
 }
 
@@ -464,14 +466,14 @@ void PrintBounds(const std::string& models, const PlanningProblem& problem,
     if (lower > grid)
       fewest = std::max(fewest, static_cast<int>(std::ceil(n * std::pow(lower / grid, 2))));
   }
-  std::printf(
-      "%s: no design of fewer than %d candidates reaches the grid's 71 (%.4f mm) (%.0f s)\n",
-      models.c_str(), fewest, grid * 1e3, SecondsSince(start));
+  fmt::print(
+      "{}: no design of fewer than {} candidates reaches the grid's 71 ({:.4f} mm) ({:.0f} s)\n",
+      models, fewest, grid * 1e3, SecondsSince(start));
 }
 
 // The bounds over the planner's models and over the a priori robot alone.
 void PrintBoundTable(const PlanningProblem& problem, const RobustStudyOptions& options) {
-  std::printf(
+  fmt::print(
       "| models | N | exchange, mm | bound, mm | exchange / bound | grid 71, mm | support | "
       "efficiency | iterations |\n|---|---|---|---|---|---|---|---|---|\n");
   PrintBounds("a priori and " + std::to_string(problem.drawn.size()) + " drawn", problem, options);
@@ -493,18 +495,19 @@ void RunRobot(const std::string& prior, int robot, const PlannedDesigns& designs
   }
   const CampaignFigures grid_figures = RunCampaign(truth, grid71, setting, trial_seed, heldout);
   (*tallies)["grid 71"].Add(grid_figures, designs.grid_predicted, grid_figures.realised);
-  std::printf(
-      "%s robot %d (%zu held out): grid-71 %.4f mm (%d poses, plan %.4f, identify %.4f, %s/%s)",
-      prior.c_str(), robot, heldout.size(), grid_figures.realised * 1e3, grid_figures.poses,
-      designs.grid_predicted * 1e3, grid_figures.identify_predicted * 1e3,
-      grid_figures.verdict12.c_str(), grid_figures.verdict31.c_str());
+  fmt::print(
+      "{} robot {} ({} held out): grid-71 {:.4f} mm ({} poses, plan {:.4f}, identify {:.4f}, "
+      "{}/{})",
+      prior, robot, heldout.size(), grid_figures.realised * 1e3, grid_figures.poses,
+      designs.grid_predicted * 1e3, grid_figures.identify_predicted * 1e3, grid_figures.verdict12,
+      grid_figures.verdict31);
   for (const auto& [n, campaign] : designs.by_count) {
     const CampaignFigures f = RunCampaign(truth, campaign.plan, setting, trial_seed + 7, heldout);
     (*tallies)["planned " + std::to_string(n)].Add(f, campaign.predicted_position_rms,
                                                    grid_figures.realised);
-    std::printf("; planned-%d %.4f mm (%d poses, plan %.4f, identify %.4f, %s/%s)", n,
-                f.realised * 1e3, f.poses, campaign.predicted_position_rms * 1e3,
-                f.identify_predicted * 1e3, f.verdict12.c_str(), f.verdict31.c_str());
+    fmt::print("; planned-{} {:.4f} mm ({} poses, plan {:.4f}, identify {:.4f}, {}/{})", n,
+               f.realised * 1e3, f.poses, campaign.predicted_position_rms * 1e3,
+               f.identify_predicted * 1e3, f.verdict12, f.verdict31);
   }
   for (int n : setting.options->pose_counts) {
     const int first = static_cast<int>(designs.first_batch.size());
@@ -513,12 +516,11 @@ void RunRobot(const std::string& prior, int robot, const PlannedDesigns& designs
         RunSequential(truth, designs.first_batch, n, setting, trial_seed + 11, heldout);
     (*tallies)["sequential " + std::to_string(first) + "+" + std::to_string(n - first)].Add(
         f.figures, f.plan_predicted, grid_figures.realised);
-    std::printf("; sequential-%d %.4f mm (%d poses, plan %.4f, identify %.4f, %s/%s)", n,
-                f.figures.realised * 1e3, f.figures.poses, f.plan_predicted * 1e3,
-                f.figures.identify_predicted * 1e3, f.figures.verdict12.c_str(),
-                f.figures.verdict31.c_str());
+    fmt::print("; sequential-{} {:.4f} mm ({} poses, plan {:.4f}, identify {:.4f}, {}/{})", n,
+               f.figures.realised * 1e3, f.figures.poses, f.plan_predicted * 1e3,
+               f.figures.identify_predicted * 1e3, f.figures.verdict12, f.figures.verdict31);
   }
-  std::printf("\n");
+  fmt::print("\n");
   std::fflush(stdout);
 }
 
@@ -529,8 +531,8 @@ void RunRobustStudy(const RobustStudyOptions& options) {
       BoardModel(ReadBoardYaml(options.source_dir + "/boards/aprilgrid_6x6_30mm.yaml")), &options};
   const PlanningProblem problem =
       MakePlanningProblem(PaperAprioriRobot(), setting.camera, setting.board, options.problem);
-  std::printf("%s; %d robots drawn for the criterion\n", problem.candidates.Summary().c_str(),
-              static_cast<int>(problem.drawn.size()));
+  fmt::print("{}; {} robots drawn for the criterion\n", problem.candidates.Summary(),
+             static_cast<int>(problem.drawn.size()));
   PlannedDesigns designs = PlanOnce(problem, options);
   if (options.bound) PrintBoundTable(problem, options);
   if (options.sequential_first > 0) {
@@ -540,8 +542,8 @@ void RunRobustStudy(const RobustStudyOptions& options) {
     design.pose_count = options.sequential_first;
     const PlannedCampaign first = PlanCampaign(first_problem, design, 1, options.criterion);
     designs.first_batch = first.plan;
-    std::printf("sequential first batch, %d poses in the target region: predicted %.4f mm\n",
-                options.sequential_first, first.predicted_position_rms * 1e3);
+    fmt::print("sequential first batch, {} poses in the target region: predicted {:.4f} mm\n",
+               options.sequential_first, first.predicted_position_rms * 1e3);
   }
   std::map<std::string, std::map<std::string, CampaignTally>> tallies;
   for (const std::string& prior : options.priors) {
@@ -549,15 +551,15 @@ void RunRobustStudy(const RobustStudyOptions& options) {
       RunRobot(prior, r, designs, setting, &tallies[prior]);
     }
   }
-  std::printf(
+  fmt::print(
       "\n| prior | campaign | median held-out RMS, mm | median ratio to grid | worst ratio | "
       "plan predicted / realised (geo. mean) | identify predicted / realised (geo. mean) | "
       "unusable | Model 12 inconsistent_with_apriori |\n|---|---|---|---|---|---|---|---|---|\n");
   for (const auto& [prior, by_campaign] : tallies) {
     for (const auto& [name, tally] : by_campaign) tally.PrintRow(prior, name);
   }
-  std::printf("noise %s, %d robots per prior, %d held-out poses, %.0f s\n", options.noise.c_str(),
-              options.robots, options.heldout, SecondsSince(start));
+  fmt::print("noise {}, {} robots per prior, {} held-out poses, {:.0f} s\n", options.noise,
+             options.robots, options.heldout, SecondsSince(start));
 }
 
 }  // namespace

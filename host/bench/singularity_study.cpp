@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/core.h>
+
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
 #include "host/kinematics/forward_kinematics.h"
@@ -74,7 +76,7 @@ int Run(int robots, int draws, const std::string& source_dir) {
   const CandidateSet set = MakeCandidateSet(
       apriori, CameraModel(ReadCameraYaml(source_dir + "/boards/sim_camera_1024x768.yaml")),
       BoardModel(ReadBoardYaml(source_dir + "/boards/aprilgrid_6x6_30mm.yaml")), options);
-  std::printf("%s (no singularity rule)\n", set.Summary().c_str());
+  fmt::print("{} (no singularity rule)\n", set.Summary());
   const Model12 model(apriori.model12, apriori.assembly);
   std::vector<GainBin> bins = MakeBins();
   std::mt19937_64 rng(1);
@@ -91,12 +93,12 @@ int Run(int robots, int draws, const std::string& source_dir) {
       }
     }
   }
-  std::printf("\n| a priori gain | poses | true gain, median / max | FK fails at noisy joints |\n");
-  std::printf("|---|---|---|---|\n");
+  fmt::print("\n| a priori gain | poses | true gain, median / max | FK fails at noisy joints |\n");
+  fmt::print("|---|---|---|---|\n");
   for (const GainBin& bin : bins) {
-    std::printf("| %g-%g | %d | %.3g / %.3g | %d of %d |\n", bin.low, bin.high, bin.poses,
-                Quantile(bin.true_gains, 0.5), Quantile(bin.true_gains, 1.0), bin.fk_failures,
-                bin.fk_trials);
+    fmt::print("| {:g}-{:g} | {} | {:.3g} / {:.3g} | {} of {} |\n", bin.low, bin.high, bin.poses,
+               Quantile(bin.true_gains, 0.5), Quantile(bin.true_gains, 1.0), bin.fk_failures,
+               bin.fk_trials);
   }
   return 0;
 }
@@ -116,7 +118,7 @@ int main(int argc, char** argv) {
     } else if (flag == "--source-dir") {
       source_dir = argv[i + 1];
     } else {
-      std::fprintf(stderr, "h4_singularity_study: unknown option %s\n", flag.c_str());
+      fmt::print(stderr, "h4_singularity_study: unknown option {}\n", flag);
       return 1;
     }
   }

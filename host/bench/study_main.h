@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <exception>
 
+#include <fmt/core.h>
+
 namespace h4::host {
 
 /// Runs the study `run` with the options `parse` reads from the command line; 0 when it
@@ -16,7 +18,7 @@ int StudyMain(const char* program, int argc, char** argv, Options (*parse)(int, 
     run(parse(argc, argv));
     return 0;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: %s\n", program, e.what());
+    fmt::print(stderr, "{}: {}\n", program, e.what());
     return 1;
   }
 }

@@ -3,9 +3,9 @@
 // measured with `h4cal collect --plan`), compares each measured board pose with the result's
 // prediction from the joints and flags the poses whose error exceeds what the measurement
 // noise and the result's uncertainty allow (host/validation/drift_check.h). Exit 3 on drift.
-#include <cstdio>
 #include <stdexcept>
 
+#include <fmt/core.h>
 #include <spdlog/spdlog.h>
 
 #include "common/cli/command_line.h"
@@ -31,11 +31,11 @@ struct CheckCommandOptions {
 };
 
 void PrintPoses(const DriftCheckResult& check) {
-  std::printf("  pose_id   position mm   rotation deg      d^2  verdict\n");
+  fmt::print("  pose_id   position mm   rotation deg      d^2  verdict\n");
   for (const PoseCheck& pose : check.poses) {
-    std::printf("  %7lld %13.4f %14.4f %8.2f  %s\n", static_cast<long long>(pose.pose_id),
-                pose.position_error * 1e3, DegreesFromRadians(pose.rotation_error),
-                pose.mahalanobis2, pose.flagged ? "FLAGGED" : "ok");
+    fmt::print("  {:7} {:>13.4f} {:>14.4f} {:>8.2f}  {}\n", static_cast<long long>(pose.pose_id),
+               pose.position_error * 1e3, DegreesFromRadians(pose.rotation_error),
+               pose.mahalanobis2, pose.flagged ? "FLAGGED" : "ok");
   }
 }
 
@@ -46,10 +46,10 @@ int Run(const CheckCommandOptions& o) {
   const std::vector<DatasetRow> rows = ReadDatasetCsv(o.data_path);
   const DriftCheckResult check = CheckResultForDrift(
       result, assembly, rows, o.check, !o.no_parameter_sigmas, !o.stated_camera_covariance);
-  std::printf("check of %s against %s (Model %s), %zu poses:\n", o.data_path.c_str(),
-              o.result_path.c_str(), ToString(result.model), rows.size());
+  fmt::print("check of {} against {} (Model {}), {} poses:\n", o.data_path, o.result_path,
+             ToString(result.model), rows.size());
   if (check.evaluable) PrintPoses(check);
-  std::printf("%s\n", check.Summary().c_str());
+  fmt::print("{}\n", check.Summary());
   return check.drift ? h4::cli::kExitNothingUsable : h4::cli::kExitSuccess;
 }
 

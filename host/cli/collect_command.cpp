@@ -129,9 +129,9 @@ bool CheckPlanBeforeMoving(CollectOptions* options, const PosePlan& plan) {
       ReadRobotYaml(options->robot_path), plan, ParseJointRange(options->joint_range_deg));
   options->campaign.unreachable = unreachable;
   if (!options->dry_run) return true;
-  std::printf("collect --dry-run: %zu of %zu planned poses out of the a priori robot's reach%s\n",
-              unreachable.size(), plan.size(), unreachable.empty() ? "" : " (not sent):");
-  for (const auto& [pose_id, why] : unreachable) std::printf("  %s\n", why.c_str());
+  fmt::print("collect --dry-run: {} of {} planned poses out of the a priori robot's reach{}\n",
+             unreachable.size(), plan.size(), unreachable.empty() ? "" : " (not sent):");
+  for (const auto& [pose_id, why] : unreachable) fmt::print("  {}\n", why);
   return false;
 }
 
@@ -144,18 +144,18 @@ std::string LogUrl(const std::string& path) {
 void PrintSummary(const Campaign& campaign, const DatasetJournal& journal,
                   const CornersJournal& corners, const bus::LcmBus& bus, bool interrupted) {
   const CampaignCounters& c = campaign.counters();
-  std::printf("campaign: %zu of %d planned poses in %s (%zu from an earlier run)%s\n",
-              journal.rows().size(), campaign.planned_count(), journal.path().c_str(),
-              journal.resumed_count(), interrupted ? ", interrupted" : "");
-  std::printf("  corners of %zu poses in %s\n", corners.pose_count(), corners.path().c_str());
+  fmt::print("campaign: {} of {} planned poses in {} ({} from an earlier run){}\n",
+             journal.rows().size(), campaign.planned_count(), journal.path(),
+             journal.resumed_count(), interrupted ? ", interrupted" : "");
+  fmt::print("  corners of {} poses in {}\n", corners.pose_count(), corners.path());
   for (const SkippedPose& s : campaign.skipped()) {
-    std::printf("  skipped pose %lld: %s\n", static_cast<long long>(s.pose_id), s.reason.c_str());
+    fmt::print("  skipped pose {}: {}\n", static_cast<long long>(s.pose_id), s.reason);
   }
-  std::printf(
-      "  messages: %lld joint states, %lld board poses; not used: %lld impossible, "
-      "%lld non-physical covariance, %lld unexpected pose id, %lld duplicate, "
-      "%lld stale joint states, %lld unpaired, %lld undecodable, %lld not authentic; "
-      "%lld retries\n",
+  fmt::print(
+      "  messages: {} joint states, {} board poses; not used: {} impossible, "
+      "{} non-physical covariance, {} unexpected pose id, {} duplicate, "
+      "{} stale joint states, {} unpaired, {} undecodable, {} not authentic; "
+      "{} retries\n",
       static_cast<long long>(c.joint_states), static_cast<long long>(c.board_poses),
       static_cast<long long>(c.impossible_values),
       static_cast<long long>(c.nonphysical_covariances),
@@ -163,7 +163,7 @@ void PrintSummary(const Campaign& campaign, const DatasetJournal& journal,
       static_cast<long long>(c.stale_joint_states), static_cast<long long>(c.unpaired),
       static_cast<long long>(bus.decode_failures()), static_cast<long long>(bus.auth_failures()),
       static_cast<long long>(c.retries));
-  if (interrupted) std::printf("  run the same command again to resume\n");
+  if (interrupted) fmt::print("  run the same command again to resume\n");
 }
 
 /// The authentication of --auth-key (nullopt: off). A recorded log is old by definition:
@@ -205,10 +205,10 @@ bool IdentifyAndReport(const CollectOptions& options, const std::string& command
   const bool good12 = m12.verdict == Verdict::kGood;
   const bool good31 = m31.summary.usable && m31.verdict == Verdict::kGood;
   if (good31 || good12) {
-    std::printf("collect: the Model %s result is good: %s\n", good31 ? "31" : "12",
-                (good31 ? result31 : result12).c_str());
+    fmt::print("collect: the Model {} result is good: {}\n", good31 ? "31" : "12",
+               (good31 ? result31 : result12).c_str());
   } else {
-    std::printf("collect: no model's verdict is good (see the verdicts above)\n");
+    fmt::print("collect: no model's verdict is good (see the verdicts above)\n");
   }
   return good12 || good31;
 }
@@ -340,8 +340,8 @@ CampaignEnd RunStages(CollectOptions options, const std::atomic<bool>& stop) {
   const PosePlan second = SecondStagePlan(stages, first, first_rows);
   both.insert(both.end(), second.begin(), second.end());
   CheckPlanBeforeMoving(&options, both);
-  std::printf("stage 2 of 2: measuring %zu poses beside the %zu of stage 1\n", second.size(),
-              first_rows.size());
+  fmt::print("stage 2 of 2: measuring {} poses beside the {} of stage 1\n", second.size(),
+             first_rows.size());
   CampaignEnd end = RunCampaignOver(options, both, stop);
   end.complete = end.complete && first_end.complete;
   return end;

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <optional>
@@ -58,7 +57,7 @@ PlannedCampaign PlanStage(const CollectStagesOptions& options, const RobotDescri
 std::optional<PosePlan> ReadEarlierPlan(const std::string& path, const char* stage) {
   if (!fs::exists(path)) return std::nullopt;
   PosePlan plan = PosePlanFromRows(ReadPosesCsv(path));
-  std::printf("%s: %zu poses, planned by an earlier run (%s)\n", stage, plan.size(), path.c_str());
+  fmt::print("{}: {} poses, planned by an earlier run ({})\n", stage, plan.size(), path);
   return plan;
 }
 
@@ -99,10 +98,10 @@ IdentificationResult IdentifyFirstStage(const RobotDescription& apriori,
         rows.size(), m31.summary.message));
   }
   const IdentificationOutcome& kept = rms31 <= rms12 ? m31 : m12;
-  std::printf(
-      "stage 1 of 2: the rest is planned on the Model %s result (held-out board "
-      "position RMS: Model 12 %s, Model 31 %s)\n",
-      ToString(kept.result.model), FormatRmsMm(rms12).c_str(), FormatRmsMm(rms31).c_str());
+  fmt::print(
+      "stage 1 of 2: the rest is planned on the Model {} result (held-out board "
+      "position RMS: Model 12 {}, Model 31 {})\n",
+      ToString(kept.result.model), FormatRmsMm(rms12), FormatRmsMm(rms31));
   WriteIdentificationResult(result_path, kept.result);
   return kept.result;
 }
@@ -140,10 +139,10 @@ PosePlan FirstStagePlan(const CollectStagesOptions& options) {
       std::isfinite(planned.predicted_position_rms)
           ? fmt::format("predicted {:.4f} mm alone", planned.predicted_position_rms * 1e3)
           : "too few to predict an accuracy alone";
-  std::printf(
-      "stage 1 of 2: %zu poses planned on the a priori robot inside the target region (%s), "
-      "written to %s\n",
-      planned.plan.size(), predicted.c_str(), files.first_plan.c_str());
+  fmt::print(
+      "stage 1 of 2: {} poses planned on the a priori robot inside the target region ({}), "
+      "written to {}\n",
+      planned.plan.size(), predicted, files.first_plan);
   return planned.plan;
 }
 
@@ -153,8 +152,8 @@ PosePlan SecondStagePlan(const CollectStagesOptions& options, const PosePlan& fi
   if (std::optional<PosePlan> earlier = ReadEarlierPlan(files.second_plan, "stage 2 of 2")) {
     return *earlier;
   }
-  std::printf("stage 1 of 2 measured: identifying its %zu poses to plan the rest on\n",
-              first_stage_rows.size());
+  fmt::print("stage 1 of 2 measured: identifying its {} poses to plan the rest on\n",
+             first_stage_rows.size());
   const RobotDescription apriori = ReadRobotYaml(options.robot_path);
   const IdentificationResult first =
       IdentifyFirstStage(apriori, first_stage_rows, files.first_result);
@@ -168,11 +167,11 @@ PosePlan SecondStagePlan(const CollectStagesOptions& options, const PosePlan& fi
                 NextStageOptions(StageProblemOptions(options), identified, first_stage_rows), count,
                 last_id + 1);
   WritePosesCsv(files.second_plan, RowsFromPosePlan(planned.plan));
-  std::printf(
-      "stage 2 of 2: %zu poses planned on the robot stage 1 identified (%s), predicted %.4f mm "
-      "with the %zu measured, written to %s\n",
-      planned.plan.size(), files.first_result.c_str(), planned.predicted_position_rms * 1e3,
-      first_stage_rows.size(), files.second_plan.c_str());
+  fmt::print(
+      "stage 2 of 2: {} poses planned on the robot stage 1 identified ({}), predicted {:.4f} mm "
+      "with the {} measured, written to {}\n",
+      planned.plan.size(), files.first_result, planned.predicted_position_rms * 1e3,
+      first_stage_rows.size(), files.second_plan);
   return planned.plan;
 }
 

@@ -7,6 +7,7 @@
 #include <map>
 #include <numbers>
 
+#include <fmt/core.h>
 #include <spdlog/spdlog.h>
 
 #include "common/cli/command_line.h"
@@ -49,9 +50,9 @@ void Compare(const std::vector<FkRow>& predicted, const std::string& reference_p
     throw std::runtime_error(reference_path + ": no pose_id in common with the predicted poses");
   }
   // RMS of the 3-D error norms: position in mm, rotation angle in deg.
-  std::printf("board pose error vs %s over %d poses: position RMS %.4f mm, rotation RMS %.4f deg\n",
-              reference_path.c_str(), n, 1e3 * std::sqrt(sum_p2 / n),
-              DegreesFromRadians(std::sqrt(sum_r2 / n)));
+  fmt::print(
+      "board pose error vs {} over {} poses: position RMS {:.4f} mm, rotation RMS {:.4f} deg\n",
+      reference_path, n, 1e3 * std::sqrt(sum_p2 / n), DegreesFromRadians(std::sqrt(sum_r2 / n)));
 }
 
 int Run(const FkCommandOptions& options) {

@@ -11,6 +11,7 @@
 #include <numbers>
 #include <optional>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "common/board/board_model.h"
@@ -110,19 +111,19 @@ ResultProvenance ProvenanceOf(const IdentifyCommandOptions& options) {
 // The corner path's account: what the camera became, beside the file's values.
 void PrintCornerFit(const CornerPathOutcome& path) {
   const CornerFitOutcome& fit = path.fit;
-  std::printf("corner path: %s\n", fit.message.c_str());
+  fmt::print("corner path: {}\n", fit.message);
   if (!path.outcome.result.camera) return;
   for (const ResultCameraParameter& p : path.outcome.result.camera->parameters) {
     if (p.std) {
-      std::printf("  %-10s %14.8g (file %.8g, change %+.3g = %.1f sigma), sigma %.3g\n",
-                  p.name.c_str(), p.value, p.file_value, p.value - p.file_value,
-                  *p.std > 0 ? (p.value - p.file_value) / *p.std : 0.0, *p.std);
+      fmt::print("  {:<10} {:>14.8g} (file {:.8g}, change {:+.3g} = {:.1f} sigma), sigma {:.3g}\n",
+                 p.name, p.value, p.file_value, p.value - p.file_value,
+                 *p.std > 0 ? (p.value - p.file_value) / *p.std : 0.0, *p.std);
     } else {
-      std::printf("  %-10s %14.8g kept: %s\n", p.name.c_str(), p.value, p.fixed_reason.c_str());
+      fmt::print("  {:<10} {:>14.8g} kept: {}\n", p.name, p.value, p.fixed_reason);
     }
   }
   if (!path.dropped.empty()) {
-    std::printf("  %zu pose(s) without enough corners left out\n", path.dropped.size());
+    fmt::print("  {} pose(s) without enough corners left out\n", path.dropped.size());
   }
 }
 
@@ -203,9 +204,7 @@ IdentificationOptions IdentificationOptionsOf(const IdentifyCommandOptions& opti
   // One count however often the library copies the options (cross-validation does).
   id_options.progress = [progress, iterations = std::make_shared<int>(0)](
                             const std::string& stage, int iteration, double cost) {
-    char status[96];
-    std::snprintf(status, sizeof status, "%s it %d cost %.4g", stage.c_str(), iteration, cost);
-    progress->Update(++*iterations, status);
+    progress->Update(++*iterations, fmt::format("{} it {} cost {:.4g}", stage, iteration, cost));
     return true;
   };
   std::string why;

@@ -7,9 +7,9 @@
 // accuracy beside the paper's grid, and with --curve the predicted accuracy against N.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <stdexcept>
 
+#include <fmt/format.h>
 #include <spdlog/fmt/fmt.h>
 #include <spdlog/fmt/ranges.h>
 #include <spdlog/spdlog.h>
@@ -126,13 +126,14 @@ PlanCriterion Criterion(const PlanCommandOptions& o) {
 }
 
 void PrintPlan(const PlannedCampaign& campaign, const PlanningProblem& problem, uint64_t seed) {
-  std::printf("planned %zu poses (Model %s, %d exchanges%s):\n", campaign.plan.size(),
-              ToString(problem.info.model), campaign.design.exchanges,
-              campaign.design.converged ? "" : ", stopped before convergence");
-  std::printf("  pose_id    X mm    Y mm    Z mm  theta deg\n");
+  fmt::print("planned {} poses (Model {}, {} exchanges{}):\n", campaign.plan.size(),
+             ToString(problem.info.model), campaign.design.exchanges,
+             campaign.design.converged ? "" : ", stopped before convergence");
+  fmt::print("  pose_id    X mm    Y mm    Z mm  theta deg\n");
   for (const PlannedPose& pose : campaign.plan) {
-    std::printf("  %7lld %7.1f %7.1f %7.1f %10.1f\n", static_cast<long long>(pose.pose_id),
-                pose.x[0] * 1e3, pose.x[1] * 1e3, pose.x[2] * 1e3, DegreesFromRadians(pose.x[3]));
+    fmt::print("  {:7} {:>7.1f} {:>7.1f} {:>7.1f} {:>10.1f}\n",
+               static_cast<long long>(pose.pose_id), pose.x[0] * 1e3, pose.x[1] * 1e3,
+               pose.x[2] * 1e3, DegreesFromRadians(pose.x[3]));
   }
   // The paper holds 10 of its 81 poses out: 71 calibration poses (fewer when the a priori
   // robot does not reach the whole grid).
@@ -148,11 +149,11 @@ void PrintPlan(const PlannedCampaign& campaign, const PlanningProblem& problem, 
       problem.existing_indices.empty()
           ? ""
           : fmt::format(" and the {} measured", problem.existing_indices.size());
-  std::printf(
-      "predicted board position error (one sigma, RMS over %zu poses of the target region%s): "
-      "%.4f mm with these %zu poses%s; %.4f mm with the grid's %d calibration poses\n",
-      problem.target_indices.size(), over.c_str(), campaign.predicted_position_rms * 1e3,
-      campaign.plan.size(), with_existing.c_str(), grid_rms * 1e3, grid_calibration);
+  fmt::print(
+      "predicted board position error (one sigma, RMS over {} poses of the target region{}): "
+      "{:.4f} mm with these {} poses{}; {:.4f} mm with the grid's {} calibration poses\n",
+      problem.target_indices.size(), over, campaign.predicted_position_rms * 1e3,
+      campaign.plan.size(), with_existing, grid_rms * 1e3, grid_calibration);
 }
 
 // What no design of as many candidates can beat (host/planning/design_bound.h: the optimal
@@ -167,17 +168,17 @@ void PrintBound(const PlannedCampaign& campaign, const PlanningProblem& problem)
       problem.existing_indices.empty()
           ? ""
           : fmt::format(" with the {} measured", problem.existing_indices.size());
-  std::printf(
-      "no %d poses of these %d candidates%s can predict better than %.4f mm over the region "
-      "(convex bound, %zu candidates in the optimal design's support); this plan: %.4f mm\n",
-      options.pose_count, problem.candidate_count(), with_existing.c_str(), lower * 1e3,
+  fmt::print(
+      "no {} poses of these {} candidates{} can predict better than {:.4f} mm over the region "
+      "(convex bound, {} candidates in the optimal design's support); this plan: {:.4f} mm\n",
+      options.pose_count, problem.candidate_count(), with_existing, lower * 1e3,
       bound.support.size(), campaign.predicted_position_rms * 1e3);
 }
 
 void WriteCurve(const PlanCommandOptions& o, const PlanningProblem& problem) {
   std::string csv = "n,planned_position_rms_m,grid_position_rms_m\n";
-  std::printf("predicted board position error against the number of poses (one sigma, mm):\n");
-  std::printf("      N   planned      grid\n");
+  fmt::print("predicted board position error against the number of poses (one sigma, mm):\n");
+  fmt::print("      N   planned      grid\n");
   for (int n : o.curve_n) {
     if (n < 1 || n > problem.candidate_count()) continue;
     DesignOptions design;
@@ -186,7 +187,7 @@ void WriteCurve(const PlanCommandOptions& o, const PlanningProblem& problem) {
     const double planned = PlanCampaign(problem, design, 1, Criterion(o)).predicted_position_rms;
     const bool grid_has_n = n <= static_cast<int>(problem.grid.size());
     const double grid = grid_has_n ? GridPredictedPositionRms(problem, n, o.seed) : NAN;
-    std::printf("  %5d %9.4f %9.4f\n", n, planned * 1e3, grid * 1e3);
+    fmt::print("  {:5} {:>9.4f} {:>9.4f}\n", n, planned * 1e3, grid * 1e3);
     csv += fmt::format("{},{:.9g},{}\n", n, planned, grid_has_n ? fmt::format("{:.9g}", grid) : "");
   }
   WriteFileAtomically(o.curve_path, csv);
@@ -257,8 +258,8 @@ void Run(const PlanCommandOptions& o) {
       problem, design, o.first_id, o.for_check ? PlanCriterion::kDOptimal : Criterion(o));
   if (o.for_check) {
     WritePosesCsv(o.out_path, RowsFromPosePlan(campaign.plan));
-    std::printf(
-        "planned %zu poses for h4cal check (D-optimal; a verification campaign: they "
+    fmt::print(
+        "planned {} poses for h4cal check (D-optimal; a verification campaign: they "
         "identify nothing alone, so no accuracy is predicted)\n",
         campaign.plan.size());
     spdlog::info("wrote {} poses to {}: measure them with h4cal collect --plan, then h4cal check",

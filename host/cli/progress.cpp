@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include <fmt/core.h>
 #include <unistd.h>
 
 #include "common/timing/clock.h"
@@ -26,9 +27,9 @@ void Progress::Update(int done, const std::string& status) {
   if (tty_) {
     constexpr int kWidth = 30;
     const int filled = kWidth * percent / 100;
-    std::fprintf(stderr, "\r%s [%.*s%*s] %d/%d %5.1fs %-40.40s", what_.c_str(), filled,
-                 "##############################", kWidth - filled, "", done, total_, seconds,
-                 status.c_str());
+    fmt::print(stderr, "\r{} [{:.{}}{:>{}}] {}/{} {:>5.1f}s {:<40.40}", what_,
+               "##############################", filled, "", kWidth - filled, done, total_, seconds,
+               status);
     std::fflush(stderr);
   } else if (total_ > 0 ? (percent >= last_percent_logged_ + 10 || done == total_)
                         : (seconds >= last_log_seconds_ + 1.0)) {
@@ -36,10 +37,9 @@ void Progress::Update(int done, const std::string& status) {
     last_percent_logged_ = percent;
     last_log_seconds_ = seconds;
     if (total_ > 0) {
-      std::fprintf(stderr, "%s: %d/%d (%.1fs) %s\n", what_.c_str(), done, total_, seconds,
-                   status.c_str());
+      fmt::print(stderr, "{}: {}/{} ({:.1f}s) {}\n", what_, done, total_, seconds, status);
     } else {
-      std::fprintf(stderr, "%s: %.1fs %s\n", what_.c_str(), seconds, status.c_str());
+      fmt::print(stderr, "{}: {:.1f}s {}\n", what_, seconds, status);
     }
   }
 }
@@ -47,7 +47,7 @@ void Progress::Update(int done, const std::string& status) {
 void Progress::Finish(const std::string& message) {
   const double seconds = SecondsSince(start_);
   if (tty_) std::fputc('\n', stderr);
-  std::fprintf(stderr, "%s: %s (%.1fs)\n", what_.c_str(), message.c_str(), seconds);
+  fmt::print(stderr, "{}: {} ({:.1f}s)\n", what_, message, seconds);
   finished_ = true;
 }
 

@@ -3,9 +3,9 @@
 #include "host/kinematics/forward_kinematics.h"
 
 #include <cmath>
-#include <cstdio>
 
 #include <Eigen/Dense>
+#include <fmt/format.h>
 
 #include "common/geometry/rotation.h"
 #include "common/text/enum_names.h"
@@ -122,13 +122,11 @@ FkResult ForwardKinematics(const KinematicModel& model, const JointVector& q,
   result.x = attempt.x.allFinite() ? attempt.x : centre;
   result.residual = std::isfinite(attempt.residual) ? attempt.residual : HUGE_VAL;
   if (!result.ok()) {
-    char text[256];
-    std::snprintf(text, sizeof text,
-                  "forward kinematics %s for q = (%.6f, %.6f, %.6f, %.6f) rad: %s (residual "
-                  "%.3g m^2 after %d iterations)",
-                  ToString(result.status), q[0], q[1], q[2], q[3], attempt.reason, result.residual,
-                  result.iterations);
-    result.message = text;
+    result.message = fmt::format(
+        "forward kinematics {} for q = ({:.6f}, {:.6f}, {:.6f}, {:.6f}) rad: {} (residual "
+        "{:.3g} m^2 after {} iterations)",
+        ToString(result.status), q[0], q[1], q[2], q[3], attempt.reason, result.residual,
+        result.iterations);
   }
   return result;
 }

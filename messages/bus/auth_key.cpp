@@ -2,11 +2,11 @@
 #include "messages/bus/auth_key.h"
 
 #include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -18,9 +18,7 @@ namespace {
 }
 
 std::string OctalMode(mode_t mode) {
-  char text[8];
-  std::snprintf(text, sizeof text, "%04o", static_cast<unsigned>(mode & 07777));
-  return text;
+  return fmt::format("{:04o}", static_cast<unsigned>(mode & 07777));
 }
 
 // The checks run on the opened file (fstat), so the file read is the file checked.
