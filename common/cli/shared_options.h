@@ -86,6 +86,14 @@ CLI::Option* AddReportDirOption(CLI::App* command, Path* dir) {
   return command->add_option("--report-dir,--report", *dir, "Also write DIR/report.html");
 }
 
+/// An option bound to a field of a library's Options struct, whose initial value is the one
+/// default: --help shows it. `check` validates the value (CLI11's validators).
+template <typename Field>
+CLI::Option* AddOptionShowingDefault(CLI::App* command, const std::string& names, Field* field,
+                                     const std::string& help, const CLI::Validator& check) {
+  return command->add_option(names, *field, help)->check(check)->capture_default_str();
+}
+
 /// --frames N: frames averaged per measurement.
 template <typename Count>
 CLI::Option* AddFramesOption(CLI::App* command, Count* frames, const std::string& what,

@@ -267,20 +267,19 @@ void AddCaptureOptions(CLI::App* command, CaptureArgs* args) {
                            "camera is calibrated")
       ->required();
   command->add_flag("--draw", args->draw, "Also write the frame with its detection drawn");
-  command
-      ->add_option("--interval", args->interval_s,
-                   "Live sources: at least this long between frames taken, s (time to move "
-                   "the board)")
-      ->check(CLI::Range(0.0, 3600.0))
-      ->capture_default_str();
+  h4::cli::AddOptionShowingDefault(
+      command, "--interval", &args->interval_s,
+      "Live sources: at least this long between frames taken, s (time to move "
+      "the board)",
+      CLI::Range(0.0, 3600.0));
   command->add_option("--camera-id", args->camera_id, "libcamera camera id (default the first)");
   command
       ->add_option("--exposure-us", args->exposure_us,
                    "libcamera: fixed exposure time, us (default 0: automatic)")
       ->check(CLI::Range(0.0, 1e6));
-  command->add_option("--gain", args->analogue_gain, "libcamera: analogue gain (fixed exposure)")
-      ->check(CLI::Range(1.0, 64.0))
-      ->capture_default_str();
+  h4::cli::AddOptionShowingDefault(command, "--gain", &args->analogue_gain,
+                                   "libcamera: analogue gain (fixed exposure)",
+                                   CLI::Range(1.0, 64.0));
   command
       ->add_option("--sim-pose", args->sim_pose,
                    "sim: X_CT as x,y,z,qw,qx,qy,qz (m); default: capture shows the board at a "
@@ -288,14 +287,13 @@ void AddCaptureOptions(CLI::App* command, CaptureArgs* args) {
                    "preview centred 0.5 m ahead")
       ->delimiter(',')
       ->expected(7);
-  command->add_option("--sim-preset", args->sim_preset, "sim: clean or processed")
-      ->check(CLI::IsMember({"clean", "processed"}))
-      ->capture_default_str();
-  command
-      ->add_option("--sim-exposure", args->sim_exposure,
-                   "sim: scale of the light (1: the preset's; above ~1.2 the white clips)")
-      ->check(CLI::Range(0.05, 20.0))
-      ->capture_default_str();
+  h4::cli::AddOptionShowingDefault(command, "--sim-preset", &args->sim_preset,
+                                   "sim: clean or processed",
+                                   CLI::IsMember({"clean", "processed"}));
+  h4::cli::AddOptionShowingDefault(
+      command, "--sim-exposure", &args->sim_exposure,
+      "sim: scale of the light (1: the preset's; above ~1.2 the white clips)",
+      CLI::Range(0.05, 20.0));
 }
 
 int CaptureExitCode(const CaptureSummary& summary, const std::atomic<bool>& stopped) {
@@ -319,9 +317,8 @@ void DeclareCaptureOrPreviewCommand(CLI::App* command, const CaptureCommandText&
   const auto args = std::make_shared<CaptureArgs>();
   args->count = text.save_frames ? CaptureArgs{}.count : 0;
   AddCaptureOptions(command, args.get());
-  command->add_option("--count", args->count, text.count_help)
-      ->check(CLI::Range(text.save_frames ? 1 : 0, 100000))
-      ->capture_default_str();
+  h4::cli::AddOptionShowingDefault(command, "--count", &args->count, text.count_help,
+                                   CLI::Range(text.save_frames ? 1 : 0, 100000));
   CLI::Option* out_dir =
       h4::cli::AddOutDirOption(command, &args->out_dir, text.out_dir_help, "--out");
   if (text.save_frames) out_dir->required();

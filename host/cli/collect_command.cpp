@@ -421,26 +421,17 @@ void AddCampaignOptions(CLI::App* command, CampaignOptions* campaign) {
                            "Frames averaged per measurement (0: the camera's default)")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
-  command
-      ->add_option("--settle-timeout", campaign->settle_timeout_s,
-                   "Seconds to wait for the robot to settle at a pose")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  command
-      ->add_option("--capture-timeout", campaign->capture_timeout_s,
-                   "Seconds to wait for a measurement")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  command
-      ->add_option("--retries", campaign->retries,
-                   "Extra attempts per pose (timeouts, moved, partial) before skipping it")
-      ->check(CLI::Range(0, 100))
-      ->capture_default_str();
-  command
-      ->add_option("--pair-tolerance", campaign->pair_tolerance_s,
-                   "Max seconds between a measurement and its joint reading")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  h4::cli::AddOptionShowingDefault(command, "--settle-timeout", &campaign->settle_timeout_s,
+                                   "Seconds to wait for the robot to settle at a pose",
+                                   CLI::PositiveNumber);
+  h4::cli::AddOptionShowingDefault(command, "--capture-timeout", &campaign->capture_timeout_s,
+                                   "Seconds to wait for a measurement", CLI::PositiveNumber);
+  h4::cli::AddOptionShowingDefault(
+      command, "--retries", &campaign->retries,
+      "Extra attempts per pose (timeouts, moved, partial) before skipping it", CLI::Range(0, 100));
+  h4::cli::AddOptionShowingDefault(command, "--pair-tolerance", &campaign->pair_tolerance_s,
+                                   "Max seconds between a measurement and its joint reading",
+                                   CLI::PositiveNumber);
 }
 
 // A sequential campaign's stages, and what they are planned for.

@@ -336,19 +336,17 @@ void DeclareIdentifyCommand(CLI::App* command) {
   h4::cli::AddRobotOption(command, &options->robot_path)->required();
   h4::cli::AddDataOption(command, &options->data_path)->required();
   h4::cli::AddModelOption(command, &options->model, "Kinematic model");
-  command
-      ->add_option("--validation", options->validation,
-                   "Poses held out of the fit (the paper's fixed split) when the dataset has no "
-                   "'set' column; 0: every pose in the fit, held-out figures by cross-validation")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  h4::cli::AddOptionShowingDefault(
+      command, "--validation", &options->validation,
+      "Poses held out of the fit (the paper's fixed split) when the dataset has no "
+      "'set' column; 0: every pose in the fit, held-out figures by cross-validation",
+      CLI::NonNegativeNumber);
   h4::cli::AddSeedOption(command, &options->seed, "Seed of that split and of the folds");
-  command
-      ->add_option("--folds", options->folds,
-                   "k of the k-fold cross-validation giving the held-out figures and judging "
-                   "outliers (each pose predicted by a fit without it); 0: off")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  h4::cli::AddOptionShowingDefault(
+      command, "--folds", &options->folds,
+      "k of the k-fold cross-validation giving the held-out figures and judging "
+      "outliers (each pose predicted by a fit without it); 0: off",
+      CLI::NonNegativeNumber);
   h4::cli::AddInputFileOption(command, "--from", &options->from_path,
                               "Model 12 result to start Model 31 from; parameters Model 31 must "
                               "fix take its values (paper IV.C)");
@@ -381,11 +379,10 @@ void DeclareIdentifyCommand(CLI::App* command) {
                            "--corners, its intrinsics are refined");
   command->add_flag("--camera-fixed", options->camera_fixed,
                     "Corner path: keep every intrinsic at the camera file's value");
-  command
-      ->add_option("--corner-sigma", options->default_sigma_px,
-                   "Corner path: per-axis corner sigma (px) of corners without a sigma_px column")
-      ->check(CLI::Range(1e-6, 100.0))
-      ->capture_default_str();
+  h4::cli::AddOptionShowingDefault(
+      command, "--corner-sigma", &options->default_sigma_px,
+      "Corner path: per-axis corner sigma (px) of corners without a sigma_px column",
+      CLI::Range(1e-6, 100.0));
   command->add_option("--camera-out", options->camera_out_path,
                       "Corner path: write the refined camera as a camera YAML");
   h4::cli::AddOutOption(command, &options->out_path, "Result JSON");

@@ -296,12 +296,11 @@ void AddCandidateOptions(CLI::App* command, PlanCommandOptions* options) {
   command->add_option("--max-depth", options->max_depth, "Farthest board depth in focus, m")
       ->capture_default_str();
   command->add_option("--step", options->step, "Candidate grid step, m")->capture_default_str();
-  command
-      ->add_option("--max-theta-gain", options->max_theta_gain,
-                   "Largest |d theta / dq| of a candidate (rad/rad): keeps away from the theta "
-                   "singularity, where the identification cannot be evaluated")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  h4::cli::AddOptionShowingDefault(
+      command, "--max-theta-gain", &options->max_theta_gain,
+      "Largest |d theta / dq| of a candidate (rad/rad): keeps away from the theta "
+      "singularity, where the identification cannot be evaluated",
+      CLI::PositiveNumber);
 }
 
 // The options of the target region, the drawn robots, the camera noise and a sequential
@@ -325,30 +324,25 @@ void AddTargetAndRobustOptions(CLI::App* command, PlanCommandOptions* options) {
       ->delimiter(',')
       ->expected(2)
       ->capture_default_str();
-  command
-      ->add_option("--robust-robots", options->robust_robots,
-                   "Robots drawn from the a priori uncertainty the accuracy is averaged over "
-                   "(0: the a priori alone)")
-      ->check(CLI::Range(0, 100))
-      ->capture_default_str();
-  command
-      ->add_option("--setup-sigma-mm", options->setup_sigma_mm,
-                   "How far the camera may be from robot.yaml's X_BC, one sigma per axis, mm "
-                   "(the drawn robots' cameras; candidates one of them misses are left out)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  command
-      ->add_option("--setup-sigma-deg", options->setup_sigma_deg,
-                   "The same for the camera's orientation, deg")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  command
-      ->add_option("--corner-sigma-px", options->corner_sigma_px,
-                   "Corner noise of the camera, px: each pose's noise from the board pose "
-                   "solved from its corners, as the camera reports it (0: 0.2 mm, 0.03 deg "
-                   "for every pose, as a dataset without sigma columns)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  h4::cli::AddOptionShowingDefault(
+      command, "--robust-robots", &options->robust_robots,
+      "Robots drawn from the a priori uncertainty the accuracy is averaged over "
+      "(0: the a priori alone)",
+      CLI::Range(0, 100));
+  h4::cli::AddOptionShowingDefault(
+      command, "--setup-sigma-mm", &options->setup_sigma_mm,
+      "How far the camera may be from robot.yaml's X_BC, one sigma per axis, mm "
+      "(the drawn robots' cameras; candidates one of them misses are left out)",
+      CLI::NonNegativeNumber);
+  h4::cli::AddOptionShowingDefault(command, "--setup-sigma-deg", &options->setup_sigma_deg,
+                                   "The same for the camera's orientation, deg",
+                                   CLI::NonNegativeNumber);
+  h4::cli::AddOptionShowingDefault(
+      command, "--corner-sigma-px", &options->corner_sigma_px,
+      "Corner noise of the camera, px: each pose's noise from the board pose "
+      "solved from its corners, as the camera reports it (0: 0.2 mm, 0.03 deg "
+      "for every pose, as a dataset without sigma columns)",
+      CLI::NonNegativeNumber);
   command->add_flag("--first-stage", options->first_stage,
                     "Sequential campaign, first stage: candidates inside the target region only "
                     "(a camera set up centimetres away still sees them); then identify, and "
@@ -388,9 +382,8 @@ void DeclarePlanCommand(CLI::App* command) {
   h4::cli::AddBoardOption(command, &options->board_path)->required();
   h4::cli::AddOutOption(command, &options->out_path, "Output poses CSV");
   // --poses is ik's poses CSV; here it was the count, still accepted.
-  command->add_option("--count,--poses", options->pose_count, "Number of poses N")
-      ->check(CLI::Range(1, 10000))
-      ->capture_default_str();
+  h4::cli::AddOptionShowingDefault(command, "--count,--poses", &options->pose_count,
+                                   "Number of poses N", CLI::Range(1, 10000));
   h4::cli::AddModelOption(command, &options->model, "Model the poses are planned for");
   h4::cli::AddChoiceOption(command, "--criterion", &options->criterion, kPlanCriterionNames,
                            "d: D-optimal (information); accuracy: the predicted accuracy over "

@@ -126,19 +126,15 @@ void DeclareSimRobotCommand(CLI::App* command) {
       ->add_option("--robot-seed", args->robot_seed,
                    "With --paper: seed of the true camera and board placement")
       ->capture_default_str();
-  command
-      ->add_option("--joint-speed", args->controller.joint_speed,
-                   "Speed of the joint with the farthest to go, rad/s (all arrive together)")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  command
-      ->add_option("--settle-time", args->controller.settle_time,
-                   "Time at rest at the target before reporting settled, s")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  command->add_option("--sigma-q", args->controller.sigma_q, "Encoder noise per reading, rad")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  h4::cli::AddOptionShowingDefault(
+      command, "--joint-speed", &args->controller.joint_speed,
+      "Speed of the joint with the farthest to go, rad/s (all arrive together)",
+      CLI::PositiveNumber);
+  h4::cli::AddOptionShowingDefault(command, "--settle-time", &args->controller.settle_time,
+                                   "Time at rest at the target before reporting settled, s",
+                                   CLI::NonNegativeNumber);
+  h4::cli::AddOptionShowingDefault(command, "--sigma-q", &args->controller.sigma_q,
+                                   "Encoder noise per reading, rad", CLI::NonNegativeNumber);
   command
       ->add_option("--joint-range", args->controller.joint_range,
                    "Joint limits: farthest a joint target may be from its home value, rad "
@@ -149,22 +145,16 @@ void DeclareSimRobotCommand(CLI::App* command) {
   // the plan was checked against.
   AddJointRangeOption(command, &args->joint_range_deg);
   h4::cli::AddSeedOption(command, &args->node.seed, "Seed of the encoder noise");
-  command
-      ->add_option("--rate", args->node.rate_hz,
-                   "Joint states (and board truths) published per second, Hz")
-      ->check(CLI::Range(0.1, 10000.0))
-      ->capture_default_str();
-  command
-      ->add_option("--status-period", args->node.status_period_s,
-                   "Seconds between status lines on stderr (0: none)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  h4::cli::AddOptionShowingDefault(command, "--rate", &args->node.rate_hz,
+                                   "Joint states (and board truths) published per second, Hz",
+                                   CLI::Range(0.1, 10000.0));
+  h4::cli::AddOptionShowingDefault(command, "--status-period", &args->node.status_period_s,
+                                   "Seconds between status lines on stderr (0: none)",
+                                   CLI::NonNegativeNumber);
   h4::cli::AddLcmUrlOption(command, &args->lcm_url);
-  command
-      ->add_option("--duration", args->duration_s,
-                   "Run this many seconds (0: until SIGINT or SIGTERM)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  h4::cli::AddOptionShowingDefault(command, "--duration", &args->duration_s,
+                                   "Run this many seconds (0: until SIGINT or SIGTERM)",
+                                   CLI::NonNegativeNumber);
   h4::cli::RunWhenParsed(command, args, Run);
 }
 

@@ -166,12 +166,11 @@ void DeclareSimulateCommand(CLI::App* command) {
                     "The paper's scenario: Table 2 'Identified' as the true robot, Table 2 a "
                     "priori in robot.yaml (same as --truth-model paper)");
   // --truth names a truth.yaml file in sim-robot and validate; here it was the model.
-  command
-      ->add_option("--truth-model,--truth", options->truth,
-                   "True geometry: 12 (a priori Model 12 perturbed), 31 (perturbed joint "
-                   "positions, axes and lengths), paper (Table 2)")
-      ->check(CLI::IsMember({"12", "31", "paper"}))
-      ->capture_default_str();
+  h4::cli::AddOptionShowingDefault(
+      command, "--truth-model,--truth", &options->truth,
+      "True geometry: 12 (a priori Model 12 perturbed), 31 (perturbed joint "
+      "positions, axes and lengths), paper (Table 2)",
+      CLI::IsMember({"12", "31", "paper"}));
   h4::cli::AddRobotOption(
       command, &options->robot_path,
       "A priori robot.yaml to draw the truth around (default: the paper's a priori)");
@@ -181,18 +180,14 @@ void DeclareSimulateCommand(CLI::App* command) {
   h4::cli::AddSeedOption(command, &options->seed, "Seed of the noise and of the calib/valid split");
   command->add_option("--robot-seed", options->robot_seed, "Seed of the true robot's perturbation")
       ->capture_default_str();
-  command->add_option("--sigma-t-mm", options->sigma_t_mm, "Camera translation noise per axis, mm")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  command->add_option("--sigma-r-deg", options->sigma_r_deg, "Camera rotation noise per axis, deg")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  command->add_option("--sigma-q", options->sigma_q, "Encoder noise, rad")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  command->add_option("--validation", options->valid, "Poses held out for validation")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  h4::cli::AddOptionShowingDefault(command, "--sigma-t-mm", &options->sigma_t_mm,
+                                   "Camera translation noise per axis, mm", CLI::NonNegativeNumber);
+  h4::cli::AddOptionShowingDefault(command, "--sigma-r-deg", &options->sigma_r_deg,
+                                   "Camera rotation noise per axis, deg", CLI::NonNegativeNumber);
+  h4::cli::AddOptionShowingDefault(command, "--sigma-q", &options->sigma_q, "Encoder noise, rad",
+                                   CLI::NonNegativeNumber);
+  h4::cli::AddOptionShowingDefault(command, "--validation", &options->valid,
+                                   "Poses held out for validation", CLI::NonNegativeNumber);
   h4::cli::AddBoardOption(command, &options->board_path)
       ->description(
           "Simulate the camera at the corner level on this board: its corners through --camera "
@@ -203,9 +198,9 @@ void DeclareSimulateCommand(CLI::App* command) {
   h4::cli::AddInputFileOption(command, "--camera-file", &options->camera_file_path,
                               "With --board: the camera file the poses are solved with, e.g. one "
                               "as wrong as a real intrinsic calibration (default: --camera)");
-  command->add_option("--sigma-px", options->sigma_px, "With --board: corner noise per axis, px")
-      ->check(CLI::Range(1e-6, 100.0))
-      ->capture_default_str();
+  h4::cli::AddOptionShowingDefault(command, "--sigma-px", &options->sigma_px,
+                                   "With --board: corner noise per axis, px",
+                                   CLI::Range(1e-6, 100.0));
   h4::cli::AddOutDirOption(command, &options->out_dir, "Output folder")->required();
   h4::cli::RunWhenParsed(command, options, Run);
 }
