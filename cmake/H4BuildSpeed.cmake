@@ -5,10 +5,7 @@
 # build of one edited file stays one file. Included at the end of the top-level
 # CMakeLists.txt, once every target exists.
 #
-# Measured on this machine (idle, 2 cores, -j2), a full build from scratch in unity batches
-# (libraries and test programs): RelWithDebInfo 6 min 17 s wall, 11.5 min CPU; the
-# sanitizer build (build-asan, -O1 -g1 -fsanitize) 8 min 34 s wall, 15.7 min CPU. The
-# file-by-file build had taken about 20 min CPU (CI's whole run: 23 min CPU). Single files:
+# What a full build costs, measured: docs/development.md#ci-and-timings. Single files:
 # four host/cli/*_command.cpp compiled one by one under -fsanitize took 97 s, as one unity
 # file 27 s. Precompiled headers were tried and are not used: with GCC 12 a 220 MB
 # precompiled header (-g) made files slower to compile (host/identification/
