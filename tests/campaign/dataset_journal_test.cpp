@@ -27,9 +27,12 @@ DatasetRow Row(int64_t id) {
   DatasetRow row;
   row.pose_id = id;
   row.utime = 1'700'000'000'000'000 + id;
-  // Within a turn (the reader's bound) however many rows a fast machine writes before a kill.
-  row.q = {0.01 * static_cast<double>(id % 600), 0.2, 0.3, 0.4};
-  row.X_CT = RigidTransform::FromTranslationRpy(Eigen::Vector3d(0.01, 0.02, 0.5 + 0.01 * id),
+  // Every value varies with the id but stays within the reader's bounds (a joint within a
+  // turn, a translation within 10 m) however many rows a fast machine writes before a kill:
+  // one CI machine wrote over 950.
+  const double step = static_cast<double>(id % 600);
+  row.q = {0.01 * step, 0.2, 0.3, 0.4};
+  row.X_CT = RigidTransform::FromTranslationRpy(Eigen::Vector3d(0.01, 0.02, 0.5 + 0.01 * step),
                                                 Eigen::Vector3d(0.1, -0.2, 0.3));
   row.sigma_t = 2e-4;
   row.sigma_r = 5e-4;
