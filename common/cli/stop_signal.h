@@ -1,7 +1,7 @@
 // SIGINT / SIGTERM for the long-running commands of both programs (h4cal collect and
-// sim-robot, h4cam run, capture and preview): the first signal asks the loop to stop cleanly
-// (flush, summarise); the default action is restored so that a second one ends the process
-// at once, as a user pressing Ctrl-C twice expects.
+// sim-robot, h4cam run, capture and preview) and the robot-bridge example: the first signal
+// asks the loop to stop cleanly (flush, summarise); the default action is restored so that a
+// second one ends the process at once, as a user pressing Ctrl-C twice expects.
 #pragma once
 
 #include <atomic>

@@ -5,8 +5,6 @@
 // board-truth publishing (simulation only).
 //   h4_robot_bridge --truth DIR/truth.yaml [--robot DIR/robot.yaml] [--rate 100]
 //                   [--lcm-url URL] [--joint-speed 0.5] [--settle-time 0.2]
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -17,14 +15,12 @@
 #include <h4msgs/sim_board_truth_t.hpp>
 #include <lcm/lcm-cpp.hpp>
 
+#include "common/cli/stop_signal.h"
 #include "examples/robot_bridge/robot_bridge.h"
 #include "examples/robot_bridge/simulated_controller.h"
 #include "messages/channels.h"
 
 namespace {
-
-std::atomic<bool> g_stop{false};
-extern "C" void OnStopSignal(int) { g_stop.store(true); }
 
 struct BridgeArgs {
   std::string truth_path;
@@ -62,14 +58,11 @@ int Run(const BridgeArgs& args) {
     return 1;
   }
   h4::example::RobotBridge bridge(lcm, controller, args.bridge);
-  struct sigaction action {};
-  action.sa_handler = OnStopSignal;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
+  // Ctrl-C or SIGTERM stops the bridge after its current tick; a second one ends it at once.
+  const std::atomic<bool>& stop = h4::cli::InstallStopSignalHandlers();
   fmt::print(stderr, "h4_robot_bridge: simulated H4 ({}), {:.0f} Hz\n", args.truth_path,
              args.bridge.rate_hz);
-  bridge.Run(g_stop, [&] { PublishBoardTruth(lcm, controller, bridge); });
+  bridge.Run(stop, [&] { PublishBoardTruth(lcm, controller, bridge); });
   fmt::print(stderr, "h4_robot_bridge: stopped after {} target(s), {} refused\n",
              static_cast<long long>(bridge.targets_received()),
              static_cast<long long>(bridge.targets_refused()));
