@@ -32,6 +32,7 @@
 
 #include "common/timing/clock.h"
 #include "messages/channels.h"
+#include "tests/host_formats/dataset_rows_helpers.h"
 #include "tests/messages/wire_bytes.h"
 #include "tests/support/private_netns.h"
 #include "tests/support/test_dir.h"
@@ -812,13 +813,7 @@ TEST_F(CampaignTest, PassiveListenerRebuildsTheRowsOfTheLiveRunFromItsMessages) 
   }
   const std::vector<DatasetRow> a = ReadDatasetCsv(live), b = ReadDatasetCsv(replayed);
   ASSERT_EQ(a.size(), 4u);
-  ASSERT_EQ(b.size(), a.size());
-  for (size_t i = 0; i < a.size(); ++i) {
-    EXPECT_EQ(a[i].pose_id, b[i].pose_id);
-    EXPECT_EQ(a[i].utime, b[i].utime);
-    EXPECT_EQ(a[i].q, b[i].q);
-    EXPECT_EQ(a[i].X_CT.matrix(), b[i].X_CT.matrix());
-  }
+  ExpectSameRows(a, b, 0.0);
 }
 
 /// A plausible board pose of `pose_id` as another publisher could send it.
