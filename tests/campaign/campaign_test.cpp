@@ -234,6 +234,15 @@ CampaignOptions FastOptions(int retries = 2) {
   return o;
 }
 
+// A camera_status whose first measurement of `pose_id` reports the board moved (a retry
+// follows) and every other measurement OK.
+std::function<int8_t(int64_t, int)> MovedOnFirstAttemptOf(int64_t pose_id) {
+  return [pose_id](int64_t id, int attempt) -> int8_t {
+    return (id == pose_id && attempt == 0) ? h4msgs::board_pose_t::STATUS_MOVED
+                                           : h4msgs::board_pose_t::STATUS_OK;
+  };
+}
+
 // The loss tests' cell: one message in five lost and one in five reordered, either way.
 void LoseAndReorderOneInFive(ScriptedCell* cell) {
   cell->loss = 0.2;
@@ -258,6 +267,19 @@ class CampaignTest : public TestWithDatasetFile {
     }
   }
 
+  /// Run, returning what the std::runtime_error that stopped the campaign says ("" when the
+  /// campaign ended by itself).
+  static std::string RunToError(bus::LcmBus& bus, Campaign& campaign, ScriptedCell* cell,
+                                double max_seconds = 20.0,
+                                const std::function<void()>& extra = {}) {
+    try {
+      Run(bus, campaign, cell, max_seconds, extra);
+    } catch (const std::runtime_error& e) {
+      return e.what();
+    }
+    return "";
+  }
+
   /// What a campaign of Plan(`poses`) left when the robot never settles at the poses
   /// `never_settles` (no retries, at most `max_unsettled_in_a_row`).
   struct UnsettledRun {
@@ -279,11 +301,7 @@ class CampaignTest : public TestWithDatasetFile {
     options.max_unsettled_in_a_row = max_unsettled_in_a_row;
     Campaign campaign(bus, Plan(poses), journal, options);
     UnsettledRun run;
-    try {
-      Run(bus, campaign, &cell);
-    } catch (const std::runtime_error& e) {
-      run.error = e.what();
-    }
+    run.error = RunToError(bus, campaign, &cell);
     run.finished = campaign.finished();
     run.skipped = campaign.skipped();
     run.rows = journal.rows().size();
@@ -316,10 +334,7 @@ TEST_F(CampaignTest, RecordsEveryPoseOnceWithTheJointsOfThatPose) {
 TEST_F(CampaignTest, RetriesAMovedMeasurementThenRecordsIt) {
   bus::LcmBus bus("memq://");
   ScriptedCell cell(bus);
-  cell.camera_status = [](int64_t id, int attempt) -> int8_t {
-    return (id == 2 && attempt == 0) ? h4msgs::board_pose_t::STATUS_MOVED
-                                     : h4msgs::board_pose_t::STATUS_OK;
-  };
+  cell.camera_status = MovedOnFirstAttemptOf(2);
   DatasetJournal journal(path_);
   Campaign campaign(bus, Plan(3), journal, FastOptions());
   Run(bus, campaign, &cell);
@@ -788,10 +803,7 @@ TEST_F(CampaignTest, PassiveListenerRebuildsTheRowsOfTheLiveRunFromItsMessages) 
         },
         &recorder);
     ScriptedCell cell(bus);
-    cell.camera_status = [](int64_t id, int attempt) -> int8_t {
-      return (id == 3 && attempt == 0) ? h4msgs::board_pose_t::STATUS_MOVED
-                                       : h4msgs::board_pose_t::STATUS_OK;
-    };
+    cell.camera_status = MovedOnFirstAttemptOf(3);
     DatasetJournal journal(path_);
     Campaign campaign(bus, Plan(4), journal, FastOptions());
     Run(bus, campaign, &cell);
@@ -938,12 +950,7 @@ TEST_F(CampaignTest, AFullDiskStopsTheCampaignWithTheReasonAndCompleteRowsOnly) 
   limited.rlim_cur = header_size + 20;  // not even one row
   void (*saved_handler)(int) = std::signal(SIGXFSZ, SIG_IGN);
   ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &limited), 0);
-  std::string error;
-  try {
-    Run(bus, campaign, &cell);
-  } catch (const std::runtime_error& e) {
-    error = e.what();
-  }
+  const std::string error = RunToError(bus, campaign, &cell);
   setrlimit(RLIMIT_FSIZE, &saved);
   std::signal(SIGXFSZ, saved_handler);
   EXPECT_NE(error.find(path_ + ": cannot write"), std::string::npos) << error;
@@ -1024,12 +1031,7 @@ TEST_F(CampaignTest, AFailedFsyncStopsTheCampaignWithTheReasonAndCompleteRowsOnl
   };
   DatasetJournal journal(path_, ops);
   Campaign campaign(bus, Plan(5), journal, FastOptions());
-  std::string error;
-  try {
-    Run(bus, campaign, &cell);
-  } catch (const std::runtime_error& e) {
-    error = e.what();
-  }
+  const std::string error = RunToError(bus, campaign, &cell);
   EXPECT_NE(error.find(path_ + ": cannot flush to disk (fsync)"), std::string::npos) << error;
   EXPECT_NE(error.find("complete rows only"), std::string::npos) << error;
   EXPECT_FALSE(campaign.finished());
@@ -1312,22 +1314,16 @@ TEST_F(CampaignTest, CameraStatusesDroppedAsStaleAreNamedAsAClockOffset) {
   bus::MessageAuthenticator camera(CampaignKey().key, CampaignKey().options);
   DatasetJournal journal(path_);
   Campaign campaign(bus, Plan(2), journal, FastOptions());
-  std::string error;
-  try {
-    Run(bus, campaign, &cell, 20.0, [&] {
-      const int64_t camera_utime = NowUtime() + 40'000'000;
-      h4msgs::camera_status_t status{};
-      status.utime = camera_utime;
-      status.state = h4msgs::camera_status_t::STATE_IDLE;
-      const std::vector<uint8_t> bytes = bus::wire_bytes::Encode(status);
-      const std::vector<uint8_t> sealed =
-          camera.Seal(channels::kCameraStatus, bytes.data(), bytes.size(), camera_utime);
-      bus.lcm().publish(channels::kCameraStatus, sealed.data(),
-                        static_cast<unsigned>(sealed.size()));
-    });
-  } catch (const std::runtime_error& e) {
-    error = e.what();
-  }
+  const std::string error = RunToError(bus, campaign, &cell, 20.0, [&] {
+    const int64_t camera_utime = NowUtime() + 40'000'000;
+    h4msgs::camera_status_t status{};
+    status.utime = camera_utime;
+    status.state = h4msgs::camera_status_t::STATE_IDLE;
+    const std::vector<uint8_t> bytes = bus::wire_bytes::Encode(status);
+    const std::vector<uint8_t> sealed =
+        camera.Seal(channels::kCameraStatus, bytes.data(), bytes.size(), camera_utime);
+    bus.lcm().publish(channels::kCameraStatus, sealed.data(), static_cast<unsigned>(sealed.size()));
+  });
   EXPECT_NE(error.find("camera status timestamps are 40.0 s ahead of this host's clock"),
             std::string::npos)
       << error;
@@ -1355,12 +1351,8 @@ TEST_F(CampaignTest, AKeyOnTheCampaignOnlyIsNamedNotTakenForASilentCamera) {
   cell.silent_camera = true;  // the camera below publishes without a key
   DatasetJournal journal(path_);
   Campaign campaign(bus, Plan(2), journal, FastOptions());
-  std::string error;
-  try {
-    Run(bus, campaign, &cell, 20.0, [&] { PublishCameraStatus(bus, nullptr); });
-  } catch (const std::runtime_error& e) {
-    error = e.what();
-  }
+  const std::string error =
+      RunToError(bus, campaign, &cell, 20.0, [&] { PublishCameraStatus(bus, nullptr); });
   EXPECT_NE(error.find("the camera answers but its messages are not authenticated with this key"),
             std::string::npos)
       << error;
