@@ -16,6 +16,7 @@
 #include "firmware/bench/degraded_scene.h"
 #include "firmware/pose/pose_estimator.h"
 #include "firmware/render/paper_scenes.h"
+#include "tests/support/board_specs.h"
 
 namespace h4::cam {
 namespace {
@@ -227,11 +228,7 @@ TEST(BoardDetectorTest, TooFewCornersIsPartialAndNoTagIsNoBoard) {
 }
 
 TEST(BoardDetectorTest, ChessboardCornersAreAccurateAndInModelOrder) {
-  CheckerboardSpec board;
-  board.cols = 9;
-  board.rows = 6;
-  board.col_spacing = 0.02;
-  board.row_spacing = 0.02;
+  const CheckerboardSpec board = Chessboard(9, 6, 0.02, 0.02);
   const CameraIntrinsics camera = scenes::PaperCamera();
   const BoardRenderer renderer(board, camera, RenderOptions{});
   ASSERT_TRUE(renderer.ok()) << renderer.error();
