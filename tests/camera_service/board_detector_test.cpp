@@ -16,6 +16,7 @@
 #include "firmware/bench/degraded_scene.h"
 #include "firmware/pose/pose_estimator.h"
 #include "firmware/render/paper_scenes.h"
+#include "tests/support/board_specs.h"
 
 namespace h4::cam {
 namespace {
@@ -227,11 +228,7 @@ TEST(BoardDetectorTest, TooFewCornersIsPartialAndNoTagIsNoBoard) {
 }
 
 TEST(BoardDetectorTest, ChessboardCornersAreAccurateAndInModelOrder) {
-  CheckerboardSpec board;
-  board.cols = 9;
-  board.rows = 6;
-  board.col_spacing = 0.02;
-  board.row_spacing = 0.02;
+  const CheckerboardSpec board = Chessboard(9, 6, 0.02, 0.02);
   const CameraIntrinsics camera = scenes::PaperCamera();
   const BoardRenderer renderer(board, camera, RenderOptions{});
   ASSERT_TRUE(renderer.ok()) << renderer.error();
@@ -329,12 +326,32 @@ KalibrRun RunKalibrScenes(const std::vector<RigidTransform>& poses, const Render
   return run;
 }
 
+// RunKalibrScenes at three of the paper's poses (0.45-0.65 m, tilt up to 25 deg), linear camera.
+KalibrRun RunKalibrAtThePapersPoses(CornerRefinement refinement) {
+  return RunKalibrScenes(scenes::RandomPoses(3, 21), RenderOptions{}, 1.0, refinement);
+}
+
+// RunKalibrScenes at two poses through a concave response (gamma 0.45) and a blur of 1 px.
+KalibrRun RunKalibrUnderGammaAndBlur(CornerRefinement refinement) {
+  RenderOptions render;
+  render.blur_sigma_px = 1.0;
+  return RunKalibrScenes(scenes::RandomPoses(2, 5), render, 0.45, refinement);
+}
+
+// What the X-corners alone give in either scene: corner RMS below `corner_rms_px`, a mean
+// error below 0.005 px, and a pose within 0.05 mm and 0.02 deg.
+void ExpectXCornersUnbiasedWithPoseWithinBounds(const KalibrRun& run, double corner_rms_px) {
+  EXPECT_LT(run.corner_rms_px, corner_rms_px);
+  EXPECT_LT(run.mean_error_px.norm(), 0.005);
+  EXPECT_LT(run.worst_position_m, 0.05e-3);
+  EXPECT_LT(run.worst_rotation_rad, RadiansFromDegrees(0.02));
+}
+
 TEST(BoardDetectorTest, KalibrBoardEdgeFitCornersAreWithinAHundredthOfAPixel) {
   // The tag sides of Kalibr's board are fitted between its corner squares, from the
   // X-corners' positions, as precisely as the legacy board's
   // (EdgeFitCornersAreWithinAHundredthOfAPixel, the same scenes).
-  const auto poses = scenes::RandomPoses(3, 21);  // 0.45-0.65 m, tilt up to 25 deg
-  const KalibrRun run = RunKalibrScenes(poses, RenderOptions{}, 1.0, CornerRefinement::kEdgeFit);
+  const KalibrRun run = RunKalibrAtThePapersPoses(CornerRefinement::kEdgeFit);
   // Measured (render noise 2, blur 0.8, 10 frames averaged): corner RMS 0.0050 px, worst
   // pose error 0.0012 mm and 0.0012 deg (the X-corners alone, next test: 0.024 px, 0.018 mm
   // and 0.010 deg).
@@ -346,30 +363,20 @@ TEST(BoardDetectorTest, KalibrBoardEdgeFitCornersAreWithinAHundredthOfAPixel) {
 
 TEST(BoardDetectorTest, KalibrBoardIsFoundWholeWithXCornersAtThePapersPoses) {
   // The X-corners alone (what a tag whose sides do not fit keeps).
-  const auto poses = scenes::RandomPoses(3, 21);
-  const KalibrRun run = RunKalibrScenes(poses, RenderOptions{}, 1.0, CornerRefinement::kXCorner);
+  const KalibrRun run = RunKalibrAtThePapersPoses(CornerRefinement::kXCorner);
   // Measured (render noise 2, blur 0.8, 10 frames averaged): corner RMS 0.024 px, mean
   // error (-0.0002, -0.0004) px, worst pose error 0.018 mm and 0.010 deg. cornerSubPix
   // keeps a bias of ~0.025 px on a sharp X-corner (x_corner_refinement_test), so this is
   // about 3x the edge fit's (KalibrBoardEdgeFitCornersAreWithinAHundredthOfAPixel).
   EXPECT_EQ(run.edge_fitted, 0u);
-  EXPECT_LT(run.corner_rms_px, 0.035);
-  EXPECT_LT(run.mean_error_px.norm(), 0.005);
-  EXPECT_LT(run.worst_position_m, 0.05e-3);
-  EXPECT_LT(run.worst_rotation_rad, RadiansFromDegrees(0.02));
+  ExpectXCornersUnbiasedWithPoseWithinBounds(run, 0.035);
 }
 
 TEST(BoardDetectorTest, KalibrXCornersStayUnbiasedUnderGammaAndBlur) {
-  RenderOptions render;
-  render.blur_sigma_px = 1.0;
-  const auto poses = scenes::RandomPoses(2, 5);
-  const KalibrRun run = RunKalibrScenes(poses, render, 0.45, CornerRefinement::kXCorner);
+  const KalibrRun run = RunKalibrUnderGammaAndBlur(CornerRefinement::kXCorner);
   // Measured: corner RMS 0.021 px, mean error (-0.0012, -0.0001) px, worst pose error
   // 0.008 mm and 0.006 deg: the response curve does not move an X-corner.
-  EXPECT_LT(run.corner_rms_px, 0.03);
-  EXPECT_LT(run.mean_error_px.norm(), 0.005);
-  EXPECT_LT(run.worst_position_m, 0.05e-3);
-  EXPECT_LT(run.worst_rotation_rad, RadiansFromDegrees(0.02));
+  ExpectXCornersUnbiasedWithPoseWithinBounds(run, 0.03);
 }
 
 TEST(BoardDetectorTest, KalibrEdgeFitUnderGammaAndBlurErodesTheTagsAndThePoseFitTakesItOut) {
@@ -377,10 +384,7 @@ TEST(BoardDetectorTest, KalibrEdgeFitUnderGammaAndBlurErodesTheTagsAndThePoseFit
   // along the erosion directions they report (about 0.2 px here), the corner squares and
   // the data cells do not move the sides otherwise, and the pose fit, which estimates the
   // erosion, stays as precise as on a linear camera.
-  RenderOptions render;
-  render.blur_sigma_px = 1.0;
-  const auto poses = scenes::RandomPoses(2, 5);
-  const KalibrRun run = RunKalibrScenes(poses, render, 0.45, CornerRefinement::kEdgeFit);
+  const KalibrRun run = RunKalibrUnderGammaAndBlur(CornerRefinement::kEdgeFit);
   // Measured: corner RMS 0.50 px, 0.0096 px once each tag's erosion is taken out, worst
   // pose error 0.0053 mm and 0.0010 deg.
   EXPECT_EQ(run.edge_fitted, 2 * 144u);

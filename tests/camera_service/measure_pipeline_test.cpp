@@ -16,6 +16,7 @@
 #include "firmware/render/board_renderer.h"
 #include "firmware/render/paper_scenes.h"
 #include "firmware/sources/sim_source.h"
+#include "tests/render/paper_scene_helpers.h"
 
 namespace h4::cam {
 namespace {
@@ -121,22 +122,19 @@ TEST(MeasurePipelineTest, EmptySceneGivesNoBoard) {
 // issue 27 point 17: two boards in view were refused (safe) with "no board corner found"
 // although every tag was decoded: each id was seen twice. The message says so.
 TEST(MeasurePipelineTest, TwoBoardsInViewSayTheIdsWereSeenTwice) {
-  const AprilGridSpec board = scenes::PaperBoard();
-  const CameraIntrinsics camera = scenes::PaperCamera();
-  const BoardRenderer renderer(board, camera, RenderOptions{});
-  const CameraModel model(camera);
-  const BoardModel corners(board);
+  const PaperScene scene;
+  const CameraIntrinsics& camera = scene.camera;
   // The same board left and right of the image's centre, each wholly in its half.
   cv::Mat both;
   for (const double dx : {-0.16, 0.16}) {
-    const RigidTransform X_CT = scenes::BoardPose(board, 0.9, 0.0, 0.0, 0.0, dx, 0.0);
-    for (const Eigen::Vector3d& p : corners.corners()) {
+    const RigidTransform X_CT = scenes::BoardPose(scene.board, 0.9, 0.0, 0.0, 0.0, dx, 0.0);
+    for (const Eigen::Vector3d& p : scene.board_model.corners()) {
       Eigen::Vector2d uv;
-      ASSERT_TRUE(model.Project(X_CT * p, &uv));
+      ASSERT_TRUE(scene.projection.Project(X_CT * p, &uv));
       ASSERT_TRUE(dx < 0 ? uv.x() < camera.width / 2 - 10 : uv.x() > camera.width / 2 + 10)
           << "the boards overlap the image's centre line; move them apart";
     }
-    const cv::Mat image = renderer.Render(X_CT, 3);
+    const cv::Mat image = scene.renderer.Render(X_CT, 3);
     if (both.empty()) {
       both = image.clone();
     } else {
@@ -144,7 +142,7 @@ TEST(MeasurePipelineTest, TwoBoardsInViewSayTheIdsWereSeenTwice) {
       image(right).copyTo(both(right));
     }
   }
-  const MeasurePipeline pipeline(board, camera);
+  const MeasurePipeline pipeline(scene.board, camera);
   const Measurement m = pipeline.MeasureImage(both, 1);
   EXPECT_NE(m.status, Measurement::Status::kOk);
   EXPECT_NE(m.message.find("36 tag id(s) were seen twice"), std::string::npos) << m.message;

@@ -32,6 +32,7 @@
 
 #include "common/timing/clock.h"
 #include "messages/channels.h"
+#include "tests/host_formats/dataset_rows_helpers.h"
 #include "tests/messages/wire_bytes.h"
 #include "tests/support/private_netns.h"
 #include "tests/support/test_dir.h"
@@ -233,6 +234,35 @@ CampaignOptions FastOptions(int retries = 2) {
   return o;
 }
 
+// A camera_status whose first measurement of `pose_id` reports the board moved (a retry
+// follows) and every other measurement OK.
+std::function<int8_t(int64_t, int)> MovedOnFirstAttemptOf(int64_t pose_id) {
+  return [pose_id](int64_t id, int attempt) -> int8_t {
+    return (id == pose_id && attempt == 0) ? h4msgs::board_pose_t::STATUS_MOVED
+                                           : h4msgs::board_pose_t::STATUS_OK;
+  };
+}
+
+// Success when `campaign` skipped `count` poses, each for a reason that contains every one of
+// `parts`.
+::testing::AssertionResult SkippedEachFor(const Campaign& campaign, size_t count,
+                                          const std::vector<std::string>& parts) {
+  if (campaign.skipped().size() != count) {
+    return ::testing::AssertionFailure()
+           << campaign.skipped().size() << " poses skipped, expected " << count;
+  }
+  for (const SkippedPose& skipped : campaign.skipped()) {
+    for (const std::string& part : parts) {
+      if (skipped.reason.find(part) == std::string::npos) {
+        return ::testing::AssertionFailure()
+               << "pose " << skipped.pose_id << " skipped for: " << skipped.reason
+               << "\nwithout: " << part;
+      }
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
 // The loss tests' cell: one message in five lost and one in five reordered, either way.
 void LoseAndReorderOneInFive(ScriptedCell* cell) {
   cell->loss = 0.2;
@@ -257,6 +287,29 @@ class CampaignTest : public TestWithDatasetFile {
     }
   }
 
+  /// Run, returning what the std::runtime_error that stopped the campaign says ("" when the
+  /// campaign ended by itself).
+  static std::string RunToError(bus::LcmBus& bus, Campaign& campaign, ScriptedCell* cell,
+                                double max_seconds = 20.0,
+                                const std::function<void()>& extra = {}) {
+    try {
+      Run(bus, campaign, cell, max_seconds, extra);
+    } catch (const std::runtime_error& e) {
+      return e.what();
+    }
+    return "";
+  }
+
+  /// Records every pose of Plan(`poses`) in the dataset: a campaign run to its end against a
+  /// cell that answers each pose (the run a resume continues).
+  void RecordWholePlan(int poses) {
+    bus::LcmBus bus("memq://");
+    ScriptedCell cell(bus);
+    DatasetJournal journal(path_);
+    Campaign campaign(bus, Plan(poses), journal, FastOptions());
+    Run(bus, campaign, &cell);
+  }
+
   /// What a campaign of Plan(`poses`) left when the robot never settles at the poses
   /// `never_settles` (no retries, at most `max_unsettled_in_a_row`).
   struct UnsettledRun {
@@ -278,11 +331,7 @@ class CampaignTest : public TestWithDatasetFile {
     options.max_unsettled_in_a_row = max_unsettled_in_a_row;
     Campaign campaign(bus, Plan(poses), journal, options);
     UnsettledRun run;
-    try {
-      Run(bus, campaign, &cell);
-    } catch (const std::runtime_error& e) {
-      run.error = e.what();
-    }
+    run.error = RunToError(bus, campaign, &cell);
     run.finished = campaign.finished();
     run.skipped = campaign.skipped();
     run.rows = journal.rows().size();
@@ -315,10 +364,7 @@ TEST_F(CampaignTest, RecordsEveryPoseOnceWithTheJointsOfThatPose) {
 TEST_F(CampaignTest, RetriesAMovedMeasurementThenRecordsIt) {
   bus::LcmBus bus("memq://");
   ScriptedCell cell(bus);
-  cell.camera_status = [](int64_t id, int attempt) -> int8_t {
-    return (id == 2 && attempt == 0) ? h4msgs::board_pose_t::STATUS_MOVED
-                                     : h4msgs::board_pose_t::STATUS_OK;
-  };
+  cell.camera_status = MovedOnFirstAttemptOf(2);
   DatasetJournal journal(path_);
   Campaign campaign(bus, Plan(3), journal, FastOptions());
   Run(bus, campaign, &cell);
@@ -394,10 +440,7 @@ TEST_F(CampaignTest, RefusalsDoNotStopTheCampaignAndOnlyTheAwaitedPoseIdCounts) 
   Campaign campaign(bus, Plan(4), journal, options);
   Run(bus, campaign, &cell);
   ASSERT_TRUE(campaign.finished());
-  ASSERT_EQ(campaign.skipped().size(), 4u);
-  for (const SkippedPose& s : campaign.skipped()) {
-    EXPECT_NE(s.reason.find("refused by the robot: unreachable"), std::string::npos) << s.reason;
-  }
+  EXPECT_TRUE(SkippedEachFor(campaign, 4, {"refused by the robot: unreachable"}));
 
   fs::remove(path_);
   bus::LcmBus bus2("memq://");
@@ -595,13 +638,7 @@ TEST_F(CampaignTest, AControlLawSendsJointTargetsAndSkipsWhatItCannotReach) {
 }
 
 TEST_F(CampaignTest, ResumesWithoutMeasuringRecordedPosesAgain) {
-  {
-    bus::LcmBus bus("memq://");
-    ScriptedCell cell(bus);
-    DatasetJournal journal(path_);
-    Campaign campaign(bus, Plan(2), journal, FastOptions());
-    Run(bus, campaign, &cell);
-  }
+  RecordWholePlan(2);
   bus::LcmBus bus("memq://");
   ScriptedCell cell(bus);
   DatasetJournal journal(path_);
@@ -725,6 +762,16 @@ TEST_F(CampaignCornersTest, ImpossibleCornersAreCountedNotWritten) {
   EXPECT_TRUE(ReadCornersCsv(corners_path_).empty());
 }
 
+// A joint state of three joints, which no H4 robot has: a message the campaign must count
+// and never use.
+void PublishThreeJointState(bus::LcmBus& bus) {
+  h4msgs::joint_state_t three_joints{};
+  three_joints.utime = NowUtime();
+  three_joints.joint_count = 3;
+  three_joints.position = {0.0, 0.0, 0.0};
+  bus.Publish(channels::kJointState, three_joints);
+}
+
 TEST_F(CampaignTest, CountsGarbageAndImpossibleMessagesWithoutUsingThem) {
   bus::LcmBus bus("memq://");
   ScriptedCell cell(bus);
@@ -746,11 +793,7 @@ TEST_F(CampaignTest, CountsGarbageAndImpossibleMessagesWithoutUsingThem) {
     h4msgs::board_pose_t stranger = nan_pose;
     stranger.pose_id = 99;
     bus.Publish(channels::kBoardPose, stranger);
-    h4msgs::joint_state_t three_joints{};
-    three_joints.utime = NowUtime();
-    three_joints.joint_count = 3;
-    three_joints.position = {0.0, 0.0, 0.0};
-    bus.Publish(channels::kJointState, three_joints);
+    PublishThreeJointState(bus);
   });
   EXPECT_TRUE(campaign.finished());
   EXPECT_EQ(bus.decode_failures(), 1);
@@ -787,10 +830,7 @@ TEST_F(CampaignTest, PassiveListenerRebuildsTheRowsOfTheLiveRunFromItsMessages) 
         },
         &recorder);
     ScriptedCell cell(bus);
-    cell.camera_status = [](int64_t id, int attempt) -> int8_t {
-      return (id == 3 && attempt == 0) ? h4msgs::board_pose_t::STATUS_MOVED
-                                       : h4msgs::board_pose_t::STATUS_OK;
-    };
+    cell.camera_status = MovedOnFirstAttemptOf(3);
     DatasetJournal journal(path_);
     Campaign campaign(bus, Plan(4), journal, FastOptions());
     Run(bus, campaign, &cell);
@@ -812,13 +852,7 @@ TEST_F(CampaignTest, PassiveListenerRebuildsTheRowsOfTheLiveRunFromItsMessages) 
   }
   const std::vector<DatasetRow> a = ReadDatasetCsv(live), b = ReadDatasetCsv(replayed);
   ASSERT_EQ(a.size(), 4u);
-  ASSERT_EQ(b.size(), a.size());
-  for (size_t i = 0; i < a.size(); ++i) {
-    EXPECT_EQ(a[i].pose_id, b[i].pose_id);
-    EXPECT_EQ(a[i].utime, b[i].utime);
-    EXPECT_EQ(a[i].q, b[i].q);
-    EXPECT_EQ(a[i].X_CT.matrix(), b[i].X_CT.matrix());
-  }
+  ExpectSameRows(a, b, 0.0);
 }
 
 /// A plausible board pose of `pose_id` as another publisher could send it.
@@ -943,12 +977,7 @@ TEST_F(CampaignTest, AFullDiskStopsTheCampaignWithTheReasonAndCompleteRowsOnly) 
   limited.rlim_cur = header_size + 20;  // not even one row
   void (*saved_handler)(int) = std::signal(SIGXFSZ, SIG_IGN);
   ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &limited), 0);
-  std::string error;
-  try {
-    Run(bus, campaign, &cell);
-  } catch (const std::runtime_error& e) {
-    error = e.what();
-  }
+  const std::string error = RunToError(bus, campaign, &cell);
   setrlimit(RLIMIT_FSIZE, &saved);
   std::signal(SIGXFSZ, saved_handler);
   EXPECT_NE(error.find(path_ + ": cannot write"), std::string::npos) << error;
@@ -1029,12 +1058,7 @@ TEST_F(CampaignTest, AFailedFsyncStopsTheCampaignWithTheReasonAndCompleteRowsOnl
   };
   DatasetJournal journal(path_, ops);
   Campaign campaign(bus, Plan(5), journal, FastOptions());
-  std::string error;
-  try {
-    Run(bus, campaign, &cell);
-  } catch (const std::runtime_error& e) {
-    error = e.what();
-  }
+  const std::string error = RunToError(bus, campaign, &cell);
   EXPECT_NE(error.find(path_ + ": cannot flush to disk (fsync)"), std::string::npos) << error;
   EXPECT_NE(error.find("complete rows only"), std::string::npos) << error;
   EXPECT_FALSE(campaign.finished());
@@ -1113,10 +1137,7 @@ TEST_F(CampaignTest, ARobotClockJumpSkipsThePosesWithTheReasonAndRecordsNoWrongP
     }
   });
   ExpectNoRowLostOrCorrupted(path_, campaign, 4);
-  ASSERT_EQ(campaign.skipped().size(), 2u);
-  for (const SkippedPose& s : campaign.skipped()) {
-    EXPECT_NE(s.reason.find("no settled joint reading within"), std::string::npos) << s.reason;
-  }
+  EXPECT_TRUE(SkippedEachFor(campaign, 2, {"no settled joint reading within"}));
   EXPECT_EQ(ReadDatasetCsv(path_).size(), 2u);
 }
 
@@ -1299,13 +1320,9 @@ TEST_F(CampaignTest, ACameraClockAheadOfTheRobotsIsNamedInTheSkipReason) {
   DatasetJournal journal(path_);
   Campaign campaign(bus, Plan(2), journal, FastOptions(0));
   Run(bus, campaign, &cell);
-  ASSERT_EQ(campaign.skipped().size(), 2u);
-  for (const SkippedPose& s : campaign.skipped()) {
-    EXPECT_NE(s.reason.find("camera status timestamps are 20.0 s ahead of this host's clock"),
-              std::string::npos)
-        << s.reason;
-    EXPECT_NE(s.reason.find("check NTP/chrony"), std::string::npos) << s.reason;
-  }
+  EXPECT_TRUE(SkippedEachFor(
+      campaign, 2,
+      {"camera status timestamps are 20.0 s ahead of this host's clock", "check NTP/chrony"}));
 }
 
 // ... and with authentication and the camera 40 s ahead every status was dropped as stale
@@ -1317,22 +1334,16 @@ TEST_F(CampaignTest, CameraStatusesDroppedAsStaleAreNamedAsAClockOffset) {
   bus::MessageAuthenticator camera(CampaignKey().key, CampaignKey().options);
   DatasetJournal journal(path_);
   Campaign campaign(bus, Plan(2), journal, FastOptions());
-  std::string error;
-  try {
-    Run(bus, campaign, &cell, 20.0, [&] {
-      const int64_t camera_utime = NowUtime() + 40'000'000;
-      h4msgs::camera_status_t status{};
-      status.utime = camera_utime;
-      status.state = h4msgs::camera_status_t::STATE_IDLE;
-      const std::vector<uint8_t> bytes = bus::wire_bytes::Encode(status);
-      const std::vector<uint8_t> sealed =
-          camera.Seal(channels::kCameraStatus, bytes.data(), bytes.size(), camera_utime);
-      bus.lcm().publish(channels::kCameraStatus, sealed.data(),
-                        static_cast<unsigned>(sealed.size()));
-    });
-  } catch (const std::runtime_error& e) {
-    error = e.what();
-  }
+  const std::string error = RunToError(bus, campaign, &cell, 20.0, [&] {
+    const int64_t camera_utime = NowUtime() + 40'000'000;
+    h4msgs::camera_status_t status{};
+    status.utime = camera_utime;
+    status.state = h4msgs::camera_status_t::STATE_IDLE;
+    const std::vector<uint8_t> bytes = bus::wire_bytes::Encode(status);
+    const std::vector<uint8_t> sealed =
+        camera.Seal(channels::kCameraStatus, bytes.data(), bytes.size(), camera_utime);
+    bus.lcm().publish(channels::kCameraStatus, sealed.data(), static_cast<unsigned>(sealed.size()));
+  });
   EXPECT_NE(error.find("camera status timestamps are 40.0 s ahead of this host's clock"),
             std::string::npos)
       << error;
@@ -1360,12 +1371,8 @@ TEST_F(CampaignTest, AKeyOnTheCampaignOnlyIsNamedNotTakenForASilentCamera) {
   cell.silent_camera = true;  // the camera below publishes without a key
   DatasetJournal journal(path_);
   Campaign campaign(bus, Plan(2), journal, FastOptions());
-  std::string error;
-  try {
-    Run(bus, campaign, &cell, 20.0, [&] { PublishCameraStatus(bus, nullptr); });
-  } catch (const std::runtime_error& e) {
-    error = e.what();
-  }
+  const std::string error =
+      RunToError(bus, campaign, &cell, 20.0, [&] { PublishCameraStatus(bus, nullptr); });
   EXPECT_NE(error.find("the camera answers but its messages are not authenticated with this key"),
             std::string::npos)
       << error;
@@ -1380,13 +1387,9 @@ TEST_F(CampaignTest, AKeyOnTheCameraOnlyIsNamedInTheSkipReason) {
   DatasetJournal journal(path_);
   Campaign campaign(bus, Plan(2), journal, FastOptions(0));
   Run(bus, campaign, &cell, 20.0, [&] { PublishCameraStatus(bus, &camera); });
-  ASSERT_EQ(campaign.skipped().size(), 2u);
-  for (const SkippedPose& s : campaign.skipped()) {
-    EXPECT_NE(s.reason.find("the camera signs its messages (h4cam run --auth-key)"),
-              std::string::npos)
-        << s.reason;
-    EXPECT_NE(s.reason.find("give collect the same --auth-key"), std::string::npos) << s.reason;
-  }
+  EXPECT_TRUE(SkippedEachFor(campaign, 2,
+                             {"the camera signs its messages (h4cam run --auth-key)",
+                              "give collect the same --auth-key"}));
   EXPECT_GT(bus.unchecked_signed(channels::kCameraStatus), 0);
 }
 
@@ -1407,11 +1410,7 @@ TEST_F(CampaignTest, AFloodOfForeignMeasurementsIsLoggedAtMostOnceASecond) {
       h4msgs::board_pose_t behind = ForeignBoardPose(1);
       behind.translation[2] = -0.5;  // impossible
       bus.Publish(channels::kBoardPose, behind);
-      h4msgs::joint_state_t three_joints{};
-      three_joints.utime = NowUtime();
-      three_joints.joint_count = 3;
-      three_joints.position = {0.0, 0.0, 0.0};
-      bus.Publish(channels::kJointState, three_joints);
+      PublishThreeJointState(bus);
     }
   });
   spdlog::default_logger()->sinks().pop_back();

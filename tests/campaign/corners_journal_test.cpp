@@ -5,11 +5,11 @@
 #include <cerrno>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
 
+#include "common/formats/csv_table.h"
 #include "common/formats/format_error.h"
 #include "tests/support/test_dir.h"
 
@@ -24,13 +24,6 @@ std::vector<CornerObservation> CornersOfPose(int64_t pose_id, int count = 3) {
     corners.push_back({pose_id, 2, 8 + k, 10.5 * static_cast<double>(pose_id) + k, 20.25, 0.04});
   }
   return corners;
-}
-
-std::string ReadWholeCornersFile(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 void WriteText(const std::string& path, const std::string& text) {
@@ -72,13 +65,12 @@ TEST_F(CornersJournalTest, WritesPosesThatReadBackAndResumesWithThem) {
   ASSERT_EQ(back.size(), 9u);
   EXPECT_EQ(back[8].pose_id, 5);
   EXPECT_EQ(back[8].u, 52.5 + 2);
-  EXPECT_EQ(ReadWholeCornersFile(corners_path_).substr(0, 37),
-            "pose_id,tag_id,corner,u,v,sigma_px\n1,");
+  EXPECT_EQ(ReadTextFile(corners_path_).substr(0, 37), "pose_id,tag_id,corner,u,v,sigma_px\n1,");
 }
 
 TEST_F(CornersJournalTest, ResumesAFileWithCrlfLineEndsOrAByteOrderMark) {
   { CornersJournal(corners_path_).Append(CornersOfPose(1)); }
-  const std::string lf = ReadWholeCornersFile(corners_path_);
+  const std::string lf = ReadTextFile(corners_path_);
   std::string crlf;
   for (char c : lf) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
   for (const std::string& text : {crlf, "\xEF\xBB\xBF" + lf}) {
@@ -106,7 +98,7 @@ TEST_F(CornersJournalTest, DropsThePoseACrashCut) {
     CornersJournal journal(corners_path_);
     journal.Append(CornersOfPose(1));
   }
-  const std::string whole = ReadWholeCornersFile(corners_path_);
+  const std::string whole = ReadTextFile(corners_path_);
   WriteText(corners_path_, whole + "2,2,8,21,20.25,0.04\n2,2,9,22,20.2");
   {
     CornersJournal journal(corners_path_);
@@ -122,7 +114,7 @@ TEST_F(CornersJournalTest, DropsThePoseACrashCut) {
   WriteText(corners_path_, whole + "1");
   CornersJournal journal(corners_path_);
   EXPECT_FALSE(journal.Contains(1));
-  EXPECT_EQ(ReadWholeCornersFile(corners_path_), "pose_id,tag_id,corner,u,v,sigma_px\n");
+  EXPECT_EQ(ReadTextFile(corners_path_), "pose_id,tag_id,corner,u,v,sigma_px\n");
 }
 
 TEST_F(CornersJournalTest, RefusesAFileWithOtherColumnsOrMalformedRows) {

@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
-#include <sstream>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -15,6 +14,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "common/formats/csv_table.h"
 #include "common/formats/format_error.h"
 #include "tests/support/test_dir.h"
 
@@ -37,13 +37,6 @@ DatasetRow Row(int64_t id) {
   row.sigma_t = 2e-4;
   row.sigma_r = 5e-4;
   return row;
-}
-
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 class DatasetJournalTest : public TestWithDatasetFile {
@@ -87,12 +80,12 @@ TEST_F(DatasetJournalTest, DropsALastLineCutByACrash) {
     journal.Append(Row(1));
     journal.Append(Row(2));
   }
-  const std::string whole = Slurp(path_);
+  const std::string whole = ReadTextFile(path_);
   std::ofstream(path_, std::ios::app) << "3,1700000000000003,0.3,0.2";  // no newline
   DatasetJournal resumed(path_);
   EXPECT_EQ(resumed.resumed_count(), 2u);
   EXPECT_FALSE(resumed.Contains(3));
-  EXPECT_EQ(Slurp(path_), whole) << "the cut line is removed from the file";
+  EXPECT_EQ(ReadTextFile(path_), whole) << "the cut line is removed from the file";
   resumed.Append(Row(3));
   EXPECT_EQ(ReadDatasetCsv(path_).size(), 3u);
 }
@@ -105,7 +98,7 @@ TEST_F(DatasetJournalTest, ResumesAFileWithCrlfLineEndsOrAByteOrderMark) {
     DatasetJournal journal(path_);
     journal.Append(Row(1));
   }
-  const std::string lf = Slurp(path_);
+  const std::string lf = ReadTextFile(path_);
   std::string crlf;
   for (char c : lf) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
   for (const std::string& text : {crlf, "\xEF\xBB\xBF" + lf, "\xEF\xBB\xBF" + crlf}) {
@@ -182,7 +175,7 @@ TEST_F(DatasetJournalTest, AWriteThatFailsMidRowLeavesOnlyCompleteRowsAndSaysWhy
   DatasetJournal journal(path_);
   journal.Append(Row(1));
   journal.Append(Row(2));
-  const std::string before = Slurp(path_);
+  const std::string before = ReadTextFile(path_);
 
   rlimit saved{};
   ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &saved), 0);
@@ -202,7 +195,7 @@ TEST_F(DatasetJournalTest, AWriteThatFailsMidRowLeavesOnlyCompleteRowsAndSaysWhy
   ASSERT_FALSE(error.empty()) << "the write cannot have succeeded";
   EXPECT_NE(error.find(path_ + ": cannot write"), std::string::npos) << error;
   EXPECT_NE(error.find("complete rows only"), std::string::npos) << error;
-  EXPECT_EQ(Slurp(path_), before) << "no part of row 3 may stay in the file";
+  EXPECT_EQ(ReadTextFile(path_), before) << "no part of row 3 may stay in the file";
   EXPECT_FALSE(journal.Contains(3));
 
   // Space again: the same journal goes on.
@@ -226,7 +219,7 @@ TEST_F(DatasetJournalTest, AFailedFsyncCutsTheRowOffAndSaysWhy) {
   DatasetJournal journal(path_, ops);
   journal.Append(Row(1));
   journal.Append(Row(2));
-  const std::string before = Slurp(path_);
+  const std::string before = ReadTextFile(path_);
   const int calls_before = fsync_calls;
 
   fail_fsync = true;
@@ -243,7 +236,7 @@ TEST_F(DatasetJournalTest, AFailedFsyncCutsTheRowOffAndSaysWhy) {
             std::string::npos)
       << error;
   EXPECT_NE(error.find("complete rows only"), std::string::npos) << error;
-  EXPECT_EQ(Slurp(path_), before) << "no part of row 3 may stay in the file";
+  EXPECT_EQ(ReadTextFile(path_), before) << "no part of row 3 may stay in the file";
   EXPECT_FALSE(journal.Contains(3));
   EXPECT_EQ(journal.rows().size(), 2u);
 

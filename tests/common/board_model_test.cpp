@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/board_specs.h"
+
 namespace h4 {
 namespace {
 
@@ -131,11 +133,7 @@ TEST(BoardModelTest, TagIdsOffTheBoardHaveNoCorners) {
 }
 
 TEST(BoardModelTest, ChessboardCornersAreRowMajorFromFirstInnerCorner) {
-  CheckerboardSpec spec;
-  spec.cols = 9;
-  spec.rows = 6;
-  spec.col_spacing = 0.025;
-  spec.row_spacing = 0.02;
+  const CheckerboardSpec spec = Chessboard(9, 6, 0.025, 0.02);
   const BoardModel board(spec);
   ASSERT_EQ(board.corner_count(), 54);
   EXPECT_EQ(board.corners()[0], Eigen::Vector3d::Zero());

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/board_specs.h"
 #include "tests/support/format_error_helpers.h"
 
 namespace h4 {
@@ -130,11 +131,7 @@ TEST(BoardYaml, RoundTripIsExact) {
   EXPECT_EQ(back.layout, grid.layout);
   grid.size_sigma = 2e-4;
   EXPECT_EQ(std::get<AprilGridSpec>(ParseBoardYaml(FormatBoardYaml(grid), "mem")).size_sigma, 2e-4);
-  CheckerboardSpec chess;
-  chess.cols = 11;
-  chess.rows = 8;
-  chess.col_spacing = 0.0251;
-  chess.row_spacing = 0.0249;
+  const CheckerboardSpec chess = Chessboard(11, 8, 0.0251, 0.0249);
   const std::string path = TempPath("board.yaml");
   WriteBoardYaml(path, chess);
   const auto chess_back = std::get<CheckerboardSpec>(ReadBoardYaml(path));

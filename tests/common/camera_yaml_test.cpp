@@ -106,46 +106,47 @@ TEST(CameraYaml, RoundTripIsExact) {
   EXPECT_EQ(back.avg_reprojection_error, camera.avg_reprojection_error);
 }
 
+// An edit of kOpenCvFile (`from` replaced by `to`) and what its FormatError must name.
+struct CameraFileEdit {
+  std::string from;
+  std::string to;
+  int line = 0;
+  std::string field;
+  std::string expected_text;
+};
+
+// For each edit: the edited file read as "c.yaml" fails as ExpectEachFailsWith checks.
+void ExpectEachEditFails(const std::vector<CameraFileEdit>& edits) {
+  std::vector<MalformedInput> inputs;
+  for (const CameraFileEdit& edit : edits) {
+    inputs.push_back(
+        {CameraFileWith(edit.from, edit.to), edit.line, edit.field, edit.expected_text});
+  }
+  const auto parse = [](const std::string& text, const std::string& source) {
+    return ParseCameraYaml(text, source);
+  };
+  ExpectEachFailsWith(parse, "c.yaml", inputs);
+}
+
 TEST(CameraYamlErrors, NameLineAndField) {
   // Line numbers are those of the file, the %YAML line included.
-  EXPECT_TRUE(FailsWith(
-      [] { ParseCameraYaml(CameraFileWith("image_width: 1456", "image_width: 0"), "c.yaml"); },
-      "c.yaml", 4, "image_width", "positive image size"));
-  EXPECT_TRUE(FailsWith(
-      [] { ParseCameraYaml(CameraFileWith("image_height: 1088", "image_height: 10.5"), "c.yaml"); },
-      "c.yaml", 5, "image_height", "expected an integer"));
-  EXPECT_TRUE(
-      FailsWith([] { ParseCameraYaml(CameraFileWith("image_height: 1088\n", ""), "c.yaml"); },
-                "c.yaml", 0, "image_height", "missing key"));
-  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(CameraFileWith("dt: d", "dt: u"), "c.yaml"); },
-                        "c.yaml", 9, "camera_matrix.dt", "expected 'd' or 'f'"));
-  EXPECT_TRUE(
-      FailsWith([] { ParseCameraYaml(CameraFileWith("0., 0., 1. ]", "0., 1. ]"), "c.yaml"); },
-                "c.yaml", 10, "camera_matrix.data", "list of 9 numbers, got a list of 8"));
-  EXPECT_TRUE(FailsWith(
-      [] { ParseCameraYaml(CameraFileWith("544., 0., 0., 1.", "544., 0., 0., 2."), "c.yaml"); },
-      "c.yaml", 11, "camera_matrix.data[8]", "expected 1"));
-  EXPECT_TRUE(FailsWith(
-      [] { ParseCameraYaml(CameraFileWith("1.2352500000000000e+03", "-1.23525e+03"), "c.yaml"); },
-      "c.yaml", 11, "camera_matrix.data[4]", "positive focal length"));
-  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(CameraFileWith("544.,", "oops,"), "c.yaml"); },
-                        "c.yaml", 11, "camera_matrix.data[5]", "expected a number, got 'oops'"));
-  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(CameraFileWith("rows: 5", "rows: 6"), "c.yaml"); },
-                        "c.yaml", 16, "distortion_coefficients.data", "list of 6"));
-  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(CameraFileWith("dt: d", "dtype: d"), "c.yaml"); },
-                        "c.yaml", 9, "camera_matrix.dtype", "unknown key"));
-  EXPECT_TRUE(FailsWith([] { ParseCameraYaml(CameraFileWith("rows: 3", "rows: 2"), "c.yaml"); },
-                        "c.yaml", 10, "camera_matrix.data", "list of 6"));
-  EXPECT_TRUE(FailsWith(
-      [] {
-        ParseCameraYaml(CameraFileWith("avg_reprojection_error: 2.5000000000000000e-01",
-                                       "avg_reprojection_error: -1"),
-                        "c.yaml");
-      },
-      "c.yaml", 18, "avg_reprojection_error", "non-negative"));
-  EXPECT_TRUE(
-      FailsWith([] { ParseCameraYaml(CameraFileWith("   cols: 3", "     cols: 3"), "c.yaml"); },
-                "c.yaml", 8, "", "invalid YAML"));
+  ExpectEachEditFails({
+      {"image_width: 1456", "image_width: 0", 4, "image_width", "positive image size"},
+      {"image_height: 1088", "image_height: 10.5", 5, "image_height", "expected an integer"},
+      {"image_height: 1088\n", "", 0, "image_height", "missing key"},
+      {"dt: d", "dt: u", 9, "camera_matrix.dt", "expected 'd' or 'f'"},
+      {"0., 0., 1. ]", "0., 1. ]", 10, "camera_matrix.data", "list of 9 numbers, got a list of 8"},
+      {"544., 0., 0., 1.", "544., 0., 0., 2.", 11, "camera_matrix.data[8]", "expected 1"},
+      {"1.2352500000000000e+03", "-1.23525e+03", 11, "camera_matrix.data[4]",
+       "positive focal length"},
+      {"544.,", "oops,", 11, "camera_matrix.data[5]", "expected a number, got 'oops'"},
+      {"rows: 5", "rows: 6", 16, "distortion_coefficients.data", "list of 6"},
+      {"dt: d", "dtype: d", 9, "camera_matrix.dtype", "unknown key"},
+      {"rows: 3", "rows: 2", 10, "camera_matrix.data", "list of 6"},
+      {"avg_reprojection_error: 2.5000000000000000e-01", "avg_reprojection_error: -1", 18,
+       "avg_reprojection_error", "non-negative"},
+      {"   cols: 3", "     cols: 3", 8, "", "invalid YAML"},
+  });
 }
 
 // intrinsics_covariance: 9 x 9 (fx, fy, cx, cy, five coefficients), kept exactly; a wrong

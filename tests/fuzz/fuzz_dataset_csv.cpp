@@ -8,12 +8,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const auto rows = fuzz::ParseOrRefuse(
       fuzz::Text(data, size), [](const std::string& t) { return ParseDatasetCsv(t, "fuzz.csv"); });
   if (!rows) return 0;
-  const std::vector<DatasetRow> back = ParseDatasetCsv(FormatDatasetCsv(*rows), "written.csv");
-  fuzz::Require(back.size() == rows->size(), "dataset round trip keeps every row");
-  for (size_t i = 0; i < back.size(); ++i) {
-    fuzz::Require(back[i].pose_id == (*rows)[i].pose_id && back[i].q == (*rows)[i].q &&
-                      back[i].sigma_t == (*rows)[i].sigma_t,
-                  "dataset round trip keeps the values");
-  }
+  fuzz::RequireRoundTrip(
+      *rows, ParseDatasetCsv(FormatDatasetCsv(*rows), "written.csv"),
+      [](const DatasetRow& b, const DatasetRow& a) {
+        return b.pose_id == a.pose_id && b.q == a.q && b.sigma_t == a.sigma_t;
+      },
+      "dataset round trip");
   return 0;
 }

@@ -24,13 +24,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (corners) {
     std::string written = CornersCsvHeader(true) + "\n";
     for (const CornerObservation& c : *corners) written += CornersCsvLine(c, true) + "\n";
-    const auto back = ParseCornersCsv(written, "written.csv");
-    fuzz::Require(back.size() == corners->size(), "corners round trip keeps every row");
-    for (size_t i = 0; i < back.size(); ++i) {
-      fuzz::Require(back[i].u == (*corners)[i].u && back[i].v == (*corners)[i].v &&
-                        back[i].sigma_px == (*corners)[i].sigma_px,
-                    "corners round trip keeps the values");
-    }
+    fuzz::RequireRoundTrip(
+        *corners, ParseCornersCsv(written, "written.csv"),
+        [](const CornerObservation& b, const CornerObservation& a) {
+          return b.u == a.u && b.v == a.v && b.sigma_px == a.sigma_px;
+        },
+        "corners round trip");
   }
   return 0;
 }

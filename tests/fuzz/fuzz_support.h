@@ -6,8 +6,8 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <optional>
 #include <string>
 
@@ -22,8 +22,7 @@ inline std::string Text(const uint8_t* data, size_t size) {
 
 /// `parse(text)`'s value, or nothing when it throws FormatError.
 template <typename Parse>
-auto ParseOrRefuse(const std::string& text, Parse&& parse)
-    -> std::optional<decltype(parse(text))> {
+auto ParseOrRefuse(const std::string& text, Parse&& parse) -> std::optional<decltype(parse(text))> {
   try {
     return parse(text);
   } catch (const FormatError&) {
@@ -37,6 +36,17 @@ inline void Require(bool holds, const char* what) {
   if (holds) return;
   std::fprintf(stderr, "fuzz property violated: %s\n", what);
   std::abort();
+}
+
+/// The round trip of rows the parser accepted: `back` (what it read of what was written)
+/// holds as many rows as `rows`, and `same(back[i], rows[i])` for each; `what` names the
+/// round trip in the failure ("... keeps every row", "... keeps the values").
+template <typename Rows, typename Same>
+void RequireRoundTrip(const Rows& rows, const Rows& back, Same&& same, const std::string& what) {
+  if (back.size() != rows.size()) Require(false, (what + " keeps every row").c_str());
+  for (size_t i = 0; i < back.size(); ++i) {
+    if (!same(back[i], rows[i])) Require(false, (what + " keeps the values").c_str());
+  }
 }
 
 }  // namespace h4::fuzz

@@ -12,18 +12,12 @@
 #include "firmware/calibration/board_views.h"
 #include "firmware/render/board_renderer.h"
 #include "firmware/render/paper_scenes.h"
+#include "tests/support/board_specs.h"
 
 namespace h4::cam {
 namespace {
 
-CheckerboardSpec ChessboardOf(int cols, int rows) {
-  CheckerboardSpec board;
-  board.cols = cols;
-  board.rows = rows;
-  board.col_spacing = 0.02;
-  board.row_spacing = 0.02;
-  return board;
-}
+CheckerboardSpec ChessboardOf(int cols, int rows) { return Chessboard(cols, rows, 0.02, 0.02); }
 
 RigidTransform ChessboardPose() {
   const Eigen::Matrix3d R_CT = So3Exp(Eigen::Vector3d(0.2, -0.1, 0.1));

@@ -19,34 +19,56 @@
 #include "common/formats/corners_csv.h"
 #include "firmware/render/board_renderer.h"
 #include "firmware/render/paper_scenes.h"
+#include "tests/support/test_dir.h"
 
 namespace h4::cam {
 namespace {
 namespace fs = std::filesystem;
 
-TEST(MeasureCommandTest, WritesOneRowPerGroupWithEmptyPoseWhenNoBoard) {
-  const fs::path dir = fs::path(H4_BINARY_DIR) / "test_tmp" / "measure_command";
-  fs::remove_all(dir);
-  fs::create_directories(dir / "images");
-  const AprilGridSpec board = scenes::PaperBoard();
-  const CameraIntrinsics camera = scenes::PaperCamera();
-  WriteBoardYaml((dir / "board.yaml").string(), board);
-  WriteCameraYaml((dir / "camera.yaml").string(), camera);
-  const BoardRenderer renderer(board, camera, RenderOptions{});
-  const RigidTransform X_CT = scenes::BoardPose(board, 0.5, 0.3, 1.2, 0.4);
-  const cv::Mat clean = renderer.RenderClean(X_CT);
-  cv::RNG rng(1);
-  for (int k = 0; k < 4; ++k) {  // group 1: the board; group 2: an empty scene
-    const cv::Mat frame =
-        k < 2 ? renderer.Expose(clean, rng) : cv::Mat(768, 1024, CV_8U, cv::Scalar(90));
-    cv::imwrite((dir / "images" / ("f" + std::to_string(k) + ".png")).string(), frame);
-  }
+// A fresh directory for the running test under test_tmp in the build tree, holding the
+// paper's board.yaml and camera.yaml.
+fs::path FreshDirWithPaperBoardAndCamera() {
+  const fs::path dir = FreshTestDir("measure_command_", fs::path(H4_BINARY_DIR) / "test_tmp");
+  WriteBoardYaml((dir / "board.yaml").string(), scenes::PaperBoard());
+  WriteCameraYaml((dir / "camera.yaml").string(), scenes::PaperCamera());
+  return dir;
+}
+
+// MeasureArgs reading the board and camera of `dir` and writing its poses.csv (no images yet).
+MeasureArgs ArgsReadingAndWritingIn(const fs::path& dir) {
   MeasureArgs args;
   args.board_path = (dir / "board.yaml").string();
   args.camera_path = (dir / "camera.yaml").string();
+  args.out_path = (dir / "poses.csv").string();
+  return args;
+}
+
+// Writes f0.png to f3.png into `images` (created): two groups of two frames, the paper's board
+// at one pose (exposed with noise seed `seed`) in group `board_group` (1 or 2), an empty scene
+// in the other. Returns the board's pose.
+RigidTransform WriteTwoGroupsOfTwoFrames(const fs::path& images, int board_group, int seed) {
+  fs::create_directories(images);
+  const AprilGridSpec board = scenes::PaperBoard();
+  const BoardRenderer renderer(board, scenes::PaperCamera(), RenderOptions{});
+  const RigidTransform X_CT = scenes::BoardPose(board, 0.5, 0.3, 1.2, 0.4);
+  const cv::Mat clean = renderer.RenderClean(X_CT);
+  cv::RNG rng(seed);
+  for (int k = 0; k < 4; ++k) {
+    const bool board_in_view = (k / 2 + 1) == board_group;
+    const cv::Mat frame =
+        board_in_view ? renderer.Expose(clean, rng) : cv::Mat(768, 1024, CV_8U, cv::Scalar(90));
+    cv::imwrite((images / ("f" + std::to_string(k) + ".png")).string(), frame);
+  }
+  return X_CT;
+}
+
+TEST(MeasureCommandTest, WritesOneRowPerGroupWithEmptyPoseWhenNoBoard) {
+  const fs::path dir = FreshDirWithPaperBoardAndCamera();
+  const RigidTransform X_CT =
+      WriteTwoGroupsOfTwoFrames(dir / "images", /*board_group=*/1, /*seed=*/1);
+  MeasureArgs args = ArgsReadingAndWritingIn(dir);
   args.images = {(dir / "images").string()};
   args.group = 2;
-  args.out_path = (dir / "poses.csv").string();
   std::ostringstream progress;
   EXPECT_EQ(RunMeasure(args, progress), 1);
   EXPECT_NE(progress.str().find("[2/2]"), std::string::npos);
@@ -65,27 +87,13 @@ TEST(MeasureCommandTest, WritesOneRowPerGroupWithEmptyPoseWhenNoBoard) {
 // board's tag and corner ids, and the reported pose reprojects them within a fraction of a
 // pixel (common/formats/README.md#board-corners-csv).
 TEST(MeasureCommandTest, CornersOutCarriesTheCornersOfEachPose) {
-  const fs::path dir = fs::path(H4_BINARY_DIR) / "test_tmp" / "measure_command_corners";
-  fs::remove_all(dir);
-  fs::create_directories(dir / "images");
+  const fs::path dir = FreshDirWithPaperBoardAndCamera();
+  WriteTwoGroupsOfTwoFrames(dir / "images", /*board_group=*/2, /*seed=*/2);
   const AprilGridSpec board = scenes::PaperBoard();
   const CameraIntrinsics camera = scenes::PaperCamera();
-  WriteBoardYaml((dir / "board.yaml").string(), board);
-  WriteCameraYaml((dir / "camera.yaml").string(), camera);
-  const BoardRenderer renderer(board, camera, RenderOptions{});
-  const cv::Mat clean = renderer.RenderClean(scenes::BoardPose(board, 0.5, 0.3, 1.2, 0.4));
-  cv::RNG rng(2);
-  for (int k = 0; k < 4; ++k) {  // group 1: an empty scene; group 2: the board
-    const cv::Mat frame =
-        k < 2 ? cv::Mat(768, 1024, CV_8U, cv::Scalar(90)) : renderer.Expose(clean, rng);
-    cv::imwrite((dir / "images" / ("f" + std::to_string(k) + ".png")).string(), frame);
-  }
-  MeasureArgs args;
-  args.board_path = (dir / "board.yaml").string();
-  args.camera_path = (dir / "camera.yaml").string();
+  MeasureArgs args = ArgsReadingAndWritingIn(dir);
   args.images = {(dir / "images").string()};
   args.group = 2;
-  args.out_path = (dir / "poses.csv").string();
   args.corners_out_path = (dir / "corners.csv").string();
   std::ostringstream progress;
   ASSERT_EQ(RunMeasure(args, progress), 1);
@@ -124,17 +132,10 @@ TEST(MeasureCommandTest, CornersOutThatIsTheOutFileIsRefused) {
 }
 
 TEST(MeasureCommandTest, ImageOfWrongSizeIsAnErrorNamingTheFile) {
-  const fs::path dir = fs::path(H4_BINARY_DIR) / "test_tmp" / "measure_command_size";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  WriteBoardYaml((dir / "board.yaml").string(), scenes::PaperBoard());
-  WriteCameraYaml((dir / "camera.yaml").string(), scenes::PaperCamera());
+  const fs::path dir = FreshDirWithPaperBoardAndCamera();
   cv::imwrite((dir / "small.png").string(), cv::Mat(10, 10, CV_8U, cv::Scalar(0)));
-  MeasureArgs args;
-  args.board_path = (dir / "board.yaml").string();
-  args.camera_path = (dir / "camera.yaml").string();
+  MeasureArgs args = ArgsReadingAndWritingIn(dir);
   args.images = {(dir / "small.png").string()};
-  args.out_path = (dir / "poses.csv").string();
   std::ostringstream progress;
   try {
     RunMeasure(args, progress);

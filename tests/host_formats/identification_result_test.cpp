@@ -5,6 +5,8 @@
 #include <cmath>
 #include <map>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -33,6 +35,39 @@ const std::string kResult = R"({
 // kResult with `from` replaced by `to`.
 std::string ResultWith(const std::string& from, const std::string& to) {
   return ReplacedOnce(kResult, from, to);
+}
+
+// FailsWith for a result JSON read as "r.json": its errors name a JSON path (`field`), no line.
+::testing::AssertionResult JsonFailsAt(const std::string& text, const std::string& field,
+                                       const std::string& expected) {
+  return FailsWith([&] { ParseIdentificationResult(text, "r.json"); }, "r.json", 0, field,
+                   expected);
+}
+
+// JsonFailsAt for `result` as FormatIdentificationResult writes it (inside the checked call,
+// so that a writer's exception fails the check too).
+::testing::AssertionResult WrittenResultFailsAt(const IdentificationResult& result,
+                                                const std::string& field,
+                                                const std::string& expected) {
+  return FailsWith([&] { ParseIdentificationResult(FormatIdentificationResult(result), "r.json"); },
+                   "r.json", 0, field, expected);
+}
+
+// An edit of kResult (`from` replaced by `to`) and the JSON path and part of the message its
+// FormatError must name.
+struct ResultEdit {
+  std::string from;
+  std::string to;
+  std::string field;
+  std::string expected;
+};
+
+// JsonFailsAt for each edit of kResult.
+void ExpectEachEditFails(const std::vector<ResultEdit>& edits) {
+  for (const ResultEdit& edit : edits) {
+    EXPECT_TRUE(JsonFailsAt(ResultWith(edit.from, edit.to), edit.field, edit.expected))
+        << "edit: " << edit.from << " -> " << edit.to;
+  }
 }
 
 TEST(IdentificationResult, ReadsFormatsMdKeys) {
@@ -164,11 +199,9 @@ TEST(IdentificationResult, CameraErrorFloorRoundTripsAndAbsentReadsAsAbsent) {
 TEST(IdentificationResultErrors, ANegativeOrHugeCameraErrorFloorNamesTheField) {
   IdentificationResult r = FullResult();
   r.camera_error_floor = CameraErrorFloor{1e-4, -1e-6};
-  EXPECT_TRUE(FailsWith([&] { ParseIdentificationResult(FormatIdentificationResult(r), "r.json"); },
-                        "r.json", 0, "camera_error_floor.translation_m", "non-negative"));
+  EXPECT_TRUE(WrittenResultFailsAt(r, "camera_error_floor.translation_m", "non-negative"));
   r.camera_error_floor = CameraErrorFloor{7.0, 1e-6};
-  EXPECT_TRUE(FailsWith([&] { ParseIdentificationResult(FormatIdentificationResult(r), "r.json"); },
-                        "r.json", 0, "camera_error_floor.rotation_rad", "at most 2 pi"));
+  EXPECT_TRUE(WrittenResultFailsAt(r, "camera_error_floor.rotation_rad", "at most 2 pi"));
 }
 
 TEST(IdentificationResult, OlderResultsWithoutAVerdictStillRead) {
@@ -210,28 +243,24 @@ TEST(IdentificationResult, OlderResultsWithoutACovarianceStillRead) {
 }
 
 TEST(IdentificationResultErrors, ACovarianceThatDisagreesWithTheSigmasNamesTheField) {
-  const auto fails = [](const IdentificationResult& r, const std::string& field,
-                        const std::string& expected) {
-    return FailsWith([&] { ParseIdentificationResult(FormatIdentificationResult(r), "r.json"); },
-                     "r.json", 0, field, expected);
-  };
   IdentificationResult r = ResultWithCovariance(0.5);
   (*r.parameter_covariance)(1, 1) *= 1.01;
-  EXPECT_TRUE(fails(r, "parameter_covariance[1]", "diagonal equal to std^2"));
+  EXPECT_TRUE(WrittenResultFailsAt(r, "parameter_covariance[1]", "diagonal equal to std^2"));
   r = ResultWithCovariance(0.5);
   (*r.parameter_covariance)(2, 0) = 1e-9;
-  EXPECT_TRUE(fails(r, "parameter_covariance[2]", "zeros for a parameter without std"));
+  EXPECT_TRUE(
+      WrittenResultFailsAt(r, "parameter_covariance[2]", "zeros for a parameter without std"));
   r = ResultWithCovariance(0.5);
   (*r.parameter_covariance)(1, 0) *= 0.5;
-  EXPECT_TRUE(fails(r, "parameter_covariance[1][0]", "symmetric"));
-  EXPECT_TRUE(fails(ResultWithCovariance(1.5), "parameter_covariance", "positive semi-definite"));
+  EXPECT_TRUE(WrittenResultFailsAt(r, "parameter_covariance[1][0]", "symmetric"));
+  EXPECT_TRUE(WrittenResultFailsAt(ResultWithCovariance(1.5), "parameter_covariance",
+                                   "positive semi-definite"));
   r = ResultWithCovariance(0.5);
   r.parameter_covariance = Eigen::MatrixXd::Zero(2, 2);
   EXPECT_THROW(FormatIdentificationResult(r), std::invalid_argument);
   const std::string short_rows =
       ResultWith("\"poses\":", "\"parameter_covariance\": [[1, 0, 0]],\n  \"poses\":");
-  EXPECT_TRUE(FailsWith([&] { ParseIdentificationResult(short_rows, "r.json"); }, "r.json", 0,
-                        "parameter_covariance", "array of 3"));
+  EXPECT_TRUE(JsonFailsAt(short_rows, "parameter_covariance", "array of 3"));
 }
 
 // The covariance with exact intrinsics (the camera model's share is the difference): read
@@ -248,24 +277,21 @@ TEST(IdentificationResult, CameraExactCovarianceRoundTripsAndIsBoundedByTheSigma
   EXPECT_FALSE(
       ParseIdentificationResult(kResult, "old.json").parameter_covariance_camera_exact.has_value());
 
-  const auto fails = [](const IdentificationResult& bad, const std::string& field,
-                        const std::string& expected) {
-    return FailsWith([&] { ParseIdentificationResult(FormatIdentificationResult(bad), "r.json"); },
-                     "r.json", 0, field, expected);
-  };
   IdentificationResult wide = r;
   (*wide.parameter_covariance_camera_exact)(1, 1) = 1.01 * (*r.parameter_covariance)(1, 1);
-  EXPECT_TRUE(fails(wide, "parameter_covariance_camera_exact[1]", "at most std^2"));
+  EXPECT_TRUE(WrittenResultFailsAt(wide, "parameter_covariance_camera_exact[1]", "at most std^2"));
   IdentificationResult fixed_row = r;
   (*fixed_row.parameter_covariance_camera_exact)(2, 2) = 1e-12;
-  EXPECT_TRUE(fails(fixed_row, "parameter_covariance_camera_exact[2]", "at most std^2"));
+  EXPECT_TRUE(
+      WrittenResultFailsAt(fixed_row, "parameter_covariance_camera_exact[2]", "at most std^2"));
   IdentificationResult skew = r;
   (*skew.parameter_covariance_camera_exact)(1, 0) *= 0.5;
-  EXPECT_TRUE(fails(skew, "parameter_covariance_camera_exact[1][0]", "symmetric"));
+  EXPECT_TRUE(WrittenResultFailsAt(skew, "parameter_covariance_camera_exact[1][0]", "symmetric"));
   IdentificationResult alone = r;
   alone.parameter_covariance.reset();
   for (ResultParameter& p : alone.parameters) p.std.reset();
-  EXPECT_TRUE(fails(alone, "parameter_covariance_camera_exact", "parameter_covariance beside"));
+  EXPECT_TRUE(WrittenResultFailsAt(alone, "parameter_covariance_camera_exact",
+                                   "parameter_covariance beside"));
 }
 
 TEST(IdentificationResult, WritesKeysInFormatsMdOrderAndNullStdForFixed) {
@@ -285,87 +311,61 @@ TEST(IdentificationResult, WritesKeysInFormatsMdOrderAndNullStdForFixed) {
 }
 
 TEST(IdentificationResultErrors, NameTheJsonPath) {
-  const auto fails = [](const std::string& text, const std::string& field,
-                        const std::string& expected) {
-    return FailsWith([&] { ParseIdentificationResult(text, "r.json"); }, "r.json", 0, field,
-                     expected);
-  };
-  EXPECT_TRUE(
-      fails(ResultWith("\"12\"", "\"13\""), "model", "expected \"12\" or \"31\", got \"13\""));
-  EXPECT_TRUE(fails(ResultWith("\"12\"", "12"), "model", "expected a string"));
-  EXPECT_TRUE(fails(ResultWith("\"value\": 0.0610", "\"value\": \"0.0610\""), "parameters[0].value",
-                    "expected a number"));
-  EXPECT_TRUE(fails(ResultWith("\"apriori\": 0.06, ", ""), "parameters[0].apriori", "missing key"));
-  EXPECT_TRUE(fails(ResultWith("\"status\": \"identified\"", "\"status\": \"free\""),
-                    "parameters[0].status", "expected \"identified\" or \"fixed\""));
-  EXPECT_TRUE(fails(
-      ResultWith("\"std\": null, \"status\": \"fixed\"}", "\"std\": 0.1, \"status\": \"fixed\"}"),
-      "parameters[1].std", "null for a fixed parameter"));
-  EXPECT_TRUE(fails(ResultWith("\"std\": 0.0001", "\"std\": -0.0001"), "parameters[0].std",
-                    "non-negative"));
-  EXPECT_TRUE(fails(ResultWith("{\"name\": \"d\"", "{\"name\": \"h\""), "parameters[1].name",
-                    "given twice"));
-  EXPECT_TRUE(fails(ResultWith("[0, 0, -1.05]", "[0, -1.05]"), "X_BC.translation",
-                    "expected an array of 3"));
-  EXPECT_TRUE(fails(ResultWith("\"rpy\": [0, 0, 0]}", "\"rpy\": [0, 0, null]}"), "X_TE.rpy[2]",
-                    "expected a number, got null"));
-  EXPECT_TRUE(
-      fails(ResultWith("{\"name\": \"X_TE.tz\", \"reason\"", "{\"name\": \"h\", \"reason\""),
-            "fixed[0].name", "status \"fixed\""));
-  EXPECT_TRUE(
-      fails(ResultWith("0.003, 0.004]", "0.003]"), "residuals.calib_rms_rad", "array of 4"));
-  EXPECT_TRUE(
-      fails(ResultWith("0.0011,", "-0.0011,"), "residuals.valid_rms_rad[0]", "non-negative"));
-  EXPECT_TRUE(fails(ResultWith("\"valid\": [4]", "\"valid\": [4.5]"), "poses.valid[0]",
-                    "expected an integer"));
-  EXPECT_TRUE(fails(ResultWith(", \"rejected\": []", ""), "poses.rejected", "missing key"));
-  EXPECT_TRUE(fails(ResultWith("\"model\": \"12\",", "\"model\": \"12\", \"log\": [1],"), "log[0]",
-                    "expected a string"));
-  EXPECT_TRUE(fails(ResultWith("\"model\": \"12\",",
-                               "\"model\": \"12\", \"correlations\": [{\"a\": \"h\", \"b\": \"R\", "
-                               "\"correlation\": 1.5}],"),
-                    "correlations[0].correlation", "[-1, 1]"));
-  EXPECT_TRUE(fails("[1, 2]", "", "expected an object"));
+  ExpectEachEditFails({
+      {"\"12\"", "\"13\"", "model", "expected \"12\" or \"31\", got \"13\""},
+      {"\"12\"", "12", "model", "expected a string"},
+      {"\"value\": 0.0610", "\"value\": \"0.0610\"", "parameters[0].value", "expected a number"},
+      {"\"apriori\": 0.06, ", "", "parameters[0].apriori", "missing key"},
+      {"\"status\": \"identified\"", "\"status\": \"free\"", "parameters[0].status",
+       "expected \"identified\" or \"fixed\""},
+      {"\"std\": null, \"status\": \"fixed\"}", "\"std\": 0.1, \"status\": \"fixed\"}",
+       "parameters[1].std", "null for a fixed parameter"},
+      {"\"std\": 0.0001", "\"std\": -0.0001", "parameters[0].std", "non-negative"},
+      {"{\"name\": \"d\"", "{\"name\": \"h\"", "parameters[1].name", "given twice"},
+      {"[0, 0, -1.05]", "[0, -1.05]", "X_BC.translation", "expected an array of 3"},
+      {"\"rpy\": [0, 0, 0]}", "\"rpy\": [0, 0, null]}", "X_TE.rpy[2]",
+       "expected a number, got null"},
+      {"{\"name\": \"X_TE.tz\", \"reason\"", "{\"name\": \"h\", \"reason\"", "fixed[0].name",
+       "status \"fixed\""},
+      {"0.003, 0.004]", "0.003]", "residuals.calib_rms_rad", "array of 4"},
+      {"0.0011,", "-0.0011,", "residuals.valid_rms_rad[0]", "non-negative"},
+      {"\"valid\": [4]", "\"valid\": [4.5]", "poses.valid[0]", "expected an integer"},
+      {", \"rejected\": []", "", "poses.rejected", "missing key"},
+      {"\"model\": \"12\",", "\"model\": \"12\", \"log\": [1],", "log[0]", "expected a string"},
+      {"\"model\": \"12\",",
+       "\"model\": \"12\", \"correlations\": [{\"a\": \"h\", \"b\": \"R\", "
+       "\"correlation\": 1.5}],",
+       "correlations[0].correlation", "[-1, 1]"},
+  });
+  EXPECT_TRUE(JsonFailsAt("[1, 2]", "", "expected an object"));
 }
 
 // Regression: ik and export accepted a result with a negative arm length. Values are
 // checked on load like robot.yaml's, naming the JSON path.
 TEST(IdentificationResultErrors, ValuesTheKinematicsCannotUseNameTheField) {
-  const auto fails = [](const std::string& text, const std::string& field,
-                        const std::string& expected) {
-    return FailsWith([&] { ParseIdentificationResult(text, "r.json"); }, "r.json", 0, field,
-                     expected);
-  };
-  EXPECT_TRUE(fails(ResultWith("\"value\": 0.0610", "\"value\": -0.0610"), "parameters[0].value",
-                    "expected a positive length for h, got -0.061"));
-  EXPECT_TRUE(fails(ResultWith("\"value\": 0.0610", "\"value\": 0"), "parameters[0].value",
-                    "positive length"));
-  EXPECT_TRUE(fails(
-      ResultWith("{\"name\": \"d\", \"value\": 0.0", "{\"name\": \"alpha1\", \"value\": 20.0"),
-      "parameters[1].value", "within one turn"));
-  EXPECT_TRUE(
-      fails(ResultWith("{\"name\": \"d\", \"value\": 0.0", "{\"name\": \"d\", \"value\": 1e308"),
-            "parameters[1].value", "expected |d| <= 10 m"));
-  EXPECT_TRUE(
-      fails(ResultWith("[0, 0, -1.05]", "[0, 0, -1e300]"), "X_BC.translation[2]", "within 10 m"));
+  ExpectEachEditFails({
+      {"\"value\": 0.0610", "\"value\": -0.0610", "parameters[0].value",
+       "expected a positive length for h, got -0.061"},
+      {"\"value\": 0.0610", "\"value\": 0", "parameters[0].value", "positive length"},
+      {"{\"name\": \"d\", \"value\": 0.0", "{\"name\": \"alpha1\", \"value\": 20.0",
+       "parameters[1].value", "within one turn"},
+      {"{\"name\": \"d\", \"value\": 0.0", "{\"name\": \"d\", \"value\": 1e308",
+       "parameters[1].value", "expected |d| <= 10 m"},
+      {"[0, 0, -1.05]", "[0, 0, -1e300]", "X_BC.translation[2]", "within 10 m"},
+  });
 }
 
 // issue 27 point 1: nothing bounded `std`; 1e200 made every d^2 of `h4cal check` NaN and
 // the check passed. A sigma beyond the range its value may take is refused.
 TEST(IdentificationResultErrors, AStandardDeviationBeyondItsRangeNamesTheField) {
-  const auto fails = [](const std::string& text, const std::string& field,
-                        const std::string& expected) {
-    return FailsWith([&] { ParseIdentificationResult(text, "r.json"); }, "r.json", 0, field,
-                     expected);
-  };
-  EXPECT_TRUE(fails(ResultWith("\"std\": 0.0001", "\"std\": 1e200"), "parameters[0].std",
-                    "expected a standard deviation of h <= 10 m, got 1e+200"));
-  EXPECT_TRUE(
-      fails(ResultWith("\"std\": 0.0001", "\"std\": 10.5"), "parameters[0].std", "<= 10 m"));
-  EXPECT_TRUE(
-      fails(ResultWith("{\"name\": \"h\", \"value\": 0.0610, \"apriori\": 0.06, \"std\": 0.0001",
-                       "{\"name\": \"alpha1\", \"value\": 0.1, \"apriori\": 0.1, \"std\": 7"),
-            "parameters[0].std", "<= 2 pi rad"));
+  ExpectEachEditFails({
+      {"\"std\": 0.0001", "\"std\": 1e200", "parameters[0].std",
+       "expected a standard deviation of h <= 10 m, got 1e+200"},
+      {"\"std\": 0.0001", "\"std\": 10.5", "parameters[0].std", "<= 10 m"},
+      {"{\"name\": \"h\", \"value\": 0.0610, \"apriori\": 0.06, \"std\": 0.0001",
+       "{\"name\": \"alpha1\", \"value\": 0.1, \"apriori\": 0.1, \"std\": 7", "parameters[0].std",
+       "<= 2 pi rad"},
+  });
   EXPECT_NO_THROW(
       ParseIdentificationResult(ResultWith("\"std\": 0.0001", "\"std\": 10"), "r.json"));
 }
@@ -387,8 +387,7 @@ TEST(IdentificationResultErrors, DeepNestingIsRefusedBeforeParsing) {
   EXPECT_EQ(r.log[0].size(), 201u);
   // 64 levels are accepted by the depth check (and then fail as the wrong document).
   const std::string at_limit = std::string(64, '[') + std::string(64, ']');
-  EXPECT_TRUE(FailsWith([&] { ParseIdentificationResult(at_limit, "r.json"); }, "r.json", 0, "",
-                        "expected an object"));
+  EXPECT_TRUE(JsonFailsAt(at_limit, "", "expected an object"));
 }
 
 TEST(IdentificationResultErrors, SyntaxErrorNamesTheLine) {

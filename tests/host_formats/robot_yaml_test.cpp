@@ -44,6 +44,18 @@ std::string Replace(int line, const std::string& text) {
   return out;
 }
 
+// FailsWith for `text` read as "r.yaml".
+::testing::AssertionResult YamlFails(const std::string& text, int line, const std::string& field,
+                                     const std::string& expected) {
+  return FailsWith([&] { ParseRobotYaml(text, "r.yaml"); }, "r.yaml", line, field, expected);
+}
+
+// The example with line `line` replaced by `text` fails on that line, naming `field`.
+::testing::AssertionResult ExampleLineFails(int line, const std::string& text,
+                                            const std::string& field, const std::string& expected) {
+  return YamlFails(Replace(line, text), line, field, expected);
+}
+
 const std::string kModel31 = R"(model31:
   x2: 0.28
   y2: 0.001
@@ -142,120 +154,98 @@ TEST(RobotYaml, WriterStartsWithAComment) {
 }
 
 TEST(RobotYamlErrors, MissingKeyNamesTheBlockLine) {
-  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(5, "  # no forearm"), "r.yaml"); }, "r.yaml", 2,
-                        "model12.forearm", "missing key"));
+  EXPECT_TRUE(YamlFails(Replace(5, "  # no forearm"), 2, "model12.forearm", "missing key"));
   // A missing top-level block is on no line.
   std::string text = kExample;
   text.erase(text.find("X_TE:"));
-  EXPECT_TRUE(FailsWith([&] { ParseRobotYaml(text, "r.yaml"); }, "r.yaml", 0, "X_TE", "missing"));
+  EXPECT_TRUE(YamlFails(text, 0, "X_TE", "missing"));
 }
 
 TEST(RobotYamlErrors, UnknownKeyInABlockIsAnError) {
   // A misspelt key is never matched to the intended one, nor ignored in favour of a default.
-  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(5, "  forarm: 0.48"), "r.yaml"); }, "r.yaml", 5,
-                        "model12.forarm", "unknown key, expected one of: h, arm, forearm"));
-  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(12, "  elbows: [1, 1, 1, 1]"), "r.yaml"); },
-                        "r.yaml", 12, "assembly.elbows", "unknown key"));
-  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(15, "  RPY: [0, 0, 0]"), "r.yaml"); }, "r.yaml",
-                        15, "X_BC.RPY", "unknown key"));
-  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(kExample + "Model31:\n  h: 1\n", "r.yaml"); }, "r.yaml",
-                        19, "Model31", "case-sensitive: 'model31'"));
+  EXPECT_TRUE(ExampleLineFails(5, "  forarm: 0.48", "model12.forarm",
+                               "unknown key, expected one of: h, arm, forearm"));
+  EXPECT_TRUE(ExampleLineFails(12, "  elbows: [1, 1, 1, 1]", "assembly.elbows", "unknown key"));
+  EXPECT_TRUE(ExampleLineFails(15, "  RPY: [0, 0, 0]", "X_BC.RPY", "unknown key"));
+  EXPECT_TRUE(
+      YamlFails(kExample + "Model31:\n  h: 1\n", 19, "Model31", "case-sensitive: 'model31'"));
 }
 
 TEST(RobotYamlErrors, NonNumber) {
-  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(4, "  arm: 0.26m"), "r.yaml"); }, "r.yaml", 4,
-                        "model12.arm", "expected a number, got '0.26m'"));
-  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(7, "  d: .nan"), "r.yaml"); }, "r.yaml", 7,
-                        "model12.d", "expected a number"));
-  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(3, "  h:"), "r.yaml"); }, "r.yaml", 3,
-                        "model12.h", "got nothing"));
+  EXPECT_TRUE(ExampleLineFails(4, "  arm: 0.26m", "model12.arm", "expected a number, got '0.26m'"));
+  EXPECT_TRUE(ExampleLineFails(7, "  d: .nan", "model12.d", "expected a number"));
+  EXPECT_TRUE(ExampleLineFails(3, "  h:", "model12.h", "got nothing"));
   EXPECT_TRUE(
-      FailsWith([] { ParseRobotYaml(Replace(8, "  alpha: [0, pi, 4.7124, 4.7124]"), "r.yaml"); },
-                "r.yaml", 8, "model12.alpha[1]", "got 'pi'"));
+      ExampleLineFails(8, "  alpha: [0, pi, 4.7124, 4.7124]", "model12.alpha[1]", "got 'pi'"));
 }
 
 TEST(RobotYamlErrors, WrongListLength) {
-  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(9, "  q0: [0, 0, 0]"), "r.yaml"); }, "r.yaml",
-                        9, "model12.q0", "list of 4 numbers, got a list of 3"));
-  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(14, "  translation: 0"), "r.yaml"); }, "r.yaml",
-                        14, "X_BC.translation", "list of 3"));
+  EXPECT_TRUE(
+      ExampleLineFails(9, "  q0: [0, 0, 0]", "model12.q0", "list of 4 numbers, got a list of 3"));
+  EXPECT_TRUE(ExampleLineFails(14, "  translation: 0", "X_BC.translation", "list of 3"));
 }
 
 TEST(RobotYamlErrors, NonPositiveLength) {
-  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(6, "  R: -0.14"), "r.yaml"); }, "r.yaml", 6,
-                        "model12.R", "positive"));
-  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(3, "  h: 0"), "r.yaml"); }, "r.yaml", 3,
-                        "model12.h", "positive"));
+  EXPECT_TRUE(ExampleLineFails(6, "  R: -0.14", "model12.R", "positive"));
+  EXPECT_TRUE(ExampleLineFails(3, "  h: 0", "model12.h", "positive"));
   std::string text = kExample + kModel31;
   text.replace(text.find("arm: [0.26, 0.261"), 17, "arm: [0.26, -0.26");
   // model31 starts on line 19; arm is its 13th key.
-  EXPECT_TRUE(FailsWith([&] { ParseRobotYaml(text, "r.yaml"); }, "r.yaml", 32, "model31.arm[1]",
-                        "positive"));
+  EXPECT_TRUE(YamlFails(text, 32, "model31.arm[1]", "positive"));
 }
 
 // issue 27 points 2 and 5: nothing bounded robot.yaml's numbers; h = 1e154 made `identify`
 // loop, X_TE.translation x = -1e308 made `analyze` print NaN. Lengths and positions are
 // bounded at 10 m like the result JSON's, angles at a turn, each error with line and field.
 TEST(RobotYamlErrors, ValuesBeyondAnyRobotNameTheField) {
-  const auto fails = [](const std::string& text, int line, const std::string& field,
-                        const std::string& expected) {
-    return FailsWith([&] { ParseRobotYaml(text, "r.yaml"); }, "r.yaml", line, field, expected);
-  };
-  EXPECT_TRUE(fails(Replace(3, "  h: 1e154"), 3, "model12.h", "within 10 m, got 1e+154"));
-  EXPECT_TRUE(fails(Replace(5, "  forearm: 10.01"), 5, "model12.forearm", "within 10 m"));
-  EXPECT_TRUE(fails(Replace(7, "  d: -1e308"), 7, "model12.d", "within 10 m"));
-  EXPECT_TRUE(fails(Replace(8, "  alpha: [0, 3.1416, 4.7124, 1e300]"), 8, "model12.alpha[3]",
-                    "within one turn"));
-  EXPECT_TRUE(fails(Replace(14, "  translation: [0, 1e154, -1.05]"), 14, "X_BC.translation[1]",
-                    "within 10 m"));
-  EXPECT_TRUE(fails(Replace(17, "  translation: [-1e308, 0.09, 0.025]"), 17, "X_TE.translation[0]",
-                    "within 10 m"));
-  EXPECT_TRUE(fails(Replace(18, "  rpy: [0, 7, 0]"), 18, "X_TE.rpy[1]", "within one turn"));
+  EXPECT_TRUE(ExampleLineFails(3, "  h: 1e154", "model12.h", "within 10 m, got 1e+154"));
+  EXPECT_TRUE(ExampleLineFails(5, "  forearm: 10.01", "model12.forearm", "within 10 m"));
+  EXPECT_TRUE(ExampleLineFails(7, "  d: -1e308", "model12.d", "within 10 m"));
+  EXPECT_TRUE(ExampleLineFails(8, "  alpha: [0, 3.1416, 4.7124, 1e300]", "model12.alpha[3]",
+                               "within one turn"));
+  EXPECT_TRUE(ExampleLineFails(14, "  translation: [0, 1e154, -1.05]", "X_BC.translation[1]",
+                               "within 10 m"));
+  EXPECT_TRUE(ExampleLineFails(17, "  translation: [-1e308, 0.09, 0.025]", "X_TE.translation[0]",
+                               "within 10 m"));
+  EXPECT_TRUE(ExampleLineFails(18, "  rpy: [0, 7, 0]", "X_TE.rpy[1]", "within one turn"));
   std::string text = kExample + kModel31;
   text.replace(text.find("arm: [0.26, 0.261"), 17, "arm: [0.26, 1e200");
-  EXPECT_TRUE(fails(text, 32, "model31.arm[1]", "within 10 m"));
+  EXPECT_TRUE(YamlFails(text, 32, "model31.arm[1]", "within 10 m"));
   EXPECT_NO_THROW(ParseRobotYaml(Replace(5, "  forearm: 10"), "r.yaml"));
 }
 
 TEST(RobotYamlErrors, AssemblySignMustBePlusOrMinusOne) {
-  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(11, "  bar: [1, -1, 2, -1]"), "r.yaml"); },
-                        "r.yaml", 11, "assembly.bar[2]", "expected 1 or -1, got 2"));
   EXPECT_TRUE(
-      FailsWith([] { ParseRobotYaml(Replace(12, "  elbow: [-1, -1, -1, -1.0]"), "r.yaml"); },
-                "r.yaml", 12, "assembly.elbow[3]", "expected an integer"));
+      ExampleLineFails(11, "  bar: [1, -1, 2, -1]", "assembly.bar[2]", "expected 1 or -1, got 2"));
+  EXPECT_TRUE(ExampleLineFails(12, "  elbow: [-1, -1, -1, -1.0]", "assembly.elbow[3]",
+                               "expected an integer"));
 }
 
 TEST(RobotYamlErrors, IncompleteModel31Block) {
   std::string text = kExample + kModel31;
   text.erase(text.find("  y3: 0.14\n"), 11);
-  EXPECT_TRUE(FailsWith([&] { ParseRobotYaml(text, "r.yaml"); }, "r.yaml", 19, "model31.y3",
-                        "missing key"));
+  EXPECT_TRUE(YamlFails(text, 19, "model31.y3", "missing key"));
 }
 
 TEST(RobotYamlErrors, DuplicateKeyAndBadSyntax) {
-  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(7, "  h: 0.07"), "r.yaml"); }, "r.yaml", 7,
-                        "model12.h", "key given twice (first on line 3)"));
-  EXPECT_TRUE(FailsWith([] { ParseRobotYaml(Replace(8, "  alpha: [0, 3.1416"), "r.yaml"); },
-                        "r.yaml", 9, "", "invalid YAML"));
-  EXPECT_TRUE(FailsWith([] { ParseRobotYaml("", "r.yaml"); }, "r.yaml", 0, "", "mapping"));
-  EXPECT_TRUE(FailsWith([] { ParseRobotYaml("# robot\nmodel12: [1, 2]\n", "r.yaml"); }, "r.yaml", 2,
-                        "model12", "expected a mapping of keys to values, got a list"));
+  EXPECT_TRUE(ExampleLineFails(7, "  h: 0.07", "model12.h", "key given twice (first on line 3)"));
+  EXPECT_TRUE(YamlFails(Replace(8, "  alpha: [0, 3.1416"), 9, "", "invalid YAML"));
+  EXPECT_TRUE(YamlFails("", 0, "", "mapping"));
+  EXPECT_TRUE(YamlFails("# robot\nmodel12: [1, 2]\n", 2, "model12",
+                        "expected a mapping of keys to values, got a list"));
 }
 
 // yaml-cpp recurses once per nesting level without a limit: a file nested 100,000 deep
 // overflowed the stack. The depth is checked before parsing, naming the line.
 TEST(RobotYamlErrors, DeepNestingIsRefusedBeforeParsing) {
   const std::string flow = kExample + "extra: " + std::string(100000, '[') + "\n";
-  EXPECT_TRUE(FailsWith([&] { ParseRobotYaml(flow, "r.yaml"); }, "r.yaml", 19, "",
-                        "flow collections nested deeper than the limit"));
+  EXPECT_TRUE(YamlFails(flow, 19, "", "flow collections nested deeper than the limit"));
   std::string compact = kExample + "extra:\n";
   for (int i = 0; i < 100000; ++i) compact += "- ";
   compact += "x\n";
-  EXPECT_TRUE(FailsWith([&] { ParseRobotYaml(compact, "r.yaml"); }, "r.yaml", 20, "",
-                        "block collections nested deeper"));
+  EXPECT_TRUE(YamlFails(compact, 20, "", "block collections nested deeper"));
   const std::string indented = kExample + "extra:\n" + std::string(300, ' ') + "a: 1\n";
-  EXPECT_TRUE(
-      FailsWith([&] { ParseRobotYaml(indented, "r.yaml"); }, "r.yaml", 20, "", "a line indented"));
+  EXPECT_TRUE(YamlFails(indented, 20, "", "a line indented"));
   // Brackets in quotes and comments, and an apostrophe, are not nesting.
   const std::string text = kExample + "note: don't [ stop\nother: \"" + std::string(100, '[') +
                            "\"  # " + std::string(100, '{') + "\n";
@@ -263,8 +253,7 @@ TEST(RobotYamlErrors, DeepNestingIsRefusedBeforeParsing) {
   // ... and a bracket in a plain scalar does not switch the block checks off.
   std::string after_bracket = kExample + "note: a [\nextra:\n";
   for (int i = 0; i < 100000; ++i) after_bracket += "- ";
-  EXPECT_TRUE(FailsWith([&] { ParseRobotYaml(after_bracket + "x\n", "r.yaml"); }, "r.yaml", 21, "",
-                        "block collections nested deeper"));
+  EXPECT_TRUE(YamlFails(after_bracket + "x\n", 21, "", "block collections nested deeper"));
 }
 
 }  // namespace

@@ -10,12 +10,14 @@
 #include "common/geometry/rotation.h"
 #include "host/kinematics/paper_robot.h"
 #include "host/kinematics/pose_plan.h"
-#include "tests/kinematics/jacobian_check_helpers.h"
+#include "tests/kinematics/model_test_helpers.h"
 
 namespace h4::host {
 namespace {
 
-using testing::ConstraintJacobiansMatchFiniteDifferences;
+using testing::ExpectConstraintJacobiansMatchOffTheManifold;
+using testing::ExpectParameterNames;
+using testing::ExpectSetParametersTakesXiAndRefusesWrongSize;
 
 TEST(Model12, HorizontalArmsAtTheDepthWhereForearmsCloseGivePi) {
   // At X = Y = 0, theta = 0, every PA_i = (R cos alpha_i, R sin alpha_i, Z): with the arm
@@ -92,21 +94,14 @@ TEST(Model12, UnreachablePoseIsFlaggedWithoutNaN) {
 
 TEST(Model12, ParameterVectorFollowsKinematicsMdOrder) {
   const Model12 model(kPaperIdentifiedModel12);
-  const auto& names = model.parameter_names();
-  ASSERT_EQ(names.size(), 13u);
-  EXPECT_EQ(names[0], "h");
-  EXPECT_EQ(names[3], "R");
-  EXPECT_EQ(names[4], "d");
-  EXPECT_EQ(names[5], "alpha1");
-  EXPECT_EQ(names[12], "q04");
+  ASSERT_NO_FATAL_FAILURE(
+      ExpectParameterNames(model, 13, {{0, "h"}, {3, "R"}, {4, "d"}, {5, "alpha1"}, {12, "q04"}}));
   const Eigen::VectorXd xi = model.parameters();
   EXPECT_DOUBLE_EQ(xi[2], 0.4876);
   EXPECT_DOUBLE_EQ(xi[6], 3.1016);
   EXPECT_DOUBLE_EQ(xi[10], -0.0080);
   Model12 copy(kPaperAprioriModel12);
-  copy.set_parameters(xi);
-  EXPECT_EQ(copy.parameters(), xi);
-  EXPECT_THROW(copy.set_parameters(Eigen::VectorXd::Zero(12)), std::invalid_argument);
+  ExpectSetParametersTakesXiAndRefusesWrongSize(copy, xi, 12);
 }
 
 class Model12Jacobians : public ::testing::TestWithParam<EePose> {};
@@ -114,11 +109,9 @@ class Model12Jacobians : public ::testing::TestWithParam<EePose> {};
 TEST_P(Model12Jacobians, MatchFiniteDifferences) {
   const Model12 model(kPaperIdentifiedModel12);
   const EePose x = GetParam();
-  const IkResult ik = model.InverseKinematics(x);
-  ASSERT_TRUE(ik.ok());
-  // Off the closure manifold too: the Jacobians of f hold everywhere.
-  const JointVector q = ik.q + JointVector(0.01, -0.02, 0.015, 0.005);
-  EXPECT_TRUE(ConstraintJacobiansMatchFiniteDifferences(model, q, x));
+  JointVector q;
+  ASSERT_NO_FATAL_FAILURE(ExpectConstraintJacobiansMatchOffTheManifold(
+      model, x, JointVector(0.01, -0.02, 0.015, 0.005), &q));
   Eigen::Matrix4d J_f_x;
   Eigen::Vector4d J_f_q;
   Eigen::MatrixXd J_f_xi;
@@ -127,9 +120,7 @@ TEST_P(Model12Jacobians, MatchFiniteDifferences) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Poses, Model12Jacobians,
-                         ::testing::Values(EePose(0.0, 0.0, -0.45, 0.0),
-                                           EePose(0.1, -0.1, -0.375, 0.349),
-                                           EePose(-0.08, 0.06, -0.52, -0.3)));
+                         ::testing::ValuesIn(testing::JacobianCheckPoses()));
 
 }  // namespace
 }  // namespace h4::host

@@ -11,12 +11,14 @@
 #include "host/kinematics/model12.h"
 #include "host/kinematics/paper_robot.h"
 #include "host/kinematics/pose_plan.h"
-#include "tests/kinematics/jacobian_check_helpers.h"
+#include "tests/kinematics/model_test_helpers.h"
 
 namespace h4::host {
 namespace {
 
-using testing::ConstraintJacobiansMatchFiniteDifferences;
+using testing::ExpectConstraintJacobiansMatchOffTheManifold;
+using testing::ExpectParameterNames;
+using testing::ExpectSetParametersTakesXiAndRefusesWrongSize;
 
 // A Model 31 robot away from the nominal one in every parameter.
 Model31Parameters SkewedModel31() {
@@ -94,26 +96,23 @@ TEST(Model31, UnreachablePoseIsFlaggedWithoutNaN) {
 TEST(Model31, ParameterVectorFollowsKinematicsMdOrder) {
   const Model31Parameters p = SkewedModel31();
   const Model31 model(p);
-  const auto& names = model.parameter_names();
-  ASSERT_EQ(names.size(), 31u);
-  EXPECT_EQ(names[0], "x2");
-  EXPECT_EQ(names[8], "z4");
-  EXPECT_EQ(names[9], "psi1");
-  EXPECT_EQ(names[13], "beta1");
-  EXPECT_EQ(names[17], "q01");
-  EXPECT_EQ(names[21], "arm1");
-  EXPECT_EQ(names[25], "forearm1");
-  EXPECT_EQ(names[29], "h");
-  EXPECT_EQ(names[30], "d");
+  ASSERT_NO_FATAL_FAILURE(ExpectParameterNames(model, 31,
+                                               {{0, "x2"},
+                                                {8, "z4"},
+                                                {9, "psi1"},
+                                                {13, "beta1"},
+                                                {17, "q01"},
+                                                {21, "arm1"},
+                                                {25, "forearm1"},
+                                                {29, "h"},
+                                                {30, "d"}}));
   const Eigen::VectorXd xi = model.parameters();
   EXPECT_DOUBLE_EQ(xi[4], p.P[1].y());
   EXPECT_DOUBLE_EQ(xi[15], p.beta[2]);
   EXPECT_DOUBLE_EQ(xi[24], p.arm[3]);
   EXPECT_DOUBLE_EQ(xi[30], p.d);
   Model31 copy(NominalModel31(kPaperAprioriModel12));
-  copy.set_parameters(xi);
-  EXPECT_EQ(copy.parameters(), xi);
-  EXPECT_THROW(copy.set_parameters(Eigen::VectorXd::Zero(13)), std::invalid_argument);
+  ExpectSetParametersTakesXiAndRefusesWrongSize(copy, xi, 13);
 }
 
 class Model31Jacobians : public ::testing::TestWithParam<EePose> {};
@@ -121,16 +120,11 @@ class Model31Jacobians : public ::testing::TestWithParam<EePose> {};
 TEST_P(Model31Jacobians, MatchFiniteDifferences) {
   const Model31 model(SkewedModel31());
   const EePose x = EePoseInB31(GetParam(), NominalX_B31B(kPaperIdentifiedModel12));
-  const IkResult ik = model.InverseKinematics(x);
-  ASSERT_TRUE(ik.ok());
-  const JointVector q = ik.q + JointVector(-0.01, 0.02, 0.005, -0.015);
-  EXPECT_TRUE(ConstraintJacobiansMatchFiniteDifferences(model, q, x));
+  ExpectConstraintJacobiansMatchOffTheManifold(model, x, JointVector(-0.01, 0.02, 0.005, -0.015));
 }
 
 INSTANTIATE_TEST_SUITE_P(Poses, Model31Jacobians,
-                         ::testing::Values(EePose(0.0, 0.0, -0.45, 0.0),
-                                           EePose(0.1, -0.1, -0.375, 0.349),
-                                           EePose(-0.08, 0.06, -0.52, -0.3)));
+                         ::testing::ValuesIn(testing::JacobianCheckPoses()));
 
 }  // namespace
 }  // namespace h4::host

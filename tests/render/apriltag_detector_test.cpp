@@ -12,27 +12,25 @@
 #include "common/camera/camera_model.h"
 #include "common/formats/board_yaml.h"
 #include "firmware/render/paper_scenes.h"
+#include "tests/render/paper_scene_helpers.h"
 
 namespace h4::cam {
 namespace {
 
 TEST(AprilTagDetectorTest, CornersAreInOpenCvPixelConventionAfterCorrection) {
-  const AprilGridSpec board = scenes::PaperBoard();
-  const CameraIntrinsics camera = scenes::PaperCamera();
-  const BoardRenderer renderer(board, camera, RenderOptions{});
-  const BoardModel model(board);
-  const CameraModel projection(camera);
+  const PaperScene scene;
   const AprilTagDetector detector;
   Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   int n = 0;
   for (const RigidTransform& X_CT : scenes::RandomPoses(3, 11)) {
-    const cv::Mat image = renderer.Render(X_CT, 3);
+    const cv::Mat image = scene.renderer.Render(X_CT, 3);
     for (const TagDetection& tag : detector.Detect(image)) {
       for (int k = 0; k < 4; ++k) {
-        const int id = model.TagCornerId(tag.id, k);
+        const int id = scene.board_model.TagCornerId(tag.id, k);
         ASSERT_GE(id, 0);
         Eigen::Vector2d uv;
-        ASSERT_TRUE(projection.Project(X_CT * model.corners()[static_cast<size_t>(id)], &uv));
+        ASSERT_TRUE(scene.projection.Project(
+            X_CT * scene.board_model.corners()[static_cast<size_t>(id)], &uv));
         const Eigen::Vector2d error = tag.corners_px[static_cast<size_t>(k)] - uv;
         EXPECT_LT(error.norm(), 0.3) << "tag " << tag.id << " corner " << k;
         mean += error;

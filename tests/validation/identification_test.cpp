@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <string>
 #include <numbers>
 #include <stdexcept>
 
@@ -179,34 +180,41 @@ TEST(IdentificationTest, ConvergesFromTheRoughAprioriForEveryEstimator) {
   }
 }
 
+// MeanHeldOutError over kSeeds, printed after `label` for the record.
+Accuracy PrintedHeldOutError(const std::string& label, TrueGeometry geometry, ModelKind model,
+                             CostKind estimator) {
+  const Accuracy a = MeanHeldOutError(geometry, model, estimator, kSeeds);
+  std::cout << label << ": " << a.position_m * 1e3 << " mm, " << DegreesFromRadians(a.rotation_rad)
+            << " deg\n";
+  return a;
+}
+
 TEST(IdentificationTest, PaperProtocolModel12HeldOutAccuracy) {
-  const Accuracy a = MeanHeldOutError(TrueGeometry::kPerturbedModel12, ModelKind::k12,
-                                      CostKind::kMeasurement, kSeeds);
-  std::cout << "Model 12 data, Model 12 measurement-space: " << a.position_m * 1e3 << " mm, "
-            << DegreesFromRadians(a.rotation_rad) << " deg\n";
+  const Accuracy a =
+      PrintedHeldOutError("Model 12 data, Model 12 measurement-space",
+                          TrueGeometry::kPerturbedModel12, ModelKind::k12, CostKind::kMeasurement);
   EXPECT_LE(a.position_m, 0.10e-3);
   EXPECT_LE(DegreesFromRadians(a.rotation_rad), 0.02);
 }
 
 TEST(IdentificationTest, PaperProtocolModel12JointSpaceIsLessAccurate) {
-  const Accuracy joint = MeanHeldOutError(TrueGeometry::kPerturbedModel12, ModelKind::k12,
-                                          CostKind::kJointSpace, kSeeds);
-  const Accuracy measurement = MeanHeldOutError(TrueGeometry::kPerturbedModel12, ModelKind::k12,
-                                                CostKind::kMeasurement, kSeeds);
-  std::cout << "Model 12 data, eq. (3): " << joint.position_m * 1e3 << " mm, "
-            << DegreesFromRadians(joint.rotation_rad) << " deg\n";
+  const Accuracy joint =
+      PrintedHeldOutError("Model 12 data, eq. (3)", TrueGeometry::kPerturbedModel12, ModelKind::k12,
+                          CostKind::kJointSpace);
+  const Accuracy measurement =
+      PrintedHeldOutError("Model 12 data, Model 12 measurement-space",
+                          TrueGeometry::kPerturbedModel12, ModelKind::k12, CostKind::kMeasurement);
   EXPECT_LE(joint.position_m, 0.30e-3);
   EXPECT_GT(joint.position_m, measurement.position_m);
 }
 
 TEST(IdentificationTest, PaperProtocolModel31HeldOutAccuracyAndModel12IsWorse) {
-  const Accuracy a31 = MeanHeldOutError(TrueGeometry::kPerturbedModel31, ModelKind::k31,
-                                        CostKind::kMeasurement, kSeeds);
-  const Accuracy a12 = MeanHeldOutError(TrueGeometry::kPerturbedModel31, ModelKind::k12,
-                                        CostKind::kMeasurement, kSeeds);
-  std::cout << "Model 31 data: Model 31 " << a31.position_m * 1e3 << " mm, "
-            << DegreesFromRadians(a31.rotation_rad) << " deg; Model 12 " << a12.position_m * 1e3
-            << " mm, " << DegreesFromRadians(a12.rotation_rad) << " deg\n";
+  const Accuracy a31 =
+      PrintedHeldOutError("Model 31 data, Model 31", TrueGeometry::kPerturbedModel31,
+                          ModelKind::k31, CostKind::kMeasurement);
+  const Accuracy a12 =
+      PrintedHeldOutError("Model 31 data, Model 12", TrueGeometry::kPerturbedModel31,
+                          ModelKind::k12, CostKind::kMeasurement);
   EXPECT_LE(a31.position_m, 0.20e-3);
   EXPECT_LE(DegreesFromRadians(a31.rotation_rad), 0.04);
   EXPECT_GT(a12.position_m, 3.0 * a31.position_m);

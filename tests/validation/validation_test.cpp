@@ -55,11 +55,22 @@ TEST(Straightness, TrueModelSeesAStraightRulerAndAprioriModelABentOne) {
   }
 }
 
+// JointResidualsOf a Model 12 over the poses of `in`, with the true robot's X_BC and X_TE: what
+// the model alone leaves.
+JointResidualStats JointResidualsInTrueFrames(const ValidationInputs& in,
+                                              const Model12Parameters& model) {
+  return JointResidualsOf(Model12(model), in.truth->robot.X_BC, in.truth->robot.X_TE, in.rows);
+}
+
+// PositioningErrorOf a Model 12 likewise.
+PositioningError PositioningErrorInTrueFrames(const ValidationInputs& in,
+                                              const Model12Parameters& model) {
+  return PositioningErrorOf(Model12(model), in.truth->robot.X_BC, in.truth->robot.X_TE, in.rows);
+}
+
 TEST(JointResiduals, AprioriRowMatchesPaperTable3BeforeCalibration) {
   const ValidationInputs in = PaperValidationInputs();
-  const Model12 apriori(in.apriori.model12);
-  const JointResidualStats stats =
-      JointResidualsOf(apriori, in.truth->robot.X_BC, in.truth->robot.X_TE, in.rows);
+  const JointResidualStats stats = JointResidualsInTrueFrames(in, in.apriori.model12);
   ASSERT_EQ(stats.poses, 81);
   // Table 3 "before calibration" (measured minus model), within 10%.
   const std::array<double, 4> mean{9.0e-2, 3.5e-2, 7.3e-2, 8.3e-2};
@@ -72,17 +83,13 @@ TEST(JointResiduals, AprioriRowMatchesPaperTable3BeforeCalibration) {
 
 TEST(JointResiduals, TrueModelLeavesNoResidual) {
   const ValidationInputs in = PaperValidationInputs();
-  const Model12 true_model(in.truth->robot.model12);
-  const JointResidualStats stats =
-      JointResidualsOf(true_model, in.truth->robot.X_BC, in.truth->robot.X_TE, in.rows);
+  const JointResidualStats stats = JointResidualsInTrueFrames(in, in.truth->robot.model12);
   for (int i = 0; i < 4; ++i) EXPECT_LT(stats.rms[i], 1e-9);
 }
 
 TEST(PositioningError, AprioriMissesByAbout26MillimetresAsInThePaper) {
   const ValidationInputs in = PaperValidationInputs();
-  const Model12 apriori(in.apriori.model12);
-  const PositioningError e =
-      PositioningErrorOf(apriori, in.truth->robot.X_BC, in.truth->robot.X_TE, in.rows);
+  const PositioningError e = PositioningErrorInTrueFrames(in, in.apriori.model12);
   EXPECT_EQ(e.poses, 81);
   EXPECT_TRUE(e.failed.empty());
   EXPECT_NEAR(e.position_mean, 0.026, 0.004);
