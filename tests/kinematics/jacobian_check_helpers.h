@@ -1,6 +1,6 @@
-// The one shared check of analytic Jacobians (style.md item 7): compares J_analytic with
-// central finite differences of f at x0, entry by entry, and names the worst entries on
-// failure. Used by the kinematics and identification tests alike.
+// The one shared check of analytic Jacobians: compares J_analytic with central finite
+// differences of f at x0, entry by entry, and names the worst entries on failure. Every
+// analytic Jacobian of the kinematics and identification tests is checked through it.
 #pragma once
 
 #include <functional>

@@ -1,7 +1,8 @@
-// Test helpers shared by the tests of Model 12 and Model 31: their parameter vectors
-// (docs/kinematics.md order: the names at given places, set_parameters taking a vector back
-// whole and refusing one of the wrong size) and their constraint Jacobians checked at the
-// same poses.
+// Test helpers shared by the tests of Model 12 and Model 31: their parameter vectors (in the
+// order of common/README.md#model-12-design-model-12-parameters and
+// common/README.md#model-31-calibration-model-31-parameters: the names at given places,
+// set_parameters taking a vector back whole and refusing one of the wrong size) and their
+// constraint Jacobians checked at the same poses.
 #pragma once
 
 #include <stdexcept>
