@@ -11,6 +11,9 @@ them all:
   whose GitHub anchor is `anchor`;
 - in every tracked .md file, each relative Markdown link (outside code blocks): the target
   must exist, and for a .md target with `#anchor`, the anchor must be one of its headings';
+- in every tracked text file, each document named without a section (`common/README.md`):
+  the file must exist (a document the repository does not hold is no reference for a
+  user who clones it alone); installed paths (`share/doc/...`) pass;
 - the old citation by title (a README and a quoted heading) is refused: cite
   `<file>.md#<anchor>`.
 
@@ -33,6 +36,9 @@ SKIP_DIRS = re.compile(r'^(build.*|\.git|node_modules)$')
 MAX_BYTES = 1_000_000
 # <file>.md#<anchor> not inside a URL (no '://' or '/' glued before it); the path may be bare.
 CITATION = re.compile(r'(?<![\w/.:-])((?:\.\.?/)*(?:[\w.-]+/)*[\w.-]+\.md)#([\w-]+)')
+# A document named without a section (`common/README.md`): the file must exist. An installed
+# path (`share/doc/h4cal/README.md`) is not in the tree and is passed over.
+DOCUMENT = re.compile(r'(?<![\w/.:-])((?:\.\.?/)*(?:[\w.-]+/)*[\w.-]+\.md)(?![\w#-])')
 # [text](target) or ![alt](target), target without spaces, an optional "title".
 LINK = re.compile(r'!?\[(?:[^\[\]]|\[[^\]]*\])*\]\(\s*<?([^)\s>]+)>?(?:\s+"[^"]*")?\s*\)')
 OLD_STYLE = re.compile(r'\b[\w./-]*README(?:\.md)?[,:]?\s+(?:sections?\s+)?"[A-Z][^"\n]*"')
@@ -134,7 +140,7 @@ def check_anchor(tree, target, anchor, where, what):
 
 def check(tree):
     """(failures, code citations, Markdown links) of the tree."""
-    failures, citations, links = [], 0, 0
+    failures, citations, links, documents = [], 0, 0, 0
     for name in tree.files():
         text = tree.read(name)
         if text is None:
@@ -158,6 +164,13 @@ def check(tree):
                     if failure:
                         failures.append(failure)
                 scan = LINK.sub('', line)
+            for m in DOCUMENT.finditer(scan):
+                path = m.group(1)
+                if 'share/doc/' in path:
+                    continue
+                documents += 1
+                if tree.existing([path, os.path.join(folder, path)]) is None:
+                    failures.append(f'{where}: {path}: no such document in the repository')
             for m in CITATION.finditer(scan):
                 citations += 1
                 path, anchor = m.group(1), m.group(2)
@@ -168,7 +181,7 @@ def check(tree):
                 failure = check_anchor(tree, target, anchor, where, f'{path}#{anchor}')
                 if failure:
                     failures.append(failure)
-    return failures, citations, links
+    return failures, citations, links, documents
 
 
 def check_link(tree, name, target, where):
@@ -201,7 +214,7 @@ def self_test(root):
         'Paired dataset: CSV': 'paired-dataset-csv',
         'What the controller receives: `H4_ROBOT_TARGET` (`robot_target_t`)':
             'what-the-controller-receives-h4_robot_target-robot_target_t',
-        'See [the docs](docs/x.md) *now*': 'see-the-docs-now',
+        'See [the docs](docs/x' '.md) *now*': 'see-the-docs-now',
     }
     for heading, expected in known.items():
         if slug(heading) != expected:
@@ -218,7 +231,7 @@ def self_test(root):
                 continue
             os.makedirs(os.path.join(scratch, os.path.dirname(name)), exist_ok=True)
             shutil.copyfile(os.path.join(tree.root, name), os.path.join(scratch, name))
-        before, _, _ = check(Tree(scratch, tracked=False))
+        before, _, _, _ = check(Tree(scratch, tracked=False))
         readme = os.path.join(scratch, 'README.md')
         with open(readme, encoding='utf-8') as f:
             text = f.read()
@@ -228,21 +241,23 @@ def self_test(root):
             return problems
         with open(readme, 'w', encoding='utf-8') as f:
             f.write(renamed)
-        after, _, _ = check(Tree(scratch, tracked=False))
+        after, _, _, _ = check(Tree(scratch, tracked=False))
         broken = [f for f in after if f not in before]
         if not any('#using-h4cal' in f and not f.startswith('README.md') for f in broken):
             problems.append('self-test: renaming README.md "## Using h4cal" broke no citation '
                             'in another file')
         if not any(f.startswith('README.md:') and 'link (#using-h4cal)' in f for f in broken):
             problems.append("self-test: renaming it broke none of README.md's own links")
-        with open(os.path.join(scratch, 'broken.md'), 'w', encoding='utf-8') as f:
-            f.write('# Broken\n\n[gone](docs/no-such-file.md) `README.md ' + '"Using h4cal"`\n'
-                    'Old: docs/results.md' + '#no-such-heading\n')
-        last, _, _ = check(Tree(scratch, tracked=False))
-        for expected in ('link (docs/no-such-file.md): no such file',
+        broken_doc = 'broken' '.md'
+        with open(os.path.join(scratch, broken_doc), 'w', encoding='utf-8') as f:
+            f.write('# Broken\n\n[gone](docs/no-such-file' '.md) `README.md ' + '"Using h4cal"`\n'
+                    'Old: docs/results.md' + '#no-such-heading\nAs style' '.md item 7 says\n')
+        last, _, _, _ = check(Tree(scratch, tracked=False))
+        for expected in ('link (docs/no-such-file' '.md): no such file',
+                         'style' '.md: no such document',
                          'cite a section as', '#no-such-heading'):
-            if not any(f.startswith('broken.md:') and expected in f for f in last):
-                problems.append(f'self-test: no failure "{expected}" on broken.md')
+            if not any(f.startswith(broken_doc + ':') and expected in f for f in last):
+                problems.append(f'self-test: no failure "{expected}" on {broken_doc}')
     return problems
 
 
@@ -256,10 +271,10 @@ def main():
             print('FAIL: the checker itself is wrong')
             return 1
         print('self-test: a renamed heading and a missing file are caught')
-    failures, citations, links = check(Tree(root))
+    failures, citations, links, documents = check(Tree(root))
     print('\n'.join(failures))
     print(f'{citations} <file>.md#<anchor> citations, {links} Markdown links, '
-          f'{len(failures)} pointing nowhere')
+          f'{documents} documents named, {len(failures)} pointing nowhere')
     # A checker that finds nothing checks nothing: the tree cites documents by the dozen.
     if citations < 50 or links < 50:
         print('FAIL: fewer than 50 citations or links found; the patterns no longer match them')
