@@ -251,23 +251,7 @@ h4msgs::camera_status_t CameraService::Status(int64_t utime) const {
   h4msgs::camera_status_t s{};
   s.utime = utime;
   s.camera_id = options_.camera_id;
-  switch (state_) {
-    case State::kStarting:
-      s.state = h4msgs::camera_status_t::STATE_STARTING;
-      break;
-    case State::kIdle:
-      s.state = h4msgs::camera_status_t::STATE_IDLE;
-      break;
-    case State::kCapturing:
-      s.state = h4msgs::camera_status_t::STATE_CAPTURING;
-      break;
-    case State::kError:
-      s.state = h4msgs::camera_status_t::STATE_ERROR;
-      break;
-    case State::kStopping:
-      s.state = h4msgs::camera_status_t::STATE_STOPPING;
-      break;
-  }
+  s.state = static_cast<int8_t>(state_);
   const auto now = Clock::now();
   int64_t recent = 0;
   for (const auto& t : recent_frames_) recent += (now - t <= std::chrono::seconds(1)) ? 1 : 0;
