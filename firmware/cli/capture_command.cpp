@@ -48,8 +48,8 @@ RigidTransform CentredBoardPose(const BoardSpec& board, double depth) {
 RigidTransform SimPose(const CaptureArgs& args, const BoardSpec& board) {
   if (args.sim_pose.empty()) return CentredBoardPose(board, 0.5);
   if (args.sim_pose.size() != 7) {
-    throw std::runtime_error("--sim-pose: expected 7 numbers x,y,z,qw,qx,qy,qz, got " +
-                             std::to_string(args.sim_pose.size()));
+    throw std::runtime_error(fmt::format("--sim-pose: expected 7 numbers x,y,z,qw,qx,qy,qz, got {}",
+                                         args.sim_pose.size()));
   }
   const std::vector<double>& v = args.sim_pose;
   Eigen::Matrix3d R_CT;
@@ -151,11 +151,10 @@ std::unique_ptr<FrameSource> MakeCaptureSource(const CaptureArgs& args, bool sav
 void CheckFrameSize(const Frame& frame, const CameraIntrinsics& camera,
                     const std::string& camera_path) {
   if (frame.image.cols == camera.width && frame.image.rows == camera.height) return;
-  throw std::runtime_error((frame.origin.empty() ? "frame" : frame.origin) + ": image is " +
-                           std::to_string(frame.image.cols) + "x" +
-                           std::to_string(frame.image.rows) + ", the camera file " + camera_path +
-                           " says " + std::to_string(camera.width) + "x" +
-                           std::to_string(camera.height));
+  throw std::runtime_error(fmt::format("{}: image is {}x{}, the camera file {} says {}x{}",
+                                       frame.origin.empty() ? "frame" : frame.origin,
+                                       frame.image.cols, frame.image.rows, camera_path,
+                                       camera.width, camera.height));
 }
 
 /// What is done with one frame: checked, printed, saved and drawn as asked; `index` is its

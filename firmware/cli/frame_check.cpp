@@ -102,7 +102,7 @@ void DrawMissedTags(const BoardDetection& detection, cv::Mat* overlay) {
       centre += 0.25 * uv;
     }
     cv::polylines(*overlay, outline, /*isClosed=*/true, cv::Scalar(0, 0, 255), 1);
-    const std::string label = std::to_string(miss.tag_id) + " " + ToString(miss.why);
+    const std::string label = fmt::format("{} {}", miss.tag_id, ToString(miss.why));
     cv::putText(*overlay, label,
                 cv::Point(static_cast<int>(centre.x()) - 20, static_cast<int>(centre.y())),
                 cv::FONT_HERSHEY_SIMPLEX, 0.3, cv::Scalar(0, 0, 255), 1, cv::LINE_AA);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
@@ -61,10 +62,9 @@ struct MeasureOutputs {
 void RequireTheCameraFilesSize(const Frame& frame, const CameraIntrinsics& camera,
                                const std::string& camera_path) {
   if (frame.image.cols == camera.width && frame.image.rows == camera.height) return;
-  throw std::runtime_error(frame.origin + ": image is " + std::to_string(frame.image.cols) + "x" +
-                           std::to_string(frame.image.rows) + ", the camera file " + camera_path +
-                           " says " + std::to_string(camera.width) + "x" +
-                           std::to_string(camera.height));
+  throw std::runtime_error(fmt::format("{}: image is {}x{}, the camera file {} says {}x{}",
+                                       frame.origin, frame.image.cols, frame.image.rows,
+                                       camera_path, camera.width, camera.height));
 }
 
 /// Groups of `group` images (the last one may be short), said when they do not divide.
