@@ -148,15 +148,6 @@ std::unique_ptr<FrameSource> MakeCaptureSource(const CaptureArgs& args, bool sav
   return source;
 }
 
-void CheckFrameSize(const Frame& frame, const CameraIntrinsics& camera,
-                    const std::string& camera_path) {
-  if (frame.image.cols == camera.width && frame.image.rows == camera.height) return;
-  throw std::runtime_error(fmt::format("{}: image is {}x{}, the camera file {} says {}x{}",
-                                       frame.origin.empty() ? "frame" : frame.origin,
-                                       frame.image.cols, frame.image.rows, camera_path,
-                                       camera.width, camera.height));
-}
-
 /// What is done with one frame: checked, printed, saved and drawn as asked; `index` is its
 /// number, in the printed line and the file names.
 void TakeFrame(const CaptureArgs& args, bool save_frames, const Frame& frame, int index,
@@ -240,7 +231,7 @@ CaptureSummary RunCapture(const CaptureArgs& args, bool save_frames, std::ostrea
       continue;
     }
     last_taken = now;
-    CheckFrameSize(*frame, intrinsics, args.camera_path);
+    RequireTheCameraFilesSize(*frame, intrinsics, args.camera_path);
     TakeFrame(args, save_frames, *frame, number, detector, camera, out, &summary);
   }
   source->Stop();

@@ -6,7 +6,6 @@
 #include <stdexcept>
 
 #include <CLI/CLI.hpp>
-#include <fmt/format.h>
 
 #include "common/cli/command_line.h"
 #include "common/cli/shared_options.h"
@@ -16,6 +15,7 @@
 #include "common/formats/camera_yaml.h"
 #include "common/formats/corners_csv.h"
 #include "common/formats/file_output.h"
+#include "firmware/cli/frame_check.h"
 #include "firmware/pose/measure_pipeline.h"
 #include "firmware/sources/image_file_source.h"
 
@@ -58,14 +58,6 @@ struct MeasureOutputs {
     progress << "\n";
   }
 };
-
-void RequireTheCameraFilesSize(const Frame& frame, const CameraIntrinsics& camera,
-                               const std::string& camera_path) {
-  if (frame.image.cols == camera.width && frame.image.rows == camera.height) return;
-  throw std::runtime_error(fmt::format("{}: image is {}x{}, the camera file {} says {}x{}",
-                                       frame.origin, frame.image.cols, frame.image.rows,
-                                       camera_path, camera.width, camera.height));
-}
 
 /// Groups of `group` images (the last one may be short), said when they do not divide.
 size_t GroupCount(size_t images, int group, std::ostream& progress) {
