@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
 #include <opencv2/imgproc.hpp>
 
 namespace h4::cam {
@@ -11,14 +12,13 @@ FrameAverager::FrameAverager(int frames) : target_(std::max(frames, 1)) {}
 
 bool FrameAverager::Add(const Frame& frame) {
   if (frame.image.empty() || frame.image.type() != CV_8UC1) {
-    error_ = "frame " + std::to_string(frame.sequence) + ": expected an 8-bit grey image";
+    error_ = fmt::format("frame {}: expected an 8-bit grey image", frame.sequence);
     return false;
   }
   if (!frames_.empty() && frame.image.size() != frames_.front().size()) {
-    error_ = "frame " + std::to_string(frame.sequence) + ": size " +
-             std::to_string(frame.image.cols) + "x" + std::to_string(frame.image.rows) +
-             " differs from the group's " + std::to_string(frames_.front().cols) + "x" +
-             std::to_string(frames_.front().rows);
+    error_ =
+        fmt::format("frame {}: size {}x{} differs from the group's {}x{}", frame.sequence,
+                    frame.image.cols, frame.image.rows, frames_.front().cols, frames_.front().rows);
     return false;
   }
   if (frames_.empty()) {

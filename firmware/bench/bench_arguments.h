@@ -2,6 +2,7 @@
 // the word and whose value is empty), in order.
 #pragma once
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,19 @@ inline std::vector<Argument> Arguments(int argc, char** argv) {
     arguments.push_back(a);
   }
   return arguments;
+}
+
+/// A benchmark program's main: `read` parses the command line into an Args (false once it
+/// has said on stderr what is wrong: exit status 1), then `run` measures and gives the exit
+/// status. Stdout is line-buffered so that each row shows as soon as it is measured (a run
+/// takes minutes), into a pipe or a file too.
+template <typename Args>
+int RunOnArguments(int argc, char** argv, bool (*read)(int, char**, Args*),
+                   int (*run)(const Args&)) {
+  std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
+  Args args;
+  if (!read(argc, argv, &args)) return 1;
+  return run(args);
 }
 
 }  // namespace h4::cam::bench

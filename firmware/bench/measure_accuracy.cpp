@@ -242,13 +242,8 @@ void PrintRow(const char* condition, const char* depth, const char* method, cons
              t.measured, scenes, rms_t_mm, rms_r_deg, ratio, t.cpu_s / scenes * 1e3);
 }
 
-}  // namespace
-}  // namespace h4::cam
-
-int main(int argc, char** argv) {
-  using namespace h4::cam;
-  Args args;
-  if (!ParseArgs(argc, argv, &args)) return 1;
+// The table: each chosen condition at each chosen depth, h4cam beside the baseline.
+int Run(const Args& args) {
   PipelineOptions options;
   options.detector.refinement = args.refinement == "subpix"    ? CornerRefinement::kCornerSubPix
                                 : args.refinement == "none"    ? CornerRefinement::kNone
@@ -286,8 +281,14 @@ int main(int argc, char** argv) {
       const Result r = RunCondition(condition, depth, args, options);
       PrintRow(condition.name, depth.name, "h4cam", r.pipeline, r.scenes);
       PrintRow(condition.name, depth.name, "baseline", r.baseline, r.scenes);
-      std::fflush(stdout);
     }
   }
   return 0;
+}
+
+}  // namespace
+}  // namespace h4::cam
+
+int main(int argc, char** argv) {
+  return h4::cam::bench::RunOnArguments(argc, argv, h4::cam::ParseArgs, h4::cam::Run);
 }

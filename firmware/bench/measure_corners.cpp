@@ -127,13 +127,8 @@ CornerTally RunCondition(const bench::Condition& condition, const Args& args) {
   return tally;
 }
 
-}  // namespace
-}  // namespace h4::cam
-
-int main(int argc, char** argv) {
-  using namespace h4::cam;
-  Args args;
-  if (!ParseArgs(argc, argv, &args)) return 1;
+// The table: a row per chosen condition.
+int Run(const Args& args) {
   fmt::print(
       "{} scenes per row, seed {}, board {}, refinement {}\n\n", args.scenes,
       static_cast<unsigned long long>(args.seed),
@@ -149,7 +144,13 @@ int main(int argc, char** argv) {
     fmt::print("| {} | {}/{} | {} | {:.4f} | {:.4f} | {:.1f} |\n", condition.name, t.found,
                t.expected, t.edge_fitted, std::sqrt(t.error2 / n), std::sqrt(t.after_erosion2 / n),
                1e6 * std::sqrt(t.tag_rotation2 / std::max(t.tags, 1)));
-    std::fflush(stdout);
   }
   return 0;
+}
+
+}  // namespace
+}  // namespace h4::cam
+
+int main(int argc, char** argv) {
+  return h4::cam::bench::RunOnArguments(argc, argv, h4::cam::ParseArgs, h4::cam::Run);
 }

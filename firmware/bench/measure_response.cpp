@@ -185,17 +185,10 @@ void MeasureCondition(const Condition& condition, const Setup& setup,
              sums.used, setup.count, std::sqrt(sums.err_t2 / n) * 1e3,
              DegreesFromRadians(std::sqrt(sums.err_r2 / n)), std::sqrt(sums.sig_t2 / sums.err_t2),
              std::sqrt(sums.sig_r2 / sums.err_r2), sums.erosion_px / n);
-  std::fflush(stdout);
 }
 
-}  // namespace
-}  // namespace h4::cam
-
-int main(int argc, char** argv) {
-  using namespace h4;
-  using namespace h4::cam;
-  Setup setup;
-  if (!ReadSetup(argc, argv, &setup)) return 1;
+// The table: a row per chosen condition, over the same poses.
+int Run(const Setup& setup) {
   MeasurePipeline pipeline(setup.board, scenes::PaperCamera(), setup.options);
   if (!pipeline.ok()) {
     fmt::print(stderr, "setup failed: {}\n", pipeline.error());
@@ -214,4 +207,11 @@ int main(int argc, char** argv) {
   }
   fmt::print("total {:.1f} s\n", SecondsSince(start));
   return 0;
+}
+
+}  // namespace
+}  // namespace h4::cam
+
+int main(int argc, char** argv) {
+  return h4::cam::bench::RunOnArguments(argc, argv, h4::cam::ReadSetup, h4::cam::Run);
 }

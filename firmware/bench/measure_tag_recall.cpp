@@ -81,14 +81,8 @@ bench::Scene RandomScene(const Args& args, cv::RNG& rng) {
           rng.uniform(-30.0, 30.0)};
 }
 
-}  // namespace
-}  // namespace h4::cam
-
-int main(int argc, char** argv) {
-  using namespace h4;
-  using namespace h4::cam;
-  Args args;
-  if (!ParseArgs(argc, argv, &args)) return 1;
+// The scenes that missed a tag as they come, then the totals.
+int Run(const Args& args) {
   const AprilGridSpec grid =
       std::get<AprilGridSpec>(ReadBoardYaml(InSource("boards/kalibr_aprilgrid_6x6_88mm.yaml")));
   const CameraIntrinsics intrinsics = ReadCameraYaml(InSource(args.camera));
@@ -139,4 +133,11 @@ int main(int argc, char** argv) {
       100.0 * quad_search_found / std::max(total.expected, 1), total.misplaced, scenes_missing);
   for (const auto& [why, n] : why_missed) fmt::print("  missed, {}: {}\n", ToString(why), n);
   return 0;
+}
+
+}  // namespace
+}  // namespace h4::cam
+
+int main(int argc, char** argv) {
+  return h4::cam::bench::RunOnArguments(argc, argv, h4::cam::ParseArgs, h4::cam::Run);
 }

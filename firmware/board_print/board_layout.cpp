@@ -58,8 +58,8 @@ bool LayoutAprilGrid(const AprilGridSpec& grid, const BoardModel& model, double 
       int width = 0;
       const std::vector<bool> cells = TagCells(*family, id, border_cells, &width);
       if (cells.empty()) {
-        *error = "tag id " + std::to_string(id) + " is beyond family " + grid.tag_family + " (" +
-                 std::to_string(family->ncodes) + " codes)";
+        *error = fmt::format("tag id {} is beyond family {} ({} codes)", id, grid.tag_family,
+                             family->ncodes);
         return false;
       }
       const auto origin = model.TagOrigin(row, col);
@@ -90,7 +90,7 @@ void LayoutCheckerboard(const CheckerboardSpec& board, double ox, double oy,
 
 bool BoardPrintOptions::IsValid(std::string* why) const {
   if (!(margin >= 0.0 && margin <= 1.0)) {
-    *why = "margin must be in [0, 1] m, got " + std::to_string(margin);
+    *why = fmt::format("margin must be in [0, 1] m, got {:f}", margin);
     return false;
   }
   return true;
@@ -99,16 +99,15 @@ bool BoardPrintOptions::IsValid(std::string* why) const {
 std::string DescribeBoard(const BoardSpec& board) {
   if (const auto* grid = std::get_if<AprilGridSpec>(&board)) {
     const std::string spacing = fmt::format("{:g}", grid->tag_spacing);
-    return "aprilgrid " + std::to_string(grid->cols) + "x" + std::to_string(grid->rows) + " " +
-           grid->tag_family + " (ids " + std::to_string(grid->first_id) + "-" +
-           std::to_string(grid->first_id + grid->cols * grid->rows - 1) + "), tag " +
-           Mm(grid->tag_size) + ", spacing " + Mm(grid->tag_size * grid->tag_spacing) +
-           " (tagSpacing " + spacing + ")" +
-           (grid->layout == AprilGridLayout::kKalibr ? ", Kalibr layout (tag 0 bottom-left)" : "");
+    return fmt::format(
+        "aprilgrid {}x{} {} (ids {}-{}), tag {}, spacing {} (tagSpacing {}){}", grid->cols,
+        grid->rows, grid->tag_family, grid->first_id, grid->first_id + grid->cols * grid->rows - 1,
+        Mm(grid->tag_size), Mm(grid->tag_size * grid->tag_spacing), spacing,
+        grid->layout == AprilGridLayout::kKalibr ? ", Kalibr layout (tag 0 bottom-left)" : "");
   }
   const auto& chess = std::get<CheckerboardSpec>(board);
-  return "checkerboard " + std::to_string(chess.cols) + "x" + std::to_string(chess.rows) +
-         " inner corners, squares " + Mm(chess.col_spacing) + " x " + Mm(chess.row_spacing);
+  return fmt::format("checkerboard {}x{} inner corners, squares {} x {}", chess.cols, chess.rows,
+                     Mm(chess.col_spacing), Mm(chess.row_spacing));
 }
 
 bool LayoutBoard(const BoardSpec& board, const BoardPrintOptions& options, BoardLayout* layout,

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <fstream>
 
+#include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -94,7 +95,7 @@ bool WriteBoardFile(const std::string& path, const BoardLayout& layout, double d
     bytes = BoardPdf(layout);
   } else if (EndsWith(path, ".png")) {
     if (!(dpi >= 50 && dpi <= 2400)) {
-      *error = path + ": dpi must be in [50, 2400], got " + std::to_string(dpi);
+      *error = fmt::format("{}: dpi must be in [50, 2400], got {:f}", path, dpi);
       return false;
     }
     // Sized in floating point before anything is allocated: a board of 0.5 m tags took
@@ -103,10 +104,11 @@ bool WriteBoardFile(const std::string& path, const BoardLayout& layout, double d
     const double pixels =
         std::round(layout.width * px_per_m) * std::round(layout.height * px_per_m);
     if (!(pixels <= kMaxBoardPngPixels)) {
-      *error = path + ": the page is " + std::to_string(std::llround(pixels / 1e6)) + " Mpx at " +
-               std::to_string(std::lround(dpi)) + " dpi, more than the " +
-               std::to_string(std::llround(kMaxBoardPngPixels / 1e6)) +
-               " Mpx a PNG may have; lower --dpi or write .svg or .pdf (vector, any size)";
+      *error = fmt::format(
+          "{}: the page is {} Mpx at {} dpi, more than the {} Mpx a PNG may have; lower --dpi or "
+          "write .svg or .pdf (vector, any size)",
+          path, std::llround(pixels / 1e6), std::lround(dpi),
+          std::llround(kMaxBoardPngPixels / 1e6));
       return false;
     }
     bytes = BoardPng(layout, dpi);

@@ -1,7 +1,7 @@
 // SVG and PDF writers of a board page; see board_print.h. Both are plain text written
 // by hand: rectangles in mm are exact, no library can move an edge.
 #include <cstdio>
-#include <sstream>
+#include <iterator>
 #include <vector>
 
 #include <fmt/format.h>
@@ -35,49 +35,51 @@ std::string PdfEscape(const std::string& text) {
 }  // namespace
 
 std::string BoardSvg(const BoardLayout& layout) {
-  const double w = layout.width * kMmPerM, h = layout.height * kMmPerM;
-  std::ostringstream out;
-  out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
-      << "<!-- h4cam make-board: print at 100% scale; 1 user unit = 1 mm -->\n"
-      << "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" << Num(w)
-      << "mm\" height=\"" << Num(h) << "mm\" viewBox=\"0 0 " << Num(w) << " " << Num(h) << "\">\n"
-      << "<rect x=\"0\" y=\"0\" width=\"" << Num(w) << "\" height=\"" << Num(h)
-      << "\" fill=\"#ffffff\"/>\n"
-      << "<g fill=\"#000000\" shape-rendering=\"crispEdges\">\n";
+  const std::string w = Num(layout.width * kMmPerM), h = Num(layout.height * kMmPerM);
+  std::string svg = fmt::format(
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      "<!-- h4cam make-board: print at 100% scale; 1 user unit = 1 mm -->\n"
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"{0}mm\" height=\"{1}mm\" "
+      "viewBox=\"0 0 {0} {1}\">\n"
+      "<rect x=\"0\" y=\"0\" width=\"{0}\" height=\"{1}\" fill=\"#ffffff\"/>\n"
+      "<g fill=\"#000000\" shape-rendering=\"crispEdges\">\n",
+      w, h);
+  auto out = std::back_inserter(svg);
   auto rect = [&out](const PrintRect& r, const char* id) {
-    out << "<rect" << (id ? std::string(" id=\"") + id + "\"" : "") << " x=\"" << Num(r.x * kMmPerM)
-        << "\" y=\"" << Num(r.y * kMmPerM) << "\" width=\"" << Num(r.w * kMmPerM) << "\" height=\""
-        << Num(r.h * kMmPerM) << "\"/>\n";
+    fmt::format_to(out, "<rect{} x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\"/>\n",
+                   id ? fmt::format(" id=\"{}\"", id) : "", Num(r.x * kMmPerM), Num(r.y * kMmPerM),
+                   Num(r.w * kMmPerM), Num(r.h * kMmPerM));
   };
   for (const auto& r : layout.black) rect(r, nullptr);
   if (layout.scale_bar.w > 0) rect(layout.scale_bar, "scale_bar_100mm");
-  out << "</g>\n";
+  svg += "</g>\n";
   for (const auto& t : layout.texts) {
-    out << "<text x=\"" << Num(t.x * kMmPerM) << "\" y=\"" << Num(t.y * kMmPerM)
-        << "\" font-family=\"Helvetica, Arial, sans-serif\" font-size=\"" << Num(t.size * kMmPerM)
-        << "\" fill=\"#000000\">" << MarkupEscape(t.text) << "</text>\n";
+    fmt::format_to(out,
+                   "<text x=\"{}\" y=\"{}\" font-family=\"Helvetica, Arial, sans-serif\" "
+                   "font-size=\"{}\" fill=\"#000000\">{}</text>\n",
+                   Num(t.x * kMmPerM), Num(t.y * kMmPerM), Num(t.size * kMmPerM),
+                   MarkupEscape(t.text));
   }
-  out << "</svg>\n";
-  return out.str();
+  svg += "</svg>\n";
+  return svg;
 }
 
 std::string BoardPdf(const BoardLayout& layout) {
   const double h_mm = layout.height * kMmPerM;
   // Content stream in mm (the cm operator scales to points), y up from the bottom edge.
-  std::ostringstream content;
-  content << Num(kPointsPerMm) << " 0 0 " << Num(kPointsPerMm) << " 0 0 cm\n0 g\n";
+  std::string stream = fmt::format("{0} 0 0 {0} 0 0 cm\n0 g\n", Num(kPointsPerMm));
+  auto out = std::back_inserter(stream);
   auto rect = [&](const PrintRect& r) {
-    content << Num(r.x * kMmPerM) << " " << Num(h_mm - (r.y + r.h) * kMmPerM) << " "
-            << Num(r.w * kMmPerM) << " " << Num(r.h * kMmPerM) << " re\n";
+    fmt::format_to(out, "{} {} {} {} re\n", Num(r.x * kMmPerM), Num(h_mm - (r.y + r.h) * kMmPerM),
+                   Num(r.w * kMmPerM), Num(r.h * kMmPerM));
   };
   for (const auto& r : layout.black) rect(r);
   if (layout.scale_bar.w > 0) rect(layout.scale_bar);
-  content << "f\n";
+  stream += "f\n";
   for (const auto& t : layout.texts) {
-    content << "BT /F1 " << Num(t.size * kMmPerM) << " Tf " << Num(t.x * kMmPerM) << " "
-            << Num(h_mm - t.y * kMmPerM) << " Td (" << PdfEscape(t.text) << ") Tj ET\n";
+    fmt::format_to(out, "BT /F1 {} Tf {} {} Td ({}) Tj ET\n", Num(t.size * kMmPerM),
+                   Num(t.x * kMmPerM), Num(h_mm - t.y * kMmPerM), PdfEscape(t.text));
   }
-  const std::string stream = content.str();
 
   const std::string w_pt = Num(layout.width * kMmPerM * kPointsPerMm);
   const std::string h_pt = Num(h_mm * kPointsPerMm);
@@ -86,22 +88,22 @@ std::string BoardPdf(const BoardLayout& layout) {
       "<< /Type /Pages /Kids [3 0 R] /Count 1 >>",
       "<< /Type /Page /Parent 2 0 R /MediaBox [0 0 " + w_pt + " " + h_pt +
           "] /Resources << /Font << /F1 5 0 R >> >> /Contents 4 0 R >>",
-      "<< /Length " + std::to_string(stream.size()) + " >>\nstream\n" + stream + "endstream",
+      fmt::format("<< /Length {} >>\nstream\n{}endstream", stream.size(), stream),
       "<< /Type /Font /Subtype /Type1 /BaseFont /Helvetica /Encoding /WinAnsiEncoding >>",
   };
   std::string pdf = "%PDF-1.4\n%\xE2\xE3\xCF\xD3\n";  // binary marker line, as the spec advises
   std::vector<size_t> offsets;
   for (size_t i = 0; i < objects.size(); ++i) {
     offsets.push_back(pdf.size());
-    pdf += std::to_string(i + 1) + " 0 obj\n" + objects[i] + "\nendobj\n";
+    pdf += fmt::format("{} 0 obj\n{}\nendobj\n", i + 1, objects[i]);
   }
   const size_t xref = pdf.size();
-  pdf += "xref\n0 " + std::to_string(objects.size() + 1) + "\n0000000000 65535 f \n";
+  pdf += fmt::format("xref\n0 {}\n0000000000 65535 f \n", objects.size() + 1);
   for (const size_t offset : offsets) {
     pdf += fmt::format("{:010} 00000 n \n", offset);  // 20 bytes each
   }
-  pdf += "trailer\n<< /Size " + std::to_string(objects.size() + 1) +
-         " /Root 1 0 R >>\nstartxref\n" + std::to_string(xref) + "\n%%EOF\n";
+  pdf += fmt::format("trailer\n<< /Size {} /Root 1 0 R >>\nstartxref\n{}\n%%EOF\n",
+                     objects.size() + 1, xref);
   return pdf;
 }
 

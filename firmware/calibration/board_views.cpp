@@ -1,6 +1,7 @@
 // Board detection for intrinsics calibration; see board_views.h.
 #include "firmware/calibration/board_views.h"
 
+#include <fmt/format.h>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -50,8 +51,7 @@ std::optional<CalibrationView> BoardViewFinder::FindChessboard(const cv::Mat& gr
   // Bounded: asked for a count the image does not show, the classic detector's search
   // on a full-size view took over 70 s (chessboard_corners.h).
   if (!FindChessboardCornersBounded(grey, pattern, flags, &corners, &work_)) {
-    *why = "no " + std::to_string(board.cols) + "x" + std::to_string(board.rows) +
-           " chessboard (inner corners) found";
+    *why = fmt::format("no {}x{} chessboard (inner corners) found", board.cols, board.rows);
     return std::nullopt;
   }
   const cv::Size window(options_.subpix_half_window, options_.subpix_half_window);
@@ -88,8 +88,8 @@ std::optional<CalibrationView> BoardViewFinder::FindAprilGrid(const cv::Mat& gre
     }
   }
   if (tags < options_.min_tags) {
-    *why = std::to_string(tags) + " tag(s) of the board found, expected at least " +
-           std::to_string(options_.min_tags);
+    *why =
+        fmt::format("{} tag(s) of the board found, expected at least {}", tags, options_.min_tags);
     return std::nullopt;
   }
   return view;

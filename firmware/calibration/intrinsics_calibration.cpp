@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
-#include <sstream>
+#include <iterator>
 
 #include <fmt/format.h>
 #include <opencv2/calib3d.hpp>
@@ -183,22 +183,21 @@ std::string FocalLengthObservability(const Solution& solution,
   for (const cv::Vec3d& n : solution.board_normals) {
     result->max_tilt_deg = std::max(result->max_tilt_deg, TiltDeg(n));
   }
-  std::ostringstream why;
-  why.precision(3);
   if (result->distinct_orientations < options.min_distinct_orientations) {
-    why << "focal length not observable: the views show the board in "
-        << result->distinct_orientations << " distinct orientation(s) (normals at least "
-        << options.min_orientation_difference_deg << " deg apart), expected at least "
-        << options.min_distinct_orientations
-        << "; duplicate images or one pose repeated cannot calibrate: tilt the board in "
-           "different directions";
-  } else if (result->max_tilt_deg < options.min_tilt_deg) {
-    why << "focal length not observable: every view is nearly fronto-parallel (largest "
-           "tilt "
-        << result->max_tilt_deg << " deg, expected at least " << options.min_tilt_deg
-        << " deg): tilt the board towards and away from the camera";
+    return fmt::format(
+        "focal length not observable: the views show the board in {} distinct orientation(s) "
+        "(normals at least {:.3g} deg apart), expected at least {}; duplicate images or one pose "
+        "repeated cannot calibrate: tilt the board in different directions",
+        result->distinct_orientations, options.min_orientation_difference_deg,
+        options.min_distinct_orientations);
   }
-  return why.str();
+  if (result->max_tilt_deg < options.min_tilt_deg) {
+    return fmt::format(
+        "focal length not observable: every view is nearly fronto-parallel (largest tilt {:.3g} "
+        "deg, expected at least {:.3g} deg): tilt the board towards and away from the camera",
+        result->max_tilt_deg, options.min_tilt_deg);
+  }
+  return "";
 }
 
 /// "k1 k2 p1 p2 k3": the distortion coefficients' names, in the file's order.
@@ -211,34 +210,25 @@ std::string DistortionNames(const IntrinsicsCalibrationResult& result) {
 
 /// The parameters, one a line, with their 1-sigma and how it was computed.
 std::string ParameterTable(const IntrinsicsCalibrationResult& result) {
-  std::ostringstream out;
-  out << "  parameter          value       1-sigma\n";
+  std::string table = "  parameter          value       1-sigma\n";
+  const auto out = std::back_inserter(table);
   for (const ParameterRow& row : ParameterRows(result)) {
     if (row.has_sigma) {
-      out << fmt::format("  {:<9} {:>14.6f} {:>13.6f} {}\n", row.name, row.value, row.sigma,
-                         row.unit);
+      fmt::format_to(out, "  {:<9} {:>14.6f} {:>13.6f} {}\n", row.name, row.value, row.sigma,
+                     row.unit);
     } else {
-      out << fmt::format("  {:<9} {:>14.6f} {:>13} {}\n", row.name, row.value, "-", row.unit);
+      fmt::format_to(out, "  {:<9} {:>14.6f} {:>13} {}\n", row.name, row.value, "-", row.unit);
     }
   }
-  out.setf(std::ios::fixed);
-  out.precision(4);
   if (result.camera.intrinsics_covariance) {
-    out << "  (1-sigma from the fit's Jacobian, the board poses marginalised, scaled by the "
-           "residual variance: s = "
-        << result.residual_sigma_px << " px per axis)\n";
+    fmt::format_to(out,
+                   "  (1-sigma from the fit's Jacobian, the board poses marginalised, scaled by "
+                   "the residual variance: s = {:.4f} px per axis)\n",
+                   result.residual_sigma_px);
   } else {
-    out << "  (no 1-sigma: the views do not determine the intrinsics' covariance)\n";
+    table += "  (no 1-sigma: the views do not determine the intrinsics' covariance)\n";
   }
-  return out.str();
-}
-
-std::string Fixed(double value) {
-  std::ostringstream out;
-  out.setf(std::ios::fixed);
-  out.precision(3);
-  out << value;
-  return out.str();
+  return table;
 }
 
 int CoefficientCount(IntrinsicsModel model) {
@@ -273,12 +263,12 @@ const char* ToString(IntrinsicsModel model) {
 
 bool IntrinsicsCalibrationOptions::IsValid(std::string* why) const {
   if (min_views < 3) {
-    *why = "min_views must be >= 3 (Zhang's method needs 3 views of a plane), got " +
-           std::to_string(min_views);
+    *why = fmt::format("min_views must be >= 3 (Zhang's method needs 3 views of a plane), got {}",
+                       min_views);
     return false;
   }
   if (!(outlier_factor > 1.0)) {
-    *why = "outlier_factor must be > 1, got " + std::to_string(outlier_factor);
+    *why = fmt::format("outlier_factor must be > 1, got {:f}", outlier_factor);
     return false;
   }
   if (fix_aspect_ratio && model == IntrinsicsModel::kEquidistant) {
@@ -342,8 +332,9 @@ bool RecalibrateWithoutOutliers(const std::vector<CalibrationView>& views, cv::S
     if (!result->views[i].outlier) kept.push_back(&views[i]);
   }
   if (static_cast<int>(kept.size()) < options.min_views) {
-    result->message = "outliers kept: dropping them would leave " + std::to_string(kept.size()) +
-                      " view(s), fewer than " + std::to_string(options.min_views);
+    result->message =
+        fmt::format("outliers kept: dropping them would leave {} view(s), fewer than {}",
+                    kept.size(), options.min_views);
     return true;
   }
   if (!Solve(kept, image_size, options, solution, &result->message)) return false;
@@ -356,7 +347,7 @@ bool RecalibrateWithoutOutliers(const std::vector<CalibrationView>& views, cv::S
     view.residuals_px = solution->residuals_px[k];
     ++k;
   }
-  result->message = "dropped " + std::to_string(outliers) + " outlier view(s) and recalibrated";
+  result->message = fmt::format("dropped {} outlier view(s) and recalibrated", outliers);
   return true;
 }
 
@@ -392,8 +383,8 @@ IntrinsicsCalibrationResult CalibrateIntrinsics(const std::vector<CalibrationVie
   result.views = ViewReportsOf(views);
   if (static_cast<int>(views.size()) < options.min_views) {
     result.status = IntrinsicsCalibrationResult::Status::kTooFewViews;
-    result.message = std::to_string(views.size()) + " view(s) with the board, expected at least " +
-                     std::to_string(options.min_views);
+    result.message = fmt::format("{} view(s) with the board, expected at least {}", views.size(),
+                                 options.min_views);
     return result;
   }
   std::vector<const CalibrationView*> used;
@@ -419,32 +410,28 @@ IntrinsicsCalibrationResult CalibrateIntrinsics(const std::vector<CalibrationVie
 }
 
 std::string IntrinsicsCalibrationResult::Report() const {
-  std::ostringstream out;
+  std::string report;
+  const auto out = std::back_inserter(report);
   if (!ok()) {
-    out << "calibration failed: " << message << "\n";
-    if (status != Status::kDegenerateViews) return out.str();
-    out << "(refused solution, for diagnosis only:)\n";
+    fmt::format_to(out, "calibration failed: {}\n", message);
+    if (status != Status::kDegenerateViews) return report;
+    report += "(refused solution, for diagnosis only:)\n";
   }
-  out.setf(std::ios::fixed);
-  out << "image " << camera.width << "x" << camera.height << ", " << views_used << " of "
-      << views.size() << " views used, model " << ToString(model) << ", distortion ("
-      << DistortionNames(*this) << ")\n";
-  out << ParameterTable(*this);
-  out.precision(4);
-  out << "RMS reprojection error " << rms_px << " px (median per view " << median_view_rms_px
-      << " px)\n";
-  out.precision(1);
-  out << distinct_orientations << " distinct board orientation(s), largest tilt " << max_tilt_deg
-      << " deg\n";
-  out.precision(4);
+  fmt::format_to(out, "image {}x{}, {} of {} views used, model {}, distortion ({})\n", camera.width,
+                 camera.height, views_used, views.size(), ToString(model), DistortionNames(*this));
+  report += ParameterTable(*this);
+  fmt::format_to(out, "RMS reprojection error {:.4f} px (median per view {:.4f} px)\n", rms_px,
+                 median_view_rms_px);
+  fmt::format_to(out, "{} distinct board orientation(s), largest tilt {:.1f} deg\n",
+                 distinct_orientations, max_tilt_deg);
   for (const auto& view : views) {
-    out << "  " << view.name << ": " << view.points << " points, RMS " << view.rms_px
-        << " px, tilt " << Fixed(view.tilt_deg) << " deg"
-        << (view.outlier ? "  OUTLIER (first RMS > " + Fixed(outlier_limit_px) + " px)" : "")
-        << (view.used ? "" : ", dropped") << "\n";
+    fmt::format_to(out, "  {}: {} points, RMS {:.4f} px, tilt {:.3f} deg", view.name, view.points,
+                   view.rms_px, view.tilt_deg);
+    if (view.outlier) fmt::format_to(out, "  OUTLIER (first RMS > {:.3f} px)", outlier_limit_px);
+    report += view.used ? "\n" : ", dropped\n";
   }
-  if (!message.empty() && ok()) out << message << "\n";
-  return out.str();
+  if (!message.empty() && ok()) fmt::format_to(out, "{}\n", message);
+  return report;
 }
 
 }  // namespace h4::cam

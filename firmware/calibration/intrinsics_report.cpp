@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 
 #include <fmt/format.h>
 
@@ -50,12 +49,11 @@ double LargestOf(const std::vector<double>& values) {
 }
 
 std::string SvgHeader(int width, int height) {
-  return "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" "
-         "width=\"" +
-         std::to_string(width) + "\" height=\"" + std::to_string(height) + "\" viewBox=\"0 0 " +
-         std::to_string(width) + " " + std::to_string(height) +
-         "\" font-family=\"sans-serif\" font-size=\"13\">\n<rect width=\"100%\" height=\"100%\" "
-         "fill=\"white\"/>\n";
+  return fmt::format(
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<svg xmlns=\"http://www.w3.org/2000/svg\" "
+      "width=\"{0}\" height=\"{1}\" viewBox=\"0 0 {0} {1}\" font-family=\"sans-serif\" "
+      "font-size=\"13\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n",
+      width, height);
 }
 
 std::string SvgText(double x, double y, const std::string& text, const char* anchor = "start") {
@@ -222,9 +220,9 @@ std::string HtmlViewTable(const IntrinsicsCalibrationResult& result) {
   for (const ViewReport& view : result.views) {
     const std::string note = std::string(view.outlier ? "outlier" : "") +
                              (view.used ? "" : (view.outlier ? ", dropped" : "dropped"));
-    html += "<tr><td>" + MarkupEscape(view.name) + "</td><td>" + std::to_string(view.points) +
-            "</td><td>" + Decimal(view.rms_px, 4) + "</td><td>" + Decimal(view.tilt_deg, 1) +
-            "</td><td>" + note + "</td></tr>\n";
+    html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                        MarkupEscape(view.name), view.points, Decimal(view.rms_px, 4),
+                        Decimal(view.tilt_deg, 1), note);
   }
   return html + "</table>\n";
 }
@@ -247,8 +245,8 @@ std::vector<ParameterRow> ParameterRows(const IntrinsicsCalibrationResult& resul
   const std::vector<std::string> names = DistortionCoefficientNames(result.model);
   for (Eigen::Index i = 0; i < camera.distortion.size(); ++i) {
     const size_t k = static_cast<size_t>(i);
-    rows.push_back({k < names.size() ? names[k] : "d" + std::to_string(i), camera.distortion(i), 0,
-                    false, ""});
+    rows.push_back(
+        {k < names.size() ? names[k] : fmt::format("d{}", i), camera.distortion(i), 0, false, ""});
   }
   if (const auto& covariance = camera.intrinsics_covariance) {
     for (size_t i = 0; i < rows.size() && static_cast<Eigen::Index>(i) < covariance->rows(); ++i) {
@@ -286,14 +284,13 @@ CoverageGrid CornerCoverage(const IntrinsicsCalibrationResult& result, int cols,
 
 std::string CoverageSummary(const CoverageGrid& grid) {
   const int cells = grid.cols * grid.rows;
-  std::string text = "corners in " + std::to_string(cells - grid.EmptyCells()) + " of " +
-                     std::to_string(cells) + " cells of the " + std::to_string(grid.cols) + " x " +
-                     std::to_string(grid.rows) + " grid over the image";
+  std::string text = fmt::format("corners in {} of {} cells of the {} x {} grid over the image",
+                                 cells - grid.EmptyCells(), cells, grid.cols, grid.rows);
   if (grid.EmptyCells() == 0) return text + "; no empty cell";
   text += "; empty (row, column from the top left):";
   for (int i = 0; i < cells; ++i) {
     if (grid.corners[static_cast<size_t>(i)] != 0) continue;
-    text += " (" + std::to_string(i / grid.cols) + ", " + std::to_string(i % grid.cols) + ")";
+    text += fmt::format(" ({}, {})", i / grid.cols, i % grid.cols);
   }
   return text;
 }
@@ -331,9 +328,9 @@ std::string CoverageSvg(const IntrinsicsCalibrationResult& result, const Coverag
   const int height = static_cast<int>(kTop + drawn_height + 50);
   return SvgHeader(static_cast<int>(kDrawnWidth + 2 * kLeft), height) +
          SvgText(kLeft, 24,
-                 "corners found, " + std::to_string(result.views_used) + " views (one colour " +
-                     "each), image " + std::to_string(grid.width) + " x " +
-                     std::to_string(grid.height) + " px; red cells: no corner") +
+                 fmt::format("corners found, {} views (one colour each), image {} x {} px; red "
+                             "cells: no corner",
+                             result.views_used, grid.width, grid.height)) +
          SvgCoverageCells(grid, kLeft, kTop, scale) +
          SvgFrame(kLeft, kTop, kDrawnWidth, drawn_height) +
          SvgCornerDots(result, kLeft, kTop, scale) +
@@ -367,11 +364,11 @@ std::string ReportHtml(const IntrinsicsCalibrationResult& result, const Coverage
       "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 8px;"
       "text-align:right}img{max-width:100%}</style></head><body>\n<h1>" +
       title + "</h1>\n";
-  html += "<p>Image " + std::to_string(result.camera.width) + " x " +
-          std::to_string(result.camera.height) + " px, model " + ToString(result.model) + ", " +
-          std::to_string(result.views_used) + " of " + std::to_string(result.views.size()) +
-          " views used. Reprojection RMS <b>" + Decimal(result.rms_px, 4) +
-          " px</b> (median per view " + Decimal(result.median_view_rms_px, 4) + " px).</p>\n";
+  html += fmt::format(
+      "<p>Image {} x {} px, model {}, {} of {} views used. Reprojection RMS <b>{} px</b> (median "
+      "per view {} px).</p>\n",
+      result.camera.width, result.camera.height, ToString(result.model), result.views_used,
+      result.views.size(), Decimal(result.rms_px, 4), Decimal(result.median_view_rms_px, 4));
   html += "<h2>Parameters</h2>\n" + HtmlParameterTable(result);
   html +=
       "<p>1-sigma from the fit's Jacobian: the intrinsics' block of (J<sup>T</sup>J)"

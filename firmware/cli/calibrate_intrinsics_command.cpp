@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 
 #include "common/board/board_model.h"
@@ -26,12 +27,12 @@ namespace fs = std::filesystem;
 /// What was found of the board: "chessboard: 54/54 corners", or on an AprilTag grid
 /// "30/36 tags, 120/144 corners" (every tag found gives its 4 corners, board_views.h).
 std::string BoardFound(const CalibrationView& view, const BoardModel& board) {
-  const std::string corners = std::to_string(view.image_points.size()) + "/" +
-                              std::to_string(board.corner_count()) + " corners";
+  const std::string corners =
+      fmt::format("{}/{} corners", view.image_points.size(), board.corner_count());
   if (!board.is_aprilgrid()) return "chessboard: " + corners;
   const auto& grid = std::get<AprilGridSpec>(board.spec());
-  return std::to_string(view.image_points.size() / 4) + "/" +
-         std::to_string(grid.rows * grid.cols) + " tags, " + corners;
+  return fmt::format("{}/{} tags, {}", view.image_points.size() / 4, grid.rows * grid.cols,
+                     corners);
 }
 
 /// The report's files beside the camera YAML, named after it: camera.yaml ->
@@ -82,10 +83,9 @@ IntrinsicsCalibrationResult RunCalibrateIntrinsics(const CalibrateIntrinsicsArgs
     if (grey.empty()) throw std::runtime_error(path + ": cannot read the image");
     if (image_size.empty()) image_size = grey.size();
     if (grey.size() != image_size) {
-      throw std::runtime_error(path + ": image is " + std::to_string(grey.cols) + "x" +
-                               std::to_string(grey.rows) + ", expected " +
-                               std::to_string(image_size.width) + "x" +
-                               std::to_string(image_size.height) + " like " + args.images[0]);
+      throw std::runtime_error(fmt::format("{}: image is {}x{}, expected {}x{} like {}", path,
+                                           grey.cols, grey.rows, image_size.width,
+                                           image_size.height, args.images[0]));
     }
     std::string why;
     if (auto view = finder.Find(grey, path, &why)) {

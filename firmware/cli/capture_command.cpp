@@ -48,8 +48,8 @@ RigidTransform CentredBoardPose(const BoardSpec& board, double depth) {
 RigidTransform SimPose(const CaptureArgs& args, const BoardSpec& board) {
   if (args.sim_pose.empty()) return CentredBoardPose(board, 0.5);
   if (args.sim_pose.size() != 7) {
-    throw std::runtime_error("--sim-pose: expected 7 numbers x,y,z,qw,qx,qy,qz, got " +
-                             std::to_string(args.sim_pose.size()));
+    throw std::runtime_error(fmt::format("--sim-pose: expected 7 numbers x,y,z,qw,qx,qy,qz, got {}",
+                                         args.sim_pose.size()));
   }
   const std::vector<double>& v = args.sim_pose;
   Eigen::Matrix3d R_CT;
@@ -148,16 +148,6 @@ std::unique_ptr<FrameSource> MakeCaptureSource(const CaptureArgs& args, bool sav
   return source;
 }
 
-void CheckFrameSize(const Frame& frame, const CameraIntrinsics& camera,
-                    const std::string& camera_path) {
-  if (frame.image.cols == camera.width && frame.image.rows == camera.height) return;
-  throw std::runtime_error((frame.origin.empty() ? "frame" : frame.origin) + ": image is " +
-                           std::to_string(frame.image.cols) + "x" +
-                           std::to_string(frame.image.rows) + ", the camera file " + camera_path +
-                           " says " + std::to_string(camera.width) + "x" +
-                           std::to_string(camera.height));
-}
-
 /// What is done with one frame: checked, printed, saved and drawn as asked; `index` is its
 /// number, in the printed line and the file names.
 void TakeFrame(const CaptureArgs& args, bool save_frames, const Frame& frame, int index,
@@ -241,7 +231,7 @@ CaptureSummary RunCapture(const CaptureArgs& args, bool save_frames, std::ostrea
       continue;
     }
     last_taken = now;
-    CheckFrameSize(*frame, intrinsics, args.camera_path);
+    RequireTheCameraFilesSize(*frame, intrinsics, args.camera_path);
     TakeFrame(args, save_frames, *frame, number, detector, camera, out, &summary);
   }
   source->Stop();

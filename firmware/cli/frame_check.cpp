@@ -2,6 +2,7 @@
 #include "firmware/cli/frame_check.h"
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <variant>
 #include <vector>
@@ -102,7 +103,7 @@ void DrawMissedTags(const BoardDetection& detection, cv::Mat* overlay) {
       centre += 0.25 * uv;
     }
     cv::polylines(*overlay, outline, /*isClosed=*/true, cv::Scalar(0, 0, 255), 1);
-    const std::string label = std::to_string(miss.tag_id) + " " + ToString(miss.why);
+    const std::string label = fmt::format("{} {}", miss.tag_id, ToString(miss.why));
     cv::putText(*overlay, label,
                 cv::Point(static_cast<int>(centre.x()) - 20, static_cast<int>(centre.y())),
                 cv::FONT_HERSHEY_SIMPLEX, 0.3, cv::Scalar(0, 0, 255), 1, cv::LINE_AA);
@@ -141,6 +142,15 @@ cv::Mat DrawFrameFigures(const cv::Mat& image, const BoardDetection& detection,
   cv::putText(overlay, FormatFrameFigures(figures), cv::Point(6, 18), cv::FONT_HERSHEY_SIMPLEX,
               0.45, colour, 1, cv::LINE_AA);
   return overlay;
+}
+
+void RequireTheCameraFilesSize(const Frame& frame, const CameraIntrinsics& camera,
+                               const std::string& camera_path) {
+  if (frame.image.cols == camera.width && frame.image.rows == camera.height) return;
+  throw std::runtime_error(fmt::format("{}: image is {}x{}, the camera file {} says {}x{}",
+                                       frame.origin.empty() ? "frame" : frame.origin,
+                                       frame.image.cols, frame.image.rows, camera_path,
+                                       camera.width, camera.height));
 }
 
 }  // namespace h4::cam

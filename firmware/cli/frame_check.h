@@ -2,7 +2,8 @@
 // collecting intrinsics images (`h4cam capture` / `h4cam preview`): the board's detection
 // (tags and corners found, reprojection RMS of a pose fit), a focus figure, the exposure
 // (mean level, saturated fraction) and how much of the image the board covers; and the
-// frame with the detection drawn over it. Pure: images in, figures and images out.
+// frame with the detection drawn over it. Pure: images in, figures and images out. Also the
+// check, shared with `h4cam measure`, that a frame has the camera file's size.
 #pragma once
 
 #include <optional>
@@ -12,6 +13,7 @@
 
 #include "common/camera/camera_model.h"
 #include "firmware/detection/board_detector.h"
+#include "firmware/frames/frame_source.h"
 
 namespace h4::cam {
 
@@ -50,5 +52,11 @@ std::string FormatFrameFigures(const FrameFigures& figures);
 /// top.
 cv::Mat DrawFrameFigures(const cv::Mat& image, const BoardDetection& detection,
                          const FrameFigures& figures);
+
+/// Throws std::runtime_error "<origin>: image is WxH, the camera file <camera_path> says WxH"
+/// unless `frame` has the camera file's image size: figures and poses through intrinsics of
+/// another size would be wrong without a sign of it. A frame without an origin is "frame".
+void RequireTheCameraFilesSize(const Frame& frame, const CameraIntrinsics& camera,
+                               const std::string& camera_path);
 
 }  // namespace h4::cam

@@ -15,6 +15,7 @@
 #include "common/formats/camera_yaml.h"
 #include "common/formats/corners_csv.h"
 #include "common/formats/file_output.h"
+#include "firmware/cli/frame_check.h"
 #include "firmware/pose/measure_pipeline.h"
 #include "firmware/sources/image_file_source.h"
 
@@ -57,15 +58,6 @@ struct MeasureOutputs {
     progress << "\n";
   }
 };
-
-void RequireTheCameraFilesSize(const Frame& frame, const CameraIntrinsics& camera,
-                               const std::string& camera_path) {
-  if (frame.image.cols == camera.width && frame.image.rows == camera.height) return;
-  throw std::runtime_error(frame.origin + ": image is " + std::to_string(frame.image.cols) + "x" +
-                           std::to_string(frame.image.rows) + ", the camera file " + camera_path +
-                           " says " + std::to_string(camera.width) + "x" +
-                           std::to_string(camera.height));
-}
 
 /// Groups of `group` images (the last one may be short), said when they do not divide.
 size_t GroupCount(size_t images, int group, std::ostream& progress) {

@@ -95,21 +95,21 @@ std::string BoardOutOfView(const BoardSpec& board, const CameraIntrinsics& camer
   return in_front == 0
              ? "the board is behind the camera (no corner has z > 0 in the camera "
                "frame, nor is inside a fisheye's field)"
-             : "the board is off the image (no corner projects into the " +
-                   std::to_string(camera.width) + "x" + std::to_string(camera.height) + " image)";
+             : fmt::format("the board is off the image (no corner projects into the {}x{} image)",
+                           camera.width, camera.height);
 }
 
 bool RunRender(const RenderArgs& args, std::ostream& out) {
   if (args.frames < 1 || args.frames > kMaxRenderFrames) {
-    throw std::runtime_error("--frames " + std::to_string(args.frames) + ": expected 1.." +
-                             std::to_string(kMaxRenderFrames));
+    throw std::runtime_error(
+        fmt::format("--frames {}: expected 1..{}", args.frames, kMaxRenderFrames));
   }
   const RenderOptions options = RenderOptionsFromArgs(args);
   const BoardSpec board = ReadBoardYaml(args.board_path);
   const CameraIntrinsics camera = ReadCameraYaml(args.camera_path);
   if (args.pose.size() != 7) {
-    throw std::runtime_error("--pose: expected 7 numbers x,y,z,qw,qx,qy,qz, got " +
-                             std::to_string(args.pose.size()));
+    throw std::runtime_error(
+        fmt::format("--pose: expected 7 numbers x,y,z,qw,qx,qy,qz, got {}", args.pose.size()));
   }
   Eigen::Matrix3d R_CT;
   if (!RotationFromQuaternion(args.pose[3], args.pose[4], args.pose[5], args.pose[6], &R_CT)) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include <apriltag/apriltag.h>
+#include <fmt/format.h>
 #include <opencv2/imgproc.hpp>
 
 namespace h4::cam {
@@ -11,8 +12,8 @@ namespace h4::cam {
 AprilTagDetector::AprilTagDetector(const AprilTagOptions& options) {
   family_ = CreateTagFamily(options.family, options.border_cells);
   if (!family_) {
-    error_ = "unsupported tag family '" + options.family + "' with a " +
-             std::to_string(options.border_cells) + "-cell border";
+    error_ = fmt::format("unsupported tag family '{}' with a {}-cell border", options.family,
+                         options.border_cells);
     return;
   }
   detector_ = apriltag_detector_create();

@@ -5,13 +5,14 @@
 #include <cmath>
 #include <vector>
 
+#include <fmt/format.h>
 #include <opencv2/imgproc.hpp>
 
 namespace h4::cam {
 
 bool XCornerOptions::IsValid(std::string* why) const {
   if (!(window_fraction > 0.0 && window_fraction <= 1.0)) {
-    *why = "window_fraction must be in (0, 1], got " + std::to_string(window_fraction);
+    *why = fmt::format("window_fraction must be in (0, 1], got {:f}", window_fraction);
     return false;
   }
   if (min_half_window_px < 1 || max_half_window_px < min_half_window_px) {

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <variant>
 
+#include <fmt/format.h>
+
 namespace h4::cam {
 namespace {
 
@@ -120,8 +122,8 @@ Measurement MeasurePipeline::MeasureImage(const cv::Mat& image, int frames_avera
   const std::string seen_twice =
       detection.ids_seen_twice == 0
           ? std::string()
-          : "; " + std::to_string(detection.ids_seen_twice) +
-                " tag id(s) were seen twice and not used (two boards in view?)";
+          : fmt::format("; {} tag id(s) were seen twice and not used (two boards in view?)",
+                        detection.ids_seen_twice);
   if (detection.status == BoardDetection::Status::kNoBoard) {
     m.status = Measurement::Status::kNoBoard;
     m.message = "no board corner found" + seen_twice;
@@ -129,8 +131,8 @@ Measurement MeasurePipeline::MeasureImage(const cv::Mat& image, int frames_avera
   }
   if (detection.status == BoardDetection::Status::kPartial) {
     m.status = Measurement::Status::kPartial;
-    m.message = std::to_string(m.corners_used) + " corners, need " +
-                std::to_string(options_.detector.min_corners) + seen_twice;
+    m.message = fmt::format("{} corners, need {}{}", m.corners_used, options_.detector.min_corners,
+                            seen_twice);
     return m;
   }
   const PoseEstimate pose = EstimatePose(detection.corners, camera_, options_.pose);
@@ -172,9 +174,8 @@ Measurement MeasurePipeline::MeasureGroup() {
     m.frame_spread_px = motion.spread_px;
     if (motion.moved) {
       m.status = Measurement::Status::kMoved;
-      m.message = "board moved during the group: corner spread " +
-                  std::to_string(motion.spread_px) + " px > " +
-                  std::to_string(options_.motion.max_spread_px) + " px";
+      m.message = fmt::format("board moved during the group: corner spread {:f} px > {:f} px",
+                              motion.spread_px, options_.motion.max_spread_px);
     }
   }
   averager_.Reset();

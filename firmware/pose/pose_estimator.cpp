@@ -9,6 +9,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <fmt/format.h>
 
 #include "common/geometry/rotation.h"
 #include "firmware/detection/planar_pose_starts.h"
@@ -386,8 +387,8 @@ PoseEstimate EstimatePose(const std::vector<CornerObservation>& corners, const C
   estimate.corners = static_cast<int>(corners.size());
   if (estimate.corners < std::max(options.min_corners, 4)) {
     estimate.status = PoseEstimate::Status::kTooFewCorners;
-    estimate.message = std::to_string(estimate.corners) + " corners, need " +
-                       std::to_string(std::max(options.min_corners, 4));
+    estimate.message =
+        fmt::format("{} corners, need {}", estimate.corners, std::max(options.min_corners, 4));
     return estimate;
   }
   const ErosionBasis basis(EffectiveErosionModel(corners, options), camera, corners);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <apriltag/apriltag.h>
+#include <fmt/format.h>
 
 #include "firmware/detection/tag_family.h"
 
@@ -26,8 +27,8 @@ BoardPattern::BoardPattern(const BoardSpec& spec, double margin) : spec_(spec), 
         const int id = model_.TagIdAt(row, col);
         tag_cells_.push_back(TagCells(*family, id, border_cells, &cells_));
         if (tag_cells_.back().empty()) {
-          error_ = "tag id " + std::to_string(id) + " is beyond family " + grid->tag_family + " (" +
-                   std::to_string(family->ncodes) + " codes)";
+          error_ = fmt::format("tag id {} is beyond family {} ({} codes)", id, grid->tag_family,
+                               family->ncodes);
           return;
         }
       }

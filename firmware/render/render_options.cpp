@@ -4,18 +4,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <sstream>
+
+#include <fmt/format.h>
 
 namespace h4::cam {
 namespace {
 
 bool InRange(double value, double lo, double hi) { return value >= lo && value <= hi; }
-
-std::string Number(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 // Parses a whole string as a finite number.
 bool ParseNumber(const std::string& text, double* value) {
@@ -42,16 +37,16 @@ bool ResponseIsValid(const RenderOptions& o, std::string* why) {
     return false;
   };
   if (o.response == ResponseCurve::kGamma && !InRange(o.response_gamma, 0.1, 10)) {
-    return fail("response gamma " + Number(o.response_gamma) + ": expected 0.1..10");
+    return fail(fmt::format("response gamma {:g}: expected 0.1..10", o.response_gamma));
   }
   if (o.response == ResponseCurve::kTable) {
     if (o.response_table.size() < 2) return fail("response table: expected >= 2 values");
     for (size_t k = 0; k < o.response_table.size(); ++k) {
       if (!InRange(o.response_table[k], 0, 1)) {
-        return fail("response table value " + std::to_string(k) + ": expected 0..1");
+        return fail(fmt::format("response table value {}: expected 0..1", k));
       }
       if (k > 0 && o.response_table[k] < o.response_table[k - 1]) {
-        return fail("response table value " + std::to_string(k) + ": must not decrease");
+        return fail(fmt::format("response table value {}: must not decrease", k));
       }
     }
   }
@@ -93,28 +88,28 @@ bool RenderOptions::IsValid(std::string* why) const {
     return fail("black/white/background levels must be 0..10000 grey levels");
   }
   if (!InRange(illumination_gradient, 0, 1)) {
-    return fail("illumination gradient " + Number(illumination_gradient) + ": expected 0..1");
+    return fail(fmt::format("illumination gradient {:g}: expected 0..1", illumination_gradient));
   }
   if (!std::isfinite(illumination_gradient_direction_deg)) {
     return fail("illumination gradient direction must be a finite angle in deg");
   }
   if (!InRange(vignetting, 0, 0.9)) {
-    return fail("vignetting " + Number(vignetting) + ": expected 0..0.9");
+    return fail(fmt::format("vignetting {:g}: expected 0..0.9", vignetting));
   }
   if (!InRange(blur_sigma_px, 0, 20)) {
-    return fail("blur sigma " + Number(blur_sigma_px) + " px: expected 0..20 px");
+    return fail(fmt::format("blur sigma {:g} px: expected 0..20 px", blur_sigma_px));
   }
   if (!InRange(focus_distance, 0, 1e3)) {
-    return fail("focus distance " + Number(focus_distance) + " m: expected 0..1000 m");
+    return fail(fmt::format("focus distance {:g} m: expected 0..1000 m", focus_distance));
   }
   if (!InRange(aperture_diameter, 0, 0.05)) {
-    return fail("aperture diameter " + Number(aperture_diameter) + " m: expected 0..0.05 m");
+    return fail(fmt::format("aperture diameter {:g} m: expected 0..0.05 m", aperture_diameter));
   }
   if (!(full_well_electrons == 0 || InRange(full_well_electrons, 100, 1e7))) {
-    return fail("full well " + Number(full_well_electrons) + " e-: expected 0 or 100..1e7");
+    return fail(fmt::format("full well {:g} e-: expected 0 or 100..1e7", full_well_electrons));
   }
   if (!InRange(noise_sigma, 0, 50)) {
-    return fail("read noise " + Number(noise_sigma) + ": expected 0..50 grey levels");
+    return fail(fmt::format("read noise {:g}: expected 0..50 grey levels", noise_sigma));
   }
   return ResponseIsValid(*this, why);
 }

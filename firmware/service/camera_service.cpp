@@ -5,6 +5,7 @@
 #include <exception>
 #include <string>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "common/text/enum_names.h"
@@ -101,12 +102,11 @@ void CameraService::Stop() {
 bool CameraService::SubmitRequest(const h4msgs::capture_request_t& request) {
   std::string why;
   if (request.pose_id < 0) {
-    why = "pose_id " + std::to_string(request.pose_id) + " < 0";
+    why = fmt::format("pose_id {} < 0", request.pose_id);
   } else if (request.frame_count < 0 || request.frame_count > kMaxFramesPerRequest) {
-    why = "frame_count " + std::to_string(request.frame_count) + " outside 0.." +
-          std::to_string(kMaxFramesPerRequest);
+    why = fmt::format("frame_count {} outside 0..{}", request.frame_count, kMaxFramesPerRequest);
   } else if (queue_.size() >= options_.max_queued_requests) {
-    why = "queue full (" + std::to_string(queue_.size()) + " requests waiting)";
+    why = fmt::format("queue full ({} requests waiting)", queue_.size());
   } else if (state_ == State::kError || state_ == State::kStopping) {
     why = std::string("camera ") + ToString(state_);
   }
@@ -150,15 +150,14 @@ std::optional<h4msgs::board_pose_t> CameraService::Step(Clock::time_point now) {
   if (!frame) {
     if (!source_.error().empty()) RecordError(source_.error());
     if (capture_ && source_.finished()) {
-      return FailCapture(source_.Describe() + ": no more frames after " +
-                         std::to_string(capture_->received));
+      return FailCapture(
+          fmt::format("{}: no more frames after {}", source_.Describe(), capture_->received));
     }
     if (capture_ && now - capture_->last_progress > options_.capture_timeout) {
-      return FailCapture("no frame for " +
-                         std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(
-                                            now - capture_->last_progress)
-                                            .count()) +
-                         " ms" + (last_error_.empty() ? "" : ": " + last_error_));
+      const auto waited =
+          std::chrono::duration_cast<std::chrono::milliseconds>(now - capture_->last_progress);
+      return FailCapture(fmt::format("no frame for {} ms{}", waited.count(),
+                                     last_error_.empty() ? "" : ": " + last_error_));
     }
     return std::nullopt;
   }
@@ -251,23 +250,7 @@ h4msgs::camera_status_t CameraService::Status(int64_t utime) const {
   h4msgs::camera_status_t s{};
   s.utime = utime;
   s.camera_id = options_.camera_id;
-  switch (state_) {
-    case State::kStarting:
-      s.state = h4msgs::camera_status_t::STATE_STARTING;
-      break;
-    case State::kIdle:
-      s.state = h4msgs::camera_status_t::STATE_IDLE;
-      break;
-    case State::kCapturing:
-      s.state = h4msgs::camera_status_t::STATE_CAPTURING;
-      break;
-    case State::kError:
-      s.state = h4msgs::camera_status_t::STATE_ERROR;
-      break;
-    case State::kStopping:
-      s.state = h4msgs::camera_status_t::STATE_STOPPING;
-      break;
-  }
+  s.state = static_cast<int8_t>(state_);
   const auto now = Clock::now();
   int64_t recent = 0;
   for (const auto& t : recent_frames_) recent += (now - t <= std::chrono::seconds(1)) ? 1 : 0;

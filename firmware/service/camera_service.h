@@ -19,8 +19,8 @@
 #include "common/board/board_spec.h"
 #include "common/camera/camera_intrinsics.h"
 #include "common/timing/periodic_schedule.h"
-#include "firmware/pose/measure_pipeline.h"
 #include "firmware/frames/frame_source.h"
+#include "firmware/pose/measure_pipeline.h"
 
 namespace h4::cam {
 
@@ -46,8 +46,15 @@ inline constexpr int kMaxFramesPerRequest = 1000;
 
 class CameraService {
  public:
-  /// Named by ToString, in this order (camera_service.cpp).
-  enum class State { kStarting, kIdle, kCapturing, kError, kStopping };
+  /// Named by ToString, in this order (camera_service.cpp). The values are camera_status_t's
+  /// STATE_ constants, so that Status() sends the state as it is.
+  enum class State : int8_t {
+    kStarting = h4msgs::camera_status_t::STATE_STARTING,
+    kIdle = h4msgs::camera_status_t::STATE_IDLE,
+    kCapturing = h4msgs::camera_status_t::STATE_CAPTURING,
+    kError = h4msgs::camera_status_t::STATE_ERROR,
+    kStopping = h4msgs::camera_status_t::STATE_STOPPING,
+  };
   using Clock = std::chrono::steady_clock;
 
   /// `source` must outlive the service.

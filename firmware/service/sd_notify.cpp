@@ -11,6 +11,7 @@
 #include <limits>
 #include <string>
 
+#include <fmt/format.h>
 #include <sys/socket.h>
 #include <sys/un.h>
 #include <unistd.h>
@@ -62,7 +63,7 @@ NotifyResult SdNotifyTo(std::string_view socket_name, std::string_view state) {
   }
   if (socket_name.size() >= sizeof(address.sun_path)) {
     return Failed(socket_name,
-                  "name longer than " + std::to_string(sizeof(address.sun_path) - 1) + " bytes");
+                  fmt::format("name longer than {} bytes", sizeof(address.sun_path) - 1));
   }
   std::memcpy(address.sun_path, socket_name.data(), socket_name.size());
   if (abstract) address.sun_path[0] = '\0';
@@ -76,8 +77,7 @@ NotifyResult SdNotifyTo(std::string_view socket_name, std::string_view state) {
                                 reinterpret_cast<const sockaddr*>(&address), address_size);
   if (sent < 0) return Failed(socket_name, std::string("sendto(): ") + std::strerror(errno));
   if (static_cast<std::size_t>(sent) != state.size()) {
-    return Failed(socket_name, "sent " + std::to_string(sent) + " of " +
-                                   std::to_string(state.size()) + " bytes");
+    return Failed(socket_name, fmt::format("sent {} of {} bytes", sent, state.size()));
   }
   return {NotifyResult::Status::kSent, {}};
 }

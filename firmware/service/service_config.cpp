@@ -3,7 +3,8 @@
 
 #include <cmath>
 #include <limits>
-#include <sstream>
+
+#include <fmt/format.h>
 
 #include "common/formats/camera_yaml.h"
 #include "common/formats/csv_table.h"
@@ -53,27 +54,15 @@ void CheckPositive(const YamlMap& map, const std::string& key, double value) {
 }
 void CheckRange(const YamlMap& map, const std::string& key, double value, double lo, double hi) {
   if (map.Has(key) && !(value >= lo && value <= hi)) {
-    std::ostringstream range;
-    range << "expected " << lo << ".." << hi;
-    map.Fail(key, range.str());
+    map.Fail(key, fmt::format("expected {:g}..{:g}", lo, hi));
   }
-}
-
-std::string Text(double value) {
-  std::ostringstream text;
-  text << value;
-  return text.str();
 }
 
 // A number of the sim: block within [lo, hi], else an error naming its line.
 double SimDouble(const YamlMap& sim, const std::string& key, double fallback, double lo,
                  double hi) {
   const double value = OptionalDouble(sim, key, fallback);
-  if (sim.Has(key) && !(value >= lo && value <= hi)) {
-    std::ostringstream range;
-    range << "expected " << lo << ".." << hi;
-    sim.Fail(key, range.str());
-  }
+  CheckRange(sim, key, value, lo, hi);
   return value;
 }
 
@@ -122,7 +111,7 @@ bool ServiceConfig::IsValid(std::string* why) const {
   std::string source_why;
   if (!ParseFrameSourceSpec(source, &source_why)) return fail(source_why);
   if (frames_averaged < 1 || frames_averaged > 1000) {
-    return fail("frames averaged " + std::to_string(frames_averaged) + ": expected 1..1000");
+    return fail(fmt::format("frames averaged {}: expected 1..1000", frames_averaged));
   }
   if (!(free_run_hz >= 0) || free_run_hz > 100) return fail("free-run rate: expected 0..100 Hz");
   if (!(heartbeat_period_s > 0) || heartbeat_period_s > 3600) {
@@ -130,20 +119,20 @@ bool ServiceConfig::IsValid(std::string* why) const {
   }
   if (width_px < 1 || height_px < 1 || width_px > kMaxImageSide_px ||
       height_px > kMaxImageSide_px || int64_t{width_px} * height_px > kMaxImagePixels) {
-    return fail("camera stream " + std::to_string(width_px) + "x" + std::to_string(height_px) +
-                ": expected 1.." + std::to_string(kMaxImageSide_px) + " px a side, at most " +
-                std::to_string(kMaxImagePixels) + " px");
+    return fail(fmt::format("camera stream {}x{}: expected 1..{} px a side, at most {} px",
+                            width_px, height_px, kMaxImageSide_px, kMaxImagePixels));
   }
   if (!(exposure_time_us >= 0 && exposure_time_us <= kMaxExposureTime_us)) {
-    return fail("exposure time " + Text(exposure_time_us) + " us: expected 0.." +
-                Text(kMaxExposureTime_us) + " us");
+    return fail(fmt::format("exposure time {:g} us: expected 0..{:g} us", exposure_time_us,
+                            kMaxExposureTime_us));
   }
   if (!(analogue_gain >= 1 && analogue_gain <= kMaxAnalogueGain)) {
-    return fail("analogue gain " + Text(analogue_gain) + ": expected 1.." + Text(kMaxAnalogueGain));
+    return fail(
+        fmt::format("analogue gain {:g}: expected 1..{:g}", analogue_gain, kMaxAnalogueGain));
   }
   if (!(frame_duration_us >= kMinFrameDuration_us && frame_duration_us <= kMaxFrameDuration_us)) {
-    return fail("frame duration " + Text(frame_duration_us) + " us: expected " +
-                Text(kMinFrameDuration_us) + ".." + Text(kMaxFrameDuration_us) + " us");
+    return fail(fmt::format("frame duration {:g} us: expected {:g}..{:g} us", frame_duration_us,
+                            kMinFrameDuration_us, kMaxFrameDuration_us));
   }
   if (!(max_spread_px > 0)) return fail("measurement max spread: expected a positive px value");
   std::string render_why;
@@ -175,9 +164,8 @@ ServiceConfig ParseServiceConfig(const std::string& text, const std::string& sou
     CheckRange(camera, "height", config.height_px, 1, kMaxImageSide_px);
     if (int64_t{config.width_px} * config.height_px > kMaxImagePixels) {
       camera.Fail(camera.Has("height") ? "height" : "width",
-                  "stream " + std::to_string(config.width_px) + "x" +
-                      std::to_string(config.height_px) + " is too large (at most " +
-                      std::to_string(kMaxImagePixels) + " px)");
+                  fmt::format("stream {}x{} is too large (at most {} px)", config.width_px,
+                              config.height_px, kMaxImagePixels));
     }
     config.rotate_180 = OptionalBool(camera, "rotate_180", config.rotate_180);
     config.exposure_time_us = OptionalDouble(camera, "exposure_time_us", config.exposure_time_us);

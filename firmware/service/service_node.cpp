@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "firmware/service/sd_notify.h"
@@ -20,7 +21,7 @@ std::optional<RigidTransform> TruthPose(const h4msgs::sim_board_truth_t& truth, 
     return std::nullopt;
   }
   if (std::abs(q.norm() - 1.0) > 1e-6) {
-    if (why) *why = "quaternion norm " + std::to_string(q.norm()) + ", expected 1";
+    if (why) *why = fmt::format("quaternion norm {:f}, expected 1", q.norm());
     return std::nullopt;
   }
   return RigidTransform::FromTranslationQuaternion(p, q);

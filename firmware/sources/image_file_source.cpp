@@ -10,6 +10,7 @@
 #include <set>
 #include <vector>
 
+#include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
@@ -104,8 +105,9 @@ cv::Mat ImageFileSource::ToGrey(const cv::Mat& image, const std::string& name, s
     return {};
   }
   if (image.depth() != CV_8U) {
-    *why = name + ": " + std::to_string(8 * image.elemSize1()) +
-           "-bit image; expected 8-bit (convert it, e.g. with a tool that scales to 8 bits)";
+    *why = fmt::format(
+        "{}: {}-bit image; expected 8-bit (convert it, e.g. with a tool that scales to 8 bits)",
+        name, 8 * image.elemSize1());
     return {};
   }
   cv::Mat grey;
@@ -120,7 +122,7 @@ cv::Mat ImageFileSource::ToGrey(const cv::Mat& image, const std::string& name, s
       cv::cvtColor(image, grey, cv::COLOR_BGRA2GRAY);
       break;
     default:
-      *why = name + ": " + std::to_string(image.channels()) + " channels; expected 1, 3 or 4";
+      *why = fmt::format("{}: {} channels; expected 1, 3 or 4", name, image.channels());
       return {};
   }
   return grey;

@@ -4,6 +4,7 @@
 
 #include <array>
 
+#include <fmt/format.h>
 #include <libcamera/control_ids.h>
 #include <libcamera/property_ids.h>
 #if H4_LIBCAMERA_AT_LEAST(0, 2, 0)
@@ -15,8 +16,8 @@
 namespace h4::cam::compat {
 
 std::string CompiledLibcameraVersion() {
-  return std::to_string(LIBCAMERA_VERSION_MAJOR) + "." + std::to_string(LIBCAMERA_VERSION_MINOR) +
-         "." + std::to_string(LIBCAMERA_VERSION_PATCH);
+  return fmt::format("{}.{}.{}", LIBCAMERA_VERSION_MAJOR, LIBCAMERA_VERSION_MINOR,
+                     LIBCAMERA_VERSION_PATCH);
 }
 
 std::unique_ptr<libcamera::CameraConfiguration> GenerateConfiguration(libcamera::Camera& camera,

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <limits>
 
+#include <fmt/format.h>
 #include <time.h>
 
 namespace h4::cam {
@@ -28,21 +29,20 @@ int64_t FloorDiv(int64_t a, int64_t b) {
 bool CopyLumaPlane(const uint8_t* plane, size_t plane_bytes, int width, int height,
                    int stride_bytes, cv::Mat* image, std::string* error) {
   if (plane == nullptr || width <= 0 || height <= 0) {
-    *error = "luma plane: expected a mapped plane and a positive size, got " +
-             std::to_string(width) + "x" + std::to_string(height);
+    *error = fmt::format("luma plane: expected a mapped plane and a positive size, got {}x{}",
+                         width, height);
     return false;
   }
   if (stride_bytes < width) {
-    *error = "luma plane: stride " + std::to_string(stride_bytes) +
-             " bytes is shorter than a row of " + std::to_string(width) + " pixels";
+    *error = fmt::format("luma plane: stride {} bytes is shorter than a row of {} pixels",
+                         stride_bytes, width);
     return false;
   }
   const size_t needed = static_cast<size_t>(stride_bytes) * static_cast<size_t>(height - 1) +
                         static_cast<size_t>(width);
   if (plane_bytes < needed) {
-    *error = "luma plane: " + std::to_string(plane_bytes) + " bytes, expected at least " +
-             std::to_string(needed) + " for " + std::to_string(width) + "x" +
-             std::to_string(height) + " with stride " + std::to_string(stride_bytes);
+    *error = fmt::format("luma plane: {} bytes, expected at least {} for {}x{} with stride {}",
+                         plane_bytes, needed, width, height, stride_bytes);
     return false;
   }
   cv::Mat out(height, width, CV_8UC1);

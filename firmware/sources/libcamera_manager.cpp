@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <mutex>
 
+#include <fmt/format.h>
 #include <libcamera/camera.h>
 #include <libcamera/camera_manager.h>
 
@@ -22,9 +23,10 @@ std::shared_ptr<libcamera::CameraManager> SharedCameraManager(std::string* error
   // ~CameraManager stops it, so the last shared_ptr to go stops the camera stack.
   auto manager = std::make_shared<libcamera::CameraManager>();
   if (const int ret = manager->start(); ret != 0) {
-    *error = "libcamera: camera manager failed to start (error " + std::to_string(-ret) +
-             "); is the camera stack (libcamera " + compat::CompiledLibcameraVersion() +
-             ") installed?";
+    *error = fmt::format(
+        "libcamera: camera manager failed to start (error {}); is the camera stack (libcamera "
+        "{}) installed?",
+        -ret, compat::CompiledLibcameraVersion());
     return nullptr;
   }
   shared = manager;

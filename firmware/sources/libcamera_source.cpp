@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
 #include <libcamera/camera.h>
 #include <libcamera/camera_manager.h>
 #include <libcamera/control_ids.h>
@@ -57,16 +58,15 @@ const char* ToString(LibcameraSource::State state) {
 
 bool LibcameraSourceOptions::IsValid(std::string* why) const {
   if (width <= 0 || height <= 0) {
-    *why =
-        "image size must be positive, got " + std::to_string(width) + "x" + std::to_string(height);
+    *why = fmt::format("image size must be positive, got {}x{}", width, height);
   } else if (!auto_exposure && exposure_time.count() <= 0) {
-    *why = "exposure time must be positive, got " + std::to_string(exposure_time.count()) + " us";
+    *why = fmt::format("exposure time must be positive, got {} us", exposure_time.count());
   } else if (!auto_exposure && !(analogue_gain >= 1.0f)) {
-    *why = "analogue gain must be >= 1, got " + std::to_string(analogue_gain);
+    *why = fmt::format("analogue gain must be >= 1, got {:f}", analogue_gain);
   } else if (!(frame_rate_hz >= 0.0)) {
-    *why = "frame rate must be >= 0 (0: camera default), got " + std::to_string(frame_rate_hz);
+    *why = fmt::format("frame rate must be >= 0 (0: camera default), got {:f}", frame_rate_hz);
   } else if (buffer_count < 1) {
-    *why = "buffer count must be >= 1, got " + std::to_string(buffer_count);
+    *why = fmt::format("buffer count must be >= 1, got {}", buffer_count);
   } else if (device_timeout.count() <= 0) {
     *why = "device timeout must be positive";
   } else if (max_restarts < 0) {
@@ -123,8 +123,9 @@ bool LibcameraSource::Open() {
     return false;
   }
   if (const int ret = camera_->acquire(); ret != 0) {
-    error_ = "libcamera: cannot acquire camera '" + camera_->id() +
-             "' (in use by another process? error " + std::to_string(-ret) + ")";
+    error_ =
+        fmt::format("libcamera: cannot acquire camera '{}' (in use by another process? error {})",
+                    camera_->id(), -ret);
     camera_.reset();
     manager_.reset();
     return false;
@@ -152,8 +153,8 @@ bool LibcameraSource::Configure() {
 
   const auto status = config_->validate();
   if (status == libcamera::CameraConfiguration::Invalid) {
-    error_ = "libcamera: camera '" + id + "' rejects " + options_.pixel_format + " " +
-             std::to_string(options_.width) + "x" + std::to_string(options_.height);
+    error_ = fmt::format("libcamera: camera '{}' rejects {} {}x{}", id, options_.pixel_format,
+                         options_.width, options_.height);
     return false;
   }
   if (status == libcamera::CameraConfiguration::Adjusted) {
@@ -165,8 +166,7 @@ bool LibcameraSource::Configure() {
     return false;
   }
   if (const int ret = camera_->configure(config_.get()); ret != 0) {
-    error_ =
-        "libcamera: configuring camera '" + id + "' failed (error " + std::to_string(-ret) + ")";
+    error_ = fmt::format("libcamera: configuring camera '{}' failed (error {})", id, -ret);
     return false;
   }
   stream_ = stream_config.stream();
@@ -247,8 +247,8 @@ bool LibcameraSource::QueueAllRequests() {
   for (auto& request : requests_) {
     request->reuse(libcamera::Request::ReuseBuffers);
     if (const int ret = camera_->queueRequest(request.get()); ret != 0) {
-      error_ = "libcamera: cannot queue a request on camera '" + camera_->id() + "' (error " +
-               std::to_string(-ret) + ")";
+      error_ = fmt::format("libcamera: cannot queue a request on camera '{}' (error {})",
+                           camera_->id(), -ret);
       return false;
     }
   }
@@ -265,8 +265,7 @@ bool LibcameraSource::Start() {
     accepting_ = true;
   }
   if (const int ret = camera_->start(start_controls_.get()); ret != 0) {
-    error_ = "libcamera: cannot start camera '" + camera_->id() + "' (error " +
-             std::to_string(-ret) + ")";
+    error_ = fmt::format("libcamera: cannot start camera '{}' (error {})", camera_->id(), -ret);
     std::lock_guard<std::mutex> lock(mutex_);
     accepting_ = false;
     return false;
@@ -358,16 +357,16 @@ std::optional<Frame> LibcameraSource::Next(std::chrono::milliseconds timeout) {
     const auto now = Clock::now();
     if (now >= device_deadline) {
       if (restarts_since_frame_ >= options_.max_restarts) {
-        error_ = "libcamera: camera '" + camera_->id() + "' delivered no frame for " +
-                 std::to_string(options_.device_timeout.count()) + " ms after " +
-                 std::to_string(restarts_since_frame_) + " restarts; giving up";
+        error_ = fmt::format(
+            "libcamera: camera '{}' delivered no frame for {} ms after {} restarts; giving up",
+            camera_->id(), options_.device_timeout.count(), restarts_since_frame_);
         return std::nullopt;
       }
       if (!Restart()) return std::nullopt;
       continue;
     }
     if (now >= deadline) {
-      error_ = "libcamera: no frame within " + std::to_string(timeout.count()) + " ms (timeout)";
+      error_ = fmt::format("libcamera: no frame within {} ms (timeout)", timeout.count());
       return std::nullopt;
     }
   }
