@@ -48,13 +48,13 @@ RigidTransform CentredBoardPose(const BoardSpec& board, double depth) {
 RigidTransform SimPose(const CaptureArgs& args, const BoardSpec& board) {
   if (args.sim_pose.empty()) return CentredBoardPose(board, 0.5);
   if (args.sim_pose.size() != 7) {
-    throw std::runtime_error(fmt::format("--sim-pose: expected 7 numbers x,y,z,qw,qx,qy,qz, got {}",
-                                         args.sim_pose.size()));
+    throw std::invalid_argument(fmt::format(
+        "--sim-pose: expected 7 numbers x,y,z,qw,qx,qy,qz, got {}", args.sim_pose.size()));
   }
   const std::vector<double>& v = args.sim_pose;
   Eigen::Matrix3d R_CT;
   if (!RotationFromQuaternion(v[3], v[4], v[5], v[6], &R_CT)) {
-    throw std::runtime_error("--sim-pose: quaternion (qw, qx, qy, qz) must have unit norm");
+    throw std::invalid_argument("--sim-pose: quaternion (qw, qx, qy, qz) must have unit norm");
   }
   return RigidTransform(R_CT, Eigen::Vector3d(v[0], v[1], v[2]));
 }
@@ -63,14 +63,15 @@ RigidTransform SimPose(const CaptureArgs& args, const BoardSpec& board) {
 SimSourceOptions SimOptionsOf(const CaptureArgs& args) {
   SimSourceOptions options;
   if (!RenderPresetByName(args.sim_preset, &options.render)) {
-    throw std::runtime_error("--sim-preset '" + args.sim_preset + "': expected clean or processed");
+    throw std::invalid_argument("--sim-preset '" + args.sim_preset +
+                                "': expected clean or processed");
   }
   // More light on the same print and background: the levels scale, the white clips at 255.
   options.render.black_level *= args.sim_exposure;
   options.render.white_level *= args.sim_exposure;
   options.render.background_level *= args.sim_exposure;
   std::string why;
-  if (!options.render.IsValid(&why)) throw std::runtime_error("--sim-exposure: " + why);
+  if (!options.render.IsValid(&why)) throw std::invalid_argument("--sim-exposure: " + why);
   return options;
 }
 
@@ -131,7 +132,7 @@ std::unique_ptr<FrameSource> MakeCaptureSource(const CaptureArgs& args, bool sav
   *pose_sequence_sim = nullptr;
   std::string why;
   const std::optional<FrameSourceSpec> spec = ParseFrameSourceSpec(args.source, &why);
-  if (!spec) throw std::runtime_error("--" + why);
+  if (!spec) throw std::invalid_argument("--" + why);
   FrameSourceParts parts;
   parts.libcamera = LibcameraOptionsOf(args, camera);
   if (spec->kind != FrameSourceSpec::Kind::kSim) return MakeFrameSource(*spec, parts);
@@ -199,8 +200,9 @@ CaptureSummary RunCapture(const CaptureArgs& args, bool save_frames, std::ostrea
   if (!detector.ok()) throw std::runtime_error(args.board_path + ": " + detector.error());
   const CameraModel camera(intrinsics);
   if ((save_frames || args.draw) && args.out_dir.empty()) {
-    throw std::runtime_error(save_frames ? "--out-dir: the folder to save the frames in is required"
-                                         : "--draw needs --out-dir (the folder of preview.png)");
+    throw std::invalid_argument(save_frames
+                                    ? "--out-dir: the folder to save the frames in is required"
+                                    : "--draw needs --out-dir (the folder of preview.png)");
   }
   if (!args.out_dir.empty()) fs::create_directories(args.out_dir);
 

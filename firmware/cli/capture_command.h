@@ -57,8 +57,8 @@ struct CaptureSummary {
 int FirstFreeFrameNumber(const std::vector<std::string>& file_names);
 
 /// Checks (and, with `save_frames`, saves) frames until args.count or `stop`; prints one
-/// line per frame on `out`. Throws std::runtime_error naming the source, file or option at
-/// fault.
+/// line per frame on `out`. Throws std::invalid_argument naming the option at fault, or
+/// std::runtime_error naming the source or file that failed.
 CaptureSummary RunCapture(const CaptureArgs& args, bool save_frames, std::ostream& out,
                           const std::atomic<bool>& stop);
 

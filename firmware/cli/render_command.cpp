@@ -60,16 +60,16 @@ const PresetOverride kPresetOverrides[] = {
 RenderOptions RenderOptionsFromArgs(const RenderArgs& args) {
   RenderOptions options;
   if (!RenderPresetByName(args.preset, &options)) {
-    throw std::runtime_error("--preset '" + args.preset + "': expected clean or processed");
+    throw std::invalid_argument("--preset '" + args.preset + "': expected clean or processed");
   }
   for (const PresetOverride& flag : kPresetOverrides) {
     if (const std::optional<double>& value = args.*flag.value) options.*flag.field = *value;
   }
   std::string why;
   if (args.response && !ParseResponseCurve(*args.response, &options, &why)) {
-    throw std::runtime_error("--response: " + why);
+    throw std::invalid_argument("--response: " + why);
   }
-  if (!options.IsValid(&why)) throw std::runtime_error("render options: " + why);
+  if (!options.IsValid(&why)) throw std::invalid_argument("render options: " + why);
   return options;
 }
 
@@ -101,19 +101,19 @@ std::string BoardOutOfView(const BoardSpec& board, const CameraIntrinsics& camer
 
 bool RunRender(const RenderArgs& args, std::ostream& out) {
   if (args.frames < 1 || args.frames > kMaxRenderFrames) {
-    throw std::runtime_error(
+    throw std::invalid_argument(
         fmt::format("--frames {}: expected 1..{}", args.frames, kMaxRenderFrames));
   }
   const RenderOptions options = RenderOptionsFromArgs(args);
   const BoardSpec board = ReadBoardYaml(args.board_path);
   const CameraIntrinsics camera = ReadCameraYaml(args.camera_path);
   if (args.pose.size() != 7) {
-    throw std::runtime_error(
+    throw std::invalid_argument(
         fmt::format("--pose: expected 7 numbers x,y,z,qw,qx,qy,qz, got {}", args.pose.size()));
   }
   Eigen::Matrix3d R_CT;
   if (!RotationFromQuaternion(args.pose[3], args.pose[4], args.pose[5], args.pose[6], &R_CT)) {
-    throw std::runtime_error("--pose: quaternion (qw, qx, qy, qz) must have unit norm");
+    throw std::invalid_argument("--pose: quaternion (qw, qx, qy, qz) must have unit norm");
   }
   const RigidTransform X_CT(R_CT, Eigen::Vector3d(args.pose[0], args.pose[1], args.pose[2]));
   if (const std::string why = BoardOutOfView(board, camera, X_CT); !why.empty()) {

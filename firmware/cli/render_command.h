@@ -44,7 +44,7 @@ constexpr int kMaxRenderFrames = 1000;
 
 void DeclareRenderCommand(CLI::App* command);
 
-/// The preset with the flags applied; throws std::runtime_error naming the option at
+/// The preset with the flags applied; throws std::invalid_argument naming the option at
 /// fault (unknown preset, malformed response, or values out of range).
 RenderOptions RenderOptionsFromArgs(const RenderArgs& args);
 
@@ -55,8 +55,9 @@ std::string BoardOutOfView(const BoardSpec& board, const CameraIntrinsics& camer
                            const RigidTransform& X_CT);
 
 /// Writes the frames and returns true; returns false, writing nothing, when the board is
-/// not in view (BoardOutOfView, said on `out`). Throws (std::runtime_error or
-/// h4::FormatError) naming the file or option at fault.
+/// not in view (BoardOutOfView, said on `out`). Throws std::invalid_argument naming the
+/// option at fault, h4::FormatError naming the file, std::runtime_error when an image
+/// cannot be written.
 bool RunRender(const RenderArgs& args, std::ostream& out);
 
 }  // namespace h4::cam

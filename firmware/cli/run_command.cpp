@@ -121,7 +121,7 @@ ServiceConfig ResolveRunConfig(const RunFlags& flags) {
   if (!flags.config_path.empty()) config = ReadServiceConfig(flags.config_path);
   flags.ApplyTo(&config);
   std::string why;
-  if (!config.IsValid(&why)) throw std::runtime_error("run: " + why);
+  if (!config.IsValid(&why)) throw std::invalid_argument("run: " + why);
   return config;
 }
 
@@ -203,7 +203,7 @@ void DeclareSimPresetOption(CLI::App* command, RunFlags* flags) {
                           "sRGB output with defocus, gradient, shot noise) or clean");
   flags->WhenGiven(option, [name](ServiceConfig* config) {
     if (!RenderPresetByName(*name, &config->sim_render)) {
-      throw std::runtime_error("--sim-preset '" + *name + "': expected clean or processed");
+      throw std::invalid_argument("--sim-preset '" + *name + "': expected clean or processed");
     }
   });
 }

@@ -39,7 +39,7 @@ class RunFlags {
                      [this, field](ServiceConfig* config) { config->*field = given_.*field; });
   }
   /// Has `apply` change the configuration when `option` was given (it may throw
-  /// std::runtime_error for a value it cannot use).
+  /// std::invalid_argument for a value it cannot use).
   CLI::Option* WhenGiven(CLI::Option* option, std::function<void(ServiceConfig*)> apply);
   /// Applies the flags given, in the order they were declared.
   void ApplyTo(ServiceConfig* config) const;
@@ -59,7 +59,7 @@ class RunFlags {
 void DeclareRunOptions(CLI::App* command, RunFlags* flags);
 
 /// The configuration file (if any) with the flags given applied; throws h4::FormatError
-/// naming the file/line/field, or std::runtime_error for an invalid flag value.
+/// naming the file/line/field, or std::invalid_argument for an invalid flag value.
 ServiceConfig ResolveRunConfig(const RunFlags& flags);
 
 /// Runs the service until `stop` becomes true; returns the exit code (0 after a clean

@@ -17,7 +17,7 @@ namespace {
 std::string ErrorOf(const RenderArgs& args) {
   try {
     RenderOptionsFromArgs(args);
-  } catch (const std::runtime_error& e) {
+  } catch (const std::invalid_argument& e) {
     return e.what();
   }
   return "";

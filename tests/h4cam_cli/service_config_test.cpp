@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include <CLI/CLI.hpp>
 #include <gtest/gtest.h>
@@ -144,7 +145,7 @@ TEST(ServiceConfigTest, FlagsOverrideTheFileWhereverConfigStands) {
     EXPECT_EQ(c.MessageCameraId(), "cam7") << line;
     EXPECT_EQ(c.auth_key_file, "/tmp/h4.key") << line;
   }
-  EXPECT_THROW(ResolveCommandLine("--source webcam"), std::runtime_error);
+  EXPECT_THROW(ResolveCommandLine("--source webcam"), std::invalid_argument);
 }
 
 // Only the flags given override: one left out keeps the file's value, and one given with
@@ -193,7 +194,7 @@ TEST(ServiceConfigTest, SimRendersTheProcessedPresetUnlessToldOtherwise) {
 
   EXPECT_EQ(ResolveCommandLine("--source sim --sim-preset clean").sim_render.response,
             ResponseCurve::kLinear);
-  EXPECT_THROW(ResolveCommandLine("--source sim --sim-preset vivid"), std::runtime_error);
+  EXPECT_THROW(ResolveCommandLine("--source sim --sim-preset vivid"), std::invalid_argument);
   // --sim-preset replaces the file's sim: block, the keys it sets over the preset too.
   const ConfigFile file("source: sim\nsim:\n  preset: clean\n  blur_sigma_px: 1.4\n");
   const RenderOptions render =
