@@ -9,6 +9,7 @@
 
 #include "common/geometry/rotation.h"
 #include "common/text/enum_names.h"
+#include "common/text/invalid_reason.h"
 #include "common/units.h"
 #include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/measurement_chain.h"
@@ -34,26 +35,24 @@ std::string FormatJoints(const JointVector& q) {
 }  // namespace
 
 bool SimulatedControllerOptions::IsValid(std::string* why) const {
-  auto fail = [why](const std::string& message) {
-    if (why) *why = message;
-    return false;
-  };
   if (!(std::isfinite(joint_speed) && joint_speed > 0.0)) {
-    return fail("joint speed must be positive, got " + std::to_string(joint_speed) + " rad/s");
+    return Invalid(why,
+                   "joint speed must be positive, got " + std::to_string(joint_speed) + " rad/s");
   }
   if (!(std::isfinite(settle_time) && settle_time >= 0.0)) {
-    return fail("settle time must be >= 0, got " + std::to_string(settle_time) + " s");
+    return Invalid(why, "settle time must be >= 0, got " + std::to_string(settle_time) + " s");
   }
   if (!(std::isfinite(sigma_q) && sigma_q >= 0.0)) {
-    return fail("encoder noise must be >= 0, got " + std::to_string(sigma_q) + " rad");
+    return Invalid(why, "encoder noise must be >= 0, got " + std::to_string(sigma_q) + " rad");
   }
   if (!(std::isfinite(joint_range) && joint_range > 0.0)) {
-    return fail("joint range must be positive, got " + std::to_string(joint_range) + " rad");
+    return Invalid(why,
+                   "joint range must be positive, got " + std::to_string(joint_range) + " rad");
   }
   if (joint_limits && !(joint_limits->allFinite() && (*joint_limits)[0] < (*joint_limits)[1])) {
-    return fail("joint limits must be finite with MIN < MAX");
+    return Invalid(why, "joint limits must be finite with MIN < MAX");
   }
-  if (!home.allFinite()) return fail("home pose is not finite");
+  if (!home.allFinite()) return Invalid(why, "home pose is not finite");
   return true;
 }
 

@@ -10,18 +10,16 @@
 
 #include <Eigen/Cholesky>
 
+#include "common/text/invalid_reason.h"
+
 namespace h4::host {
 
 bool BoundOptions::IsValid(std::string* why) const {
-  auto fail = [why](const std::string& text) {
-    if (why) *why = text;
-    return false;
-  };
-  if (pose_count < 1) return fail("pose_count must be >= 1");
-  if (max_iterations < 0) return fail("max_iterations must be >= 0");
-  if (!(tolerance >= 0.0 && tolerance < 1.0)) return fail("tolerance must be in [0, 1)");
+  if (pose_count < 1) return Invalid(why, "pose_count must be >= 1");
+  if (max_iterations < 0) return Invalid(why, "max_iterations must be >= 0");
+  if (!(tolerance >= 0.0 && tolerance < 1.0)) return Invalid(why, "tolerance must be in [0, 1)");
   if (!(support_weight > 0.0 && support_weight <= 1.0)) {
-    return fail("support_weight must be in (0, 1]");
+    return Invalid(why, "support_weight must be in (0, 1]");
   }
   return true;
 }

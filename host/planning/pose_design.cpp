@@ -10,17 +10,15 @@
 
 #include <Eigen/Cholesky>
 
+#include "common/text/invalid_reason.h"
+
 namespace h4::host {
 
 bool DesignOptions::IsValid(std::string* why) const {
-  auto fail = [why](const std::string& text) {
-    if (why) *why = text;
-    return false;
-  };
-  if (pose_count < 1) return fail("pose_count must be >= 1");
-  if (max_exchanges < 0) return fail("max_exchanges must be >= 0");
-  if (restarts < 1) return fail("restarts must be >= 1");
-  if (!(ridge > 0.0 && ridge < 1.0)) return fail("ridge must be in (0, 1)");
+  if (pose_count < 1) return Invalid(why, "pose_count must be >= 1");
+  if (max_exchanges < 0) return Invalid(why, "max_exchanges must be >= 0");
+  if (restarts < 1) return Invalid(why, "restarts must be >= 1");
+  if (!(ridge > 0.0 && ridge < 1.0)) return Invalid(why, "ridge must be in (0, 1)");
   return true;
 }
 

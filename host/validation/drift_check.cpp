@@ -7,21 +7,18 @@
 #include <Eigen/Cholesky>
 #include <spdlog/fmt/fmt.h>
 
+#include "common/text/invalid_reason.h"
 #include "common/units.h"
 #include "host/identification/identified_robot.h"
 
 namespace h4::host {
 
 bool DriftCheckOptions::IsValid(std::string* why) const {
-  auto fail = [why](const std::string& text) {
-    if (why) *why = text;
-    return false;
-  };
   if (!(pose_false_alarm > 0.0 && pose_false_alarm < 0.5)) {
-    return fail("pose_false_alarm must be in (0, 0.5)");
+    return Invalid(why, "pose_false_alarm must be in (0, 0.5)");
   }
   if (!(total_false_alarm > 0.0 && total_false_alarm < 0.5)) {
-    return fail("total_false_alarm must be in (0, 0.5)");
+    return Invalid(why, "total_false_alarm must be in (0, 0.5)");
   }
   return true;
 }
