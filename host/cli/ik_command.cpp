@@ -30,7 +30,7 @@ int Run(const IkCommandOptions& options) {
   const IdentifiedRobot robot = LoadRobot(options.robot, &description);
   const std::vector<EndEffectorPoseRow> poses = ReadPosesCsv(options.poses_path);
   std::vector<JointsRow> rows;
-  int unreachable = 0;
+  size_t unreachable = 0;
   for (const EndEffectorPoseRow& p : poses) {
     const IkResult ik = robot.model->InverseKinematics(EePose(p.X, p.Y, p.Z, p.theta));
     if (!ik.ok()) {
@@ -48,11 +48,7 @@ int Run(const IkCommandOptions& options) {
   WriteJointsCsv(options.out_path, rows);
   spdlog::info("ik with {}: {} of {} rows written to {}", description, rows.size(), poses.size(),
                options.out_path);
-  if (unreachable > 0) {
-    spdlog::error("{} poses are out of reach (not written)", unreachable);
-    return h4::cli::kExitNothingUsable;
-  }
-  return h4::cli::kExitSuccess;
+  return LeftOutRowsExitCode(unreachable, "poses are out of reach");
 }
 
 }  // namespace
