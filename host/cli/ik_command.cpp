@@ -34,12 +34,8 @@ int Run(const IkCommandOptions& options) {
   for (const EndEffectorPoseRow& p : poses) {
     const IkResult ik = robot.model->InverseKinematics(EePose(p.X, p.Y, p.Z, p.theta));
     if (!ik.ok()) {
-      std::string legs;
-      for (int i = 0; i < 4; ++i) {
-        if (!ik.reachable[static_cast<size_t>(i)])
-          legs += (legs.empty() ? "" : ", ") + std::to_string(i + 1);
-      }
-      spdlog::warn("{}: pose_id {}: out of reach (leg {})", options.poses_path, p.pose_id, legs);
+      spdlog::warn("{}: pose_id {}: out of reach (leg {})", options.poses_path, p.pose_id,
+                   ik.UnreachableLegNumbers());
       ++unreachable;
       continue;
     }
