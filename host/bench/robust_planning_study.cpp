@@ -451,7 +451,7 @@ void PrintBoundTable(const PlanningProblem& problem, const RobustStudyOptions& o
   fmt::print(
       "| models | N | exchange, mm | bound, mm | exchange / bound | grid 71, mm | support | "
       "efficiency | iterations |\n|---|---|---|---|---|---|---|---|---|\n");
-  PrintBounds("a priori and " + std::to_string(problem.drawn.size()) + " drawn", problem, options);
+  PrintBounds(fmt::format("a priori and {} drawn", problem.drawn.size()), problem, options);
   PrintBounds("a priori alone", AprioriAlone(problem), options);
 }
 
@@ -478,8 +478,8 @@ void RunRobot(const std::string& prior, int robot, const PlannedDesigns& designs
       grid_figures.verdict31);
   for (const auto& [n, campaign] : designs.by_count) {
     const CampaignFigures f = RunCampaign(truth, campaign.plan, setting, trial_seed + 7, heldout);
-    (*tallies)["planned " + std::to_string(n)].Add(f, campaign.predicted_position_rms,
-                                                   grid_figures.realised);
+    (*tallies)[fmt::format("planned {}", n)].Add(f, campaign.predicted_position_rms,
+                                                 grid_figures.realised);
     fmt::print("; planned-{} {:.4f} mm ({} poses, plan {:.4f}, identify {:.4f}, {}/{})", n,
                f.realised * 1e3, f.poses, campaign.predicted_position_rms * 1e3,
                f.identify_predicted * 1e3, f.verdict12, f.verdict31);
@@ -489,8 +489,8 @@ void RunRobot(const std::string& prior, int robot, const PlannedDesigns& designs
     if (first == 0 || n <= first) continue;
     const SequentialFigures f =
         RunSequential(truth, designs.first_batch, n, setting, trial_seed + 11, heldout);
-    (*tallies)["sequential " + std::to_string(first) + "+" + std::to_string(n - first)].Add(
-        f.figures, f.plan_predicted, grid_figures.realised);
+    (*tallies)[fmt::format("sequential {}+{}", first, n - first)].Add(f.figures, f.plan_predicted,
+                                                                      grid_figures.realised);
     fmt::print("; sequential-{} {:.4f} mm ({} poses, plan {:.4f}, identify {:.4f}, {}/{})", n,
                f.figures.realised * 1e3, f.figures.poses, f.plan_predicted * 1e3,
                f.figures.identify_predicted * 1e3, f.figures.verdict12, f.figures.verdict31);
