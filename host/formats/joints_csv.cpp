@@ -1,6 +1,8 @@
 // The joints CSV; see joints_csv.h.
 #include "host/formats/joints_csv.h"
 
+#include <fmt/core.h>
+
 #include "common/formats/csv_table.h"
 #include "common/formats/number_text.h"
 #include "host/formats/pose_id_check.h"
@@ -14,7 +16,7 @@ std::vector<JointsRow> ParseJointsCsv(const std::string& text, const std::string
   return ReadCsvRows(table, [&table, &ids](size_t r) {
     JointsRow row;
     row.pose_id = ids.Read(table, r);
-    for (size_t i = 0; i < 4; ++i) row.q[i] = table.GetDouble(r, "q" + std::to_string(i + 1));
+    for (size_t i = 0; i < 4; ++i) row.q[i] = table.GetDouble(r, fmt::format("q{}", i + 1));
     return row;
   });
 }
@@ -25,7 +27,7 @@ std::vector<JointsRow> ReadJointsCsv(const std::string& path) {
 
 std::string FormatJointsCsv(const std::vector<JointsRow>& rows) {
   return FormatCsvLines("pose_id,q1,q2,q3,q4", rows, [](const JointsRow& row) {
-    std::string line = std::to_string(row.pose_id);
+    std::string line = fmt::format("{}", row.pose_id);
     for (size_t i = 0; i < 4; ++i) line += "," + FormatDouble(row.q[i], "q");
     return line;
   });

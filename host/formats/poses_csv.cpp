@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <fmt/core.h>
+
 #include "common/formats/csv_table.h"
 #include "common/formats/number_text.h"
 #include "common/formats/pose_columns.h"
@@ -38,9 +40,9 @@ EndEffectorPoseRow ReadEndEffectorPose(const CsvTable& table, size_t r, PoseIdCh
 }
 
 std::string FormatEndEffectorPose(const EndEffectorPoseRow& row) {
-  return std::to_string(row.pose_id) + "," + FormatDouble(row.X, "X") + "," +
-         FormatDouble(row.Y, "Y") + "," + FormatDouble(row.Z, "Z") + "," +
-         FormatDouble(row.theta, "theta");
+  return fmt::format("{},{},{},{},{}", row.pose_id, FormatDouble(row.X, "X"),
+                     FormatDouble(row.Y, "Y"), FormatDouble(row.Z, "Z"),
+                     FormatDouble(row.theta, "theta"));
 }
 
 }  // namespace

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <fmt/core.h>
+
 #include "common/geometry/rotation.h"
 #include "host/kinematics/leg_angle.h"
 #include "host/kinematics/leg_closure.h"
@@ -53,7 +55,7 @@ Eigen::VectorXd Model12::ToVector(const Model12Parameters& p) {
 
 Model12Parameters Model12::FromVector(const Eigen::VectorXd& xi) {
   if (xi.size() != kParameterCount) {
-    throw std::invalid_argument("Model 12 expects 13 parameters, got " + std::to_string(xi.size()));
+    throw std::invalid_argument(fmt::format("Model 12 expects 13 parameters, got {}", xi.size()));
   }
   Model12Parameters p;
   p.h = xi[kH];

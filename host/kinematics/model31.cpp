@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <Eigen/Dense>
+#include <fmt/core.h>
 
 #include "common/geometry/rotation.h"
 #include "host/kinematics/leg_angle.h"
@@ -58,7 +59,7 @@ Eigen::VectorXd Model31::ToVector(const Model31Parameters& p) {
 
 Model31Parameters Model31::FromVector(const Eigen::VectorXd& xi) {
   if (xi.size() != kParameterCount) {
-    throw std::invalid_argument("Model 31 expects 31 parameters, got " + std::to_string(xi.size()));
+    throw std::invalid_argument(fmt::format("Model 31 expects 31 parameters, got {}", xi.size()));
   }
   Model31Parameters p;
   for (int j = 0; j < 3; ++j) p.P[static_cast<size_t>(j)] = xi.segment<3>(kP + 3 * j);

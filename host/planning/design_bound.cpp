@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include <Eigen/Cholesky>
+#include <fmt/core.h>
 
 #include "common/text/invalid_reason.h"
 
@@ -145,14 +146,13 @@ void CheckArguments(const std::vector<const InformationModel*>& models, int cand
   if (!options.IsValid(&why)) throw std::invalid_argument("bound options: " + why);
   if (models.empty()) throw std::invalid_argument("design bound: no information model");
   if (candidate_count < 1 || candidate_count > models.front()->pose_count()) {
-    throw std::invalid_argument("design bound: " + std::to_string(candidate_count) +
-                                " candidates of " + std::to_string(models.front()->pose_count()) +
-                                " poses");
+    throw std::invalid_argument(fmt::format("design bound: {} candidates of {} poses",
+                                            candidate_count, models.front()->pose_count()));
   }
   if (options.distinct && options.pose_count > candidate_count) {
-    throw std::invalid_argument("design bound: " + std::to_string(options.pose_count) +
-                                " distinct poses asked of " + std::to_string(candidate_count) +
-                                " candidates");
+    throw std::invalid_argument(
+        fmt::format("design bound: {} distinct poses asked of {} candidates", options.pose_count,
+                    candidate_count));
   }
   for (int j : options.existing) {
     if (j < candidate_count || j >= models.front()->pose_count()) {

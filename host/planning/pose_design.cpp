@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include <Eigen/Cholesky>
+#include <fmt/core.h>
 
 #include "common/text/invalid_reason.h"
 
@@ -175,9 +176,8 @@ Design PlanDOptimal(const InformationModel& info, int candidate_count,
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("design options: " + why);
   if (candidate_count > info.pose_count() || options.pose_count > candidate_count) {
-    throw std::invalid_argument("pose planning: " + std::to_string(options.pose_count) +
-                                " poses asked of " + std::to_string(candidate_count) +
-                                " candidates");
+    throw std::invalid_argument(fmt::format("pose planning: {} poses asked of {} candidates",
+                                            options.pose_count, candidate_count));
   }
   for (int j : options.existing) {
     if (j < candidate_count || j >= info.pose_count()) {

@@ -103,8 +103,8 @@ DriftCheckResult CheckForDrift(const KinematicModel& model, const ParameterVecto
   if (!options.IsValid(&why)) throw std::invalid_argument("drift check options: " + why);
   if (rows.empty()) throw std::invalid_argument("drift check: no pose to check");
   if (parameter_covariance.rows() != p.size() || parameter_covariance.cols() != p.size()) {
-    throw std::invalid_argument("drift check: an n x n parameter covariance expected, n = " +
-                                std::to_string(p.size()));
+    throw std::invalid_argument(
+        fmt::format("drift check: an n x n parameter covariance expected, n = {}", p.size()));
   }
   const int n = static_cast<int>(rows.size());
   DriftCheckResult result;
