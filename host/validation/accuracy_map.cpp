@@ -99,9 +99,8 @@ AccuracyMap ComputeAccuracyMap(const KinematicModel& model, const Eigen::MatrixX
   if (!options.IsValid(&why)) throw std::invalid_argument("accuracy map: " + why);
   const Eigen::Index n = model.parameters().size();
   if (C.rows() != n || C.cols() != n) {
-    throw std::invalid_argument(
-        "accuracy map: the covariance must be one row and column per "
-        "kinematic parameter");
+    throw std::invalid_argument("accuracy map: the covariance must be one row and column per "
+                                "kinematic parameter");
   }
   AccuracyMap map;
   map.model = model.kind();
