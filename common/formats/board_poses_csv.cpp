@@ -4,6 +4,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <fmt/core.h>
+
 #include "common/formats/csv_table.h"
 #include "common/formats/number_text.h"
 #include "common/formats/pose_columns.h"
@@ -75,14 +77,14 @@ std::vector<BoardPoseRow> ReadBoardPosesCsv(const std::string& path) {
 }
 
 std::string FormatBoardPosesCsv(const std::vector<BoardPoseRow>& rows) {
-  std::string text = "image,x,y,z,qw,qx,qy,qz,corners,rms_px,sigma_t,sigma_r\n";
-  for (const BoardPoseRow& row : rows) {
+  const char* header = "image,x,y,z,qw,qx,qy,qz,corners,rms_px,sigma_t,sigma_r";
+  return FormatCsvLines(header, rows, [](const BoardPoseRow& row) {
     if (row.image.empty()) throw std::invalid_argument("board pose row without an image name");
-    text += CsvQuote(row.image) + "," + (row.X_CT ? FormatPoseColumns(*row.X_CT) : ",,,,,,") + "," +
-            std::to_string(row.corners) + "," + Optional(row.rms_px, "rms_px") + "," +
-            Optional(row.sigma_t, "sigma_t") + "," + Optional(row.sigma_r, "sigma_r") + "\n";
-  }
-  return text;
+    return fmt::format("{},{},{},{},{},{}", CsvQuote(row.image),
+                       (row.X_CT ? FormatPoseColumns(*row.X_CT) : ",,,,,,"), row.corners,
+                       Optional(row.rms_px, "rms_px"), Optional(row.sigma_t, "sigma_t"),
+                       Optional(row.sigma_r, "sigma_r"));
+  });
 }
 
 void WriteBoardPosesCsv(const std::string& path, const std::vector<BoardPoseRow>& rows) {

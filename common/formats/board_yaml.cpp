@@ -5,6 +5,8 @@
 #include <optional>
 #include <string>
 
+#include <fmt/core.h>
+
 #include "common/formats/csv_table.h"
 #include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
@@ -32,8 +34,7 @@ int Count(const YamlMap& map, const std::string& key, int64_t minimum,
           int64_t maximum = kMaxPerSide) {
   const int64_t value = map.Int(key);
   if (value < minimum || value > maximum) {
-    map.Fail(key, "expected an integer in [" + std::to_string(minimum) + ", " +
-                      std::to_string(maximum) + "], got " + std::to_string(value));
+    map.Fail(key, fmt::format("expected an integer in [{}, {}], got {}", minimum, maximum, value));
   }
   return static_cast<int>(value);
 }
@@ -94,10 +95,9 @@ AprilGridSpec ReadAprilGrid(const YamlMap& root) {
   if (root.Has(kLayoutKey)) spec.layout = ReadLayout(root);
   spec.size_sigma = ReadSizeSigma(root);
   if (4 * spec.cols * spec.rows < kMinBoardCorners) {
-    root.Fail("tagCols", "a grid of " + std::to_string(spec.cols) + " x " +
-                             std::to_string(spec.rows) + " tags has " +
-                             std::to_string(4 * spec.cols * spec.rows) + " corners; h4cam needs " +
-                             std::to_string(kMinBoardCorners) + " to measure a pose");
+    root.Fail("tagCols",
+              fmt::format("a grid of {} x {} tags has {} corners; h4cam needs {} to measure a pose",
+                          spec.cols, spec.rows, 4 * spec.cols * spec.rows, kMinBoardCorners));
   }
   // A tag id past the family's codes has no pattern: h4cam can neither print nor detect it
   // (plan accepted such a board, make-board and render refused it).
@@ -105,9 +105,8 @@ AprilGridSpec ReadAprilGrid(const YamlMap& root) {
   const int64_t last_id = static_cast<int64_t>(spec.first_id) + spec.cols * spec.rows - 1;
   if (last_id >= codes) {
     root.Fail(root.Has("firstId") ? "firstId" : "tagCols",
-              "the grid's ids run from " + std::to_string(spec.first_id) + " to " +
-                  std::to_string(last_id) + ", past the " + std::to_string(codes) + " codes of " +
-                  spec.tag_family + " (ids 0 to " + std::to_string(codes - 1) + ")");
+              fmt::format("the grid's ids run from {} to {}, past the {} codes of {} (ids 0 to {})",
+                          spec.first_id, last_id, codes, spec.tag_family, codes - 1));
   }
   return spec;
 }
@@ -119,9 +118,8 @@ CheckerboardSpec ReadCheckerboard(const YamlMap& root) {
   spec.cols = Count(root, "targetCols", kMinChessboardCornersPerSide);
   spec.rows = Count(root, "targetRows", kMinChessboardCornersPerSide);
   if (spec.cols * spec.rows < kMinBoardCorners) {
-    root.Fail("targetCols", std::to_string(spec.cols) + " x " + std::to_string(spec.rows) +
-                                " inner corners; h4cam needs " + std::to_string(kMinBoardCorners) +
-                                " to measure a pose");
+    root.Fail("targetCols", fmt::format("{} x {} inner corners; h4cam needs {} to measure a pose",
+                                        spec.cols, spec.rows, kMinBoardCorners));
   }
   spec.col_spacing = Size(root, "colSpacingMeters");
   spec.row_spacing = Size(root, "rowSpacingMeters");
@@ -180,14 +178,16 @@ BoardSpec ReadBoardYaml(const std::string& path) {
 std::string FormatBoardYaml(const BoardSpec& board) {
   std::string text = "# calibration board (common/formats/README.md \"Board\"; sizes in m)\n";
   if (const auto* grid = std::get_if<AprilGridSpec>(&board)) {
-    text +=
-        "target_type: aprilgrid\ntagFamily: " + grid->tag_family +
-        "\ntagCols: " + std::to_string(grid->cols) + "\ntagRows: " + std::to_string(grid->rows) +
-        "\ntagSize: " + FormatDouble(grid->tag_size, "tagSize") +
-        "  # m, outer edge of the black border\ntagSpacing: " +
-        FormatDouble(grid->tag_spacing, "tagSpacing") +
-        "  # gap between tags = tagSpacing * tagSize\nfirstId: " + std::to_string(grid->first_id) +
-        "\n";
+    text += fmt::format(
+        "target_type: aprilgrid\n"
+        "tagFamily: {}\n"
+        "tagCols: {}\n"
+        "tagRows: {}\n"
+        "tagSize: {}  # m, outer edge of the black border\n"
+        "tagSpacing: {}  # gap between tags = tagSpacing * tagSize\n"
+        "firstId: {}\n",
+        grid->tag_family, grid->cols, grid->rows, FormatDouble(grid->tag_size, "tagSize"),
+        FormatDouble(grid->tag_spacing, "tagSpacing"), grid->first_id);
     if (grid->layout == AprilGridLayout::kH4Legacy) {
       text += std::string(kLayoutKey) +
               ": legacy  # 1-cell tag border, no corner squares, ids from the top-left\n";
@@ -195,12 +195,15 @@ std::string FormatBoardYaml(const BoardSpec& board) {
     text += SizeSigmaLine(grid->size_sigma);
   } else {
     const auto& chess = std::get<CheckerboardSpec>(board);
-    text += "target_type: checkerboard\ntargetCols: " + std::to_string(chess.cols) +
-            "  # inner corners along a row\ntargetRows: " + std::to_string(chess.rows) +
-            "  # inner corners along a column\ncolSpacingMeters: " +
-            FormatDouble(chess.col_spacing, "colSpacingMeters") +
-            "\nrowSpacingMeters: " + FormatDouble(chess.row_spacing, "rowSpacingMeters") + "\n" +
-            SizeSigmaLine(chess.size_sigma);
+    text += fmt::format(
+        "target_type: checkerboard\n"
+        "targetCols: {}  # inner corners along a row\n"
+        "targetRows: {}  # inner corners along a column\n"
+        "colSpacingMeters: {}\n"
+        "rowSpacingMeters: {}\n"
+        "{}",
+        chess.cols, chess.rows, FormatDouble(chess.col_spacing, "colSpacingMeters"),
+        FormatDouble(chess.row_spacing, "rowSpacingMeters"), SizeSigmaLine(chess.size_sigma));
   }
   return text;
 }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <Eigen/Eigenvalues>
+#include <fmt/core.h>
 
 #include "common/formats/csv_table.h"
 #include "common/formats/format_error.h"
@@ -63,8 +64,13 @@ std::string Real(double value, const std::string& field) {
 }
 
 std::string WriteMatrix(const std::string& name, int rows, int cols, const double* row_major) {
-  std::string text = name + ": !!opencv-matrix\n   rows: " + std::to_string(rows) +
-                     "\n   cols: " + std::to_string(cols) + "\n   dt: d\n   data: [ ";
+  std::string text = fmt::format(
+      "{}: !!opencv-matrix\n"
+      "   rows: {}\n"
+      "   cols: {}\n"
+      "   dt: d\n"
+      "   data: [ ",
+      name, rows, cols);
   for (int i = 0; i < rows * cols; ++i) {
     text += (i ? ", " : "") + Real(row_major[i], name);
   }
@@ -72,15 +78,14 @@ std::string WriteMatrix(const std::string& name, int rows, int cols, const doubl
 }
 
 std::string SizeLimits() {
-  return "1.." + std::to_string(kMaxImageSide_px) + " px a side, at most " +
-         std::to_string(kMaxImagePixels) + " px in all";
+  return fmt::format("1..{} px a side, at most {} px in all", kMaxImageSide_px, kMaxImagePixels);
 }
 
 int ImageSize(const YamlMap& root, const std::string& key) {
   const int64_t size = root.Int(key);
   if (size < 1 || size > kMaxImageSide_px) {
-    root.Fail(key, "expected a positive image size in px (" + SizeLimits() + "), got " +
-                       std::to_string(size));
+    root.Fail(key,
+              fmt::format("expected a positive image size in px ({}), got {}", SizeLimits(), size));
   }
   return static_cast<int>(size);
 }
@@ -99,9 +104,9 @@ void RequirePrincipalPointInImage(double cx, double cy, int width, int height, F
   const int side[2] = {width, height};
   for (size_t i = 0; i < 2; ++i) {
     if (!(point[i] >= 0.0 && point[i] <= side[i])) {
-      fail(i, std::string("expected the principal point ") + (i == 0 ? "cx" : "cy") +
-                  " within the image (0.." + std::to_string(side[i]) + " px), got " +
-                  FormatDouble(point[i], i == 0 ? "cx" : "cy"));
+      fail(i, fmt::format("expected the principal point {} within the image (0..{} px), got {}",
+                          i == 0 ? "cx" : "cy", side[i],
+                          FormatDouble(point[i], i == 0 ? "cx" : "cy")));
     }
   }
 }
@@ -122,10 +127,10 @@ void ReadIntrinsicsCovariance(const YamlMap& root, CameraIntrinsics* camera) {
   const Matrix C = ReadMatrix(root, "intrinsics_covariance");
   const int n = 4 + static_cast<int>(camera->distortion.size());
   if (C.rows != n || C.cols != n) {
-    m.Fail("rows", "expected " + std::to_string(n) + "x" + std::to_string(n) +
-                       " (fx, fy, cx, cy and the " + std::to_string(n - 4) +
-                       " distortion coefficients), got " + std::to_string(C.rows) + "x" +
-                       std::to_string(C.cols));
+    m.Fail(
+        "rows",
+        fmt::format("expected {}x{} (fx, fy, cx, cy and the {} distortion coefficients), got {}x{}",
+                    n, n, n - 4, C.rows, C.cols));
   }
   const Eigen::MatrixXd M =
       Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
@@ -167,15 +172,13 @@ CameraIntrinsics ParseOpenCvCamera(const YamlMap& root) {
   camera.width = ImageSize(root, "image_width");
   camera.height = ImageSize(root, "image_height");
   if (!ImageAreaWithinLimit(camera.width, camera.height)) {
-    root.Fail("image_height", "image " + std::to_string(camera.width) + "x" +
-                                  std::to_string(camera.height) + " is too large (" + SizeLimits() +
-                                  ")");
+    root.Fail("image_height", fmt::format("image {}x{} is too large ({})", camera.width,
+                                          camera.height, SizeLimits()));
   }
   const Matrix K = ReadMatrix(root, "camera_matrix");
   if (K.rows != 3 || K.cols != 3) {
     root.Map("camera_matrix")
-        .Fail("rows", "expected a 3x3 camera matrix, got " + std::to_string(K.rows) + "x" +
-                          std::to_string(K.cols));
+        .Fail("rows", fmt::format("expected a 3x3 camera matrix, got {}x{}", K.rows, K.cols));
   }
   for (size_t index : {0u, 4u}) {
     if (!(K.data[index] > 0.0)) {
@@ -202,10 +205,10 @@ CameraIntrinsics ParseOpenCvCamera(const YamlMap& root) {
   if ((D.rows != 1 && D.cols != 1) || n == 0 ||
       !IsSupportedDistortionCount(camera.distortion_model, static_cast<Eigen::Index>(n))) {
     root.Map("distortion_coefficients")
-        .Fail("rows", "expected a 1xN or Nx1 matrix with N = " +
-                          ExpectedDistortionCoefficients(camera.distortion_model) + " for the " +
-                          ToString(camera.distortion_model) + " model, got " +
-                          std::to_string(D.rows) + "x" + std::to_string(D.cols));
+        .Fail("rows",
+              fmt::format("expected a 1xN or Nx1 matrix with N = {} for the {} model, got {}x{}",
+                          ExpectedDistortionCoefficients(camera.distortion_model),
+                          ToString(camera.distortion_model), D.rows, D.cols));
   }
   camera.distortion =
       Eigen::Map<const Eigen::VectorXd>(D.data.data(), static_cast<Eigen::Index>(n));
@@ -239,9 +242,8 @@ CameraIntrinsics ParseKalibrCamera(const YamlMap& block) {
   camera.width = static_cast<int>(resolution[0]);
   camera.height = static_cast<int>(resolution[1]);
   if (!ImageAreaWithinLimit(camera.width, camera.height)) {
-    block.Fail("resolution", "image " + std::to_string(camera.width) + "x" +
-                                 std::to_string(camera.height) + " is too large (" + SizeLimits() +
-                                 ")");
+    block.Fail("resolution", fmt::format("image {}x{} is too large ({})", camera.width,
+                                         camera.height, SizeLimits()));
   }
   const std::vector<double> fu_fv_pu_pv = block.Doubles("intrinsics", 4);
   for (size_t i = 0; i < 2; ++i) {
@@ -259,9 +261,9 @@ CameraIntrinsics ParseKalibrCamera(const YamlMap& block) {
   const YAML::Node coeffs = block.Get("distortion_coeffs");
   if (!coeffs.IsSequence()) block.Fail("distortion_coeffs", "expected a list of 4 numbers");
   if (coeffs.size() != 4) {
-    block.Fail("distortion_coeffs", "expected 4 coefficients for Kalibr's " +
-                                        std::string(ToString(camera.distortion_model)) +
-                                        " model, got " + std::to_string(coeffs.size()));
+    block.Fail("distortion_coeffs",
+               fmt::format("expected 4 coefficients for Kalibr's {} model, got {}",
+                           ToString(camera.distortion_model), coeffs.size()));
   }
   const std::vector<double> d = block.Doubles("distortion_coeffs", 4);
   camera.distortion = Eigen::Map<const Eigen::Vector4d>(d.data());
@@ -292,8 +294,9 @@ YamlMap KalibrCameraBlock(const YamlMap& root, const YAML::Node& document,
   if (cameras.size() != 1) {
     std::string names;
     for (const auto& name : cameras) names += (names.empty() ? "" : ", ") + name;
-    root.Fail(cameras.front(), "a Kalibr camchain with " + std::to_string(cameras.size()) +
-                                   " cameras (" + names + "): name one (FILE#cam1)");
+    root.Fail(cameras.front(),
+              fmt::format("a Kalibr camchain with {} cameras ({}): name one (FILE#cam1)",
+                          cameras.size(), names));
   }
   return root.Map(cameras.front());
 }
@@ -326,9 +329,13 @@ CameraIntrinsics ReadCameraYaml(const std::string& path) {
 }
 
 std::string FormatCameraYaml(const CameraIntrinsics& camera) {
-  std::string text = "%YAML:1.0\n---\nimage_width: " + std::to_string(camera.width) +
-                     "\nimage_height: " + std::to_string(camera.height) +
-                     "\ndistortion_model: " + ToString(camera.distortion_model) + "\n";
+  std::string text = fmt::format(
+      "%YAML:1.0\n"
+      "---\n"
+      "image_width: {}\n"
+      "image_height: {}\n"
+      "distortion_model: {}\n",
+      camera.width, camera.height, ToString(camera.distortion_model));
   double K[9];
   for (int r = 0; r < 3; ++r) {
     for (int c = 0; c < 3; ++c) K[3 * r + c] = camera.K(r, c);

@@ -6,6 +6,8 @@
 #include <set>
 #include <utility>
 
+#include <fmt/core.h>
+
 #include "common/formats/csv_table.h"
 #include "common/formats/number_text.h"
 
@@ -80,8 +82,7 @@ std::vector<CornerObservation> ParseCornersCsv(const std::string& text,
     // One observation per corner and pose: a second would weigh that corner twice.
     if (!seen.emplace(c.pose_id, c.corner).second) {
       table.Fail(r, "corner",
-                 "corner " + std::to_string(c.corner) + " of pose " + std::to_string(c.pose_id) +
-                     " appears twice");
+                 fmt::format("corner {} of pose {} appears twice", c.corner, c.pose_id));
     }
     corners.push_back(c);
   }
@@ -97,9 +98,8 @@ std::string CornersCsvHeader(bool with_sigma) {
 }
 
 std::string CornersCsvLine(const CornerObservation& c, bool with_sigma) {
-  std::string line = std::to_string(c.pose_id) + "," + std::to_string(c.tag_id) + "," +
-                     std::to_string(c.corner) + "," + FormatDouble(c.u, "u") + "," +
-                     FormatDouble(c.v, "v");
+  std::string line = fmt::format("{},{},{},{},{}", c.pose_id, c.tag_id, c.corner,
+                                 FormatDouble(c.u, "u"), FormatDouble(c.v, "v"));
   if (with_sigma) {
     line += ',';
     if (c.sigma_px) line += FormatDouble(*c.sigma_px, "sigma_px");

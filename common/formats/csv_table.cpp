@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <fmt/core.h>
+
 #include "common/formats/file_kind.h"
 #include "common/formats/file_output.h"
 #include "common/formats/format_error.h"
@@ -98,7 +100,7 @@ CsvTable CsvTable::Parse(const std::string& text, const std::string& source_name
       for (size_t c = 0; c < cells.size(); ++c) {
         if (cells[c].empty()) {
           throw FormatError(source_name, line_no, "",
-                            "header column " + std::to_string(c + 1) + " has no name");
+                            fmt::format("header column {} has no name", c + 1));
         }
         for (size_t k = 0; k < c; ++k) {
           if (cells[k] == cells[c]) {
@@ -111,13 +113,13 @@ CsvTable CsvTable::Parse(const std::string& text, const std::string& source_name
     }
     if (cells.size() < table.header_.size()) {
       throw FormatError(source_name, line_no, table.header_[cells.size()],
-                        "missing field: the row has " + std::to_string(cells.size()) +
-                            " fields, the header " + std::to_string(table.header_.size()));
+                        fmt::format("missing field: the row has {} fields, the header {}",
+                                    cells.size(), table.header_.size()));
     }
     if (cells.size() > table.header_.size()) {
-      throw FormatError(source_name, line_no, "",
-                        "the row has " + std::to_string(cells.size()) + " fields, the header " +
-                            std::to_string(table.header_.size()));
+      throw FormatError(
+          source_name, line_no, "",
+          fmt::format("the row has {} fields, the header {}", cells.size(), table.header_.size()));
     }
     table.rows_.push_back({line_no, std::move(cells)});
   }

@@ -1,7 +1,7 @@
-// A small CSV table shared by the CSV formats (common/formats/README.md): a required header, columns
-// in any order, extra columns ignored, blank and '#' comment lines skipped, CRLF
-// tolerated, cells trimmed of spaces, RFC 4180 double quotes within a line. Every
-// getter checks its cell strictly and throws FormatError(file, line, column, what).
+// A small CSV table shared by the CSV formats (common/formats/README.md): a required header,
+// columns in any order, extra columns ignored, blank and '#' comment lines skipped, CRLF tolerated,
+// cells trimmed of spaces, RFC 4180 double quotes within a line. Every getter checks its cell
+// strictly and throws FormatError(file, line, column, what).
 #pragma once
 
 #include <cstdint>
@@ -64,6 +64,29 @@ class CsvTable {
 /// Quotes a cell for writing when it holds a comma, a quote, a '#' at its start or
 /// surrounding spaces (which the reader would otherwise trim).
 std::string CsvQuote(const std::string& cell);
+
+/// The table's rows in order, each as read_row(row index) reads it (a parser's loop).
+template <typename ReadRow>
+auto ReadCsvRows(const CsvTable& table, ReadRow read_row) {
+  std::vector<decltype(read_row(size_t{0}))> rows;
+  rows.reserve(table.num_rows());
+  for (size_t r = 0; r < table.num_rows(); ++r) rows.push_back(read_row(r));
+  return rows;
+}
+
+/// A CSV text: the `header` line, then a line per row as format_row(row) writes it (without
+/// the newline, which this adds), in the order of `rows`.
+template <typename Row, typename FormatRow>
+std::string FormatCsvLines(std::string_view header, const std::vector<Row>& rows,
+                           FormatRow format_row) {
+  std::string text(header);
+  text += '\n';
+  for (const Row& row : rows) {
+    text += format_row(row);
+    text += '\n';
+  }
+  return text;
+}
 
 /// Replaces `path` with `text` atomically (WriteFileAtomically, file_output.h: a failed
 /// write leaves the previous file whole); throws std::runtime_error naming the path.

@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include <fcntl.h>
+#include <fmt/core.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -24,8 +25,8 @@ namespace fs = std::filesystem;
 // A name no other writer uses: this process's id and a per-process counter.
 std::string TemporaryPathFor(const fs::path& target) {
   static std::atomic<unsigned> counter{0};
-  const std::string name = "." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) +
-                           "-" + std::to_string(counter++);
+  const std::string name =
+      fmt::format(".{}.tmp-{}-{}", target.filename().string(), ::getpid(), counter++);
   return (target.parent_path() / name).string();
 }
 

@@ -1,12 +1,14 @@
 // FormatError; see format_error.h.
 #include "common/formats/format_error.h"
 
+#include <fmt/core.h>
+
 namespace h4 {
 namespace {
 std::string Compose(const std::string& file, int line, const std::string& field,
                     const std::string& what) {
   std::string message = file;
-  if (line > 0) message += ":" + std::to_string(line);
+  if (line > 0) message += fmt::format(":{}", line);
   message += ": ";
   if (!field.empty()) message += "field '" + field + "': ";
   return message + what;

@@ -6,6 +6,8 @@
 #include <map>
 #include <string_view>
 
+#include <fmt/core.h>
+
 #include "common/formats/file_kind.h"
 #include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
@@ -77,8 +79,8 @@ class YamlDepthCheck {
   void Require(bool within, const std::string& what) const {
     if (within) return;
     throw FormatError(source_, line_no_, "",
-                      what + " deeper than the limit (" + std::to_string(kMaxYamlDepth) +
-                          " levels, " + std::to_string(kMaxYamlIndent) + " columns)");
+                      fmt::format("{} deeper than the limit ({} levels, {} columns)", what,
+                                  kMaxYamlDepth, kMaxYamlIndent));
   }
 
   std::string source_;
@@ -157,7 +159,7 @@ YamlMap::YamlMap(const YAML::Node& node, std::string source, std::string path, i
     const auto [previous, inserted] = first_line.emplace(entry.first.Scalar(), key_line);
     if (!inserted) {
       throw FormatError(source_, key_line, FieldOf(entry.first.Scalar()),
-                        "key given twice (first on line " + std::to_string(previous->second) + ")");
+                        fmt::format("key given twice (first on line {})", previous->second));
     }
   }
 }
@@ -225,7 +227,7 @@ void YamlMap::FailElement(const std::string& key, size_t index, const std::strin
   const YAML::Node list = Get(key);
   const int line =
       list.IsSequence() && index < list.size() ? YamlLine(list[index], LineOf(key)) : LineOf(key);
-  throw FormatError(source_, line, FieldOf(key) + "[" + std::to_string(index) + "]", what);
+  throw FormatError(source_, line, fmt::format("{}[{}]", FieldOf(key), index), what);
 }
 
 YamlMap YamlMap::Map(const std::string& key) const {
@@ -262,14 +264,13 @@ std::string YamlMap::String(const std::string& key) const {
 std::vector<double> YamlMap::Doubles(const std::string& key, size_t count) const {
   const YAML::Node list = Get(key);
   if (!list.IsSequence() || list.size() != count) {
-    Fail(key,
-         "expected a list of " + std::to_string(count) + " numbers, got " +
-             (list.IsSequence() ? "a list of " + std::to_string(list.size()) : Describe(list)));
+    Fail(key, fmt::format(
+                  "expected a list of {} numbers, got {}", count,
+                  (list.IsSequence() ? fmt::format("a list of {}", list.size()) : Describe(list))));
   }
   std::vector<double> values;
   for (size_t i = 0; i < count; ++i) {
-    values.push_back(YamlScalarDouble(list[i], source_,
-                                      FieldOf(key) + "[" + std::to_string(i) + "]",
+    values.push_back(YamlScalarDouble(list[i], source_, fmt::format("{}[{}]", FieldOf(key), i),
                                       YamlLine(list[i], LineOf(key))));
   }
   return values;
@@ -278,14 +279,13 @@ std::vector<double> YamlMap::Doubles(const std::string& key, size_t count) const
 std::vector<int64_t> YamlMap::Ints(const std::string& key, size_t count) const {
   const YAML::Node list = Get(key);
   if (!list.IsSequence() || (count > 0 && list.size() != count)) {
-    Fail(key,
-         "expected a list of " + (count > 0 ? std::to_string(count) + " " : std::string()) +
-             "integers, got " +
-             (list.IsSequence() ? "a list of " + std::to_string(list.size()) : Describe(list)));
+    Fail(key, "expected a list of " + (count > 0 ? fmt::format("{} ", count) : std::string()) +
+                  "integers, got " +
+                  (list.IsSequence() ? fmt::format("a list of {}", list.size()) : Describe(list)));
   }
   std::vector<int64_t> values;
   for (size_t i = 0; i < list.size(); ++i) {
-    values.push_back(YamlScalarInt(list[i], source_, FieldOf(key) + "[" + std::to_string(i) + "]",
+    values.push_back(YamlScalarInt(list[i], source_, fmt::format("{}[{}]", FieldOf(key), i),
                                    YamlLine(list[i], LineOf(key))));
   }
   return values;

@@ -41,7 +41,7 @@ void RobotBridge::OnTarget(const h4msgs::robot_target_t* target) {
     accepted = controller_.MoveToJoints(
         {target->joints[0], target->joints[1], target->joints[2], target->joints[3]}, &why);
   } else {
-    why = "unknown target_type " + std::to_string(target->target_type);
+    why = fmt::format("unknown target_type {}", target->target_type);
     status = h4msgs::target_status_t::STATUS_INVALID;
   }
   // The id is taken either way: a refused pose is reported (not settled) under its own id,

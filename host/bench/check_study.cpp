@@ -49,9 +49,7 @@ struct StudyOptions {
 
 StudyOptions ParseOptions(int argc, char** argv) {
   StudyOptions options;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string flag = argv[i];
-    const std::string value = argv[i + 1];
+  ForEachFlagAndValue(argc, argv, [&options](const std::string& flag, const std::string& value) {
     if (flag == "--robots") {
       options.robots = std::stoi(value);
     } else if (flag == "--seeds") {
@@ -76,7 +74,7 @@ StudyOptions ParseOptions(int argc, char** argv) {
     } else {
       throw std::invalid_argument("unknown option " + flag);
     }
-  }
+  });
   return options;
 }
 

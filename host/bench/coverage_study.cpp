@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <numbers>
@@ -93,16 +94,16 @@ std::map<std::string, double> TrueParameters(const SimulatedRobot& truth, ModelK
     const Model12Parameters& p = truth.model12;
     values = {{"h", p.h}, {"arm", p.arm}, {"forearm", p.forearm}, {"R", p.R}};
     for (int i = 0; i < 4; ++i) {
-      values["alpha" + std::to_string(i + 1)] = p.alpha[static_cast<size_t>(i)];
-      values["q0" + std::to_string(i + 1)] = p.q0[static_cast<size_t>(i)];
+      values[fmt::format("alpha{}", i + 1)] = p.alpha[static_cast<size_t>(i)];
+      values[fmt::format("q0{}", i + 1)] = p.q0[static_cast<size_t>(i)];
     }
     return values;
   }
   const Model31Parameters p = truth.TrueModel31();
   values["h"] = p.h;
   for (int i = 0; i < 4; ++i) {
-    values["arm" + std::to_string(i + 1)] = p.arm[static_cast<size_t>(i)];
-    values["forearm" + std::to_string(i + 1)] = p.forearm[static_cast<size_t>(i)];
+    values[fmt::format("arm{}", i + 1)] = p.arm[static_cast<size_t>(i)];
+    values[fmt::format("forearm{}", i + 1)] = p.forearm[static_cast<size_t>(i)];
   }
   return values;
 }
@@ -178,7 +179,7 @@ void PrintRow(const std::string& truth, const std::string& model, const Tally& t
   const double actual = std::sqrt(t.actual_sq / t.campaigns);
   std::string verdicts;
   for (const auto& [code, n] : t.verdicts) {
-    verdicts += (verdicts.empty() ? "" : ", ") + code + " " + std::to_string(n);
+    fmt::format_to(std::back_inserter(verdicts), "{}{} {}", verdicts.empty() ? "" : ", ", code, n);
   }
   std::string coverage = "n/a (no true Model 12)";
   if (t.intervals > 0) {

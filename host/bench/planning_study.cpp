@@ -170,13 +170,6 @@ std::vector<DatasetRow> CalibrationRowsOnly(std::vector<DatasetRow> rows) {
   return rows;
 }
 
-double Median(std::vector<double> values) {
-  if (values.empty()) return NAN;
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 void Run(const StudyOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const RobotDescription apriori = PaperAprioriRobot();

@@ -54,6 +54,7 @@
 #include "host/planning/sequential_plan.h"
 #include "host/simulation/corner_campaign.h"
 #include "host/simulation/dataset_simulator.h"
+#include "host/simulation/deviation_draw.h"
 #include "host/simulation/true_robot.h"
 
 namespace h4::host {
@@ -91,9 +92,7 @@ std::vector<std::string> SplitWords(const std::string& text) {
 
 RobustStudyOptions ParseRobustStudyOptions(int argc, char** argv) {
   RobustStudyOptions o;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string flag = argv[i];
-    const std::string value = argv[i + 1];
+  ForEachFlagAndValue(argc, argv, [&o](const std::string& flag, const std::string& value) {
     if (flag == "--priors") {
       o.priors = SplitWords(value);
     } else if (flag == "--robots") {
@@ -134,33 +133,16 @@ RobustStudyOptions ParseRobustStudyOptions(int argc, char** argv) {
     } else {
       throw std::invalid_argument("unknown option or value: " + flag + " " + value);
     }
-  }
+  });
   return o;
 }
-
-// Uniform deviations of the given half widths (a generator unlike MakeTrueRobot's normal).
-class UniformDraw {
- public:
-  explicit UniformDraw(uint64_t seed) : rng_(seed) {}
-  double operator()(double value, double half_width) { return value + half_width * uniform_(rng_); }
-  RigidTransform Placement(const RigidTransform& X, double translation, double rotation) {
-    Eigen::Vector3d t = X.translation(), rpy = X.rpy();
-    for (int k = 0; k < 3; ++k) t[k] = (*this)(t[k], translation);
-    for (int k = 0; k < 3; ++k) rpy[k] = (*this)(rpy[k], rotation);
-    return RigidTransform::FromTranslationRpy(t, rpy);
-  }
-
- private:
-  std::mt19937_64 rng_;
-  std::uniform_real_distribution<double> uniform_{-1.0, 1.0};
-};
 
 struct GeometrySpread {
   double length = 0.0, base_joint = 0.0, angle = 0.0, joint_offset = 0.0;
 };
 
 Model31Parameters DrawModel31(const Model12Parameters& apriori, const GeometrySpread& s,
-                              UniformDraw* draw) {
+                              UniformDeviationDraw* draw) {
   Model31Parameters p = NominalModel31(apriori);
   for (Eigen::Vector3d& P : p.P) {
     for (int k = 0; k < 3; ++k) P[k] = (*draw)(P[k], s.base_joint);
@@ -179,7 +161,7 @@ SimulatedRobot DrawRobot(const RobotDescription& apriori, const std::string& pri
   if (prior == "simulate") {
     return MakeTrueRobot(apriori, TrueGeometry::kPerturbedModel31, {.seed = seed});
   }
-  UniformDraw draw(seed * 7919 + (prior == "wide" ? 1 : 2));
+  UniformDeviationDraw draw(seed * 7919 + (prior == "wide" ? 1 : 2));
   SimulatedRobot truth = SimulatedRobot::FromDescription(apriori);
   truth.model31.reset();
   if (prior == "wide") {
@@ -360,13 +342,6 @@ SequentialFigures RunSequential(const SimulatedRobot& truth, const PosePlan& fir
   return out;
 }
 
-double Median(std::vector<double> values) {
-  if (values.empty()) return NAN;
-  std::sort(values.begin(), values.end());
-  const size_t n = values.size();
-  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
 // Geometric mean of the finite positive values (NaN when none).
 double GeometricMean(const std::vector<double>& values) {
   double sum = 0.0;
@@ -476,7 +451,7 @@ void PrintBoundTable(const PlanningProblem& problem, const RobustStudyOptions& o
   fmt::print(
       "| models | N | exchange, mm | bound, mm | exchange / bound | grid 71, mm | support | "
       "efficiency | iterations |\n|---|---|---|---|---|---|---|---|---|\n");
-  PrintBounds("a priori and " + std::to_string(problem.drawn.size()) + " drawn", problem, options);
+  PrintBounds(fmt::format("a priori and {} drawn", problem.drawn.size()), problem, options);
   PrintBounds("a priori alone", AprioriAlone(problem), options);
 }
 
@@ -503,8 +478,8 @@ void RunRobot(const std::string& prior, int robot, const PlannedDesigns& designs
       grid_figures.verdict31);
   for (const auto& [n, campaign] : designs.by_count) {
     const CampaignFigures f = RunCampaign(truth, campaign.plan, setting, trial_seed + 7, heldout);
-    (*tallies)["planned " + std::to_string(n)].Add(f, campaign.predicted_position_rms,
-                                                   grid_figures.realised);
+    (*tallies)[fmt::format("planned {}", n)].Add(f, campaign.predicted_position_rms,
+                                                 grid_figures.realised);
     fmt::print("; planned-{} {:.4f} mm ({} poses, plan {:.4f}, identify {:.4f}, {}/{})", n,
                f.realised * 1e3, f.poses, campaign.predicted_position_rms * 1e3,
                f.identify_predicted * 1e3, f.verdict12, f.verdict31);
@@ -514,8 +489,8 @@ void RunRobot(const std::string& prior, int robot, const PlannedDesigns& designs
     if (first == 0 || n <= first) continue;
     const SequentialFigures f =
         RunSequential(truth, designs.first_batch, n, setting, trial_seed + 11, heldout);
-    (*tallies)["sequential " + std::to_string(first) + "+" + std::to_string(n - first)].Add(
-        f.figures, f.plan_predicted, grid_figures.realised);
+    (*tallies)[fmt::format("sequential {}+{}", first, n - first)].Add(f.figures, f.plan_predicted,
+                                                                      grid_figures.realised);
     fmt::print("; sequential-{} {:.4f} mm ({} poses, plan {:.4f}, identify {:.4f}, {}/{})", n,
                f.figures.realised * 1e3, f.figures.poses, f.plan_predicted * 1e3,
                f.figures.identify_predicted * 1e3, f.figures.verdict12, f.figures.verdict31);

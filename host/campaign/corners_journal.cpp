@@ -67,14 +67,14 @@ void CornersJournal::Append(const std::vector<CornerObservation>& corners) {
   if (corners.empty()) throw std::invalid_argument(path() + ": no corners to append");
   const int64_t pose_id = corners.front().pose_id;
   if (Contains(pose_id)) {
-    throw std::invalid_argument(path() + ": the corners of pose " + std::to_string(pose_id) +
-                                " are already recorded");
+    throw std::invalid_argument(
+        fmt::format("{}: the corners of pose {} are already recorded", path(), pose_id));
   }
   std::string text;
   for (const CornerObservation& c : corners) {
     if (c.pose_id != pose_id) {
-      throw std::invalid_argument(path() + ": corners of poses " + std::to_string(pose_id) +
-                                  " and " + std::to_string(c.pose_id) + " in one append");
+      throw std::invalid_argument(
+          fmt::format("{}: corners of poses {} and {} in one append", path(), pose_id, c.pose_id));
     }
     text += CornersCsvLine(c, kCornersWithSigma) + "\n";
   }

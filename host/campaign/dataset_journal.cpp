@@ -46,8 +46,8 @@ void DatasetJournal::Load() {
 
 void DatasetJournal::Append(const DatasetRow& row) {
   if (Contains(row.pose_id)) {
-    throw std::invalid_argument(path() + ": pose " + std::to_string(row.pose_id) +
-                                " is already recorded");
+    throw std::invalid_argument(
+        fmt::format("{}: pose {} is already recorded", path(), row.pose_id));
   }
   // One write per row: a kill between rows leaves whole rows only.
   const std::string line = DatasetCsvLine(row, kWithSet, kWithSigma) + "\n";

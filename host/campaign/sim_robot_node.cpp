@@ -34,8 +34,8 @@ SimRobotNode::SimRobotNode(bus::LcmBus& bus, SimulatedController& controller,
                            const SimRobotNodeOptions& options)
     : bus_(bus), controller_(controller), options_(options), rng_(options.seed) {
   if (!(std::isfinite(options_.rate_hz) && options_.rate_hz > 0.0)) {
-    throw std::invalid_argument("sim-robot: rate must be positive, got " +
-                                std::to_string(options_.rate_hz) + " Hz");
+    throw std::invalid_argument(
+        fmt::format("sim-robot: rate must be positive, got {:f} Hz", options_.rate_hz));
   }
   bus_.Subscribe<h4msgs::robot_target_t>(
       channels::kRobotTarget, [this](const h4msgs::robot_target_t& target) { OnTarget(target); });
@@ -56,9 +56,10 @@ void SimRobotNode::OnTarget(const h4msgs::robot_target_t& target) {
   } else {
     // Not a target the controller understands: refused like any other (hold, never settle
     // for this id), and the campaign skips it with this reason.
-    result = controller_.RejectTarget(target.pose_id,
-                                      "unknown target_type " + std::to_string(target.target_type) +
-                                          " (expected TARGET_POSE 0 or TARGET_JOINTS 1)");
+    result = controller_.RejectTarget(
+        target.pose_id,
+        fmt::format("unknown target_type {} (expected TARGET_POSE 0 or TARGET_JOINTS 1)",
+                    target.target_type));
   }
   // Every target is answered, a resent one too: a lost refusal costs the campaign one
   // settle timeout at most, until it sends the target again.

@@ -9,6 +9,7 @@
 
 #include "common/geometry/rotation.h"
 #include "common/text/enum_names.h"
+#include "common/text/invalid_reason.h"
 #include "common/units.h"
 #include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/measurement_chain.h"
@@ -34,26 +35,22 @@ std::string FormatJoints(const JointVector& q) {
 }  // namespace
 
 bool SimulatedControllerOptions::IsValid(std::string* why) const {
-  auto fail = [why](const std::string& message) {
-    if (why) *why = message;
-    return false;
-  };
   if (!(std::isfinite(joint_speed) && joint_speed > 0.0)) {
-    return fail("joint speed must be positive, got " + std::to_string(joint_speed) + " rad/s");
+    return Invalid(why, fmt::format("joint speed must be positive, got {:f} rad/s", joint_speed));
   }
   if (!(std::isfinite(settle_time) && settle_time >= 0.0)) {
-    return fail("settle time must be >= 0, got " + std::to_string(settle_time) + " s");
+    return Invalid(why, fmt::format("settle time must be >= 0, got {:f} s", settle_time));
   }
   if (!(std::isfinite(sigma_q) && sigma_q >= 0.0)) {
-    return fail("encoder noise must be >= 0, got " + std::to_string(sigma_q) + " rad");
+    return Invalid(why, fmt::format("encoder noise must be >= 0, got {:f} rad", sigma_q));
   }
   if (!(std::isfinite(joint_range) && joint_range > 0.0)) {
-    return fail("joint range must be positive, got " + std::to_string(joint_range) + " rad");
+    return Invalid(why, fmt::format("joint range must be positive, got {:f} rad", joint_range));
   }
   if (joint_limits && !(joint_limits->allFinite() && (*joint_limits)[0] < (*joint_limits)[1])) {
-    return fail("joint limits must be finite with MIN < MAX");
+    return Invalid(why, "joint limits must be finite with MIN < MAX");
   }
-  if (!home.allFinite()) return fail("home pose is not finite");
+  if (!home.allFinite()) return Invalid(why, "home pose is not finite");
   return true;
 }
 
@@ -103,15 +100,10 @@ TargetResult SimulatedController::SetPoseTarget(int64_t pose_id, const EePose& x
   }
   const IkResult ik = apriori_model_->InverseKinematics(x_B);
   if (!ik.ok()) {
-    std::string legs;
-    for (int i = 0; i < 4; ++i) {
-      if (!ik.reachable[static_cast<size_t>(i)])
-        legs += (legs.empty() ? "" : ", ") + std::to_string(i + 1);
-    }
     return Refuse(pose_id, TargetStatus::kUnreachable,
                   fmt::format("pose ({:.4f}, {:.4f}, {:.4f}) m, theta {:.4f} rad is out of reach "
                               "of the a priori model (leg {} has no inverse kinematics)",
-                              x_B[0], x_B[1], x_B[2], x_B[3], legs));
+                              x_B[0], x_B[1], x_B[2], x_B[3], ik.UnreachableLegNumbers()));
   }
   // The true robot at these joints is millimetres from the commanded pose: a start on its
   // branch.

@@ -1,7 +1,18 @@
-// Registration of every h4cal subcommand, and the command line a report shows.
+// Registration of every h4cal subcommand, the command line a report shows, and the exit code
+// of the commands that leave rows out.
 #include "host/cli/commands.h"
 
+#include <spdlog/spdlog.h>
+
+#include "common/cli/command_line.h"
+
 namespace h4::host::cli {
+
+int LeftOutRowsExitCode(size_t left_out, std::string_view what) {
+  if (left_out == 0) return h4::cli::kExitSuccess;
+  spdlog::error("{} {} (not written)", left_out, what);
+  return h4::cli::kExitNothingUsable;
+}
 
 std::string ReportCommandLine(const CLI::App& command) {
   std::string line;

@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include <CLI/CLI.hpp>
@@ -41,6 +42,11 @@ void RunWithCommandLineWhenParsed(CLI::App* command, std::shared_ptr<Options> op
     return run(parsed, "h4cal " + command->get_name() + " " + ReportCommandLine(*command));
   });
 }
+
+/// The exit code of a command that writes the rows it can and leaves the others out (fk, ik):
+/// kExitNothingUsable after logging "<left_out> <what> (not written)" when any was left out,
+/// kExitSuccess otherwise.
+int LeftOutRowsExitCode(size_t left_out, std::string_view what);
 
 /// Registers every command above.
 void AddAllCommands(CLI::App& app);

@@ -88,11 +88,7 @@ int Run(const FkCommandOptions& options) {
   spdlog::info("fk with {}: {} of {} rows written to {}", description, rows.size(), joints.size(),
                options.out_path);
   if (!options.compare_path.empty()) Compare(rows, options.compare_path);
-  if (!failed.empty()) {
-    spdlog::error("{} rows had no forward kinematic solution (not written)", failed.size());
-    return h4::cli::kExitNothingUsable;
-  }
-  return h4::cli::kExitSuccess;
+  return LeftOutRowsExitCode(failed.size(), "rows had no forward kinematic solution");
 }
 
 }  // namespace

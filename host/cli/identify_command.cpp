@@ -74,20 +74,18 @@ void RequireUsableSplit(const IdentifyCommandOptions& options,
   if (!options.from_path.empty()) return;
   const size_t calib = SplitDataset(rows, options.validation, options.seed).calib.size();
   if (calib < kMinimumCalibrationPoses) {
-    throw std::invalid_argument(options.data_path + ": identification needs at least " +
-                                std::to_string(kMinimumCalibrationPoses) +
-                                " calibration poses, the file has " + std::to_string(calib) +
-                                " (of " + std::to_string(rows.size()) +
-                                " rows; rows with set 'valid' are held out)");
+    throw std::invalid_argument(
+        fmt::format("{}: identification needs at least {} calibration poses, the file has {} (of "
+                    "{} rows; rows with set 'valid' are held out)",
+                    options.data_path, kMinimumCalibrationPoses, calib, rows.size()));
   }
   const bool has_set =
       std::any_of(rows.begin(), rows.end(), [](const DatasetRow& r) { return r.set.has_value(); });
   const size_t most = rows.size() / 2;
   if (options.validation_given && !has_set && static_cast<size_t>(options.validation) > most) {
-    throw std::invalid_argument("--validation " + std::to_string(options.validation) +
-                                ": at most half of the " + std::to_string(rows.size()) +
-                                " poses of " + options.data_path + " can be held out (" +
-                                std::to_string(most) + ")");
+    throw std::invalid_argument(
+        fmt::format("--validation {}: at most half of the {} poses of {} can be held out ({})",
+                    options.validation, rows.size(), options.data_path, most));
   }
 }
 

@@ -30,16 +30,12 @@ int Run(const IkCommandOptions& options) {
   const IdentifiedRobot robot = LoadRobot(options.robot, &description);
   const std::vector<EndEffectorPoseRow> poses = ReadPosesCsv(options.poses_path);
   std::vector<JointsRow> rows;
-  int unreachable = 0;
+  size_t unreachable = 0;
   for (const EndEffectorPoseRow& p : poses) {
     const IkResult ik = robot.model->InverseKinematics(EePose(p.X, p.Y, p.Z, p.theta));
     if (!ik.ok()) {
-      std::string legs;
-      for (int i = 0; i < 4; ++i) {
-        if (!ik.reachable[static_cast<size_t>(i)])
-          legs += (legs.empty() ? "" : ", ") + std::to_string(i + 1);
-      }
-      spdlog::warn("{}: pose_id {}: out of reach (leg {})", options.poses_path, p.pose_id, legs);
+      spdlog::warn("{}: pose_id {}: out of reach (leg {})", options.poses_path, p.pose_id,
+                   ik.UnreachableLegNumbers());
       ++unreachable;
       continue;
     }
@@ -48,11 +44,7 @@ int Run(const IkCommandOptions& options) {
   WriteJointsCsv(options.out_path, rows);
   spdlog::info("ik with {}: {} of {} rows written to {}", description, rows.size(), poses.size(),
                options.out_path);
-  if (unreachable > 0) {
-    spdlog::error("{} poses are out of reach (not written)", unreachable);
-    return h4::cli::kExitNothingUsable;
-  }
-  return h4::cli::kExitSuccess;
+  return LeftOutRowsExitCode(unreachable, "poses are out of reach");
 }
 
 }  // namespace

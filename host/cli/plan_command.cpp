@@ -125,6 +125,13 @@ PlanCriterion Criterion(const PlanCommandOptions& o) {
   return *kPlanCriterionNames.ValueNamed(o.criterion);  // CLI11 checked the text
 }
 
+// A sequential campaign's plan completes the poses already measured: " <conjunction> the N
+// measured" for the lines that speak of the plan, empty for a first campaign.
+std::string ExistingPosesClause(const char* conjunction, const PlanningProblem& problem) {
+  if (problem.existing_indices.empty()) return "";
+  return fmt::format(" {} the {} measured", conjunction, problem.existing_indices.size());
+}
+
 void PrintPlan(const PlannedCampaign& campaign, const PlanningProblem& problem, uint64_t seed) {
   fmt::print("planned {} poses (Model {}, {} exchanges{}):\n", campaign.plan.size(),
              ToString(problem.info.model), campaign.design.exchanges,
@@ -145,15 +152,11 @@ void PrintPlan(const PlannedCampaign& campaign, const PlanningProblem& problem, 
           ? ""
           : fmt::format(" and over the a priori and {} robots drawn from its uncertainty",
                         problem.drawn.size());
-  const std::string with_existing =
-      problem.existing_indices.empty()
-          ? ""
-          : fmt::format(" and the {} measured", problem.existing_indices.size());
   fmt::print(
       "predicted board position error (one sigma, RMS over {} poses of the target region{}): "
       "{:.4f} mm with these {} poses{}; {:.4f} mm with the grid's {} calibration poses\n",
       problem.target_indices.size(), over, campaign.predicted_position_rms * 1e3,
-      campaign.plan.size(), with_existing, grid_rms * 1e3, grid_calibration);
+      campaign.plan.size(), ExistingPosesClause("and", problem), grid_rms * 1e3, grid_calibration);
 }
 
 // What no design of as many candidates can beat (host/planning/design_bound.h: the optimal
@@ -164,15 +167,11 @@ void PrintBound(const PlannedCampaign& campaign, const PlanningProblem& problem)
   BoundOptions options;
   options.pose_count = static_cast<int>(campaign.plan.size());
   const double lower = PredictedTargetRmsBound(problem, options, &bound);
-  const std::string with_existing =
-      problem.existing_indices.empty()
-          ? ""
-          : fmt::format(" with the {} measured", problem.existing_indices.size());
   fmt::print(
       "no {} poses of these {} candidates{} can predict better than {:.4f} mm over the region "
       "(convex bound, {} candidates in the optimal design's support); this plan: {:.4f} mm\n",
-      options.pose_count, problem.candidate_count(), with_existing, lower * 1e3,
-      bound.support.size(), campaign.predicted_position_rms * 1e3);
+      options.pose_count, problem.candidate_count(), ExistingPosesClause("with", problem),
+      lower * 1e3, bound.support.size(), campaign.predicted_position_rms * 1e3);
 }
 
 void WriteCurve(const PlanCommandOptions& o, const PlanningProblem& problem) {

@@ -55,7 +55,7 @@ Scenario LoadScenario(const SimRobotArgs& args) {
     placement.seed = args.robot_seed;
     scenario.truth = MakeTrueRobot(scenario.apriori, TrueGeometry::kPaperTable2, placement);
     scenario.description =
-        "paper scenario (Table 2 truth, placement seed " + std::to_string(args.robot_seed) + ")";
+        fmt::format("paper scenario (Table 2 truth, placement seed {})", args.robot_seed);
     return scenario;
   }
   if (args.truth_path.empty()) {

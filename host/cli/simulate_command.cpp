@@ -110,9 +110,9 @@ void Run(const SimulateOptions& options) {
     throw std::runtime_error("no planned pose is reachable by the true robot");
   }
   if (static_cast<size_t>(options.valid) > dataset.rows.size()) {
-    throw std::invalid_argument("--validation " + std::to_string(options.valid) + ": only " +
-                                std::to_string(dataset.rows.size()) +
-                                " poses are planned and reachable");
+    throw std::invalid_argument(
+        fmt::format("--validation {}: only {} poses are planned and reachable", options.valid,
+                    dataset.rows.size()));
   }
 
   fs::create_directories(options.out_dir);

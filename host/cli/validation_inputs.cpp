@@ -3,7 +3,7 @@
 
 #include <cmath>
 #include <filesystem>
-#include <sstream>
+#include <iterator>
 #include <stdexcept>
 
 #include <spdlog/fmt/fmt.h>
@@ -208,41 +208,41 @@ std::string CrossValidatedLines(const ValidationReport& report) {
 }  // namespace
 
 std::string FormatValidationText(const ValidationReport& report) {
-  std::ostringstream t;
+  std::string t;
   // People read mm and deg (README.md#using-h4cal); the files keep m and rad.
   const auto deg = [](double rad) { return DegreesFromRadians(rad); };
   const std::string poses = EvaluatedPosesLabel(report);
-  t << fmt::format("Table 3: joint residuals, {} (deg, measured - model)\n", poses);
+  t += fmt::format("Table 3: joint residuals, {} (deg, measured - model)\n", poses);
   for (const auto& v : report.models) {
     const auto& r = v.heldout;
-    t << fmt::format("  {:<10} mean {:9.4f} {:9.4f} {:9.4f} {:9.4f}\n", v.label, deg(r.mean[0]),
+    t += fmt::format("  {:<10} mean {:9.4f} {:9.4f} {:9.4f} {:9.4f}\n", v.label, deg(r.mean[0]),
                      deg(r.mean[1]), deg(r.mean[2]), deg(r.mean[3]));
-    t << fmt::format("  {:<10} RMS  {:9.4f} {:9.4f} {:9.4f} {:9.4f}\n", "", deg(r.rms[0]),
+    t += fmt::format("  {:<10} RMS  {:9.4f} {:9.4f} {:9.4f} {:9.4f}\n", "", deg(r.rms[0]),
                      deg(r.rms[1]), deg(r.rms[2]), deg(r.rms[3]));
   }
   // Accuracy as RMS, 4 decimals of a mm: Model 31 results differ by hundredths.
-  t << fmt::format("Positioning error (RMS): a priori, every pose: {:.4f} mm, {:.4f} deg\n",
+  t += fmt::format("Positioning error (RMS): a priori, every pose: {:.4f} mm, {:.4f} deg\n",
                    report.apriori_all.position_rms * 1e3, deg(report.apriori_all.theta_rms));
   for (const auto& v : report.models) {
-    t << fmt::format("  {:<10} {}: {:.4f} mm, {:.4f} deg\n", v.label, poses,
+    t += fmt::format("  {:<10} {}: {:.4f} mm, {:.4f} deg\n", v.label, poses,
                      v.positioning.position_rms * 1e3, deg(v.positioning.theta_rms));
   }
-  t << CrossValidatedLines(report);
+  t += CrossValidatedLines(report);
   if (!report.models.front().straightness.empty()) {
-    t << "Table 4: straightness (mm, RMS distance to the fitted line)\n";
+    t += "Table 4: straightness (mm, RMS distance to the fitted line)\n";
     for (size_t m = 0; m < report.models.size(); ++m) {
-      t << fmt::format("  {:<10}", report.models[m].label);
+      t += fmt::format("  {:<10}", report.models[m].label);
       for (size_t r = 0; r < report.models[m].straightness.size(); ++r) {
-        t << fmt::format("  dir {}: {:.4f}", r + 1,
+        t += fmt::format("  dir {}: {:.4f}", r + 1,
                          1e3 * report.models[m].straightness[r].fit.rms_distance);
-        if (m > 0) t << fmt::format(" ({:.0f} %)", report.StraightnessImprovementPercent(m, r));
+        if (m > 0) t += fmt::format(" ({:.0f} %)", report.StraightnessImprovementPercent(m, r));
       }
-      t << "\n";
+      t += "\n";
     }
   }
   for (const auto& v : report.models) {
     if (!v.square) continue;
-    t << fmt::format(
+    t += fmt::format(
         "Square, {} controller: side RMS {:.2f} {:.2f} {:.2f} {:.2f} mm, shape {:.2f} mm, "
         "mean |reached - commanded| {:.2f} mm\n",
         v.label, v.square->sides[0].rms * 1e3, v.square->sides[1].rms * 1e3,
@@ -251,28 +251,28 @@ std::string FormatValidationText(const ValidationReport& report) {
   }
   for (const auto& m : report.measured_squares) {
     const SquareRun& s = m.run;
-    t << fmt::format(
+    t += fmt::format(
         "Square (measured), {} controller: side RMS {:.2f} {:.2f} {:.2f} {:.2f} mm, shape "
         "{:.2f} mm, mean |measured - commanded| {:.2f} mm, offset ({:.2f}, {:.2f}, {:.2f}) mm; "
         "{} of {} points",
         m.label, s.sides[0].rms * 1e3, s.sides[1].rms * 1e3, s.sides[2].rms * 1e3,
         s.sides[3].rms * 1e3, s.shape_rms * 1e3, s.mean_position_error * 1e3, s.offset[0] * 1e3,
         s.offset[1] * 1e3, s.offset[2] * 1e3, s.reached.size(), m.planned);
-    t << (m.missing_ids.empty() ? "\n" : " (missing pose ids " + PoseIdList(m.missing_ids) + ")\n");
+    t += (m.missing_ids.empty() ? "\n" : " (missing pose ids " + PoseIdList(m.missing_ids) + ")\n");
   }
   for (const auto& v : report.models) {
     if (!v.accuracy_map) continue;
-    t << fmt::format(
+    t += fmt::format(
         "Accuracy map, {}: predicted 1-sigma position error median {:.4f} mm, largest {:.4f} "
         "mm over {} workspace poses\n",
         v.label, v.accuracy_map->MedianPositionSigma() * 1e3,
         v.accuracy_map->MaxPositionSigma() * 1e3, v.accuracy_map->points.size());
   }
-  t << (report.prior.ok ? fmt::format("4-DoF check: rotation axis spread {:.3f} deg\n",
+  t += (report.prior.ok ? fmt::format("4-DoF check: rotation axis spread {:.3f} deg\n",
                                       report.prior.axis_spread_deg)
                         : "4-DoF check: " + report.prior.message + "\n");
-  for (const auto& note : report.notes) t << "note: " << note << "\n";
-  return t.str();
+  for (const auto& note : report.notes) fmt::format_to(std::back_inserter(t), "note: {}\n", note);
+  return t;
 }
 
 }  // namespace h4::host::cli

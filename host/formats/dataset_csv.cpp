@@ -5,6 +5,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include <fmt/core.h>
+
 #include "common/formats/csv_table.h"
 #include "common/formats/file_kind.h"
 #include "common/formats/format_error.h"
@@ -61,7 +63,7 @@ std::vector<DatasetRow> ParseDatasetCsv(const std::string& text, const std::stri
     DatasetRow row;
     row.pose_id = ids.Read(table, r);
     row.utime = table.GetInt64(r, "utime");
-    for (size_t i = 0; i < 4; ++i) row.q[i] = JointReading(table, r, "q" + std::to_string(i + 1));
+    for (size_t i = 0; i < 4; ++i) row.q[i] = JointReading(table, r, fmt::format("q{}", i + 1));
     row.X_CT = ReadPoseColumns(table, r);
     if (table.HasColumn("set")) {
       const std::string& set = table.Cell(r, "set");
@@ -92,14 +94,14 @@ std::string DatasetCsvHeader(bool with_set, bool with_sigma) {
 }
 
 std::string DatasetCsvLine(const DatasetRow& row, bool with_set, bool with_sigma) {
-  std::string line = std::to_string(row.pose_id) + "," + std::to_string(row.utime);
+  std::string line = fmt::format("{},{}", row.pose_id, row.utime);
   for (size_t i = 0; i < 4; ++i) line += "," + FormatDouble(row.q[i], "q");
   line += "," + FormatPoseColumns(row.X_CT);
   if (with_set) {
     // An empty `set` would not read back: a file either splits every row or none.
     if (!row.set) {
-      throw std::invalid_argument("dataset row " + std::to_string(row.pose_id) +
-                                  " has no set while the file has a set column");
+      throw std::invalid_argument(
+          fmt::format("dataset row {} has no set while the file has a set column", row.pose_id));
     }
     line += (*row.set == PoseSet::kCalib) ? ",calib" : ",valid";
   }

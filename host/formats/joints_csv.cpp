@@ -1,6 +1,8 @@
 // The joints CSV; see joints_csv.h.
 #include "host/formats/joints_csv.h"
 
+#include <fmt/core.h>
+
 #include "common/formats/csv_table.h"
 #include "common/formats/number_text.h"
 #include "host/formats/pose_id_check.h"
@@ -11,15 +13,12 @@ std::vector<JointsRow> ParseJointsCsv(const std::string& text, const std::string
   const CsvTable table = CsvTable::Parse(text, source_name);
   table.RequireColumns({"pose_id", "q1", "q2", "q3", "q4"});
   PoseIdCheck ids;
-  std::vector<JointsRow> rows;
-  rows.reserve(table.num_rows());
-  for (size_t r = 0; r < table.num_rows(); ++r) {
+  return ReadCsvRows(table, [&table, &ids](size_t r) {
     JointsRow row;
     row.pose_id = ids.Read(table, r);
-    for (size_t i = 0; i < 4; ++i) row.q[i] = table.GetDouble(r, "q" + std::to_string(i + 1));
-    rows.push_back(row);
-  }
-  return rows;
+    for (size_t i = 0; i < 4; ++i) row.q[i] = table.GetDouble(r, fmt::format("q{}", i + 1));
+    return row;
+  });
 }
 
 std::vector<JointsRow> ReadJointsCsv(const std::string& path) {
@@ -27,13 +26,11 @@ std::vector<JointsRow> ReadJointsCsv(const std::string& path) {
 }
 
 std::string FormatJointsCsv(const std::vector<JointsRow>& rows) {
-  std::string text = "pose_id,q1,q2,q3,q4\n";
-  for (const JointsRow& row : rows) {
-    text += std::to_string(row.pose_id);
-    for (size_t i = 0; i < 4; ++i) text += "," + FormatDouble(row.q[i], "q");
-    text += "\n";
-  }
-  return text;
+  return FormatCsvLines("pose_id,q1,q2,q3,q4", rows, [](const JointsRow& row) {
+    std::string line = fmt::format("{}", row.pose_id);
+    for (size_t i = 0; i < 4; ++i) line += "," + FormatDouble(row.q[i], "q");
+    return line;
+  });
 }
 
 void WriteJointsCsv(const std::string& path, const std::vector<JointsRow>& rows) {

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/core.h>
+
 #include "common/formats/file_kind.h"
 #include "common/formats/format_error.h"
 
@@ -43,7 +45,7 @@ void RequireBoundedDepth(const std::string& text, const std::string& source_name
     } else if (c == '[' || c == '{') {
       if (++depth > kMaxJsonDepth) {
         throw FormatError(source_name, line, "",
-                          "JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels");
+                          fmt::format("JSON nested deeper than {} levels", kMaxJsonDepth));
       }
     } else if (c == ']' || c == '}') {
       --depth;
@@ -97,7 +99,7 @@ bool JsonValue::HasNonNull(const std::string& key) const {
 }
 
 JsonValue JsonValue::At(size_t index) const {
-  return JsonValue((*value_)[index], source_, path_ + "[" + std::to_string(index) + "]");
+  return JsonValue((*value_)[index], source_, fmt::format("{}[{}]", path_, index));
 }
 
 void JsonValue::RequireObject() const {
@@ -106,7 +108,7 @@ void JsonValue::RequireObject() const {
 
 size_t JsonValue::ArraySize(size_t count) const {
   if (!value_->is_array() || (count > 0 && value_->size() != count)) {
-    Fail("expected an array" + (count > 0 ? " of " + std::to_string(count) : std::string()) +
+    Fail("expected an array" + (count > 0 ? fmt::format(" of {}", count) : std::string()) +
          ", got " + Describe(*value_));
   }
   return value_->size();

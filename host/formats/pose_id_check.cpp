@@ -3,6 +3,8 @@
 
 #include <string>
 
+#include <fmt/core.h>
+
 namespace h4 {
 
 int64_t PoseIdCheck::Read(const CsvTable& table, size_t row) {
@@ -10,8 +12,7 @@ int64_t PoseIdCheck::Read(const CsvTable& table, size_t row) {
   const auto [previous, inserted] = line_of_id_.emplace(id, table.line(row));
   if (!inserted) {
     table.Fail(row, "pose_id",
-               "duplicate pose_id " + std::to_string(id) + " (first on line " +
-                   std::to_string(previous->second) + ")");
+               fmt::format("duplicate pose_id {} (first on line {})", id, previous->second));
   }
   return id;
 }

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <fmt/core.h>
+
 #include "common/formats/csv_table.h"
 #include "common/formats/number_text.h"
 #include "common/formats/pose_columns.h"
@@ -38,9 +40,9 @@ EndEffectorPoseRow ReadEndEffectorPose(const CsvTable& table, size_t r, PoseIdCh
 }
 
 std::string FormatEndEffectorPose(const EndEffectorPoseRow& row) {
-  return std::to_string(row.pose_id) + "," + FormatDouble(row.X, "X") + "," +
-         FormatDouble(row.Y, "Y") + "," + FormatDouble(row.Z, "Z") + "," +
-         FormatDouble(row.theta, "theta");
+  return fmt::format("{},{},{},{},{}", row.pose_id, FormatDouble(row.X, "X"),
+                     FormatDouble(row.Y, "Y"), FormatDouble(row.Z, "Z"),
+                     FormatDouble(row.theta, "theta"));
 }
 
 }  // namespace
@@ -50,10 +52,8 @@ std::vector<EndEffectorPoseRow> ParsePosesCsv(const std::string& text,
   const CsvTable table = CsvTable::Parse(text, source_name);
   table.RequireColumns(kPoseColumns);
   PoseIdCheck ids;
-  std::vector<EndEffectorPoseRow> rows;
-  rows.reserve(table.num_rows());
-  for (size_t r = 0; r < table.num_rows(); ++r) rows.push_back(ReadEndEffectorPose(table, r, &ids));
-  return rows;
+  return ReadCsvRows(table,
+                     [&table, &ids](size_t r) { return ReadEndEffectorPose(table, r, &ids); });
 }
 
 std::vector<EndEffectorPoseRow> ReadPosesCsv(const std::string& path) {
@@ -61,9 +61,7 @@ std::vector<EndEffectorPoseRow> ReadPosesCsv(const std::string& path) {
 }
 
 std::string FormatPosesCsv(const std::vector<EndEffectorPoseRow>& rows) {
-  std::string text = "pose_id,X,Y,Z,theta\n";
-  for (const EndEffectorPoseRow& row : rows) text += FormatEndEffectorPose(row) + "\n";
-  return text;
+  return FormatCsvLines("pose_id,X,Y,Z,theta", rows, FormatEndEffectorPose);
 }
 
 void WritePosesCsv(const std::string& path, const std::vector<EndEffectorPoseRow>& rows) {
@@ -75,15 +73,12 @@ std::vector<FkRow> ParseFkCsv(const std::string& text, const std::string& source
   table.RequireColumns(kPoseColumns);
   table.RequireColumns(PoseColumnNames());
   PoseIdCheck ids;
-  std::vector<FkRow> rows;
-  rows.reserve(table.num_rows());
-  for (size_t r = 0; r < table.num_rows(); ++r) {
+  return ReadCsvRows(table, [&table, &ids](size_t r) {
     FkRow row;
     row.pose = ReadEndEffectorPose(table, r, &ids);
     row.X_CT = ReadPoseColumns(table, r);
-    rows.push_back(row);
-  }
-  return rows;
+    return row;
+  });
 }
 
 std::vector<FkRow> ReadFkCsv(const std::string& path) {
@@ -91,11 +86,9 @@ std::vector<FkRow> ReadFkCsv(const std::string& path) {
 }
 
 std::string FormatFkCsv(const std::vector<FkRow>& rows) {
-  std::string text = "pose_id,X,Y,Z,theta,x,y,z,qw,qx,qy,qz\n";
-  for (const FkRow& row : rows) {
-    text += FormatEndEffectorPose(row.pose) + "," + FormatPoseColumns(row.X_CT) + "\n";
-  }
-  return text;
+  return FormatCsvLines("pose_id,X,Y,Z,theta,x,y,z,qw,qx,qy,qz", rows, [](const FkRow& row) {
+    return FormatEndEffectorPose(row.pose) + "," + FormatPoseColumns(row.X_CT);
+  });
 }
 
 void WriteFkCsv(const std::string& path, const std::vector<FkRow>& rows) {

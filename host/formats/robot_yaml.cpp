@@ -5,6 +5,8 @@
 #include <numbers>
 #include <optional>
 
+#include <fmt/format.h>
+
 #include "common/formats/csv_table.h"
 #include "common/formats/file_kind.h"
 #include "common/formats/format_error.h"
@@ -81,7 +83,7 @@ std::array<int, 4> Signs(const YamlMap& map, const std::string& key) {
   std::array<int, 4> out{};
   for (size_t i = 0; i < 4; ++i) {
     if (values[i] != 1 && values[i] != -1) {
-      map.FailElement(key, i, "expected 1 or -1, got " + std::to_string(values[i]));
+      map.FailElement(key, i, fmt::format("expected 1 or -1, got {}", values[i]));
     }
     out[i] = static_cast<int>(values[i]);
   }
@@ -100,7 +102,7 @@ Model31Parameters ReadModel31(const YamlMap& map) {
                          "arm", "forearm", "h", "d"});
   Model31Parameters m31;
   for (size_t j = 0; j < 3; ++j) {
-    const std::string n = std::to_string(j + 2);
+    const std::string n = fmt::format("{}", j + 2);
     m31.P[j] = Eigen::Vector3d(ModelValue(map, "x" + n), ModelValue(map, "y" + n),
                                ModelValue(map, "z" + n));
   }
@@ -125,9 +127,7 @@ std::string List(const std::array<double, 4>& values, const std::string& field) 
 }
 
 std::string Signs(const std::array<int, 4>& values) {
-  std::string text = "[";
-  for (size_t i = 0; i < 4; ++i) text += (i ? ", " : "") + std::to_string(values[i]);
-  return text + "]";
+  return fmt::format("[{}]", fmt::join(values, ", "));
 }
 
 std::string Transform(const std::string& name, const std::string& comment,
@@ -196,7 +196,7 @@ std::string FormatRobotYaml(const RobotDescription& robot, const std::string& ki
     const Model31Parameters& m31 = *robot.model31;
     text += "model31:  # overrides the nominal Model 31 derived from model12\n";
     for (size_t j = 0; j < 3; ++j) {
-      const std::string n = std::to_string(j + 2);
+      const std::string n = fmt::format("{}", j + 2);
       text += "  x" + n + ": " + FormatDouble(m31.P[j].x(), "model31.x" + n) + "\n";
       text += "  y" + n + ": " + FormatDouble(m31.P[j].y(), "model31.y" + n) + "\n";
       text += "  z" + n + ": " + FormatDouble(m31.P[j].z(), "model31.z" + n) + "\n";

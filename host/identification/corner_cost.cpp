@@ -6,6 +6,7 @@
 #include "host/identification/corner_cost.h"
 
 #include <Eigen/LU>
+#include <fmt/core.h>
 
 #include "common/camera/camera_model.h"
 #include "common/geometry/rotation.h"
@@ -50,7 +51,7 @@ bool CornerCost::Evaluate(const ParameterVector& p, Eigen::VectorXd* r, Eigen::M
   }
   for (size_t j = 0; j < rows_.size(); ++j) {
     const DatasetRow& row = rows_[j];
-    const std::string pose = "pose " + std::to_string(row.pose_id);
+    const std::string pose = fmt::format("pose {}", row.pose_id);
     const FkResult fk = fk_.Solve(*model_, j, row, chain.X_BC, chain.X_TE);
     if (!fk.ok()) {
       if (why != nullptr) *why = pose + ": forward kinematics";

@@ -5,10 +5,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <optional>
 #include <random>
 #include <set>
-#include <sstream>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -34,10 +34,10 @@ void RequireIdentifiableInput(const KinematicModel& model, const ParameterVector
                               const std::vector<DatasetRow>& calib,
                               const IdentificationOptions& options) {
   if (calib.size() < kMinimumCalibrationPoses) {
-    throw std::invalid_argument("identification needs at least " +
-                                std::to_string(kMinimumCalibrationPoses) +
-                                " calibration poses, got " + std::to_string(calib.size()) +
-                                " (rows with set 'valid' are held out)");
+    throw std::invalid_argument(
+        fmt::format("identification needs at least {} calibration poses, got {} (rows with set "
+                    "'valid' are held out)",
+                    kMinimumCalibrationPoses, calib.size()));
   }
   for (const std::string& name : options.fixed_parameters) {
     if (start.IndexOf(name) >= 0) continue;
@@ -492,9 +492,9 @@ DatasetSplit SplitDataset(const std::vector<DatasetRow>& rows, int valid_count, 
   for (size_t i = 0; i < rows.size(); ++i) {
     (valid_index.count(i) ? split.valid : split.calib).push_back(rows[i]);
   }
-  split.how = n_valid == 0 ? "every pose in the fit"
-                           : std::to_string(n_valid) + " validation poses drawn at random (seed " +
-                                 std::to_string(seed) + ")";
+  split.how = n_valid == 0
+                  ? "every pose in the fit"
+                  : fmt::format("{} validation poses drawn at random (seed {})", n_valid, seed);
   return split;
 }
 
@@ -581,21 +581,24 @@ ModelPairOutcome IdentifyModel12Then31(const RobotDescription& robot,
 }
 
 std::string IdentificationSummary::FullReport() const {
-  std::ostringstream s;
-  s << "identification: " << (usable ? "usable" : "NOT usable") << " (" << message << "), "
-    << iterations << " iterations, " << fmt::format("{:.3f} s", seconds) << "\n";
+  std::string s = fmt::format("identification: {} ({}), {} iterations, {:.3f} s\n",
+                              usable ? "usable" : "NOT usable", message, iterations, seconds);
   for (const StageSummary& stage : stages) {
-    s << "stage " << stage.name << " on " << stage.poses << " poses: " << stage.message
-      << fmt::format(", residual RMS {:.6g} -> {:.6g}\n", stage.rms_before, stage.rms_after);
-    for (const std::string& f : stage.fixed) s << "  fixed " << f << "\n";
+    fmt::format_to(std::back_inserter(s),
+                   "stage {} on {} poses: {}, residual RMS {:.6g} -> {:.6g}\n", stage.name,
+                   stage.poses, stage.message, stage.rms_before, stage.rms_after);
+    for (const std::string& f : stage.fixed)
+      fmt::format_to(std::back_inserter(s), "  fixed {}\n", f);
     for (const MinimizerReport& m : stage.minimizers) {
-      s << "  " << m.name << ": " << m.iterations << " iterations, " << m.evaluations
-        << " evaluations, cost " << fmt::format("{:.6g} -> {:.6g}", m.initial_cost, m.final_cost)
-        << ", " << m.stop_reason << fmt::format(", {:.2f} ms\n", m.seconds * 1e3);
+      fmt::format_to(std::back_inserter(s),
+                     "  {}: {} iterations, {} evaluations, cost {:.6g} -> {:.6g}, {}, {:.2f} ms\n",
+                     m.name, m.iterations, m.evaluations, m.initial_cost, m.final_cost,
+                     m.stop_reason, m.seconds * 1e3);
     }
   }
-  s << fmt::format("final cost {:.6g}, chi2/dof {:.4g}\n", final_cost, chi2_per_dof);
-  return s.str();
+  fmt::format_to(std::back_inserter(s), "final cost {:.6g}, chi2/dof {:.4g}\n", final_cost,
+                 chi2_per_dof);
+  return s;
 }
 
 }  // namespace h4::host

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include <Eigen/LU>
+#include <fmt/core.h>
 
 #include "common/geometry/rotation.h"
 #include "common/text/enum_names.h"
@@ -17,7 +18,7 @@
 namespace h4::host {
 namespace {
 
-std::string PoseName(const DatasetRow& row) { return "pose " + std::to_string(row.pose_id); }
+std::string PoseName(const DatasetRow& row) { return fmt::format("pose {}", row.pose_id); }
 
 }  // namespace
 
@@ -38,7 +39,7 @@ IdentificationCost::IdentificationCost(CostKind kind, const KinematicModel& mode
   for (int leg = 0; leg < 4; ++leg) {
     int index = -1;
     for (size_t k = 0; k < names.size(); ++k) {
-      if (names[k] == "forearm" || names[k] == "forearm" + std::to_string(leg + 1)) {
+      if (names[k] == "forearm" || names[k] == fmt::format("forearm{}", leg + 1)) {
         index = static_cast<int>(k);
       }
     }
@@ -121,7 +122,7 @@ bool IdentificationCost::EvaluateJoint(const ParameterVector& p,
   const int n_kin = p.kinematic_count();
   for (int i = 0; i < 4; ++i) {
     if (std::abs(J_f_q[i]) < 1e-12) {
-      if (why != nullptr) *why = PoseName(row) + ": leg " + std::to_string(i + 1) + " singular";
+      if (why != nullptr) *why = fmt::format("{}: leg {} singular", PoseName(row), i + 1);
       return false;
     }
     const double s = -1.0 / J_f_q[i];

@@ -127,7 +127,7 @@ PriorAnalysis AnalyzeRotationAxis(const std::vector<DatasetRow>& rows,
   out.X_BC = X_BC_apriori;
   out.X_TE = X_TE_apriori;
   if (rows.size() < 3) {
-    out.message = "prior analysis needs at least 3 poses, got " + std::to_string(rows.size());
+    out.message = fmt::format("prior analysis needs at least 3 poses, got {}", rows.size());
     return out;
   }
   const Eigen::Matrix3d& R_BC0 = X_BC_apriori.rotation();
@@ -143,10 +143,10 @@ PriorAnalysis AnalyzeRotationAxis(const std::vector<DatasetRow>& rows,
       R_TE0 * Eigen::Vector3d::UnitZ(), options.min_rotation);
   out.rotations_compared = in_C.rotations_compared + in_T.rotations_compared;
   if (!in_C.ok || !in_T.ok) {
-    out.message =
-        "prior analysis: the poses do not turn enough about the axis (need pairs "
-        "turned by more than " +
-        std::to_string(DegreesFromRadians(options.min_rotation)) + " deg)";
+    out.message = fmt::format(
+        "prior analysis: the poses do not turn enough about the axis (need pairs turned by more "
+        "than {:f} deg)",
+        DegreesFromRadians(options.min_rotation));
     return out;
   }
   out.axis_C = in_C.axis;

@@ -169,11 +169,11 @@ void FillResidualFigures(const SolutionToSummarise& s, IdentificationResult* res
   result->calib_rms_rad =
       JointResidualRms(*identified, result->X_BC, result->X_TE, s.calib, &unreachable);
   if (unreachable > 0)
-    result->log.push_back(std::to_string(unreachable) + " calibration poses out of reach");
+    result->log.push_back(fmt::format("{} calibration poses out of reach", unreachable));
   result->valid_rms_rad =
       JointResidualRms(*identified, result->X_BC, result->X_TE, s.valid, &unreachable);
   if (unreachable > 0)
-    result->log.push_back(std::to_string(unreachable) + " validation poses out of reach");
+    result->log.push_back(fmt::format("{} validation poses out of reach", unreachable));
   if (s.valid.empty()) return;
   const BoardPoseErrors held_out =
       BoardPoseErrorsOf(*identified, result->X_BC, result->X_TE, s.valid);

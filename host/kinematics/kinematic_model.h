@@ -27,6 +27,8 @@ struct IkResult {
   JointVector q = JointVector::Zero();
   std::array<bool, 4> reachable{false, false, false, false};
   bool ok() const { return reachable[0] && reachable[1] && reachable[2] && reachable[3]; }
+  /// The 1-based numbers of the legs without a solution, as "1, 3" (empty when all reach).
+  std::string UnreachableLegNumbers() const;
 };
 
 class KinematicModel {

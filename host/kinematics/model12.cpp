@@ -5,8 +5,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <fmt/core.h>
+
 #include "common/geometry/rotation.h"
 #include "host/kinematics/leg_angle.h"
+#include "host/kinematics/leg_closure.h"
 #include "host/kinematics/model_parameters.h"
 
 namespace h4::host {
@@ -32,11 +35,7 @@ Model12::Model12(const Model12Parameters& parameters, const Assembly& assembly)
     : p_(parameters), assembly_(assembly) {}
 
 const std::vector<std::string>& Model12::ParameterNames() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> from_table;
-    for (const ModelParameter& p : Model12ParameterTable()) from_table.emplace_back(p.name);
-    return from_table;
-  }();
+  static const std::vector<std::string> names = ParameterNamesOf(Model12ParameterTable());
   return names;
 }
 
@@ -56,7 +55,7 @@ Eigen::VectorXd Model12::ToVector(const Model12Parameters& p) {
 
 Model12Parameters Model12::FromVector(const Eigen::VectorXd& xi) {
   if (xi.size() != kParameterCount) {
-    throw std::invalid_argument("Model 12 expects 13 parameters, got " + std::to_string(xi.size()));
+    throw std::invalid_argument(fmt::format("Model 12 expects 13 parameters, got {}", xi.size()));
   }
   Model12Parameters p;
   p.h = xi[kH];
@@ -84,22 +83,14 @@ Eigen::Vector3d Model12::LegVector(int leg, const EePose& x) const {
 }
 
 IkResult Model12::InverseKinematics(const EePose& x) const {
-  IkResult result;
-  if (!x.allFinite()) return result;
-  for (int leg = 0; leg < 4; ++leg) {
+  return SolveLegs(x, assembly_, p_.q0, [this, &x](int leg) {
     const auto i = static_cast<size_t>(leg);
     const Eigen::Vector3d PA = LegVector(leg, x);
-    const double G = p_.forearm * p_.forearm - p_.arm * p_.arm - PA.squaredNorm();
-    const double N = 2.0 * p_.arm * PA.z();
-    const double M =
-        -2.0 * p_.arm * (PA.x() * std::cos(p_.alpha[i]) + PA.y() * std::sin(p_.alpha[i]));
-    double phi = 0.0;
-    if (SolveLegAngle(M, N, G, assembly_.elbow[i], &phi)) {
-      result.q[leg] = WrapAngle(phi - p_.q0[i]);
-      result.reachable[i] = true;
-    }
-  }
-  return result;
+    return LegEquation{
+        .M = -2.0 * p_.arm * (PA.x() * std::cos(p_.alpha[i]) + PA.y() * std::sin(p_.alpha[i])),
+        .N = 2.0 * p_.arm * PA.z(),
+        .G = p_.forearm * p_.forearm - p_.arm * p_.arm - PA.squaredNorm()};
+  });
 }
 
 Eigen::Vector4d Model12::Constraints(const JointVector& q, const EePose& x) const {
@@ -116,24 +107,18 @@ Eigen::Vector4d Model12::Constraints(const JointVector& q, const EePose& x) cons
 void Model12::ConstraintJacobians(const JointVector& q, const EePose& x, Eigen::Matrix4d* J_f_x,
                                   Eigen::Vector4d* J_f_q_diagonal, Eigen::MatrixXd* J_f_xi) const {
   if (J_f_xi != nullptr) J_f_xi->setZero(4, kParameterCount);
-  const double theta = x[3];
   for (int leg = 0; leg < 4; ++leg) {
     const auto i = static_cast<size_t>(leg);
-    const double s = assembly_.bar[i];
     const double alpha = p_.alpha[i];
     const double phi = q[leg] + p_.q0[i];
     const Eigen::Vector3d u = ArmDirection(alpha, phi);
     const Eigen::Vector3d c = LegVector(leg, x) - p_.arm * u;
-    // d PA / d theta: the lateral bar follows the end of the rotating central bar.
-    const Eigen::Vector3d PA_theta(-s * p_.h * std::sin(theta), s * p_.h * std::cos(theta), 0.0);
     const double f_phi = -2.0 * p_.arm * c.dot(ArmDirectionByPhi(alpha, phi));
-    if (J_f_x != nullptr) {
-      J_f_x->row(leg) << 2.0 * c.x(), 2.0 * c.y(), 2.0 * c.z(), 2.0 * c.dot(PA_theta);
-    }
+    SetClosureByPose(leg, c, assembly_.bar[i], p_.h, x[3], J_f_x);
     if (J_f_q_diagonal != nullptr) (*J_f_q_diagonal)[leg] = f_phi;
     if (J_f_xi != nullptr) {
       auto row = J_f_xi->row(leg);
-      row[kH] = 2.0 * (c.x() * s * (std::cos(theta) - 1.0) + c.y() * s * std::sin(theta));
+      row[kH] = ClosureByH(c, assembly_.bar[i], x[3]);
       row[kArm] = -2.0 * c.dot(u);
       row[kForearm] = -2.0 * p_.forearm;
       row[kR] = 2.0 * (c.x() * std::cos(alpha) + c.y() * std::sin(alpha));

@@ -6,9 +6,11 @@
 #include <stdexcept>
 
 #include <Eigen/Dense>
+#include <fmt/core.h>
 
 #include "common/geometry/rotation.h"
 #include "host/kinematics/leg_angle.h"
+#include "host/kinematics/leg_closure.h"
 #include "host/kinematics/measurement_chain.h"
 #include "host/kinematics/model_parameters.h"
 
@@ -35,11 +37,7 @@ Model31::Model31(const Model31Parameters& parameters, const Assembly& assembly)
 }
 
 const std::vector<std::string>& Model31::ParameterNames() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> from_table;
-    for (const ModelParameter& p : Model31ParameterTable()) from_table.emplace_back(p.name);
-    return from_table;
-  }();
+  static const std::vector<std::string> names = ParameterNamesOf(Model31ParameterTable());
   return names;
 }
 
@@ -61,7 +59,7 @@ Eigen::VectorXd Model31::ToVector(const Model31Parameters& p) {
 
 Model31Parameters Model31::FromVector(const Eigen::VectorXd& xi) {
   if (xi.size() != kParameterCount) {
-    throw std::invalid_argument("Model 31 expects 31 parameters, got " + std::to_string(xi.size()));
+    throw std::invalid_argument(fmt::format("Model 31 expects 31 parameters, got {}", xi.size()));
   }
   Model31Parameters p;
   for (int j = 0; j < 3; ++j) p.P[static_cast<size_t>(j)] = xi.segment<3>(kP + 3 * j);
@@ -137,23 +135,16 @@ Eigen::Vector3d Model31::LegVector(int leg, const EePose& x) const {
 }
 
 IkResult Model31::InverseKinematics(const EePose& x) const {
-  IkResult result;
-  if (!x.allFinite()) return result;
-  for (int leg = 0; leg < 4; ++leg) {
+  return SolveLegs(x, assembly_, p_.q0, [this, &x](int leg) {
     const auto i = static_cast<size_t>(leg);
     const Eigen::Vector3d W = LegVector(leg, x);
     // |arm V + W|^2 = forearm^2 with V = sin(phi) a + cos(phi) b:
     // 2 arm (b.W) cos(phi) + 2 arm (a.W) sin(phi) = forearm^2 - arm^2 - |W|^2.
-    const double G = p_.forearm[i] * p_.forearm[i] - p_.arm[i] * p_.arm[i] - W.squaredNorm();
-    const double N = 2.0 * p_.arm[i] * axes_[i].a.dot(W);
-    const double M = 2.0 * p_.arm[i] * axes_[i].b.dot(W);
-    double phi = 0.0;
-    if (SolveLegAngle(M, N, G, assembly_.elbow[i], &phi)) {
-      result.q[leg] = WrapAngle(phi - p_.q0[i]);
-      result.reachable[i] = true;
-    }
-  }
-  return result;
+    return LegEquation{
+        .M = 2.0 * p_.arm[i] * axes_[i].b.dot(W),
+        .N = 2.0 * p_.arm[i] * axes_[i].a.dot(W),
+        .G = p_.forearm[i] * p_.forearm[i] - p_.arm[i] * p_.arm[i] - W.squaredNorm()};
+  });
 }
 
 Eigen::Vector4d Model31::Constraints(const JointVector& q, const EePose& x) const {
@@ -170,10 +161,8 @@ Eigen::Vector4d Model31::Constraints(const JointVector& q, const EePose& x) cons
 void Model31::ConstraintJacobians(const JointVector& q, const EePose& x, Eigen::Matrix4d* J_f_x,
                                   Eigen::Vector4d* J_f_q_diagonal, Eigen::MatrixXd* J_f_xi) const {
   if (J_f_xi != nullptr) J_f_xi->setZero(4, kParameterCount);
-  const double theta = x[3];
   for (int leg = 0; leg < 4; ++leg) {
     const auto i = static_cast<size_t>(leg);
-    const double s = assembly_.bar[i];
     const double arm = p_.arm[i];
     const LegAxes& axes = axes_[i];
     const double phi = q[leg] + p_.q0[i];
@@ -182,11 +171,8 @@ void Model31::ConstraintJacobians(const JointVector& q, const EePose& x, Eigen::
     const Eigen::Vector3d& b = axes.b;
     const Eigen::Vector3d V = sp * a + cp * b;
     const Eigen::Vector3d c = arm * V + LegVector(leg, x);
-    const Eigen::Vector3d W_theta(-s * p_.h * std::sin(theta), s * p_.h * std::cos(theta), 0.0);
     const double f_phi = 2.0 * arm * c.dot(cp * a - sp * b);
-    if (J_f_x != nullptr) {
-      J_f_x->row(leg) << 2.0 * c.x(), 2.0 * c.y(), 2.0 * c.z(), 2.0 * c.dot(W_theta);
-    }
+    SetClosureByPose(leg, c, assembly_.bar[i], p_.h, x[3], J_f_x);
     if (J_f_q_diagonal != nullptr) (*J_f_q_diagonal)[leg] = f_phi;
     if (J_f_xi == nullptr) continue;
     auto row = J_f_xi->row(leg);
@@ -196,7 +182,7 @@ void Model31::ConstraintJacobians(const JointVector& q, const EePose& x, Eigen::
     row[kQ0 + leg] = f_phi;
     row[kArm + leg] = 2.0 * c.dot(V);
     row[kForearm + leg] = -2.0 * p_.forearm[i];
-    row[kH] = 2.0 * (c.x() * s * (std::cos(theta) - 1.0) + c.y() * s * std::sin(theta));
+    row[kH] = ClosureByH(c, assembly_.bar[i], x[3]);
     row[kD] = 2.0 * c.y();
   }
 }

@@ -60,6 +60,12 @@ std::span<const ModelParameter> Model12ParameterTable() { return kModel12; }
 
 std::span<const ModelParameter> Model31ParameterTable() { return kModel31; }
 
+std::vector<std::string> ParameterNamesOf(std::span<const ModelParameter> table) {
+  std::vector<std::string> names;
+  for (const ModelParameter& p : table) names.emplace_back(p.name);
+  return names;
+}
+
 std::optional<ParameterKind> ModelParameterKind(std::string_view name) {
   if (const std::optional<ParameterKind> kind = KindInTables(name)) return kind;
   // A family's name is its first member's without the index: alpha -> alpha1, q0 -> q01.

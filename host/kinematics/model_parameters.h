@@ -6,7 +6,9 @@
 
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace h4 {
 
@@ -29,6 +31,9 @@ std::span<const ModelParameter> Model12ParameterTable();
 
 /// Model 31 (calibration model): x2..z4, psi1..4, beta1..4, q01..4, arm1..4, forearm1..4, h, d.
 std::span<const ModelParameter> Model31ParameterTable();
+
+/// The names of a table's parameters, in its order (a model's parameter_names()).
+std::vector<std::string> ParameterNamesOf(std::span<const ModelParameter> table);
 
 /// The kind of a parameter of either model, or of a family of them named without its index
 /// ("alpha", "q0", "arm": robot.yaml's keys); nullopt for any other name.

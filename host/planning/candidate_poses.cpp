@@ -8,6 +8,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "common/text/invalid_reason.h"
 #include "common/units.h"
 #include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/measurement_chain.h"
@@ -17,32 +18,28 @@
 namespace h4::host {
 
 bool CandidateOptions::IsValid(std::string* why) const {
-  auto fail = [why](const std::string& text) {
-    if (why) *why = text;
-    return false;
-  };
-  if (!centre.allFinite()) return fail("centre must be finite");
+  if (!centre.allFinite()) return Invalid(why, "centre must be finite");
   if (!half_extent.allFinite() || (half_extent.array() < 0.0).any()) {
-    return fail("half_extent must be finite and >= 0");
+    return Invalid(why, "half_extent must be finite and >= 0");
   }
-  if (!(position_step > 1e-4)) return fail("position_step must be > 0.1 mm");
+  if (!(position_step > 1e-4)) return Invalid(why, "position_step must be > 0.1 mm");
   if ((half_extent.array() / position_step).maxCoeff() > 200.0) {
-    return fail("half_extent / position_step must be <= 200 per axis");
+    return Invalid(why, "half_extent / position_step must be <= 200 per axis");
   }
-  if (theta.empty()) return fail("theta must hold at least one angle");
+  if (theta.empty()) return Invalid(why, "theta must hold at least one angle");
   for (double t : theta) {
     if (!std::isfinite(t) || std::abs(t) > std::numbers::pi)
-      return fail("theta must be within +-pi rad");
+      return Invalid(why, "theta must be within +-pi rad");
   }
   if (joint_range && (!joint_range->allFinite() || (*joint_range)[0] >= (*joint_range)[1])) {
-    return fail("joint_range must be finite with min < max");
+    return Invalid(why, "joint_range must be finite with min < max");
   }
-  if (!(image_margin_px >= 0.0)) return fail("image_margin_px must be >= 0");
+  if (!(image_margin_px >= 0.0)) return Invalid(why, "image_margin_px must be >= 0");
   if (!(max_tilt > 0.0 && max_tilt < std::numbers::pi / 2))
-    return fail("max_tilt must be in (0, pi/2)");
-  if (!(max_theta_gain > 0.0)) return fail("max_theta_gain must be > 0");
+    return Invalid(why, "max_tilt must be in (0, pi/2)");
+  if (!(max_theta_gain > 0.0)) return Invalid(why, "max_theta_gain must be > 0");
   if (!(min_depth > 0.0 && max_depth > min_depth)) {
-    return fail("depth range must satisfy 0 < min_depth < max_depth");
+    return Invalid(why, "depth range must satisfy 0 < min_depth < max_depth");
   }
   return true;
 }

@@ -9,19 +9,18 @@
 #include <stdexcept>
 
 #include <Eigen/Cholesky>
+#include <fmt/core.h>
+
+#include "common/text/invalid_reason.h"
 
 namespace h4::host {
 
 bool BoundOptions::IsValid(std::string* why) const {
-  auto fail = [why](const std::string& text) {
-    if (why) *why = text;
-    return false;
-  };
-  if (pose_count < 1) return fail("pose_count must be >= 1");
-  if (max_iterations < 0) return fail("max_iterations must be >= 0");
-  if (!(tolerance >= 0.0 && tolerance < 1.0)) return fail("tolerance must be in [0, 1)");
+  if (pose_count < 1) return Invalid(why, "pose_count must be >= 1");
+  if (max_iterations < 0) return Invalid(why, "max_iterations must be >= 0");
+  if (!(tolerance >= 0.0 && tolerance < 1.0)) return Invalid(why, "tolerance must be in [0, 1)");
   if (!(support_weight > 0.0 && support_weight <= 1.0)) {
-    return fail("support_weight must be in (0, 1]");
+    return Invalid(why, "support_weight must be in (0, 1]");
   }
   return true;
 }
@@ -147,14 +146,13 @@ void CheckArguments(const std::vector<const InformationModel*>& models, int cand
   if (!options.IsValid(&why)) throw std::invalid_argument("bound options: " + why);
   if (models.empty()) throw std::invalid_argument("design bound: no information model");
   if (candidate_count < 1 || candidate_count > models.front()->pose_count()) {
-    throw std::invalid_argument("design bound: " + std::to_string(candidate_count) +
-                                " candidates of " + std::to_string(models.front()->pose_count()) +
-                                " poses");
+    throw std::invalid_argument(fmt::format("design bound: {} candidates of {} poses",
+                                            candidate_count, models.front()->pose_count()));
   }
   if (options.distinct && options.pose_count > candidate_count) {
-    throw std::invalid_argument("design bound: " + std::to_string(options.pose_count) +
-                                " distinct poses asked of " + std::to_string(candidate_count) +
-                                " candidates");
+    throw std::invalid_argument(
+        fmt::format("design bound: {} distinct poses asked of {} candidates", options.pose_count,
+                    candidate_count));
   }
   for (int j : options.existing) {
     if (j < candidate_count || j >= models.front()->pose_count()) {

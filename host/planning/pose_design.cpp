@@ -9,18 +9,17 @@
 #include <stdexcept>
 
 #include <Eigen/Cholesky>
+#include <fmt/core.h>
+
+#include "common/text/invalid_reason.h"
 
 namespace h4::host {
 
 bool DesignOptions::IsValid(std::string* why) const {
-  auto fail = [why](const std::string& text) {
-    if (why) *why = text;
-    return false;
-  };
-  if (pose_count < 1) return fail("pose_count must be >= 1");
-  if (max_exchanges < 0) return fail("max_exchanges must be >= 0");
-  if (restarts < 1) return fail("restarts must be >= 1");
-  if (!(ridge > 0.0 && ridge < 1.0)) return fail("ridge must be in (0, 1)");
+  if (pose_count < 1) return Invalid(why, "pose_count must be >= 1");
+  if (max_exchanges < 0) return Invalid(why, "max_exchanges must be >= 0");
+  if (restarts < 1) return Invalid(why, "restarts must be >= 1");
+  if (!(ridge > 0.0 && ridge < 1.0)) return Invalid(why, "ridge must be in (0, 1)");
   return true;
 }
 
@@ -177,9 +176,8 @@ Design PlanDOptimal(const InformationModel& info, int candidate_count,
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument("design options: " + why);
   if (candidate_count > info.pose_count() || options.pose_count > candidate_count) {
-    throw std::invalid_argument("pose planning: " + std::to_string(options.pose_count) +
-                                " poses asked of " + std::to_string(candidate_count) +
-                                " candidates");
+    throw std::invalid_argument(fmt::format("pose planning: {} poses asked of {} candidates",
+                                            options.pose_count, candidate_count));
   }
   for (int j : options.existing) {
     if (j < candidate_count || j >= info.pose_count()) {

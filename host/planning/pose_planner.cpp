@@ -7,6 +7,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "common/text/invalid_reason.h"
 #include "host/identification/verdict.h"
 #include "host/simulation/dataset_simulator.h"
 #include "host/simulation/true_robot.h"
@@ -34,21 +35,17 @@ PosePlan ReachableGridPoses(const RobotDescription& robot, std::vector<int64_t>*
 }  // namespace
 
 bool TargetRegion::IsValid(std::string* why) const {
-  auto fail = [why](const std::string& text) {
-    if (why) *why = text;
-    return false;
-  };
-  if (!centre.allFinite()) return fail("the target region's centre must be finite");
+  if (!centre.allFinite()) return Invalid(why, "the target region's centre must be finite");
   if (!half_extent.allFinite() || (half_extent.array() < 0.0).any()) {
-    return fail("the target region's half extent must be finite and >= 0");
+    return Invalid(why, "the target region's half extent must be finite and >= 0");
   }
   if (!(std::isfinite(theta_min) && std::isfinite(theta_max) && theta_min <= theta_max)) {
-    return fail("the target region's theta range must be finite with min <= max");
+    return Invalid(why, "the target region's theta range must be finite with min <= max");
   }
   if (positions_per_axis < 1 || positions_per_axis > 20) {
-    return fail("the target region's positions_per_axis must be in 1..20");
+    return Invalid(why, "the target region's positions_per_axis must be in 1..20");
   }
-  if (theta_count < 1 || theta_count > 20) return fail("theta_count must be in 1..20");
+  if (theta_count < 1 || theta_count > 20) return Invalid(why, "theta_count must be in 1..20");
   return true;
 }
 

@@ -1,6 +1,8 @@
 // Whether the robot will take a plan's poses; see reach_check.h.
 #include "host/planning/reach_check.h"
 
+#include <algorithm>
+
 #include <spdlog/fmt/fmt.h>
 
 #include "common/units.h"
@@ -11,13 +13,8 @@ namespace {
 
 // "leg 2" or "legs 1, 3": the legs whose closed-form inverse kinematics has no solution.
 std::string UnreachableLegs(const IkResult& ik) {
-  std::string legs;
-  int count = 0;
-  for (size_t i = 0; i < ik.reachable.size(); ++i) {
-    if (ik.reachable[i]) continue;
-    legs += (count++ > 0 ? ", " : "") + std::to_string(i + 1);
-  }
-  return (count > 1 ? "legs " : "leg ") + legs;
+  const auto count = std::count(ik.reachable.begin(), ik.reachable.end(), false);
+  return (count > 1 ? "legs " : "leg ") + ik.UnreachableLegNumbers();
 }
 
 }  // namespace

@@ -4,7 +4,7 @@
 #include "host/report/html_report.h"
 
 #include <filesystem>
-#include <sstream>
+#include <iterator>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -251,22 +251,24 @@ std::string FormatHtmlReport(const ValidationInputs& in, const ValidationReport&
 
   // The verdict and the figures that decide it first (with each result's version, date and
   // inputs), then how the report was made, the contents, the details.
-  std::ostringstream html;
-  html << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-       << "<title>h4cal calibration report</title>\n<style>" << kStyle << "</style>\n"
-       << "</head>\n<body>\n<h1>H4 calibration report</h1>\n"
-       << Section("verdict", "Verdict", VerdictSection(in))
-       << "<p>Validation after Renaud et al., ICRA 2003, section IV.D. Made by <code>"
-       << MarkupEscape(command) << "</code>."
-       << (report.paper_scenario
-               ? " <strong>Paper scenario</strong>: the paper's published numbers (rows "
-                 "marked paper) stand beside ours."
-               : "")
-       << " Lengths in mm and angles in deg, except the paper's Tables 2-4, in its m and "
-          "rad.</p>\n"
-       << sections.TableOfContents() << sections.Html();
-  html << "</body>\n</html>\n";
-  return html.str();
+  std::string html = fmt::format(
+      "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+      "<title>h4cal calibration report</title>\n<style>{}</style>\n"
+      "</head>\n<body>\n<h1>H4 calibration report</h1>\n",
+      kStyle);
+  html += Section("verdict", "Verdict", VerdictSection(in));
+  fmt::format_to(std::back_inserter(html),
+                 "<p>Validation after Renaud et al., ICRA 2003, section IV.D. Made by "
+                 "<code>{}</code>.{} Lengths in mm and angles in deg, except the paper's Tables "
+                 "2-4, in its m and rad.</p>\n",
+                 MarkupEscape(command),
+                 report.paper_scenario
+                     ? " <strong>Paper scenario</strong>: the paper's published numbers (rows "
+                       "marked paper) stand beside ours."
+                     : "");
+  html += sections.TableOfContents() + sections.Html();
+  html += "</body>\n</html>\n";
+  return html;
 }
 
 std::string WriteHtmlReport(const std::string& dir, const ValidationInputs& inputs,

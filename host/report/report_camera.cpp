@@ -3,7 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <iterator>
 
 #include <spdlog/fmt/fmt.h>
 
@@ -21,22 +21,22 @@ std::string IntrinsicValue(const std::string& name, double value) {
 }
 
 std::string RefinedRows(const ResultCamera& camera) {
-  std::ostringstream t;
+  std::string t;
   for (const ResultCameraParameter& p : camera.parameters) {
     const double change = p.value - p.file_value;
     if (!p.std) {
-      t << Row(MarkupEscape(p.name),
+      t += Row(MarkupEscape(p.name),
                {IntrinsicValue(p.name, p.file_value), IntrinsicValue(p.name, p.value), "", "",
                 "kept: " + MarkupEscape(p.fixed_reason.empty() ? "fixed" : p.fixed_reason)},
                "fixed");
       continue;
     }
-    t << Row(MarkupEscape(p.name),
+    t += Row(MarkupEscape(p.name),
              {IntrinsicValue(p.name, p.file_value), IntrinsicValue(p.name, p.value),
               IntrinsicValue(p.name, change), IntrinsicValue(p.name, *p.std),
               *p.std > 0 ? fmt::format("{:+.1f}", change / *p.std) : ""});
   }
-  return t.str();
+  return t;
 }
 
 // The camera share at each map point: what the full variance has beyond the camera-exact
@@ -59,46 +59,46 @@ std::vector<double> SharePerPoint(const AccuracyMap& full, const AccuracyMap& ex
 }  // namespace
 
 std::string RefinedIntrinsicsTable(const ValidationInputs& in) {
-  std::ostringstream t;
+  std::string t;
   for (const auto* result : {&in.result12, &in.result31}) {
     if (!result->has_value() || !(*result)->camera) continue;
     const ResultCamera& camera = *(*result)->camera;
-    t << fmt::format(
+    t += fmt::format(
         "<table>\n<caption>Model {}: {} {}x{}, refined on {} corners ({} rejected), corner "
         "residual {:.3f} px RMS per axis</caption>\n",
         ToString((*result)->model), MarkupEscape(camera.distortion_model), camera.width,
         camera.height, camera.corners, camera.rejected_corners, camera.corner_rms_px);
-    t << Header({"intrinsic", "camera file", "refined", "refined - file", "1 sigma",
-                 "(refined - file) / sigma"})
-      << RefinedRows(camera) << "</table>\n";
+    t += Header({"intrinsic", "camera file", "refined", "refined - file", "1 sigma",
+                 "(refined - file) / sigma"}) +
+         RefinedRows(camera) + "</table>\n";
   }
-  return t.str();
+  return t;
 }
 
 std::string CameraShareTable(const ValidationReport& report) {
-  std::ostringstream t;
+  std::string t;
   bool any = false;
   for (const ModelValidation& v : report.models) {
     if (!v.accuracy_map || !v.accuracy_map_camera_exact) continue;
     const std::vector<double> share = SharePerPoint(*v.accuracy_map, *v.accuracy_map_camera_exact);
     if (share.empty()) continue;
     if (!any) {
-      t << "<table>\n"
-        << Header({"", "median 1-sigma (mm)", "largest (mm)", "intrinsics exact: median (mm)",
+      t += "<table>\n" +
+           Header({"", "median 1-sigma (mm)", "largest (mm)", "intrinsics exact: median (mm)",
                    "largest (mm)", "camera's share: median (mm)", "largest (mm)"});
       any = true;
     }
     std::vector<double> sorted = share;
     std::sort(sorted.begin(), sorted.end());
     const auto mm = [](double m) { return fmt::format("{:.4f}", m * 1e3); };
-    t << Row(MarkupEscape(v.label),
+    t += Row(MarkupEscape(v.label),
              {mm(v.accuracy_map->MedianPositionSigma()), mm(v.accuracy_map->MaxPositionSigma()),
               mm(v.accuracy_map_camera_exact->MedianPositionSigma()),
               mm(v.accuracy_map_camera_exact->MaxPositionSigma()), mm(sorted[sorted.size() / 2]),
               mm(sorted.back())});
   }
-  if (any) t << "</table>\n";
-  return t.str();
+  if (any) t += "</table>\n";
+  return t;
 }
 
 std::string CornerResidualSummary(const CornerResidualMap& map) {

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <iterator>
 #include <utility>
 
 #include <spdlog/fmt/fmt.h>
@@ -67,14 +67,13 @@ std::string SummaryPoses(const ValidationInputs& in, const ValidationReport& rep
 // only beside the paper's, which is a mean.
 std::string SummaryTable(const ValidationInputs& in, const ValidationReport& report) {
   const bool paper = report.paper_scenario;
-  std::ostringstream t;
-  t << "<table>\n"
-    << Header(paper ? std::vector<std::string>{"figure", "ours", "paper"}
-                    : std::vector<std::string>{"figure", "ours"});
+  std::string t;
+  t += "<table>\n" + Header(paper ? std::vector<std::string>{"figure", "ours", "paper"}
+                                  : std::vector<std::string>{"figure", "ours"});
   auto add = [&](const std::string& what, const std::string& ours, const std::string& theirs) {
     std::vector<std::string> cells{ours};
     if (paper) cells.push_back(theirs);
-    t << Row(what, cells);
+    t += Row(what, cells);
   };
   for (const auto& v : report.models) {
     if (!v.cross_validation) continue;
@@ -106,17 +105,19 @@ std::string SummaryTable(const ValidationInputs& in, const ValidationReport& rep
   add("4-DoF check: rotation axis spread (deg)",
       report.prior.ok ? fmt::format("{:.3f}", report.prior.axis_spread_deg) : "not computed",
       fmt::format("{:.2f}", paper::kAxisSpreadDeg));
-  t << "</table>\n" << SummaryPoses(in, report);
-  return t.str();
+  t += "</table>\n" + SummaryPoses(in, report);
+  return t;
 }
 
 std::string ParameterTables(const ValidationInputs& in) {
-  std::ostringstream t;
+  std::string t;
   for (const auto* result : {&in.result12, &in.result31}) {
     if (!*result) continue;
     const IdentificationResult& r = **result;
-    t << "<h3>" << ModelLabel(r.model) << "</h3>\n<table>\n"
-      << Header({"parameter", "unit", "a priori", "identified", "one sigma", "status",
+    t += "<h3>" + ModelLabel(r.model) +
+         "</h3>\n"
+         "<table>\n" +
+         Header({"parameter", "unit", "a priori", "identified", "one sigma", "status",
                  "reason fixed"});
     for (const ResultParameter& p : r.parameters) {
       std::string reason;
@@ -124,23 +125,22 @@ std::string ParameterTables(const ValidationInputs& in) {
         if (f.name == p.name) reason = f.reason;
       }
       const double std_scale = IsAngleParameter(p.name) ? DegreesFromRadians(1.0) : 1e3;
-      t << Row(
+      t += Row(
           MarkupEscape(p.name),
           {IsAngleParameter(p.name) ? "deg" : "mm", ParameterValue(p.name, p.apriori),
            ParameterValue(p.name, p.value), p.std ? fmt::format("{:.2g}", *p.std * std_scale) : "-",
            p.fixed ? "fixed" : "identified", MarkupEscape(reason)},
           p.fixed ? "fixed" : "");
     }
-    t << "</table>\n";
+    t += "</table>\n";
   }
-  return t.str();
+  return t;
 }
 
 std::string IdentifiabilityTable(const ValidationInputs& in) {
-  std::ostringstream t;
-  t << "<table>\n"
-    << Header({"model", "estimator", "condition number (scaled)", "fixed parameters",
-               "strong correlations (|rho| &gt; 0.9)"});
+  std::string t;
+  t += "<table>\n" + Header({"model", "estimator", "condition number (scaled)", "fixed parameters",
+                             "strong correlations (|rho| &gt; 0.9)"});
   for (const auto* result : {&in.result12, &in.result31}) {
     if (!*result) continue;
     const IdentificationResult& r = **result;
@@ -150,24 +150,23 @@ std::string IdentifiabilityTable(const ValidationInputs& in) {
       correlations +=
           fmt::format("{} / {}: {:.3f}<br>", MarkupEscape(c.a), MarkupEscape(c.b), c.correlation);
     }
-    t << Row(ModelLabel(r.model),
+    t += Row(ModelLabel(r.model),
              {MarkupEscape(r.estimator.empty() ? "-" : r.estimator),
               r.condition_number ? fmt::format("{:.3g}", *r.condition_number) : "-",
               fixed.empty() ? "none" : fixed, correlations.empty() ? "none" : correlations});
   }
-  t << "</table>\n";
-  return t.str();
+  t += "</table>\n";
+  return t;
 }
 
 std::string Table2(const ValidationInputs& in, const ValidationReport& report) {
-  std::ostringstream t;
-  t << "<table>\n"
-    << Header({"", "h (m)", "l (m)", "R (m)", "L (m)", "alpha1", "alpha2", "alpha3", "alpha4",
-               "q01", "q02", "q03", "q04"});
+  std::string t;
+  t += "<table>\n" + Header({"", "h (m)", "l (m)", "R (m)", "L (m)", "alpha1", "alpha2", "alpha3",
+                             "alpha4", "q01", "q02", "q03", "q04"});
   auto add = [&](const std::string& label, const Model12Parameters& p, const std::string& css) {
     std::vector<std::string> cells;
     for (double v : Table2Row(p)) cells.push_back(fmt::format("{:.4f}", v));
-    t << Row(label, cells, css);
+    t += Row(label, cells, css);
   };
   add("a priori", in.apriori.model12, "");
   if (in.result12) {
@@ -190,23 +189,23 @@ std::string Table2(const ValidationInputs& in, const ValidationReport& report) {
   if (in.truth && !in.truth->robot.model31 && !report.paper_scenario) {
     add("true (simulation)", in.truth->robot.model12, "");
   }
-  t << "</table>\n";
+  t += "</table>\n";
   if (report.paper_scenario) {
-    t << "<p>Paper scenario: the simulated true robot is the paper's identified row, so ours "
+    t += "<p>Paper scenario: the simulated true robot is the paper's identified row, so ours "
          "should match it within the measurement noise.</p>\n";
   }
-  return t.str();
+  return t;
 }
 
 std::string Table3(const ValidationReport& report) {
-  std::ostringstream t;
-  t << "<table>\n" << Header({"", "", "q1", "q2", "q3", "q4"});
+  std::string t;
+  t += "<table>\n" + Header({"", "", "q1", "q2", "q3", "q4"});
   auto add = [&](const std::string& label, const std::array<double, 4>& mean,
                  const std::array<double, 4>& rms, const std::string& css) {
     std::vector<std::string> m = Sci4(mean), r = Sci4(rms);
     m.insert(m.begin(), "mean");
     r.insert(r.begin(), "RMS");
-    t << Row(label, m, css) << Row("", r, css);
+    t += Row(label, m, css) + Row("", r, css);
   };
   const bool paper = report.paper_scenario;
   for (const auto& v : report.models) {
@@ -221,33 +220,33 @@ std::string Table3(const ValidationReport& report) {
       add(label + " (paper)", paper::kTable3Mean31, paper::kTable3Rms31, "paper");
     }
   }
-  t << "</table>\n";
-  t << fmt::format(
+  t += "</table>\n";
+  t += fmt::format(
       "<p>Residuals q~ - IK(X_BC X_CT X_TE) in rad, wrapped, {} (measured minus model, the "
       "paper's sign); mean and RMS as in the paper's table. Before calibration: the a priori "
       "Model 12 with the identified camera and board placement.</p>\n",
       EvaluatedPosesLabel(report));
-  return t.str();
+  return t;
 }
 
 std::string PositioningTable(const ValidationReport& report) {
-  std::ostringstream t;
-  t << "<table>\n"
-    << Header({"model", "poses", "position RMS (mm)", "theta RMS (deg)", "position mean (mm)",
-               "theta mean (deg)", "FK failures"});
+  std::string t;
+  t += "<table>\n" + Header({"model", "poses", "position RMS (mm)", "theta RMS (deg)",
+                             "position mean (mm)", "theta mean (deg)", "FK failures"});
   auto add = [&](const std::string& label, const PositioningError& e) {
-    t << Row(label, {std::to_string(e.poses), Mm(e.position_rms), Deg(e.theta_rms, 4),
-                     Mm(e.position_mean), Deg(e.theta_mean, 4), std::to_string(e.failed.size())});
+    t +=
+        Row(label, {fmt::format("{}", e.poses), Mm(e.position_rms), Deg(e.theta_rms, 4),
+                    Mm(e.position_mean), Deg(e.theta_mean, 4), fmt::format("{}", e.failed.size())});
   };
   add("a priori, every pose", report.apriori_all);
   for (const auto& v : report.models)
     add(v.label + ", " + EvaluatedPosesLabel(report), v.positioning);
-  t << "</table>\n<p>Forward kinematics of the encoder readings against the measured "
+  t += "</table>\n<p>Forward kinematics of the encoder readings against the measured "
        "end-effector pose X_BC X_CT X_TE.</p>\n";
   if (report.paper_scenario) {
-    t << "<p>Paper: a priori positioning error 26 mm and 0.022 rad (1.26 deg), mean.</p>\n";
+    t += "<p>Paper: a priori positioning error 26 mm and 0.022 rad (1.26 deg), mean.</p>\n";
   }
-  return t.str();
+  return t;
 }
 
 namespace {
@@ -266,39 +265,38 @@ std::pair<double, double> SliceSigmas(const AccuracyMap& map, double z, double t
 }  // namespace
 
 std::string AccuracyMapTable(const ValidationReport& report) {
-  std::ostringstream t;
+  std::string t;
   for (const ModelValidation& v : report.models) {
     if (!v.accuracy_map) continue;
     const AccuracyMap& map = *v.accuracy_map;
-    t << "<table>\n"
-      << Header({v.label + ": Z from the centre (mm)", "theta (deg)",
-                 "median 1-sigma position error (mm)", "largest (mm)"});
+    t += "<table>\n" + Header({v.label + ": Z from the centre (mm)", "theta (deg)",
+                               "median 1-sigma position error (mm)", "largest (mm)"});
     for (double dz : map.options.z_offsets_m) {
       for (double theta : map.options.theta_rad) {
         const auto [median, largest] = SliceSigmas(map, map.centre[2] + dz, theta);
-        t << Row(fmt::format("{:+.0f}", dz * 1e3),
+        t += Row(fmt::format("{:+.0f}", dz * 1e3),
                  {Deg(theta, 0), fmt::format("{:.4f}", median * 1e3),
                   fmt::format("{:.4f}", largest * 1e3)});
       }
     }
-    t << fmt::format(
+    t += fmt::format(
         "</table>\n<p>{}: {} poses, median {:.4f} mm, largest {:.4f} mm; {} grid poses out of "
         "reach or singular left out.</p>\n",
         v.label, map.points.size(), map.MedianPositionSigma() * 1e3, map.MaxPositionSigma() * 1e3,
         map.left_out);
   }
-  return t.str();
+  return t;
 }
 
 std::string Table4(const ValidationReport& report) {
-  std::ostringstream t;
+  std::string t;
   const size_t runs = report.models.front().straightness.size();
   std::vector<std::string> head{""};
   for (size_t r = 0; r < runs; ++r) {
     head.push_back(fmt::format("direction {} (m)", r + 1));
     head.push_back("improvement");
   }
-  t << "<table>\n" << Header(head);
+  t += "<table>\n" + Header(head);
   const bool paper = report.paper_scenario && runs == 2;
   for (size_t m = 0; m < report.models.size(); ++m) {
     const auto& v = report.models[m];
@@ -309,7 +307,7 @@ std::string Table4(const ValidationReport& report) {
           m == 0 ? "-" : fmt::format("{:.0f} %", report.StraightnessImprovementPercent(m, r)));
     }
     const std::string label = m == 0 ? "before calibration" : "after " + v.label;
-    t << Row(label + (paper ? " (ours)" : ""), cells, "ours");
+    t += Row(label + (paper ? " (ours)" : ""), cells, "ours");
     if (!paper) continue;
     const std::array<double, 2>* theirs = m == 0                  ? &paper::kTable4Before
                                           : v.label == "Model 12" ? &paper::kTable4Model12
@@ -324,40 +322,40 @@ std::string Table4(const ValidationReport& report) {
                  : fmt::format("{:.0f} %", 100.0 * (paper::kTable4Before[r] - (*theirs)[r]) /
                                                paper::kTable4Before[r]));
     }
-    t << Row(label + " (paper)", paper_cells, "paper");
+    t += Row(label + " (paper)", paper_cells, "paper");
   }
-  t << "</table>\n<p>RMS distance of the forward-kinematics positions to their least-squares "
+  t += "</table>\n<p>RMS distance of the forward-kinematics positions to their least-squares "
        "line, the end-effector sliding along a straight ruler.</p>\n";
-  return t.str();
+  return t;
 }
 
 std::string SquareTable(const ValidationInputs& in, const ValidationReport& report) {
-  std::ostringstream t;
-  t << "<table>\n"
-    << Header({"controller", "side 1 RMS (mm)", "side 2", "side 3", "side 4", "max (mm)",
+  std::string t;
+  t += "<table>\n" +
+       Header({"controller", "side 1 RMS (mm)", "side 2", "side 3", "side 4", "max (mm)",
                "shape RMS, offset removed (mm)", "mean |reached - commanded| (mm)"});
   for (const auto& v : report.models) {
     if (!v.square) continue;
     const SquareRun& s = *v.square;
     double max = 0.0;
     for (const auto& side : s.sides) max = std::max(max, side.max);
-    t << Row(v.label, {Mm(s.sides[0].rms), Mm(s.sides[1].rms), Mm(s.sides[2].rms),
+    t += Row(v.label, {Mm(s.sides[0].rms), Mm(s.sides[1].rms), Mm(s.sides[2].rms),
                        Mm(s.sides[3].rms), Mm(max), Mm(s.shape_rms), Mm(s.mean_position_error)});
   }
   for (const auto& m : report.measured_squares) {
     const SquareRun& s = m.run;
     double max = 0.0;
     for (const auto& side : s.sides) max = std::max(max, side.max);
-    t << Row(MarkupEscape(m.label) + " (measured)",
+    t += Row(MarkupEscape(m.label) + " (measured)",
              {Mm(s.sides[0].rms), Mm(s.sides[1].rms), Mm(s.sides[2].rms), Mm(s.sides[3].rms),
               Mm(max), Mm(s.shape_rms), Mm(s.mean_position_error)},
              "measured");
   }
-  t << "</table>\n";
+  t += "</table>\n";
   bool simulated = false;
   for (const auto& v : report.models) simulated = simulated || v.square.has_value();
   if (simulated)
-    t << fmt::format(
+    t += fmt::format(
         "<p>A {:.0f} mm square centred at ({:.0f}, {:.0f}, {:.0f}) mm in B; the controller "
         "commands Model 12 inverse kinematics of each point, the true robot reaches the forward "
         "kinematics of those joints. Side error: distance of the reached points to the "
@@ -367,7 +365,7 @@ std::string SquareTable(const ValidationInputs& in, const ValidationReport& repo
         report.paper_scenario ? " Paper: about 5 mm before calibration, under 0.5 mm after." : "");
   if (!report.measured_squares.empty() && in.square_plan) {
     const SquareOptions& sq = in.square_plan->options;
-    t << fmt::format(
+    t += fmt::format(
         "<p>Measured (rows marked measured): the robot was driven through the {} points of a "
         "{:.1f} mm square centred at ({:.1f}, {:.1f}, {:.1f}) mm in B by each controller's "
         "Model 12 inverse kinematics, and the camera measured the board at each point; the "
@@ -375,40 +373,39 @@ std::string SquareTable(const ValidationInputs& in, const ValidationReport& repo
         "camera and board placement.</p>\n",
         in.square_plan->pose_ids.size(), sq.side * 1e3, sq.centre[0] * 1e3, sq.centre[1] * 1e3,
         sq.centre[2] * 1e3);
-    t << "<table>\n"
-      << Header({"measured run", "dataset", "points measured", "missing pose ids",
-                 "offset X, Y, Z (mm)"});
+    t += "<table>\n" + Header({"measured run", "dataset", "points measured", "missing pose ids",
+                               "offset X, Y, Z (mm)"});
     for (const auto& m : report.measured_squares) {
-      t << Row(
+      t += Row(
           MarkupEscape(m.label),
           {MarkupEscape(m.dataset_name), fmt::format("{} of {}", m.run.reached.size(), m.planned),
            m.missing_ids.empty() ? "none" : MarkupEscape(PoseIdList(m.missing_ids)),
            fmt::format("{}, {}, {}", Mm(m.run.offset[0]), Mm(m.run.offset[1]),
                        Mm(m.run.offset[2]))});
     }
-    t << "</table>\n";
+    t += "</table>\n";
   }
-  return t.str();
+  return t;
 }
 
 std::string FourDofTable(const ValidationReport& report) {
-  std::ostringstream t;
+  std::string t;
   const PriorAnalysis& p = report.prior;
-  t << "<table>\n" << Header({"check", "value"});
-  t << Row("status", {p.ok ? "ok" : "not computed: " + MarkupEscape(p.message)});
-  t << Row("poses used", {std::to_string(p.poses_used)});
-  t << Row("rotation axis spread in C (deg)", {fmt::format("{:.3f}", p.axis_spread_deg)});
-  t << Row("rotation axis spread in T (deg)", {fmt::format("{:.3f}", p.axis_spread_T_deg)});
-  t << Row("axis in C",
+  t += "<table>\n" + Header({"check", "value"});
+  t += Row("status", {p.ok ? "ok" : "not computed: " + MarkupEscape(p.message)});
+  t += Row("poses used", {fmt::format("{}", p.poses_used)});
+  t += Row("rotation axis spread in C (deg)", {fmt::format("{:.3f}", p.axis_spread_deg)});
+  t += Row("rotation axis spread in T (deg)", {fmt::format("{:.3f}", p.axis_spread_T_deg)});
+  t += Row("axis in C",
            {fmt::format("({:.4f}, {:.4f}, {:.4f})", p.axis_C[0], p.axis_C[1], p.axis_C[2])});
-  t << Row("a priori camera axis correction (deg)",
+  t += Row("a priori camera axis correction (deg)",
            {fmt::format("{:.3f}", p.camera_axis_correction_deg)});
-  t << Row("a priori board axis correction (deg)",
+  t += Row("a priori board axis correction (deg)",
            {fmt::format("{:.3f}", p.board_axis_correction_deg)});
-  if (report.paper_scenario) t << Row("paper: axis spread (deg)", {"0.12"});
-  t << "</table>\n<p>All measured board rotations should turn about one axis if the robot "
+  if (report.paper_scenario) t += Row("paper: axis spread (deg)", {"0.12"});
+  t += "</table>\n<p>All measured board rotations should turn about one axis if the robot "
        "has 4 degrees of freedom (paper III.B).</p>\n";
-  return t.str();
+  return t;
 }
 
 }  // namespace h4::host

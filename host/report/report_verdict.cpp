@@ -2,7 +2,7 @@
 #include "host/report/report_verdict.h"
 
 #include <algorithm>
-#include <sstream>
+#include <iterator>
 #include <utility>
 #include <vector>
 
@@ -101,26 +101,26 @@ std::vector<std::pair<std::string, double>> InReadingOrder(
 }
 
 std::string FiguresTable(const ResultVerdict& verdict) {
-  std::ostringstream t;
-  t << "<table class=\"verdict-figures\">\n<tr><th>what the verdict was decided from</th>"
+  std::string t;
+  t += "<table class=\"verdict-figures\">\n<tr><th>what the verdict was decided from</th>"
        "<th>value</th></tr>\n";
   for (const auto& [key, value] : InReadingOrder(verdict.figures)) {
     const ReadableFigure figure = Readable(key, value);
-    t << "<tr><th title=\"" << MarkupEscape(key) << "\">" << MarkupEscape(figure.label)
-      << "</th><td>" << MarkupEscape(figure.value) << "</td></tr>\n";
+    t += "<tr><th title=\"" + MarkupEscape(key) + "\">" + MarkupEscape(figure.label) + "</th><td>" +
+         MarkupEscape(figure.value) + "</td></tr>\n";
   }
-  return t.str() + "</table>\n";
+  return t + "</table>\n";
 }
 
 std::string RejectedTable(const IdentificationResult& r) {
   if (r.rejected_details.empty()) return "<p>No pose rejected.</p>\n";
-  std::ostringstream t;
-  t << "<table class=\"rejected\">\n<tr><th>rejected pose</th><th>score</th><th>why</th></tr>\n";
+  std::string t;
+  t += "<table class=\"rejected\">\n<tr><th>rejected pose</th><th>score</th><th>why</th></tr>\n";
   for (const RejectedPose& pose : r.rejected_details) {
-    t << "<tr><th>" << pose.pose_id << "</th><td>" << fmt::format("{:.3g}", pose.score)
-      << "</td><td>" << MarkupEscape(pose.reason) << "</td></tr>\n";
+    fmt::format_to(std::back_inserter(t), "<tr><th>{}</th><td>{:.3g}</td><td>{}</td></tr>\n",
+                   pose.pose_id, pose.score, MarkupEscape(pose.reason));
   }
-  return t.str() + "</table>\n";
+  return t + "</table>\n";
 }
 
 std::string Provenance(const IdentificationResult& r) {
@@ -147,18 +147,20 @@ std::string HeldOutFigures(const IdentificationResult& r) {
 }
 
 std::string ResultVerdictBlock(const IdentificationResult& r) {
-  std::ostringstream t;
-  t << "<h3>" << ModelLabel(r.model) << "</h3>\n";
+  std::string t;
+  t += "<h3>" + ModelLabel(r.model) + "</h3>\n";
   if (!r.verdict) {
-    t << "<p class=\"note\">No verdict recorded in this result (written by an older "
+    t += "<p class=\"note\">No verdict recorded in this result (written by an older "
          "h4cal): identify again.</p>\n";
   } else {
     const bool good = r.verdict->code == "good";
-    t << "<p class=\"" << (good ? "verdict-good" : "verdict-bad") << "\"><strong>"
-      << MarkupEscape(r.verdict->code) << "</strong>: " << MarkupEscape(r.verdict->text) << "</p>\n"
-      << FiguresTable(*r.verdict);
+    fmt::format_to(std::back_inserter(t),
+                   "<p class=\"{}\"><strong>{}</strong>: {}</p>\n"
+                   "{}",
+                   (good ? "verdict-good" : "verdict-bad"), MarkupEscape(r.verdict->code),
+                   MarkupEscape(r.verdict->text), FiguresTable(*r.verdict));
   }
-  return t.str() + HeldOutFigures(r) + RejectedTable(r) + Provenance(r);
+  return t + HeldOutFigures(r) + RejectedTable(r) + Provenance(r);
 }
 
 }  // namespace

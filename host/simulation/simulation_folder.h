@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <string>
 
+#include <fmt/core.h>
+
 #include "host/kinematics/model_kind.h"
 
 namespace h4::host {
@@ -23,9 +25,7 @@ struct SimulationFolder {
   /// With `simulate --board`: the corners the poses were solved from.
   std::string corners() const { return File("corners.csv"); }
   /// The ruler runs of the straightness experiment (paper IV.D), k = 1, 2.
-  std::string straightness(int k) const {
-    return File("straightness_" + std::to_string(k) + ".csv");
-  }
+  std::string straightness(int k) const { return File(fmt::format("straightness_{}.csv", k)); }
   /// Where the walkthrough's `identify --out` puts each model's result.
   std::string result(ModelKind model) const {
     return File(std::string("result") + ToString(model) + ".json");

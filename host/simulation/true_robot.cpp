@@ -1,32 +1,12 @@
 // The simulated true robot; see true_robot.h.
 #include "host/simulation/true_robot.h"
 
-#include <random>
-
 #include "host/kinematics/model12.h"
 #include "host/kinematics/model31.h"
 #include "host/kinematics/paper_robot.h"
+#include "host/simulation/deviation_draw.h"
 
 namespace h4::host {
-namespace {
-
-class Perturber {
- public:
-  explicit Perturber(uint64_t seed) : rng_(seed) {}
-  double operator()(double value, double std) { return value + std * normal_(rng_); }
-  RigidTransform Placement(const RigidTransform& X, double translation_std, double rotation_std) {
-    Eigen::Vector3d t = X.translation(), rpy = X.rpy();
-    for (int k = 0; k < 3; ++k) t[k] = (*this)(t[k], translation_std);
-    for (int k = 0; k < 3; ++k) rpy[k] = (*this)(rpy[k], rotation_std);
-    return RigidTransform::FromTranslationRpy(t, rpy);
-  }
-
- private:
-  std::mt19937_64 rng_;
-  std::normal_distribution<double> normal_{0.0, 1.0};
-};
-
-}  // namespace
 
 std::unique_ptr<KinematicModel> SimulatedRobot::MakeModel() const {
   if (model31) return std::make_unique<Model31>(*model31, assembly);
@@ -63,7 +43,7 @@ SimulatedRobot SimulatedRobot::FromDescription(const RobotDescription& robot) {
 
 SimulatedRobot MakeTrueRobot(const RobotDescription& apriori, TrueGeometry geometry,
                              const PerturbationOptions& o) {
-  Perturber draw(o.seed);
+  NormalDeviationDraw draw(o.seed);
   SimulatedRobot truth;
   truth.assembly = apriori.assembly;
   truth.model12 = apriori.model12;

@@ -4,6 +4,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <fmt/core.h>
+
 #include "common/formats/file_output.h"
 #include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
@@ -25,8 +27,8 @@ std::string FormatTruthYaml(const SimulationTruth& truth) {
   std::string text = FormatRobotYaml(truth.robot.Description(), "true");
   text += "simulation:  # the truth behind a simulated dataset (h4cal simulate)\n";
   text += std::string("  truth_model: \"") + ToString(truth.robot.truth_model()) + "\"\n";
-  text += "  robot_seed: " + std::to_string(truth.robot_seed) + "\n";
-  text += "  dataset_seed: " + std::to_string(truth.dataset_seed) + "\n";
+  text += fmt::format("  robot_seed: {}\n", truth.robot_seed);
+  text += fmt::format("  dataset_seed: {}\n", truth.dataset_seed);
   text += "  X_B31C:  # true camera pose in B31, the frame of Model 31\n";
   text += "    translation: " + List3(X_B31C.translation(), "X_B31C.translation") + "\n";
   text += "    rpy: " + List3(X_B31C.rpy(), "X_B31C.rpy") + "\n";

@@ -3,14 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
-
 #include <numbers>
+#include <stdexcept>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 
 #include "common/formats/number_text.h"
+#include "common/text/invalid_reason.h"
 #include "host/identification/identified_robot.h"
 #include "host/identification/parameter_vector.h"
 #include "host/kinematics/forward_kinematics.h"
@@ -67,15 +67,12 @@ Eigen::Matrix4d RigidMotionRows(const EePose& x, const EePose& centre) {
 }  // namespace
 
 bool AccuracyMapOptions::IsValid(std::string* why) const {
-  const auto fail = [why](const char* what) {
-    if (why != nullptr) *why = what;
-    return false;
-  };
-  if (!(half_extent_m >= 0.0 && half_extent_m <= 1.0)) return fail("half extent must be 0-1 m");
+  if (!(half_extent_m >= 0.0 && half_extent_m <= 1.0))
+    return Invalid(why, "half extent must be 0-1 m");
   if (!(step_m > 0.0) || half_extent_m / step_m > 200.0) {
-    return fail("step must be positive and at most 200 steps per half extent");
+    return Invalid(why, "step must be positive and at most 200 steps per half extent");
   }
-  if (z_offsets_m.empty() || theta_rad.empty()) return fail("needs a Z level and a theta");
+  if (z_offsets_m.empty() || theta_rad.empty()) return Invalid(why, "needs a Z level and a theta");
   return true;
 }
 

@@ -6,20 +6,17 @@
 
 #include <Eigen/Cholesky>
 
+#include "common/text/invalid_reason.h"
 #include "host/formats/identification_result.h"
 
 namespace h4::host {
 
 bool CheckTrialOptions::IsValid(std::string* why) const {
-  auto fail = [why](const std::string& text) {
-    if (why) *why = text;
-    return false;
-  };
-  if (calibration_plan.empty()) return fail("calibration_plan is empty");
-  if (check_plan.empty()) return fail("check_plan is empty");
-  if (!(drift_sigmas >= 0.0)) return fail("drift_sigmas must be >= 0");
+  if (calibration_plan.empty()) return Invalid(why, "calibration_plan is empty");
+  if (check_plan.empty()) return Invalid(why, "check_plan is empty");
+  if (!(drift_sigmas >= 0.0)) return Invalid(why, "drift_sigmas must be >= 0");
   if (stated_noise && !(stated_noise->sigma_t > 0.0 && stated_noise->sigma_r > 0.0)) {
-    return fail("stated_noise sigmas must be positive");
+    return Invalid(why, "stated_noise sigmas must be positive");
   }
   return check.IsValid(why);
 }

@@ -7,21 +7,18 @@
 #include <Eigen/Cholesky>
 #include <spdlog/fmt/fmt.h>
 
+#include "common/text/invalid_reason.h"
 #include "common/units.h"
 #include "host/identification/identified_robot.h"
 
 namespace h4::host {
 
 bool DriftCheckOptions::IsValid(std::string* why) const {
-  auto fail = [why](const std::string& text) {
-    if (why) *why = text;
-    return false;
-  };
   if (!(pose_false_alarm > 0.0 && pose_false_alarm < 0.5)) {
-    return fail("pose_false_alarm must be in (0, 0.5)");
+    return Invalid(why, "pose_false_alarm must be in (0, 0.5)");
   }
   if (!(total_false_alarm > 0.0 && total_false_alarm < 0.5)) {
-    return fail("total_false_alarm must be in (0, 0.5)");
+    return Invalid(why, "total_false_alarm must be in (0, 0.5)");
   }
   return true;
 }
@@ -106,8 +103,8 @@ DriftCheckResult CheckForDrift(const KinematicModel& model, const ParameterVecto
   if (!options.IsValid(&why)) throw std::invalid_argument("drift check options: " + why);
   if (rows.empty()) throw std::invalid_argument("drift check: no pose to check");
   if (parameter_covariance.rows() != p.size() || parameter_covariance.cols() != p.size()) {
-    throw std::invalid_argument("drift check: an n x n parameter covariance expected, n = " +
-                                std::to_string(p.size()));
+    throw std::invalid_argument(
+        fmt::format("drift check: an n x n parameter covariance expected, n = {}", p.size()));
   }
   const int n = static_cast<int>(rows.size());
   DriftCheckResult result;

@@ -2,7 +2,9 @@
 // the measured path (see measured_square.h).
 #include "host/validation/measured_square.h"
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <stdexcept>
 #include <unordered_map>
 #include <unordered_set>
@@ -112,11 +114,9 @@ MeasuredSquareRun MeasuredSquareOf(const SquarePlan& plan, const std::vector<Dat
 }
 
 std::string PoseIdList(const std::vector<int64_t>& ids, size_t limit) {
-  std::string text;
-  for (size_t k = 0; k < ids.size() && k < limit; ++k) {
-    text += (k ? ", " : "") + std::to_string(ids[k]);
-  }
-  if (ids.size() > limit) text += fmt::format(", ... ({} in all)", ids.size());
+  const auto listed = ids.begin() + static_cast<std::ptrdiff_t>(std::min(limit, ids.size()));
+  std::string text = fmt::format("{}", fmt::join(ids.begin(), listed, ", "));
+  if (ids.size() > limit) fmt::format_to(std::back_inserter(text), ", ... ({} in all)", ids.size());
   return text;
 }
 

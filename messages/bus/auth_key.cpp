@@ -30,9 +30,9 @@ void CheckKeyFile(const std::string& path, const struct stat& info) {
   }
   const auto size = static_cast<size_t>(info.st_size);
   if (size < kMinAuthKeyBytes || size > kMaxAuthKeyBytes) {
-    Fail(path, std::to_string(size) + " bytes; expected " + std::to_string(kMinAuthKeyBytes) +
-                   ".." + std::to_string(kMaxAuthKeyBytes) +
-                   " (make one with: head -c 32 /dev/urandom > " + path + ")");
+    Fail(path,
+         fmt::format("{} bytes; expected {}..{} (make one with: head -c 32 /dev/urandom > {})",
+                     size, kMinAuthKeyBytes, kMaxAuthKeyBytes, path));
   }
 }
 

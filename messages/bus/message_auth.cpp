@@ -6,6 +6,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include <fmt/core.h>
+
 #include "common/text/enum_names.h"
 
 namespace h4::bus {
@@ -94,8 +96,8 @@ MessageAuthenticator::MessageAuthenticator(const AuthKey& key, AuthOptions optio
       sender_id_(sender_id),
       guard_(static_cast<size_t>(std::max(options_.max_senders, 1)), ForgetAfterUs(options_)) {
   if (key_.size() < kMinAuthKeyBytes) {
-    throw std::invalid_argument(key.source + ": auth key of " + std::to_string(key_.size()) +
-                                " bytes; expected at least " + std::to_string(kMinAuthKeyBytes));
+    throw std::invalid_argument(fmt::format("{}: auth key of {} bytes; expected at least {}",
+                                            key.source, key_.size(), kMinAuthKeyBytes));
   }
   std::string why;
   if (!options_.IsValid(&why)) throw std::invalid_argument(why);
