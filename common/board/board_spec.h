@@ -37,8 +37,10 @@ struct AprilGridDesign {
 };
 
 inline AprilGridDesign DesignOf(AprilGridLayout layout) {
-  if (layout == AprilGridLayout::kH4Legacy) return {1, false, false};
-  return {2, true, true};
+  if (layout == AprilGridLayout::kH4Legacy) {
+    return {.border_cells = 1, .corner_squares = false, .ids_from_bottom = false};
+  }
+  return {.border_cells = 2, .corner_squares = true, .ids_from_bottom = true};
 }
 
 struct AprilGridSpec {

@@ -127,7 +127,7 @@ bool CameraService::WantsFrames() const {
 
 void CameraService::BeginCapture(int64_t pose_id, int frames, Clock::time_point now) {
   pipeline_.Reset();
-  capture_ = Capture{pose_id, frames, 0, now};
+  capture_ = Capture{.pose_id = pose_id, .frames = frames, .received = 0, .last_progress = now};
   state_ = State::kCapturing;
 }
 

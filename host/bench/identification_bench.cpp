@@ -70,7 +70,7 @@ Problem MakeProblem(ModelKind model_kind) {
   Eigen::MatrixXd J;
   cost.Evaluate(start, &r, &J);
   AnalyzeIdentifiability(J, model_kind, {}, &start);
-  return {std::move(model), apriori, rows, start};
+  return {.model = std::move(model), .apriori = apriori, .rows = rows, .stage_start = start};
 }
 
 const Problem& GetProblem(ModelKind model_kind) {

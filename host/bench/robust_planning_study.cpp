@@ -192,7 +192,7 @@ PosePlan UniformWorkspacePoses(const SimulatedRobot& truth, int count, uint64_t 
     x[3] = 2.0 * theta_max * unit(rng);
     PlannedPose pose{static_cast<int64_t>(1000 + poses.size()), x};
     DatasetOptions exact;
-    exact.noise = NoiseOptions{0.0, 0.0, 0.0};
+    exact.noise = NoiseOptions::None();
     exact.valid_count = 0;
     if (SimulateDataset(truth, {pose}, exact).unreachable.empty()) poses.push_back(pose);
   }
@@ -202,7 +202,7 @@ PosePlan UniformWorkspacePoses(const SimulatedRobot& truth, int count, uint64_t 
 // Noise-free rows of `poses` on the truth (true joints, true board pose), without sigmas.
 std::vector<DatasetRow> TrueRows(const SimulatedRobot& truth, const PosePlan& poses) {
   DatasetOptions exact;
-  exact.noise = NoiseOptions{0.0, 0.0, 0.0};
+  exact.noise = NoiseOptions::None();
   exact.valid_count = 0;
   exact.fill_sigma = false;
   return SimulateDataset(truth, poses, exact).rows;

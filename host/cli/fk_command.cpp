@@ -79,10 +79,9 @@ int Run(const FkCommandOptions& options) {
       continue;
     }
     guess = fk.x;  // neighbouring rows are usually close: start the next one here
-    FkRow row;
-    row.pose = {j.pose_id, fk.x[0], fk.x[1], fk.x[2], fk.x[3]};
-    row.X_CT = PredictedBoardPose(robot.X_BC, fk.x, robot.X_TE);
-    rows.push_back(row);
+    rows.push_back(
+        {.pose = {.pose_id = j.pose_id, .X = fk.x[0], .Y = fk.x[1], .Z = fk.x[2], .theta = fk.x[3]},
+         .X_CT = PredictedBoardPose(robot.X_BC, fk.x, robot.X_TE)});
   }
   WriteFkCsv(options.out_path, rows);
   spdlog::info("fk with {}: {} of {} rows written to {}", description, rows.size(), joints.size(),

@@ -119,7 +119,10 @@ void Run(const SimulateOptions& options) {
   const SimulationFolder folder{dir};
   WriteDatasetCsv(folder.dataset(), dataset.rows);
   WriteRobotYaml(folder.apriori_robot(), apriori);
-  SimulationTruth truth{robot, dataset_options.noise, options.robot_seed, options.seed};
+  SimulationTruth truth{.robot = robot,
+                        .noise = dataset_options.noise,
+                        .robot_seed = options.robot_seed,
+                        .dataset_seed = options.seed};
   WriteTruthYaml(folder.truth(), truth);
 
   // The held-out poses' true joints and true board poses: `h4cal fk --result R

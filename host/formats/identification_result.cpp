@@ -269,7 +269,9 @@ void ReadExtras(const JsonValue& root, IdentificationResult* result) {
     const size_t n = list.ArraySize();
     for (size_t i = 0; i < n; ++i) {
       const JsonValue entry = list.At(i);
-      CorrelatedPair pair{entry["a"].String(), entry["b"].String(), entry["correlation"].Number()};
+      CorrelatedPair pair{.a = entry["a"].String(),
+                          .b = entry["b"].String(),
+                          .correlation = entry["correlation"].Number()};
       if (pair.correlation < -1.0 || pair.correlation > 1.0) {
         entry["correlation"].Fail("expected a correlation in [-1, 1]");
       }

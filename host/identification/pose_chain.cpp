@@ -42,7 +42,10 @@ Eigen::Matrix3d So3RightJacobianInverse(const Eigen::Vector3d& w) {
 }
 
 ChainTransforms MakeChainTransforms(const RigidTransform& X_BC, const RigidTransform& X_TE) {
-  return {X_BC, X_TE, RpyBodyRateJacobian(X_BC.rpy()), RpyBodyRateJacobian(X_TE.rpy())};
+  return {.X_BC = X_BC,
+          .X_TE = X_TE,
+          .E_bc = RpyBodyRateJacobian(X_BC.rpy()),
+          .E_te = RpyBodyRateJacobian(X_TE.rpy())};
 }
 
 MeasuredEePoseJacobians EePoseFromMeasurementWithJacobians(const RigidTransform& X_BC,

@@ -242,7 +242,7 @@ ResultVerdict DecideVerdict(const VerdictInputs& inputs, const VerdictOptions& o
   if (!decided) decided = ManyOutliers(inputs, options);
   if (!decided) decided = Good(inputs, options);
   if (verdict != nullptr) *verdict = decided->verdict;
-  return {VerdictCode(decided->verdict), decided->text, Figures(inputs)};
+  return {.code = VerdictCode(decided->verdict), .text = decided->text, .figures = Figures(inputs)};
 }
 
 }  // namespace h4::host

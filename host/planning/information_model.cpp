@@ -24,7 +24,7 @@ std::vector<DatasetRow> NoiseFreeRows(const RobotDescription& robot,
     plan.push_back({static_cast<int64_t>(j + 1), poses_B[j]});
   }
   DatasetOptions options;
-  options.noise = NoiseOptions{0.0, 0.0, 0.0};
+  options.noise = NoiseOptions::None();
   options.valid_count = 0;
   options.fill_sigma = false;  // the cost's default sigmas weight the rows
   // The a priori robot as a noise-free truth: the rows are exactly what the a priori model

@@ -20,7 +20,7 @@ namespace {
 PosePlan ReachableGridPoses(const RobotDescription& robot, std::vector<int64_t>* unreachable) {
   const PosePlan grid = GridPosePlan();
   DatasetOptions options;
-  options.noise = NoiseOptions{0.0, 0.0, 0.0};
+  options.noise = NoiseOptions::None();
   options.valid_count = 0;
   *unreachable = SimulateDataset(SimulatedRobot::FromDescription(robot), grid, options).unreachable;
   PosePlan reachable;
@@ -97,7 +97,7 @@ std::vector<char> ReachedBy(const SimulatedRobot& robot, const std::vector<EePos
     plan.push_back({static_cast<int64_t>(j), poses_B[j]});
   }
   DatasetOptions options;
-  options.noise = NoiseOptions{0.0, 0.0, 0.0};
+  options.noise = NoiseOptions::None();
   options.valid_count = 0;
   std::vector<char> reached(poses_B.size(), 1);
   for (int64_t j : SimulateDataset(robot, plan, options).unreachable) {

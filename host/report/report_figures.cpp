@@ -161,7 +161,7 @@ GnuplotPlot ResidualsPlot(const ValidationReport& report) {
     }
   }
   gp += "unset multiplot\n";
-  return GnuplotPlot{gp, 360 * static_cast<int>(n), 400};
+  return GnuplotPlot{.script = gp, .width_px = 360 * static_cast<int>(n), .height_px = 400};
 }
 
 GnuplotPlot HistogramPlot(const ValidationReport& report) {
@@ -198,7 +198,7 @@ GnuplotPlot HistogramPlot(const ValidationReport& report) {
     gp += fmt::format("plot $h{} using 1:2 with boxes lc rgb '{}'\n", m, kColours[m % 5]);
   }
   gp += "unset multiplot\n";
-  return GnuplotPlot{gp, 360 * static_cast<int>(n), 360};
+  return GnuplotPlot{.script = gp, .width_px = 360 * static_cast<int>(n), .height_px = 360};
 }
 
 GnuplotPlot StraightnessPlot(const ValidationReport& report) {
@@ -233,7 +233,7 @@ GnuplotPlot StraightnessPlot(const ValidationReport& report) {
     }
   }
   gp += "unset multiplot\n";
-  return GnuplotPlot{gp, 460 * static_cast<int>(runs), 380};
+  return GnuplotPlot{.script = gp, .width_px = 460 * static_cast<int>(runs), .height_px = 380};
 }
 
 GnuplotPlot SquarePlot(const ValidationReport& report) {
@@ -267,7 +267,7 @@ GnuplotPlot SquarePlot(const ValidationReport& report) {
       "set grid\nset size ratio -1\nset key outside bottom center font ',10'\n"
       "set xlabel 'X_B (mm)' noenhanced\nset ylabel 'Y_B (mm)' noenhanced\n";
   gp += "plot " + plots + "\n";
-  return GnuplotPlot{gp, 620, 640};
+  return GnuplotPlot{.script = gp, .width_px = 620, .height_px = 640};
 }
 
 GnuplotPlot MeasuredSquarePlot(const SquarePlan& plan, const ValidationReport& report) {
@@ -321,7 +321,7 @@ GnuplotPlot MeasuredSquarePlot(const SquarePlan& plan, const ValidationReport& r
   gp += fmt::format("set xtics {}\n", plan.options.points_per_side);
   gp += "plot " + distances + "\n";
   gp += "unset multiplot\n";
-  return GnuplotPlot{gp, 1000, 560};
+  return GnuplotPlot{.script = gp, .width_px = 1000, .height_px = 560};
 }
 
 GnuplotPlot AccuracyMapPlot(const AccuracyMap& map, const std::string& label,
@@ -378,7 +378,9 @@ GnuplotPlot AccuracyMapPlot(const AccuracyMap& map, const std::string& label,
     }
   }
   gp += "unset multiplot\n";
-  return GnuplotPlot{gp, 320 * static_cast<int>(levels), 320 * static_cast<int>(thetas)};
+  return GnuplotPlot{.script = gp,
+                     .width_px = 320 * static_cast<int>(levels),
+                     .height_px = 320 * static_cast<int>(thetas)};
 }
 
 GnuplotPlot CornerResidualPlot(const CornerResidualMap& map) {
@@ -414,7 +416,7 @@ GnuplotPlot CornerResidualPlot(const CornerResidualMap& map) {
       "plot $cells using 1:2:3:4:5 with boxxyerror fs solid 1.0 noborder lc palette, "
       "$arrows using 1:2:3:4 with vectors head filled size screen 0.008,20 lw 1.5 lc rgb "
       "'black'\n";
-  return GnuplotPlot{gp, 760, 600};
+  return GnuplotPlot{.script = gp, .width_px = 760, .height_px = 600};
 }
 
 GnuplotPlot BoardCoveragePlot(const std::vector<DatasetRow>& rows,
@@ -466,8 +468,10 @@ GnuplotPlot BoardCoveragePlot(const std::vector<DatasetRow>& rows,
   }
   gp += "\n";
   const int width = 760;
-  return GnuplotPlot{gp, width,
-                     std::max(300, width * camera.height / std::max(camera.width, 1) + 80)};
+  return GnuplotPlot{
+      .script = gp,
+      .width_px = width,
+      .height_px = std::max(300, width * camera.height / std::max(camera.width, 1) + 80)};
 }
 
 }  // namespace h4::host

@@ -21,6 +21,9 @@ struct NoiseOptions {
   double sigma_r = RadiansFromDegrees(0.03);  ///< X_CT rotation, rad (0.03 deg),
                                               ///< as R_CT Exp(n): in T, as PoseError measures it
   double sigma_q = 2e-5;                      ///< encoder readings, rad
+
+  /// Exact measurements: the board poses and joints as the robot holds them.
+  static NoiseOptions None() { return {.sigma_t = 0.0, .sigma_r = 0.0, .sigma_q = 0.0}; }
 };
 
 struct DatasetOptions {

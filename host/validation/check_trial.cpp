@@ -61,7 +61,7 @@ std::vector<DatasetRow> SimulateRows(const SimulatedRobot& robot, const PosePlan
 std::vector<DatasetRow> NoiseFreeRows(const SimulatedRobot& robot, const PosePlan& plan,
                                       const CheckTrialOptions& trial) {
   DatasetOptions options;
-  options.noise = NoiseOptions{0.0, 0.0, 0.0};
+  options.noise = NoiseOptions::None();
   options.valid_count = 0;
   return WithStatedSigmas(SimulateDataset(robot, plan, options).rows, StatedNoise(trial));
 }
