@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "common/text/invalid_reason.h"
+
 namespace h4::cam {
 namespace {
 
@@ -32,21 +34,17 @@ double Table(const std::vector<double>& table, double x) {
 }
 
 bool ResponseIsValid(const RenderOptions& o, std::string* why) {
-  auto fail = [why](const std::string& message) {
-    if (why != nullptr) *why = message;
-    return false;
-  };
   if (o.response == ResponseCurve::kGamma && !InRange(o.response_gamma, 0.1, 10)) {
-    return fail(fmt::format("response gamma {:g}: expected 0.1..10", o.response_gamma));
+    return Invalid(why, fmt::format("response gamma {:g}: expected 0.1..10", o.response_gamma));
   }
   if (o.response == ResponseCurve::kTable) {
-    if (o.response_table.size() < 2) return fail("response table: expected >= 2 values");
+    if (o.response_table.size() < 2) return Invalid(why, "response table: expected >= 2 values");
     for (size_t k = 0; k < o.response_table.size(); ++k) {
       if (!InRange(o.response_table[k], 0, 1)) {
-        return fail(fmt::format("response table value {}: expected 0..1", k));
+        return Invalid(why, fmt::format("response table value {}: expected 0..1", k));
       }
       if (k > 0 && o.response_table[k] < o.response_table[k - 1]) {
-        return fail(fmt::format("response table value {}: must not decrease", k));
+        return Invalid(why, fmt::format("response table value {}: must not decrease", k));
       }
     }
   }
@@ -75,41 +73,40 @@ RenderOptions RenderOptions::Processed() {
 }
 
 bool RenderOptions::IsValid(std::string* why) const {
-  auto fail = [why](const std::string& message) {
-    if (why != nullptr) *why = message;
-    return false;
-  };
   if (samples_per_pixel < 1 || samples_per_pixel > 4096) {
-    return fail("samples_per_pixel must be 1..4096");
+    return Invalid(why, "samples_per_pixel must be 1..4096");
   }
-  if (supersampling < 1 || supersampling > 8) return fail("supersampling must be 1..8");
+  if (supersampling < 1 || supersampling > 8) return Invalid(why, "supersampling must be 1..8");
   if (!InRange(black_level, 0, 1e4) || !InRange(white_level, 0, 1e4) ||
       !InRange(background_level, 0, 1e4)) {
-    return fail("black/white/background levels must be 0..10000 grey levels");
+    return Invalid(why, "black/white/background levels must be 0..10000 grey levels");
   }
   if (!InRange(illumination_gradient, 0, 1)) {
-    return fail(fmt::format("illumination gradient {:g}: expected 0..1", illumination_gradient));
+    return Invalid(why,
+                   fmt::format("illumination gradient {:g}: expected 0..1", illumination_gradient));
   }
   if (!std::isfinite(illumination_gradient_direction_deg)) {
-    return fail("illumination gradient direction must be a finite angle in deg");
+    return Invalid(why, "illumination gradient direction must be a finite angle in deg");
   }
   if (!InRange(vignetting, 0, 0.9)) {
-    return fail(fmt::format("vignetting {:g}: expected 0..0.9", vignetting));
+    return Invalid(why, fmt::format("vignetting {:g}: expected 0..0.9", vignetting));
   }
   if (!InRange(blur_sigma_px, 0, 20)) {
-    return fail(fmt::format("blur sigma {:g} px: expected 0..20 px", blur_sigma_px));
+    return Invalid(why, fmt::format("blur sigma {:g} px: expected 0..20 px", blur_sigma_px));
   }
   if (!InRange(focus_distance, 0, 1e3)) {
-    return fail(fmt::format("focus distance {:g} m: expected 0..1000 m", focus_distance));
+    return Invalid(why, fmt::format("focus distance {:g} m: expected 0..1000 m", focus_distance));
   }
   if (!InRange(aperture_diameter, 0, 0.05)) {
-    return fail(fmt::format("aperture diameter {:g} m: expected 0..0.05 m", aperture_diameter));
+    return Invalid(why,
+                   fmt::format("aperture diameter {:g} m: expected 0..0.05 m", aperture_diameter));
   }
   if (!(full_well_electrons == 0 || InRange(full_well_electrons, 100, 1e7))) {
-    return fail(fmt::format("full well {:g} e-: expected 0 or 100..1e7", full_well_electrons));
+    return Invalid(why,
+                   fmt::format("full well {:g} e-: expected 0 or 100..1e7", full_well_electrons));
   }
   if (!InRange(noise_sigma, 0, 50)) {
-    return fail(fmt::format("read noise {:g}: expected 0..50 grey levels", noise_sigma));
+    return Invalid(why, fmt::format("read noise {:g}: expected 0..50 grey levels", noise_sigma));
   }
   return ResponseIsValid(*this, why);
 }

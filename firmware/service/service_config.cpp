@@ -10,6 +10,7 @@
 #include "common/formats/csv_table.h"
 #include "common/formats/format_error.h"
 #include "common/formats/yaml_map.h"
+#include "common/text/invalid_reason.h"
 #include "firmware/sources/frame_source_spec.h"
 
 namespace h4::cam {
@@ -104,39 +105,39 @@ std::string ServiceConfig::MessageCameraId() const {
 }
 
 bool ServiceConfig::IsValid(std::string* why) const {
-  auto fail = [why](const std::string& text) {
-    if (why) *why = text;
-    return false;
-  };
   std::string source_why;
-  if (!ParseFrameSourceSpec(source, &source_why)) return fail(source_why);
+  if (!ParseFrameSourceSpec(source, &source_why)) return Invalid(why, source_why);
   if (frames_averaged < 1 || frames_averaged > 1000) {
-    return fail(fmt::format("frames averaged {}: expected 1..1000", frames_averaged));
+    return Invalid(why, fmt::format("frames averaged {}: expected 1..1000", frames_averaged));
   }
-  if (!(free_run_hz >= 0) || free_run_hz > 100) return fail("free-run rate: expected 0..100 Hz");
+  if (!(free_run_hz >= 0) || free_run_hz > 100) {
+    return Invalid(why, "free-run rate: expected 0..100 Hz");
+  }
   if (!(heartbeat_period_s > 0) || heartbeat_period_s > 3600) {
-    return fail("heartbeat period: expected (0, 3600] s");
+    return Invalid(why, "heartbeat period: expected (0, 3600] s");
   }
   if (width_px < 1 || height_px < 1 || width_px > kMaxImageSide_px ||
       height_px > kMaxImageSide_px || int64_t{width_px} * height_px > kMaxImagePixels) {
-    return fail(fmt::format("camera stream {}x{}: expected 1..{} px a side, at most {} px",
-                            width_px, height_px, kMaxImageSide_px, kMaxImagePixels));
+    return Invalid(why, fmt::format("camera stream {}x{}: expected 1..{} px a side, at most {} px",
+                                    width_px, height_px, kMaxImageSide_px, kMaxImagePixels));
   }
   if (!(exposure_time_us >= 0 && exposure_time_us <= kMaxExposureTime_us)) {
-    return fail(fmt::format("exposure time {:g} us: expected 0..{:g} us", exposure_time_us,
-                            kMaxExposureTime_us));
+    return Invalid(why, fmt::format("exposure time {:g} us: expected 0..{:g} us", exposure_time_us,
+                                    kMaxExposureTime_us));
   }
   if (!(analogue_gain >= 1 && analogue_gain <= kMaxAnalogueGain)) {
-    return fail(
-        fmt::format("analogue gain {:g}: expected 1..{:g}", analogue_gain, kMaxAnalogueGain));
+    return Invalid(
+        why, fmt::format("analogue gain {:g}: expected 1..{:g}", analogue_gain, kMaxAnalogueGain));
   }
   if (!(frame_duration_us >= kMinFrameDuration_us && frame_duration_us <= kMaxFrameDuration_us)) {
-    return fail(fmt::format("frame duration {:g} us: expected {:g}..{:g} us", frame_duration_us,
-                            kMinFrameDuration_us, kMaxFrameDuration_us));
+    return Invalid(why, fmt::format("frame duration {:g} us: expected {:g}..{:g} us",
+                                    frame_duration_us, kMinFrameDuration_us, kMaxFrameDuration_us));
   }
-  if (!(max_spread_px > 0)) return fail("measurement max spread: expected a positive px value");
+  if (!(max_spread_px > 0)) {
+    return Invalid(why, "measurement max spread: expected a positive px value");
+  }
   std::string render_why;
-  if (!sim_render.IsValid(&render_why)) return fail("sim: " + render_why);
+  if (!sim_render.IsValid(&render_why)) return Invalid(why, "sim: " + render_why);
   return true;
 }
 

@@ -79,6 +79,26 @@ SimulatedDataset SimulateThroughCamera(const SimulateOptions& options, const Sim
   return dataset;
 }
 
+// The held-out poses' true joints and true board poses: `h4cal fk --result R
+// --joints heldout_joints.csv --compare heldout_truth.csv` scores an identification.
+// Returns how many poses are held out.
+size_t WriteHeldOutTruth(const SimulationFolder& folder, const SimulatedDataset& dataset) {
+  std::vector<JointsRow> heldout_joints;
+  std::vector<FkRow> heldout_truth;
+  for (size_t i = 0; i < dataset.rows.size(); ++i) {
+    if (dataset.rows[i].set != PoseSet::kValid) continue;
+    const SimulatedPose& t = dataset.truth[i];
+    heldout_joints.push_back({.pose_id = t.pose_id, .q = {t.q[0], t.q[1], t.q[2], t.q[3]}});
+    heldout_truth.push_back(
+        {.pose =
+             {.pose_id = t.pose_id, .X = t.x_B[0], .Y = t.x_B[1], .Z = t.x_B[2], .theta = t.x_B[3]},
+         .X_CT = t.X_CT});
+  }
+  WriteJointsCsv(folder.heldout_joints(), heldout_joints);
+  WriteFkCsv(folder.heldout_truth(), heldout_truth);
+  return heldout_joints.size();
+}
+
 void Run(const SimulateOptions& options) {
   namespace fs = std::filesystem;
   const RobotDescription apriori =
@@ -125,18 +145,7 @@ void Run(const SimulateOptions& options) {
                         .dataset_seed = options.seed};
   WriteTruthYaml(folder.truth(), truth);
 
-  // The held-out poses' true joints and true board poses: `h4cal fk --result R
-  // --joints heldout_joints.csv --compare heldout_truth.csv` scores an identification.
-  std::vector<JointsRow> heldout_joints;
-  std::vector<FkRow> heldout_truth;
-  for (size_t i = 0; i < dataset.rows.size(); ++i) {
-    if (dataset.rows[i].set != PoseSet::kValid) continue;
-    const SimulatedPose& t = dataset.truth[i];
-    heldout_joints.push_back({t.pose_id, {t.q[0], t.q[1], t.q[2], t.q[3]}});
-    heldout_truth.push_back({{t.pose_id, t.x_B[0], t.x_B[1], t.x_B[2], t.x_B[3]}, t.X_CT});
-  }
-  WriteJointsCsv(folder.heldout_joints(), heldout_joints);
-  WriteFkCsv(folder.heldout_truth(), heldout_truth);
+  const size_t heldout = WriteHeldOutTruth(folder, dataset);
 
   // The straightness experiment (paper IV.D, Table 4): the true robot slides along a
   // straight ruler in two directions while its (noisy) encoders are logged.
@@ -154,7 +163,7 @@ void Run(const SimulateOptions& options) {
   spdlog::info("simulated Model {} truth{}: {} poses ({} held out), {} out of reach",
                ToString(robot.truth_model()),
                geometry == TrueGeometry::kPaperTable2 ? " (paper Table 2)" : "",
-               dataset.rows.size(), heldout_joints.size(), dataset.unreachable.size());
+               dataset.rows.size(), heldout, dataset.unreachable.size());
   spdlog::info(
       "wrote {}/{{dataset.csv, robot.yaml, truth.yaml, heldout_joints.csv, heldout_truth.csv, "
       "straightness_1.csv, straightness_2.csv{}}}",

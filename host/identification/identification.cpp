@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "common/text/invalid_reason.h"
 #include "common/timing/clock.h"
 #include "common/units.h"
 #include "host/identification/camera_error_floor.h"
@@ -353,38 +354,46 @@ void JudgeSolution(const KinematicModel& model, const ParameterVector& apriori,
 }  // namespace
 
 bool IdentificationOptions::IsValid(std::string* why) const {
-  auto fail = [&](const std::string& message) {
-    if (why != nullptr) *why = "identification options: " + message;
-    return false;
-  };
-  if (nlopt.algorithm == "none" && !lm_polish) return fail("no minimiser (nlopt none, no LM)");
-  std::string algorithm_why;
-  if (!IsValidNloptAlgorithm(nlopt.algorithm, &algorithm_why)) return fail(algorithm_why);
-  if (!(nlopt.relative_cost_tolerance > 0) || !(nlopt.relative_step_tolerance > 0)) {
-    return fail("nlopt tolerances must be positive");
+  if (nlopt.algorithm == "none" && !lm_polish) {
+    return Invalid(why, "identification options: no minimiser (nlopt none, no LM)");
   }
-  if (nlopt.max_evaluations <= 0) return fail("nlopt.max_evaluations must be positive");
-  if (lm.max_iterations <= 0) return fail("lm.max_iterations must be positive");
+  std::string algorithm_why;
+  if (!IsValidNloptAlgorithm(nlopt.algorithm, &algorithm_why)) {
+    return Invalid(why, "identification options: " + algorithm_why);
+  }
+  if (!(nlopt.relative_cost_tolerance > 0) || !(nlopt.relative_step_tolerance > 0)) {
+    return Invalid(why, "identification options: nlopt tolerances must be positive");
+  }
+  if (nlopt.max_evaluations <= 0) {
+    return Invalid(why, "identification options: nlopt.max_evaluations must be positive");
+  }
+  if (lm.max_iterations <= 0) {
+    return Invalid(why, "identification options: lm.max_iterations must be positive");
+  }
   if (!(cost.default_sigma_t > 0) || !(cost.default_sigma_r > 0)) {
-    return fail("default sigmas must be positive");
+    return Invalid(why, "identification options: default sigmas must be positive");
   }
   if (!(identifiability.relative_singular_value_threshold > 0 &&
         identifiability.relative_singular_value_threshold < 1)) {
-    return fail("identifiability threshold must be in (0, 1)");
+    return Invalid(why, "identification options: identifiability threshold must be in (0, 1)");
   }
-  if (reject_outliers && !(outlier_factor > 1.0)) return fail("outlier_factor must exceed 1");
+  if (reject_outliers && !(outlier_factor > 1.0)) {
+    return Invalid(why, "identification options: outlier_factor must exceed 1");
+  }
   if (reject_outliers && !(outlier_chi2_limit > 0.0)) {
-    return fail("outlier_chi2_limit must be positive");
+    return Invalid(why, "identification options: outlier_chi2_limit must be positive");
   }
   if (reject_outliers && !(outlier_position_factor > 1.0)) {
-    return fail("outlier_position_factor must exceed 1");
+    return Invalid(why, "identification options: outlier_position_factor must exceed 1");
   }
-  if (std::string cv_why; !cross_validation.IsValid(&cv_why)) return fail(cv_why);
+  if (std::string cv_why; !cross_validation.IsValid(&cv_why)) {
+    return Invalid(why, "identification options: " + cv_why);
+  }
   if (!(max_rejected_fraction >= 0 && max_rejected_fraction < 1)) {
-    return fail("max_rejected_fraction must be in [0, 1)");
+    return Invalid(why, "identification options: max_rejected_fraction must be in [0, 1)");
   }
   if (!(correlation_threshold > 0 && correlation_threshold < 1)) {
-    return fail("correlation_threshold must be in (0, 1)");
+    return Invalid(why, "identification options: correlation_threshold must be in (0, 1)");
   }
   return verdict.IsValid(why);
 }

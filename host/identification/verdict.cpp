@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "common/text/enum_names.h"
+#include "common/text/invalid_reason.h"
 #include "common/units.h"
 
 namespace h4::host {
@@ -205,24 +206,32 @@ std::optional<Verdict> ParseVerdictCode(const std::string& code) {
 }
 
 bool VerdictOptions::IsValid(std::string* why) const {
-  auto fail = [&](const std::string& message) {
-    if (why != nullptr) *why = "verdict options: " + message;
-    return false;
-  };
-  if (min_poses < 1) return fail("min_poses must be at least 1");
-  if (!(min_residuals_per_parameter >= 1)) return fail("min_residuals_per_parameter must be >= 1");
-  if (!(significance > 0 && significance < 1)) return fail("significance must be in (0, 1)");
-  if (!(tolerated_reduced_chi2 >= 1)) return fail("tolerated_reduced_chi2 must be >= 1");
-  if (!(inconsistent_misfit_m > 0)) return fail("inconsistent_misfit_m must be positive");
+  if (min_poses < 1) return Invalid(why, "verdict options: min_poses must be at least 1");
+  if (!(min_residuals_per_parameter >= 1)) {
+    return Invalid(why, "verdict options: min_residuals_per_parameter must be >= 1");
+  }
+  if (!(significance > 0 && significance < 1)) {
+    return Invalid(why, "verdict options: significance must be in (0, 1)");
+  }
+  if (!(tolerated_reduced_chi2 >= 1)) {
+    return Invalid(why, "verdict options: tolerated_reduced_chi2 must be >= 1");
+  }
+  if (!(inconsistent_misfit_m > 0)) {
+    return Invalid(why, "verdict options: inconsistent_misfit_m must be positive");
+  }
   if (!(max_out_of_reach_fraction >= 0 && max_out_of_reach_fraction < 1) ||
       !(max_rejected_fraction >= 0 && max_rejected_fraction < 1)) {
-    return fail("the fractions must be in [0, 1)");
+    return Invalid(why, "verdict options: the fractions must be in [0, 1)");
   }
   if (!(max_relative_length_change > 0) || !(max_angle_change > 0)) {
-    return fail("the largest parameter changes must be positive");
+    return Invalid(why, "verdict options: the largest parameter changes must be positive");
   }
-  if (!(max_condition_number > 1)) return fail("max_condition_number must exceed 1");
-  if (!(negligible_misfit_m >= 0)) return fail("negligible_misfit_m must be >= 0");
+  if (!(max_condition_number > 1)) {
+    return Invalid(why, "verdict options: max_condition_number must exceed 1");
+  }
+  if (!(negligible_misfit_m >= 0)) {
+    return Invalid(why, "verdict options: negligible_misfit_m must be >= 0");
+  }
   return true;
 }
 
