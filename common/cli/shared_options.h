@@ -17,13 +17,18 @@
 
 namespace h4::cli {
 
-/// An option taking one of the names of `choices` (CLI11 checks it; --help lists the names
-/// as {a,b}); the command turns the text into the enum with choices.ValueNamed.
+/// The check that a value is one of the names of `choices` (--help lists them as {a,b}).
+template <typename Enum, Enum kLast>
+CLI::IsMember OneOf(const EnumNames<Enum, kLast>& choices) {
+  return CLI::IsMember(std::vector<std::string>(choices.names().begin(), choices.names().end()));
+}
+
+/// An option taking one of the names of `choices` (CLI11 checks it); the command turns the
+/// text into the enum with choices.ValueNamed.
 template <typename Enum, Enum kLast>
 CLI::Option* AddChoiceOption(CLI::App* command, const std::string& names, std::string* text,
                              const EnumNames<Enum, kLast>& choices, const std::string& what) {
-  const std::vector<std::string> allowed(choices.names().begin(), choices.names().end());
-  return command->add_option(names, *text, what)->check(CLI::IsMember(allowed));
+  return command->add_option(names, *text, what)->check(OneOf(choices));
 }
 
 /// An input file option (checked to exist); `names` as CLI11 takes them ("--new,--old").

@@ -280,8 +280,7 @@ void AddCaptureOptions(CLI::App* command, CaptureArgs* args) {
       ->delimiter(',')
       ->expected(7);
   h4::cli::AddOptionShowingDefault(command, "--sim-preset", &args->sim_preset,
-                                   "sim: clean or processed",
-                                   CLI::IsMember({"clean", "processed"}));
+                                   "sim: clean or processed", h4::cli::OneOf(kRenderPresetNames));
   h4::cli::AddOptionShowingDefault(
       command, "--sim-exposure", &args->sim_exposure,
       "sim: scale of the light (1: the preset's; above ~1.2 the white clips)",

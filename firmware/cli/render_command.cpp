@@ -153,7 +153,7 @@ void DeclareRenderCommand(CLI::App* command) {
                    "Image formation: clean (linear, Gaussian blur and noise) or processed "
                    "(a camera module's sRGB output: defocus, gradient, shot noise)")
       ->default_val(args->preset)
-      ->check(CLI::IsMember({"clean", "processed"}));
+      ->check(h4::cli::OneOf(kRenderPresetNames));
   for (const PresetOverride& flag : kPresetOverrides) {
     command->add_option(flag.names, (*args).*flag.value, flag.what)
         ->check(CLI::Range(flag.min, flag.max));

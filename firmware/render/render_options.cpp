@@ -111,14 +111,14 @@ bool RenderOptions::IsValid(std::string* why) const {
   return ResponseIsValid(*this, why);
 }
 
+RenderOptions RenderOptionsOf(RenderPreset preset) {
+  return preset == RenderPreset::kClean ? RenderOptions::Clean() : RenderOptions::Processed();
+}
+
 bool RenderPresetByName(const std::string& name, RenderOptions* options) {
-  if (name == "clean") {
-    *options = RenderOptions::Clean();
-  } else if (name == "processed") {
-    *options = RenderOptions::Processed();
-  } else {
-    return false;
-  }
+  const std::optional<RenderPreset> preset = kRenderPresetNames.ValueNamed(name);
+  if (!preset) return false;
+  *options = RenderOptionsOf(*preset);
   return true;
 }
 

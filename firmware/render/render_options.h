@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "common/text/enum_names.h"
+
 namespace h4::cam {
 
 /// How the linear signal (0..1 of full scale) becomes the output code (0..1 of 255).
@@ -78,7 +80,15 @@ struct RenderOptions {
   bool IsValid(std::string* why) const;
 };
 
-/// Sets `options` to the preset `name` ("clean" or "processed"); false for other names.
+/// The two image formations a name on the command line or in h4cam.yaml (`sim.preset`) picks.
+enum class RenderPreset { kClean, kProcessed };
+constexpr EnumNames<RenderPreset, RenderPreset::kProcessed> kRenderPresetNames = {"clean",
+                                                                                  "processed"};
+
+/// The preset's options: RenderOptions::Clean() or Processed().
+RenderOptions RenderOptionsOf(RenderPreset preset);
+
+/// Sets `options` to the preset `name` (kRenderPresetNames); false for other names.
 bool RenderPresetByName(const std::string& name, RenderOptions* options);
 
 /// Parses "linear", "srgb", "gamma:E" or "table:v0,v1,...,vn" into options->response and

@@ -103,12 +103,8 @@ void Run(const SimulateOptions& options) {
   namespace fs = std::filesystem;
   const RobotDescription apriori =
       options.robot_path.empty() ? PaperAprioriRobot() : ReadRobotYaml(options.robot_path);
-  TrueGeometry geometry = TrueGeometry::kPerturbedModel12;
-  if (options.paper || options.truth == "paper") {
-    geometry = TrueGeometry::kPaperTable2;
-  } else if (options.truth == "31") {
-    geometry = TrueGeometry::kPerturbedModel31;
-  }
+  const TrueGeometry geometry =
+      options.paper ? TrueGeometry::kPaperTable2 : *kTrueGeometryNames.ValueNamed(options.truth);
   PerturbationOptions perturbation;
   perturbation.seed = options.robot_seed;
   const SimulatedRobot robot = MakeTrueRobot(apriori, geometry, perturbation);
@@ -182,7 +178,7 @@ void DeclareSimulateCommand(CLI::App* command) {
       command, "--truth-model,--truth", &options->truth,
       "True geometry: 12 (a priori Model 12 perturbed), 31 (perturbed joint "
       "positions, axes and lengths), paper (Table 2)",
-      CLI::IsMember({"12", "31", "paper"}));
+      h4::cli::OneOf(kTrueGeometryNames));
   h4::cli::AddRobotOption(
       command, &options->robot_path,
       "A priori robot.yaml to draw the truth around (default: the paper's a priori)");

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "common/geometry/rigid_transform.h"
+#include "common/text/enum_names.h"
 #include "host/kinematics/kinematic_model.h"
 #include "host/kinematics/model_kind.h"
 #include "host/kinematics/robot_description.h"
@@ -43,11 +44,14 @@ struct SimulatedRobot {
 };
 
 enum class TrueGeometry {
-  kPaperTable2,       ///< Model 12 = Table 2 "Identified" rows (host/kinematics/paper_robot.h)
   kPerturbedModel12,  ///< a priori Model 12 perturbed (h, arm, forearm, R, alpha, q0)
   kPerturbedModel31,  ///< nominal Model 31 of the a priori perturbed (P_2..4, psi, beta,
                       ///< q0, arm_i, forearm_i, h)
+  kPaperTable2,       ///< Model 12 = Table 2 "Identified" rows (host/kinematics/paper_robot.h)
 };
+/// The names `h4cal simulate --truth-model` takes.
+constexpr EnumNames<TrueGeometry, TrueGeometry::kPaperTable2> kTrueGeometryNames = {"12", "31",
+                                                                                    "paper"};
 
 /// Standard deviations of the normal perturbations from the a priori (SI). d is never
 /// perturbed: it is identifiable only together with X_BC.ty.
