@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
@@ -72,7 +73,7 @@ TEST(CameraServiceProcessTest, ChildInNamespace) {
   if (!test::InPrivateNamespace()) GTEST_SKIP() << "only inside scripts/in-private-netns";
   const std::string binary = H4_BINARY_DIR "/firmware/h4cam";
   const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("h4cam_run_" + std::to_string(getpid()));
+      std::filesystem::temp_directory_path() / fmt::format("h4cam_run_{}", getpid());
   std::filesystem::create_directories(dir);
   const std::string board = (dir / "paper_board.yaml").string();
   const std::string camera = (dir / "camera.yaml").string();

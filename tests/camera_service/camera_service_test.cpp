@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 #include <unistd.h>
@@ -350,13 +351,13 @@ TEST(CameraServiceTest, AMeasurementThatThrowsIsACameraErrorAndTheServiceGoesOn)
 
 TEST(CameraServiceTest, DirectorySourceMeasuresImagesInNameOrderThenReportsExhaustion) {
   const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("h4cam_dir_source_" + std::to_string(getpid()));
+      std::filesystem::temp_directory_path() / fmt::format("h4cam_dir_source_{}", getpid());
   std::filesystem::create_directories(dir);
   SimSource sim(scenes::PaperBoard(), scenes::PaperCamera(), SimSourceOptions{});
   ASSERT_TRUE(sim.Open());
   sim.SetPose(scenes::RandomPoses(1, 3)[0]);
   for (int k = 0; k < 3; ++k) {
-    cv::imwrite((dir / ("frame_" + std::to_string(k) + ".png")).string(),
+    cv::imwrite((dir / fmt::format("frame_{}.png", k)).string(),
                 sim.Next(std::chrono::milliseconds(0))->image);
   }
   ImageFileSource source({dir.string()});
@@ -400,7 +401,7 @@ TEST(CameraServiceTest, RunRefusesAKeyFileOthersCanReadNamingIt) {
   const std::string binary = H4_BINARY_DIR "/firmware/h4cam";
   if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
   const std::string key =
-      (std::filesystem::temp_directory_path() / ("h4cam_key_" + std::to_string(getpid()))).string();
+      (std::filesystem::temp_directory_path() / fmt::format("h4cam_key_{}", getpid())).string();
   { std::ofstream(key) << std::string(32, 'k'); }
   std::filesystem::permissions(
       key, std::filesystem::perms::owner_read | std::filesystem::perms::owner_write |

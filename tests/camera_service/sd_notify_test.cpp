@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <string>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <poll.h>
 #include <sys/socket.h>
@@ -58,7 +59,7 @@ class FakeManager {
 
 std::string TempSocketPath(const std::string& tag) {
   return (std::filesystem::temp_directory_path() /
-          ("h4-sd-notify-" + tag + "-" + std::to_string(::getpid()) + ".sock"))
+          fmt::format("h4-sd-notify-{}-{}.sock", tag, ::getpid()))
       .string();
 }
 
@@ -102,7 +103,7 @@ TEST(SdNotify, SendsStateToThePathSocketNamedByNotifySocket) {
 }
 
 TEST(SdNotify, ReachesAnAbstractSocketNamedWithAt) {
-  FakeManager manager("@h4-sd-notify-test-" + std::to_string(::getpid()));
+  FakeManager manager(fmt::format("@h4-sd-notify-test-{}", ::getpid()));
   ASSERT_TRUE(manager.bound()) << manager.name();
 
   const NotifyResult result = SdNotifyTo(manager.name(), "WATCHDOG=1");
@@ -173,7 +174,7 @@ TEST(WatchdogInterval, IsAbsentForAnotherProcessOrMalformedValues) {
 }
 
 TEST(WatchdogInterval, ReadsTheEnvironmentSystemdSets) {
-  const std::string self = std::to_string(::getpid());
+  const std::string self = fmt::format("{}", ::getpid());
   ScopedEnv usec("WATCHDOG_USEC", "15000000");
   ScopedEnv pid("WATCHDOG_PID", self.c_str());
   const auto interval = WatchdogInterval();

@@ -17,6 +17,7 @@
 #include <set>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <h4msgs/camera_status_t.hpp>
 #include <h4msgs/capture_request_t.hpp>
@@ -1147,7 +1148,7 @@ TEST_F(CampaignTest, ARobotClockJumpSkipsThePosesWithTheReasonAndRecordsNoWrongP
 TEST(CampaignUdpm, ChildInNamespace) {
   if (!test::InPrivateNamespace()) GTEST_SKIP() << "only inside scripts/in-private-netns";
   const std::string url = "udpm://239.255.76.67:7667?ttl=0";
-  const fs::path dir = fs::temp_directory_path() / ("h4_campaign_udpm_" + std::to_string(getpid()));
+  const fs::path dir = fs::temp_directory_path() / fmt::format("h4_campaign_udpm_{}", getpid());
   fs::remove_all(dir);
   fs::create_directories(dir);
   const std::string path = (dir / "dataset.csv").string();

@@ -9,6 +9,7 @@
 #include <random>
 #include <thread>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -157,7 +158,7 @@ TEST_F(DatasetJournalTest, ASecondJournalOnTheSameFileIsRefusedNamingTheHolder) 
     const std::string what = e.what();
     EXPECT_NE(what.find(path_), std::string::npos) << what;
     EXPECT_NE(what.find("another campaign is writing it"), std::string::npos) << what;
-    EXPECT_NE(what.find("process " + std::to_string(getpid())), std::string::npos) << what;
+    EXPECT_NE(what.find(fmt::format("process {}", getpid())), std::string::npos) << what;
   }
   first.Append(Row(2));
   EXPECT_EQ(ReadDatasetCsv(path_).size(), 2u) << "the refused journal touched nothing";

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -80,7 +81,7 @@ TEST(CommandLineTest, CommandErrorIsOneLineNamingFileLineAndField) {
 // option checked the whole text as a file. The part before '#' is the file.
 TEST(CommandLineTest, TheCameraOptionTakesAKalibrCameraAfterTheFile) {
   const std::string dir = ::testing::TempDir();
-  const std::string file = dir + "h4_camchain_" + std::to_string(::getpid()) + ".yaml";
+  const std::string file = fmt::format("{}h4_camchain_{}.yaml", dir, ::getpid());
   std::ofstream(file) << "cam0: {}\n";
   const auto parses = [](const std::string& value) {
     CLI::App app{"test"};

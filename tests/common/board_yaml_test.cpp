@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "tests/support/board_specs.h"
@@ -236,8 +237,8 @@ TEST(BoardYamlErrors, NonPositiveCountsAndSizes) {
 TEST(BoardYamlErrors, BoardsTooSmallToMeasureAreRefused) {
   const auto chess = [](int cols, int rows) {
     return ReplacedOnce(
-        ReplacedOnce(kCheckerboard, "targetCols: 9", "targetCols: " + std::to_string(cols)),
-        "targetRows: 6", "targetRows: " + std::to_string(rows));
+        ReplacedOnce(kCheckerboard, "targetCols: 9", fmt::format("targetCols: {}", cols)),
+        "targetRows: 6", fmt::format("targetRows: {}", rows));
   };
   EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(chess(2, 2), "c.yaml"); }, "c.yaml", 2, "targetCols",
                         "in [3, 200], got 2"));
@@ -247,8 +248,8 @@ TEST(BoardYamlErrors, BoardsTooSmallToMeasureAreRefused) {
                         "3 x 3 inner corners; h4cam needs 12"));
   EXPECT_NO_THROW(ParseBoardYaml(chess(3, 4), "c.yaml"));
   const auto grid = [](int cols, int rows) {
-    return ReplacedOnce(ReplacedOnce(kAprilGrid, "tagCols: 6", "tagCols: " + std::to_string(cols)),
-                        "tagRows: 6", "tagRows: " + std::to_string(rows));
+    return ReplacedOnce(ReplacedOnce(kAprilGrid, "tagCols: 6", fmt::format("tagCols: {}", cols)),
+                        "tagRows: 6", fmt::format("tagRows: {}", rows));
   };
   EXPECT_TRUE(FailsWith([&] { ParseBoardYaml(grid(1, 1), "b.yaml"); }, "b.yaml", 3, "tagCols",
                         "1 x 1 tags has 4 corners; h4cam needs 12"));

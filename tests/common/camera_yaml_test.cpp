@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "common/formats/csv_table.h"
@@ -152,8 +153,9 @@ TEST(CameraYamlErrors, NameLineAndField) {
 // intrinsics_covariance: 9 x 9 (fx, fy, cx, cy, five coefficients), kept exactly; a wrong
 // size, an asymmetric, negative or non-positive-semi-definite matrix is refused by element.
 std::string CovarianceKey(const std::vector<double>& data, int n = 9) {
-  std::string text = "intrinsics_covariance: !!opencv-matrix\n   rows: " + std::to_string(n) +
-                     "\n   cols: " + std::to_string(n) + "\n   dt: d\n   data: [ ";
+  std::string text = fmt::format(
+      "intrinsics_covariance: !!opencv-matrix\n   rows: {0}\n   cols: {0}\n   dt: d\n   data: [ ",
+      n);
   for (size_t i = 0; i < data.size(); ++i) text += (i ? ", " : "") + FormatDouble(data[i], "x");
   return text + " ]\n";
 }

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <h4msgs/board_pose_t.hpp>
 #include <h4msgs/camera_status_t.hpp>
@@ -51,7 +52,7 @@ std::string LogOrDatasetText(const std::string& path) {
 
 /// Runs `args` through the shell with stdout and stderr into `output`; the exit code.
 int RunProgram(const std::string& args, std::string* output) {
-  const std::string log = fs::temp_directory_path() / ("h4_collect_" + std::to_string(getpid()));
+  const std::string log = fs::temp_directory_path() / fmt::format("h4_collect_{}", getpid());
   const int status = std::system((args + " > " + log + " 2>&1").c_str());
   *output = LogOrDatasetText(log);
   fs::remove(log);
@@ -190,7 +191,7 @@ TEST_F(CollectCommandTest, FromLogReadsPastMessagesThatDoNotDecode) {
   const std::vector<DatasetRow> rows = ReadDatasetCsv(out_);
   ASSERT_EQ(rows.size(), 3u) << output;
   for (int i = 0; i < 3; ++i) EXPECT_EQ(rows[static_cast<size_t>(i)].pose_id, i + 1);
-  EXPECT_NE(output.find(std::to_string(hostile) + " undecodable"), std::string::npos) << output;
+  EXPECT_NE(output.find(fmt::format("{} undecodable", hostile)), std::string::npos) << output;
 }
 
 /// True once another process holds the lock on `path` (polled; gives up after 20 s).
@@ -245,7 +246,7 @@ TEST_F(CollectCommandTest, ASecondCampaignOnTheSameDatasetIsRefusedAndTheFileSta
   ASSERT_TRUE(locked) << "the first campaign never locked " << out_ << ": "
                       << LogOrDatasetText(first_log);
   EXPECT_EQ(second, 1) << output;
-  EXPECT_NE(output.find("another campaign is writing it (process " + std::to_string(first)),
+  EXPECT_NE(output.find(fmt::format("another campaign is writing it (process {}", first)),
             std::string::npos)
       << output;
   EXPECT_EQ(LogOrDatasetText(out_), before);

@@ -10,6 +10,7 @@
 #include <regex>
 #include <sstream>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -252,7 +253,7 @@ TEST(BoardPrint, PdfIsOnePageOfTheBoardSizeWithAValidCrossReferenceTable) {
   for (int n = 1; n <= 5; ++n) {
     const size_t entry = xref + std::string("xref\n0 6\n").size() + 20 * static_cast<size_t>(n);
     const size_t offset = std::stoul(pdf.substr(entry, 10));
-    const std::string header = std::to_string(n) + " 0 obj\n";
+    const std::string header = fmt::format("{} 0 obj\n", n);
     EXPECT_EQ(pdf.compare(offset, header.size(), header), 0) << n;
   }
   ASSERT_TRUE(std::regex_search(pdf, m, std::regex("/Length ([0-9]+) >>\nstream\n")));

@@ -5,6 +5,7 @@
 // full-size corners once refined. The work is counted in pixels, not timed.
 #include "firmware/detection/chessboard_corners.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "common/camera/camera_model.h"
@@ -51,9 +52,7 @@ TEST(ChessboardCornersTest, AMismatchedCornerCountIsRefusedAfterABoundedSearch) 
     const BoardViewFinder finder(wrong);  // calibrate-intrinsics
     std::string why;
     EXPECT_FALSE(finder.Find(view, "view.png", &why).has_value());
-    EXPECT_NE(why.find(std::to_string(wrong.cols) + "x" + std::to_string(wrong.rows)),
-              std::string::npos)
-        << why;
+    EXPECT_NE(why.find(fmt::format("{}x{}", wrong.cols, wrong.rows)), std::string::npos) << why;
     EXPECT_LE(finder.chessboard_work().classic_pixels, kClassicDetectorMaxPixels);
   }
 }

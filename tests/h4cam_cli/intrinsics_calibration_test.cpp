@@ -5,11 +5,12 @@
 // fronto-parallel views are refused as not determining the focal length.
 #include "firmware/calibration/intrinsics_calibration.h"
 
-#include <random>
 #include <filesystem>
+#include <random>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -67,7 +68,7 @@ std::vector<CalibrationView> SyntheticViews(int count, Lens lens = Lens::kRadTan
     const cv::Vec3d rvec(a, b, 0.1 * i);
     const cv::Vec3d tvec(-0.1 + 0.01 * (i % 3), -0.06 + 0.01 * (i % 2), 0.4 + 0.02 * i);
     CalibrationView view;
-    view.name = "view" + std::to_string(i);
+    view.name = fmt::format("view{}", i);
     view.object_points = board;
     view.image_points = ProjectThrough(lens, board, rvec, tvec);
     views.push_back(view);
@@ -117,10 +118,9 @@ TEST(IntrinsicsCalibration, WritesTheCovarianceOpenCvsStandardDeviationsAgreeWit
   // two residuals per point (opencv/opencv#19803, fixed by #22992): undo that here.
   const double points = 54.0 * static_cast<double>(views.size());
   const double parameters = 9.0 + 6.0 * static_cast<double>(views.size());
-  const double denominator_fix =
-      CV_VERSION_MAJOR == 4 && CV_VERSION_MINOR < 7
-          ? std::sqrt((points - parameters) / (2 * points - parameters))
-          : 1.0;
+  const double denominator_fix = CV_VERSION_MAJOR == 4 && CV_VERSION_MINOR < 7
+                                     ? std::sqrt((points - parameters) / (2 * points - parameters))
+                                     : 1.0;
   for (int i = 0; i < 9; ++i) {
     const double opencv = denominator_fix * std_intrinsics.at<double>(i);
     std::printf("parameter %d: sigma %.6g, OpenCV %.6g\n", i, sigma[i], opencv);
@@ -329,7 +329,7 @@ TEST(IntrinsicsCalibration, RenderedAprilGridViewsGiveBackTheRenderingCamera) {
     const Eigen::Vector3d p_CT = centre - R_CT * Eigen::Vector3d(0.10875, 0.10875, 0);
     const cv::Mat image = renderer.Render(RigidTransform(R_CT, p_CT), 100 + i);
     std::string why;
-    auto view = finder.Find(image, "render" + std::to_string(i), &why);
+    auto view = finder.Find(image, fmt::format("render{}", i), &why);
     ASSERT_TRUE(view.has_value()) << i << ": " << why;
     EXPECT_EQ(view->image_points.size(), 144u) << i;
     views.push_back(*view);
@@ -348,7 +348,7 @@ TEST(IntrinsicsCalibration, RenderedAprilGridViewsGiveBackTheRenderingCamera) {
 struct TempDir {
   fs::path path;
   explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()))) {
+      : path(fs::temp_directory_path() / fmt::format("{}_{}", name, ::getpid())) {
     fs::create_directories(path);
   }
   ~TempDir() { fs::remove_all(path); }
@@ -370,7 +370,7 @@ std::vector<std::string> RenderGridViews(const CameraIntrinsics& camera, int cou
     const Eigen::Matrix3d R_CT = RotationFromRpy(rpy);
     const Eigen::Vector3d centre(0.06 * std::sin(i), 0.04 * std::cos(i), 0.28 + 0.01 * i);
     const Eigen::Vector3d p_CT = centre - R_CT * Eigen::Vector3d(0.10875, 0.10875, 0);
-    const fs::path path = dir / ("view" + std::to_string(i) + ".png");
+    const fs::path path = dir / fmt::format("view{}.png", i);
     cv::imwrite(path.string(), renderer.Render(RigidTransform(R_CT, p_CT), 200 + i));
     paths.push_back(path.string());
   }

@@ -5,6 +5,7 @@
 
 #include <sstream>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <time.h>
 
@@ -94,9 +95,9 @@ TEST(SensorTimestamp, MonotonicNowMapsToRealtimeNow) {
 }
 
 TEST(LibcameraCompat, ReportsTheVersionOfTheHeaders) {
-  EXPECT_EQ(compat::CompiledLibcameraVersion(), std::to_string(LIBCAMERA_VERSION_MAJOR) + "." +
-                                                    std::to_string(LIBCAMERA_VERSION_MINOR) + "." +
-                                                    std::to_string(LIBCAMERA_VERSION_PATCH));
+  EXPECT_EQ(compat::CompiledLibcameraVersion(),
+            fmt::format("{}.{}.{}", LIBCAMERA_VERSION_MAJOR, LIBCAMERA_VERSION_MINOR,
+                        LIBCAMERA_VERSION_PATCH));
 }
 
 TEST(LibcameraSourceLifecycle, StartBeforeConfigureFailsWithAnError) {

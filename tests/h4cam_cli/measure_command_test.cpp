@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
@@ -57,7 +58,7 @@ RigidTransform WriteTwoGroupsOfTwoFrames(const fs::path& images, int board_group
     const bool board_in_view = (k / 2 + 1) == board_group;
     const cv::Mat frame =
         board_in_view ? renderer.Expose(clean, rng) : cv::Mat(768, 1024, CV_8U, cv::Scalar(90));
-    cv::imwrite((images / ("f" + std::to_string(k) + ".png")).string(), frame);
+    cv::imwrite((images / fmt::format("f{}.png", k)).string(), frame);
   }
   return X_CT;
 }

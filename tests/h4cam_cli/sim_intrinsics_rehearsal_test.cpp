@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -38,7 +39,7 @@ class SimIntrinsicsRehearsalStudy : public ::testing::Test {
     // One folder per process: ctest runs each test of the suite as its own process, in
     // parallel, and capture numbers its frames on after those already there.
     dir_ = new fs::path(fs::path(H4_BINARY_DIR) / "test_tmp" /
-                        ("sim_intrinsics_rehearsal_" + std::to_string(::getpid())));
+                        fmt::format("sim_intrinsics_rehearsal_{}", ::getpid()));
     fs::remove_all(*dir_);
     // Two captures into one folder, 11 frames then 1, as a technician adds a view: the
     // second must number on (frame 11), not overwrite frame 0.

@@ -3,9 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <memory>
-#include <sstream>
+#include <string>
 #include <vector>
+
+#include <fmt/format.h>
 
 namespace h4::host::testing {
 
@@ -58,16 +61,16 @@ Eigen::MatrixXd FiniteDifferenceJacobian(const VectorFunction& f, const Eigen::V
   }
   if (bad.empty()) return ::testing::AssertionSuccess();
   std::sort(bad.begin(), bad.end(), [](const Bad& x, const Bad& y) { return x.excess > y.excess; });
-  std::ostringstream message;
-  message.precision(10);
-  message << bad.size() << " of " << J_fd.size() << " Jacobian entries differ from central "
-          << "finite differences (step " << step << ", tolerance " << tolerance
-          << " abs/rel); worst:";
+  // Doubles to 10 significant digits.
+  std::string message = fmt::format(
+      "{} of {} Jacobian entries differ from central finite differences (step {:.10g}, "
+      "tolerance {:.10g} abs/rel); worst:",
+      bad.size(), J_fd.size(), step, tolerance);
   for (size_t k = 0; k < std::min<size_t>(bad.size(), 8); ++k) {
-    message << "\n  (" << bad[k].row << ", " << bad[k].col << "): analytic " << bad[k].analytic
-            << ", numeric " << bad[k].numeric;
+    fmt::format_to(std::back_inserter(message), "\n  ({}, {}): analytic {:.10g}, numeric {:.10g}",
+                   bad[k].row, bad[k].col, bad[k].analytic, bad[k].numeric);
   }
-  return ::testing::AssertionFailure() << message.str();
+  return ::testing::AssertionFailure() << message;
 }
 
 ::testing::AssertionResult ConstraintJacobiansMatchFiniteDifferences(const KinematicModel& model,

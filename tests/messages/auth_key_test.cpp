@@ -12,6 +12,7 @@
 #include <string>
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -24,7 +25,7 @@ namespace fs = std::filesystem;
 class AuthKeyTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("h4_auth_key_" + std::to_string(::getpid()));
+    dir_ = fs::temp_directory_path() / fmt::format("h4_auth_key_{}", ::getpid());
     fs::create_directories(dir_);
   }
   void TearDown() override { fs::remove_all(dir_); }

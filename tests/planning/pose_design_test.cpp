@@ -8,6 +8,7 @@
 #include <cmath>
 #include <set>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "common/formats/board_yaml.h"
@@ -177,11 +178,11 @@ TEST(PosePlanner, FewerPosesThanIdentifyNeedsAreRefused) {
     CheckPlannedPoseCount(problem, 1);
     ADD_FAILURE() << "one pose accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("1 poses are too few: Model 31 needs at least 20 to "
-                                         "identify its " +
-                                         std::to_string(problem.info.parameter_count()) +
-                                         " free parameters"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find(fmt::format("1 poses are too few: Model 31 needs at least 20 to "
+                                               "identify its {} free parameters",
+                                               problem.info.parameter_count())),
+        std::string::npos)
         << e.what();
   }
   EXPECT_THROW(CheckPlannedPoseCount(problem, needed - 1), std::invalid_argument);

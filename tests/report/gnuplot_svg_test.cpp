@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -39,7 +40,7 @@ TEST(GnuplotSvg, AScriptErrorCarriesGnuplotsMessage) {
 TEST(GnuplotSvg, ATemporaryFolderWithAQuoteAndASpaceInItsPathStillWorks) {
   if (!GnuplotAvailable()) GTEST_SKIP() << "gnuplot missing: run scripts/setup";
   const fs::path odd =
-      fs::path(H4_BINARY_DIR) / "test_tmp" / ("it's a tmp " + std::to_string(::getpid()));
+      fs::path(H4_BINARY_DIR) / "test_tmp" / fmt::format("it's a tmp {}", ::getpid());
   fs::create_directories(odd);
   const char* previous = std::getenv("TMPDIR");
   const std::string saved = previous ? previous : "";

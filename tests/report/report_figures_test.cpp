@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "common/formats/board_yaml.h"
@@ -168,12 +169,10 @@ TEST(ReportFigures, TheAccuracyMapMarksTheCalibrationAndHeldOutPoses) {
   size_t calibration = 0, held_out = 0;
   for (int t = 0; t < 3; ++t) {
     for (int l = 0; l < 3; ++l) {
-      for (const auto& row :
-           DataBlock(plot.script, "c" + std::to_string(t) + "_" + std::to_string(l))) {
+      for (const auto& row : DataBlock(plot.script, fmt::format("c{}_{}", t, l))) {
         if (!std::isnan(row[0])) ++calibration;
       }
-      for (const auto& row :
-           DataBlock(plot.script, "e" + std::to_string(t) + "_" + std::to_string(l))) {
+      for (const auto& row : DataBlock(plot.script, fmt::format("e{}_{}", t, l))) {
         if (!std::isnan(row[0])) ++held_out;
       }
     }

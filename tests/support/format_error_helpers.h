@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -78,7 +79,7 @@ void ExpectEachFailsWith(Parse&& parse, const std::string& source,
 inline std::string TempPath(const std::string& file_name) {
   const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
   const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("h4_formats_" + std::to_string(::getpid()));
+      std::filesystem::temp_directory_path() / fmt::format("h4_formats_{}", ::getpid());
   std::filesystem::create_directories(dir);
   return (dir / (std::string(info->test_suite_name()) + "_" + info->name() + "_" + file_name))
       .string();

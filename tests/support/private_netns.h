@@ -10,6 +10,7 @@
 #include <iterator>
 #include <string>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -36,11 +37,11 @@ inline void RunChildTestInPrivateNamespace(const std::string& child_test, int ti
   const std::string self = std::filesystem::read_symlink("/proc/self/exe").string();
   // The output goes to a file, not a pipe: a process the child started and left running
   // (after a failed assertion) would hold a pipe open and hang the read past any timeout.
-  const std::filesystem::path log = std::filesystem::temp_directory_path() /
-                                    ("h4_netns_child_" + std::to_string(getpid()) + ".log");
-  const std::string command = netns + " env H4_IN_NETNS=1 timeout -k 5 " +
-                              std::to_string(timeout_s) + " " + ProgramCommand(self) +
-                              " --gtest_filter=" + child_test + " > " + log.string() + " 2>&1";
+  const std::filesystem::path log =
+      std::filesystem::temp_directory_path() / fmt::format("h4_netns_child_{}.log", getpid());
+  const std::string command =
+      fmt::format("{} env H4_IN_NETNS=1 timeout -k 5 {} {} --gtest_filter={} > {} 2>&1", netns,
+                  timeout_s, ProgramCommand(self), child_test, log.string());
   const int status = std::system(command.c_str());
   std::ifstream in(log);
   const std::string output((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

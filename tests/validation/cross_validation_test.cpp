@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <random>
 #include <string>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "host/identification/identification.h"
@@ -106,7 +108,7 @@ void MisstateSigmasPoseByPose(double spread, uint64_t seed, std::vector<DatasetR
 std::string Rejections(const IdentificationResult& r) {
   std::string text;
   for (const RejectedPose& pose : r.rejected_details) {
-    text += std::to_string(pose.pose_id) + ": " + pose.reason + "\n";
+    fmt::format_to(std::back_inserter(text), "{}: {}\n", pose.pose_id, pose.reason);
   }
   return text;
 }
@@ -160,7 +162,7 @@ TEST(CrossValidationTest, Model31FromModel12ReadmitsWhatModel12RejectedAndJudges
       IdentifyModel31FromModel12(PaperAprioriRobot(), from, rows, IdentificationOptions{});
   std::string rejections;
   for (const RejectedPose& pose : out31.result.rejected_details) {
-    rejections += std::to_string(pose.pose_id) + ": " + pose.reason + "\n";
+    fmt::format_to(std::back_inserter(rejections), "{}: {}\n", pose.pose_id, pose.reason);
   }
   // Model 31 rejects the slipped pose on its own judgement; on this campaign it also
   // rejects one pose just over the limit (pose 73, held-out chi-square 30.3 against 27.9),

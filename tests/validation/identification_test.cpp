@@ -7,10 +7,11 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
-#include <string>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "common/geometry/rotation.h"
@@ -418,9 +419,8 @@ TEST(IdentificationInputTest, TooFewCalibrationPosesAreRefusedWithTheCount) {
       Identify(apriori, robot.X_BC, robot.X_TE, calib, s.valid, IdentificationOptions{});
       FAIL() << "no exception for " << n << " calibration poses";
     } catch (const std::invalid_argument& e) {
-      EXPECT_NE(
-          std::string(e.what()).find("at least 3 calibration poses, got " + std::to_string(n)),
-          std::string::npos)
+      EXPECT_NE(std::string(e.what()).find(fmt::format("at least 3 calibration poses, got {}", n)),
+                std::string::npos)
           << e.what();
     }
   }

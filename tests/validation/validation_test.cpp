@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "common/formats/number_text.h"
@@ -190,7 +191,7 @@ TEST(Validate, RejectsADatasetMissingTheHeldOutPoses) {
   ValidationInputs in = PaperValidationInputs();
   const int64_t missing = in.result12->valid_poses.front();
   std::erase_if(in.rows, [missing](const DatasetRow& row) { return row.pose_id == missing; });
-  EXPECT_TRUE(ValidateRefuses(in, "pose " + std::to_string(missing) + " is missing"))
+  EXPECT_TRUE(ValidateRefuses(in, fmt::format("pose {} is missing", missing)))
       << "a dataset without held-out pose " << missing;
 }
 
