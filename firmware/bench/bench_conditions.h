@@ -27,8 +27,27 @@ inline std::vector<Condition> AllConditions() {
   gradient.illumination_gradient = 0.3;
   gradient.illumination_gradient_direction_deg = 30;
   gradient.vignetting = 0.2;
-  return {{"clean", clean},       {"blur1.4", blur},      {"gamma0.7+blur0.7", gamma},
-          {"srgb+blur1.0", srgb}, {"gradient", gradient}, {"all", RenderOptions::Processed()}};
+  // An ISP's encoded output (issue 41's scenes): gamma 0.7 after 1.4 px of optical blur, with
+  // light fall-off and shot noise.
+  RenderOptions isp = gamma;
+  isp.blur_sigma_px = 1.4;
+  isp.illumination_gradient = 0.2;
+  isp.vignetting = 0.15;
+  isp.full_well_electrons = 6000;
+  isp.noise_sigma = 1.0;
+  // Blur of the pixel values after integration (demosaicing): an image formation the edge
+  // model does not assume (render_options.h), linear so that only the sampling differs.
+  RenderOptions pixel_blur = clean;
+  pixel_blur.blur_sigma_px = 0.5;
+  pixel_blur.pixel_blur_sigma_px = 1.0;
+  return {{"clean", clean},
+          {"blur1.4", blur},
+          {"gamma0.7+blur0.7", gamma},
+          {"srgb+blur1.0", srgb},
+          {"gradient", gradient},
+          {"all", RenderOptions::Processed()},
+          {"isp:gamma0.7+blur1.4", isp},
+          {"pixelblur1.0", pixel_blur}};
 }
 
 }  // namespace h4::cam::bench

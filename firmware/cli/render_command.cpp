@@ -37,6 +37,9 @@ struct PresetOverride {
 const PresetOverride kPresetOverrides[] = {
     {"--blur-px,--blur", &RenderArgs::blur_sigma_px, &RenderOptions::blur_sigma_px,
      "Gaussian PSF sigma, px (0..20)", 0.0, 20.0},
+    {"--pixel-blur-px", &RenderArgs::pixel_blur_sigma_px, &RenderOptions::pixel_blur_sigma_px,
+     "Gaussian blur of the pixel values after integration (an ISP's demosaicing), px (0..20)", 0.0,
+     20.0},
     {"--focus-distance", &RenderArgs::focus_distance, &RenderOptions::focus_distance,
      "Defocus: distance the lens is focused at, m (0 = no defocus)", 0.0, 1000.0},
     {"--aperture", &RenderArgs::aperture_diameter, &RenderOptions::aperture_diameter,

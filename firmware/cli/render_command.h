@@ -31,7 +31,7 @@ struct RenderArgs {
   /// clean | processed (render_options.h); processed, as `capture` and `run --source sim`.
   std::string preset = "processed";
   // Overrides of the preset's values, unset = the preset's (units: render_options.h).
-  std::optional<double> blur_sigma_px, focus_distance, aperture_diameter;
+  std::optional<double> blur_sigma_px, pixel_blur_sigma_px, focus_distance, aperture_diameter;
   std::optional<double> illumination_gradient, illumination_gradient_direction_deg;
   std::optional<double> vignetting, full_well_electrons, read_noise;
   std::optional<std::string> response;  ///< linear | srgb | gamma:E | table:V0,V1,...

@@ -103,7 +103,8 @@ BoardRenderer::Region BoardRenderer::BoardRegion(const RigidTransform& X_CT) con
           defocus_px, DefocusRadiusPx(options_, camera_.intrinsics().K(0, 0), FocusDistance(p_CQ)));
     }
   }
-  const double reach = std::ceil(4.0 * options_.blur_sigma_px + defocus_px) + 2;
+  const double reach =
+      std::ceil(4.0 * (options_.blur_sigma_px + options_.pixel_blur_sigma_px) + defocus_px) + 2;
   // Clamped before the conversion to int: a board reaching toward 90 degrees off-axis
   // through a radtan lens images its far edge millions of pixels away (converting such a
   // value is undefined, and made the region empty).
@@ -183,6 +184,12 @@ cv::Mat BoardRenderer::RenderClean(const RigidTransform& X_CT) const {
   cv::Mat coarse;
   const cv::Rect rect(region.u0, region.v0, region.u1 - region.u0, region.v1 - region.v0);
   cv::resize(fine, coarse, rect.size(), 0, 0, cv::INTER_AREA);
+  if (options_.pixel_blur_sigma_px > 0) {
+    // The region's border is the uniform background (BoardRegion's reach), which the
+    // blur leaves as it is.
+    cv::GaussianBlur(coarse, coarse, cv::Size(), options_.pixel_blur_sigma_px,
+                     options_.pixel_blur_sigma_px, cv::BORDER_REPLICATE);
+  }
   coarse.copyTo(image(rect));
   return image;
 }

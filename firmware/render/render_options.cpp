@@ -96,6 +96,10 @@ bool RenderOptions::IsValid(std::string* why) const {
   if (!InRange(blur_sigma_px, 0, 20)) {
     return Invalid(why, fmt::format("blur sigma {:g} px: expected 0..20 px", blur_sigma_px));
   }
+  if (!InRange(pixel_blur_sigma_px, 0, 20)) {
+    return Invalid(why,
+                   fmt::format("pixel blur sigma {:g} px: expected 0..20 px", pixel_blur_sigma_px));
+  }
   if (!InRange(focus_distance, 0, 1e3)) {
     return Invalid(why, fmt::format("focus distance {:g} m: expected 0..1000 m", focus_distance));
   }

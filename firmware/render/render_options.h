@@ -1,7 +1,7 @@
 // What the board renderer simulates, in the order a camera forms an image, all in linear
 // light until the response curve: printed radiance x illumination (gradient, vignetting)
 // -> optical PSF (Gaussian, plus a defocus disk that grows away from the focus distance)
-// -> pixel integration -> sensor (shot + read noise, saturation at full scale) -> response
+// -> pixel integration -> optional blur of the pixel values -> sensor (shot + read noise, saturation at full scale) -> response
 // curve -> 8-bit quantisation. Two presets: "clean" (the renderer's historical images:
 // linear, Gaussian blur and noise) and "processed" (a Raspberry Pi camera module's
 // processed YUV output: sRGB-like response, ~1 px blur, 20 % gradient, shot + read noise).
@@ -56,6 +56,13 @@ struct RenderOptions {
   /// depth z is spread over a disk (pillbox) of radius
   /// aperture_diameter / 2 * fx_px * |1/z - 1/focus_distance| px.
   double aperture_diameter = 0.0;
+
+  /// Gaussian blur of the pixel values after the pixels integrated the light, px, 0..20
+  /// (0 = none): what an image pipeline's demosaicing and denoising (or a renderer that
+  /// blurs its pixels) do. Unlike the optical blur it acts on a sampled edge, whose profile
+  /// then depends on where the edge falls within its pixel: an edge model written for the
+  /// optical blur alone locks to the pixel grid on edges along the pixel axes.
+  double pixel_blur_sigma_px = 0.0;
 
   // Sensor.
   /// Electrons at full scale: shot noise variance = signal * 255 / full_well_electrons

@@ -70,13 +70,15 @@ double SimDouble(const YamlMap& sim, const std::string& key, double fallback, do
 // The sim: block over the preset it names (processed when it names none). The ranges
 // are those of RenderOptions::IsValid.
 RenderOptions ParseSimBlock(const YamlMap& sim) {
-  sim.RejectUnknownKeys({"preset", "blur_sigma_px", "focus_distance", "aperture_diameter",
-                         "illumination_gradient", "illumination_gradient_direction_deg",
-                         "vignetting", "full_well_electrons", "read_noise", "response"});
+  sim.RejectUnknownKeys({"preset", "blur_sigma_px", "pixel_blur_sigma_px", "focus_distance",
+                         "aperture_diameter", "illumination_gradient",
+                         "illumination_gradient_direction_deg", "vignetting", "full_well_electrons",
+                         "read_noise", "response"});
   RenderOptions o = RenderOptions::Processed();
   const std::string preset = OptionalString(sim, "preset", "processed");
   if (!RenderPresetByName(preset, &o)) sim.Fail("preset", "expected clean or processed");
   o.blur_sigma_px = SimDouble(sim, "blur_sigma_px", o.blur_sigma_px, 0, 20);
+  o.pixel_blur_sigma_px = SimDouble(sim, "pixel_blur_sigma_px", o.pixel_blur_sigma_px, 0, 20);
   o.focus_distance = SimDouble(sim, "focus_distance", o.focus_distance, 0, 1000);
   o.aperture_diameter = SimDouble(sim, "aperture_diameter", o.aperture_diameter, 0, 0.05);
   o.illumination_gradient = SimDouble(sim, "illumination_gradient", o.illumination_gradient, 0, 1);
