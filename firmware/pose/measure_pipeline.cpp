@@ -11,10 +11,14 @@ namespace {
 
 // The corners the pose was fitted to, with their tag and noise, to travel with the pose
 // (common/formats/README.md#board-corners-csv: the tag of corner id 4 * (tag - firstId) + k,
-// -1 on a chessboard).
+// -1 on a chessboard), as the camera model sees them: less the displacement the fitted
+// erosion explains (pose_estimator.h), which a fit in pixel space downstream (the corner
+// path) would otherwise read as a smaller board, i.e. a wrong focal length.
 std::vector<MeasuredCorner> MeasuredCorners(const BoardModel& board,
                                             const std::vector<CornerObservation>& corners,
-                                            const std::vector<double>& sigma_px) {
+                                            const PoseEstimate& pose) {
+  const std::vector<double>& sigma_px = pose.corner_sigma_px;
+  const std::vector<Eigen::Vector2d>& erosion_px = pose.corner_erosion_px;
   const auto* grid = std::get_if<AprilGridSpec>(&board.spec());
   std::vector<MeasuredCorner> measured;
   measured.reserve(corners.size());
@@ -23,6 +27,10 @@ std::vector<MeasuredCorner> MeasuredCorners(const BoardModel& board,
     m.tag_id = grid != nullptr ? grid->first_id + corners[i].id / 4 : -1;
     m.corner = corners[i].id;
     m.uv = corners[i].uv;
+    if (i < erosion_px.size()) {
+      m.erosion_px = erosion_px[i];
+      m.uv -= erosion_px[i];
+    }
     m.sigma_px = i < sigma_px.size() ? sigma_px[i] : 0.0;
     measured.push_back(m);
   }
@@ -149,7 +157,7 @@ Measurement MeasurePipeline::MeasureImage(const cv::Mat& image, int frames_avera
   m.sigma_r = pose.sigma_r;
   m.rms_px = pose.rms_px;
   m.erosion_px = pose.erosion_px;
-  m.corners = MeasuredCorners(detector_.board(), detection.corners, pose.corner_sigma_px);
+  m.corners = MeasuredCorners(detector_.board(), detection.corners, pose);
   return m;
 }
 

@@ -17,9 +17,14 @@ namespace h4::cam {
 /// A refined board corner the pose was fitted to, as it travels with the pose
 /// (common/formats/README.md#board-corners-csv; board_corners_t on the bus).
 struct MeasuredCorner {
-  int tag_id = -1;                               ///< AprilTag id, -1 for a chessboard corner
-  int corner = 0;                                ///< BoardModel corner id
-  Eigen::Vector2d uv = Eigen::Vector2d::Zero();  ///< px, OpenCV convention, averaged image
+  int tag_id = -1;  ///< AprilTag id, -1 for a chessboard corner
+  int corner = 0;   ///< BoardModel corner id
+  /// px, OpenCV convention, averaged image, less `erosion_px`: where the camera model
+  /// projects the board corner (distortion not removed).
+  Eigen::Vector2d uv = Eigen::Vector2d::Zero();
+  /// The displacement of the detected corner that the pose fit's erosion explains
+  /// (PoseEstimate::corner_erosion_px), px, already removed from `uv`.
+  Eigen::Vector2d erosion_px = Eigen::Vector2d::Zero();
   /// Per-axis standard deviation, px: the noise the pose covariance takes for this corner
   /// (PoseEstimate::corner_sigma_px).
   double sigma_px = 0;

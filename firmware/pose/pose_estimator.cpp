@@ -279,6 +279,27 @@ std::vector<double> CornerSigmas(const std::vector<CornerObservation>& corners, 
   return sigmas;
 }
 
+// Each corner's displacement by the fitted erosion, e(uv) * erosion_px, and the erosion's
+// share of its uncertainty: the corrected corner uv - shift carries the erosion
+// coefficients' covariance (`erosion_covariance`) through the same basis, per axis. The
+// shift is common to the pose's corners, so this variance is added to each corner's sigma
+// (what a consumer that takes corners as independent can use) rather than dropped.
+void CornerErosion(const std::vector<CornerObservation>& corners, const ErosionBasis& basis,
+                   const Eigen::VectorXd& erosion, const Eigen::MatrixXd& erosion_covariance,
+                   PoseEstimate* estimate) {
+  estimate->corner_erosion_px.assign(corners.size(), Eigen::Vector2d::Zero());
+  for (size_t i = 0; i < corners.size(); ++i) {
+    const CornerObservation& c = corners[i];
+    if (basis.count() == 0 || c.erosion_px.squaredNorm() == 0) continue;
+    Eigen::RowVectorXd b(basis.count());
+    for (int k = 0; k < basis.count(); ++k) b[k] = basis.At(c, k);
+    estimate->corner_erosion_px[i] = b.dot(erosion) * c.erosion_px;
+    const double variance = (b * erosion_covariance * b.transpose())(0, 0);
+    double& sigma = estimate->corner_sigma_px[i];
+    sigma = std::sqrt(sigma * sigma + std::max(0.0, variance) * c.erosion_px.squaredNorm() / 2.0);
+  }
+}
+
 }  // namespace
 
 bool ReprojectionResiduals(const std::vector<CornerObservation>& corners, const CameraModel& camera,
@@ -376,6 +397,8 @@ bool FillCovariance(const std::vector<CornerObservation>& corners, const CameraM
   estimate->sigma_r =
       std::sqrt(std::max(0.0, estimate->covariance.bottomRightCorner<3, 3>().trace() / 3));
   estimate->corner_sigma_px = CornerSigmas(corners, edge_noise, excess, floor_px);
+  const int k = basis.count();
+  CornerErosion(corners, basis, sol.state.erosion, full.bottomRightCorner(k, k), estimate);
   return true;
 }
 

@@ -99,6 +99,11 @@ struct PoseEstimate {
   /// covariance is built from (CovarianceModel: the edge fits' noise, or the residuals' sigma,
   /// plus the excess and the floor). Empty when not ok.
   std::vector<double> corner_sigma_px;
+  /// Displacement of each corner (input order) that the fitted erosion explains, px:
+  /// uv - corner_erosion_px[i] is the corner as the camera model sees it (the projection of
+  /// the board point), the corner that pixel-space fits downstream must take (the corner
+  /// path has no erosion term of its own). Zero when no erosion was fitted; empty when not ok.
+  std::vector<Eigen::Vector2d> corner_erosion_px;
   bool ok() const { return status == Status::kOk; }
 };
 
