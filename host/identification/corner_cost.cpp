@@ -5,7 +5,9 @@
 // camera model's J_uv_pCQ (common/camera/camera_model.h).
 #include "host/identification/corner_cost.h"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <Eigen/QR>
 #include <fmt/core.h>
 
 #include "common/camera/camera_model.h"
@@ -37,16 +39,65 @@ CornerCost::CornerCost(const CornerCost& other)
       camera_(other.camera_),
       pose_offset_(other.pose_offset_),
       residual_count_(other.residual_count_),
+      whitening_(other.whitening_),
+      prior_values_(other.prior_values_),
+      prior_whitening_(other.prior_whitening_),
       fk_(other.fk_) {}
+
+void CornerCost::SetJointNoiseRatio(double ratio) {
+  whitening_.clear();
+  if (!(ratio > 0) || J_joints_.size() != rows_.size()) return;
+  for (const Eigen::Matrix<double, Eigen::Dynamic, 4>& G : J_joints_) {
+    // U = ratio G = Q R; I + U U^T = I + Q V L V^T Q^T with R R^T = V L V^T, whose inverse
+    // square root is I + Q V ((1 + L)^-1/2 - 1) V^T Q^T.
+    PoseWhitening w;
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(ratio * G);
+    const Eigen::Index k = std::min<Eigen::Index>(4, G.rows());
+    w.Q = qr.householderQ() * Eigen::MatrixXd::Identity(G.rows(), k);
+    w.B.setZero();
+    if (k == 4) {
+      const Eigen::Matrix4d R = qr.matrixQR().topRows<4>().triangularView<Eigen::Upper>();
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(R * R.transpose());
+      const Eigen::Vector4d shrink =
+          (Eigen::Vector4d::Ones() + eigen.eigenvalues().cwiseMax(0.0)).cwiseSqrt().cwiseInverse() -
+          Eigen::Vector4d::Ones();
+      w.B = eigen.eigenvectors() * shrink.asDiagonal() * eigen.eigenvectors().transpose();
+    }
+    whitening_.push_back(std::move(w));
+  }
+}
+
+bool CornerCost::SetCameraPrior(const Eigen::VectorXd& file_values,
+                                const Eigen::MatrixXd& covariance) {
+  prior_whitening_.resize(0, 0);
+  const Eigen::Index n = file_values.size();
+  if (covariance.rows() != n || covariance.cols() != n || !covariance.allFinite()) return false;
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(0.5 *
+                                                             (covariance + covariance.transpose()));
+  const Eigen::VectorXd& lambda = eigen.eigenvalues();  // ascending
+  if (!(lambda[n - 1] > 0)) return false;
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    if (lambda[k] > 1e-12 * lambda[n - 1]) kept.push_back(k);
+  }
+  prior_whitening_.resize(static_cast<Eigen::Index>(kept.size()), n);
+  for (size_t row = 0; row < kept.size(); ++row) {
+    const Eigen::Index k = kept[row];
+    prior_whitening_.row(static_cast<Eigen::Index>(row)) =
+        eigen.eigenvectors().col(k).transpose() / std::sqrt(lambda[k]);
+  }
+  prior_values_ = file_values;
+  return true;
+}
 
 bool CornerCost::Evaluate(const ParameterVector& p, Eigen::VectorXd* r, Eigen::MatrixXd* J,
                           std::string* why) {
   p.ApplyTo(model_.get());
   const CameraModel camera(WithCameraParameters(camera_, p.camera_values()));
   const ChainTransforms chain = MakeChainTransforms(p.X_BC(), p.X_TE());
-  r->resize(residual_count_);
+  r->resize(residual_count());
   if (J != nullptr) {
-    J->setZero(residual_count_, p.size());
+    J->setZero(residual_count(), p.size());
     J_joints_.resize(rows_.size());
   }
   for (size_t j = 0; j < rows_.size(); ++j) {
@@ -65,6 +116,14 @@ bool CornerCost::Evaluate(const ParameterVector& p, Eigen::VectorXd* r, Eigen::M
     if (!EvaluateCorners(p, camera, j, err.X_CT_predicted, r, J)) {
       if (why != nullptr) *why = pose + ": a corner falls behind the camera";
       return false;
+    }
+    if (!whitening_.empty()) Whiten(j, r, J);
+  }
+  if (prior_count() > 0) {
+    r->tail(prior_count()) = prior_whitening_ * (p.camera_values() - prior_values_);
+    if (J != nullptr) {
+      J->block(residual_count_, p.camera_offset(), prior_count(), p.camera_count()) =
+          prior_whitening_;
     }
   }
   if (!r->allFinite() || (J != nullptr && !J->allFinite())) {
@@ -95,6 +154,17 @@ bool CornerCost::BoardPoseJacobian(const ParameterVector& p, const DatasetRow& r
   J_pose_.topRows<3>() = (Jr * J_pose_.topRows<3>()).eval();
   J_pose_q_.topRows<3>() = (Jr * J_pose_q_.topRows<3>()).eval();
   return true;
+}
+
+// Pose j's rows times (I + Q B Q^T) (SetJointNoiseRatio).
+void CornerCost::Whiten(size_t j, Eigen::VectorXd* r, Eigen::MatrixXd* J) const {
+  const PoseWhitening& w = whitening_[j];
+  const Eigen::Index offset = pose_offset_[j], rows = w.Q.rows();
+  auto r_j = r->segment(offset, rows);
+  r_j += w.Q * (w.B * (w.Q.transpose() * r_j));
+  if (J == nullptr) return;
+  auto J_j = J->middleRows(offset, rows);
+  J_j += w.Q * (w.B * (w.Q.transpose() * J_j));
 }
 
 // A corner p_CQ = R_CT p_TQ + p_CT moves by -R_CT [p_TQ]x d_body + dp_CT.

@@ -33,10 +33,27 @@ class CornerCost {
   CornerCost(const CornerCost& other);
   CornerCost& operator=(const CornerCost&) = delete;
 
+  /// What the camera file knows, as residuals after the corners': W (c - c_file), W the
+  /// inverse square root of the file's `intrinsics_covariance` (eigenvalues above 1e-12 of the
+  /// largest), so the fit is the posterior given the file. False (no prior) when the
+  /// covariance's size is not the camera block's or it has no positive eigenvalue.
+  bool SetCameraPrior(const Eigen::VectorXd& file_values, const Eigen::MatrixXd& covariance);
+  /// Weighs each pose's corners by their joint covariance, generalised least squares: with
+  /// encoder noise sigma_q (rad) a pose's weighted residuals have covariance
+  /// s2 (I + ratio^2 G_j G_j^T), ratio = sigma_q / sqrt(s2), G_j = joint_jacobians()[j] at the
+  /// last Evaluate with J (frozen there), and are whitened by (I + ratio^2 G_j G_j^T)^-1/2.
+  /// Corners then count for what they add to a pose the encoders blur as a whole, instead of
+  /// 144 independent looks. `ratio` 0 (the default) weighs the corners independently.
+  void SetJointNoiseRatio(double ratio);
+
+  /// Rows of the camera prior (after every pose's corners); 0 without one.
+  int prior_count() const { return static_cast<int>(prior_whitening_.rows()); }
+
   const std::vector<DatasetRow>& rows() const { return rows_; }
   const std::vector<PoseCorners>& corners() const { return corners_; }
   std::vector<PoseCorners>* mutable_corners() { return &corners_; }
-  int residual_count() const { return residual_count_; }
+  /// The corners' residuals, then the camera prior's.
+  int residual_count() const { return residual_count_ + prior_count(); }
   /// First residual of pose j; pose j has 2 * corners[j].uv.size() residuals.
   Eigen::Index pose_offset(size_t j) const { return pose_offset_[j]; }
 
@@ -56,6 +73,7 @@ class CornerCost {
  private:
   bool BoardPoseJacobian(const ParameterVector& p, const DatasetRow& row, const EePose& x,
                          const BoardPoseError& err);
+  void Whiten(size_t j, Eigen::VectorXd* r, Eigen::MatrixXd* J) const;
   bool EvaluateCorners(const ParameterVector& p, const CameraModel& camera, size_t j,
                        const RigidTransform& X_CT, Eigen::VectorXd* r, Eigen::MatrixXd* J);
 
@@ -64,7 +82,15 @@ class CornerCost {
   std::vector<PoseCorners> corners_;
   CameraIntrinsics camera_;
   std::vector<Eigen::Index> pose_offset_;
-  int residual_count_ = 0;
+  int residual_count_ = 0;  ///< the corners'
+  // Per pose, the whitening I + Q_j B_j Q_j^T (SetJointNoiseRatio); empty: none.
+  struct PoseWhitening {
+    Eigen::Matrix<double, Eigen::Dynamic, 4> Q;
+    Eigen::Matrix4d B;
+  };
+  std::vector<PoseWhitening> whitening_;
+  Eigen::VectorXd prior_values_;
+  Eigen::MatrixXd prior_whitening_;  ///< rows x camera parameters
   WarmForwardKinematics fk_;
   // Buffers reused across poses: FK's J_f_xi, the board pose by the kinematic and placement
   // parameters (6 x n), a corner's pixel by the intrinsics.

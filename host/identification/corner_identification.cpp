@@ -14,6 +14,7 @@
 #include "host/identification/camera_parameters.h"
 #include "host/identification/identification_cost.h"
 #include "host/identification/robot_accuracy.h"
+#include "host/identification/verdict.h"
 
 namespace h4::host {
 namespace {
@@ -69,12 +70,11 @@ int RejectCornerOutliers(CornerCost* cost, const Eigen::VectorXd& r, double limi
 }
 
 ParameterVector WithCameraBlock(const ParameterVector& start, const CameraIntrinsics& camera,
-                                bool camera_fixed) {
+                                const std::string& fixed_reason) {
   ParameterVector p = start;
   p.AppendCameraBlock(CameraParameterNames(camera), CameraParameterValues(camera));
-  if (camera_fixed) {
-    for (int i = p.camera_offset(); i < p.size(); ++i)
-      p.Fix(i, "kept from the camera file (--camera-fixed)");
+  if (!fixed_reason.empty()) {
+    for (int i = p.camera_offset(); i < p.size(); ++i) p.Fix(i, fixed_reason);
   }
   return p;
 }
@@ -161,13 +161,66 @@ std::vector<PoseJointColumns> JointColumnsOf(const CornerCost& cost) {
   return out;
 }
 
-}  // namespace
+// The fit again with each pose's corners weighed by their joint covariance, the encoder noise
+// the first fit's residuals show (CornerCost::SetJointNoiseRatio): the generalised least
+// squares estimate, whose covariance (J^T J)^-1 of the whitened cost already holds the
+// encoder noise, so it replaces the first fit's sandwich. Nothing changes when no encoder
+// noise was seen. False when the cost cannot be evaluated at the new solution.
+bool RefitWeighingJointNoise(CornerCost* cost, const CornerFitOptions& options,
+                             CornerFitOutcome* out, Eigen::VectorXd* r, Eigen::MatrixXd* J) {
+  const JointNoise& noise = out->joint_noise;
+  if (!noise.estimated || !(noise.sigma_q > 0)) return true;
+  cost->SetJointNoiseRatio(noise.sigma_q / std::sqrt(std::max(noise.pixel_scale2, 1e-12)));
+  const ParameterCost evaluate = [cost](const ParameterVector& p, Eigen::VectorXd* res,
+                                        Eigen::MatrixXd* jac) {
+    return cost->Evaluate(p, res, jac);
+  };
+  FreeParameterResiduals f(evaluate, out->parameters);
+  Eigen::VectorXd v = out->parameters.FreeValues();
+  out->minimizer = MinimizeWithLevenbergMarquardt(f, options.lm, &v);
+  out->parameters.SetFreeValues(v);
+  std::string why;
+  if (!cost->Evaluate(out->parameters, r, J, &why)) {
+    out->message = "the corner cost weighing the encoder noise cannot be evaluated: " + why;
+    return false;
+  }
+  out->uncertainty = ComputeUncertainty(out->parameters, *r, *J, /*weighted=*/true);
+  cost->SetJointNoiseRatio(0);
+  Eigen::VectorXd unwhitened;
+  if (cost->Evaluate(out->parameters, &unwhitened, nullptr))
+    out->rms_px_after = PixelRms(*cost, unwhitened);
+  return true;
+}
 
-CornerFitOutcome FitCorners(const KinematicModel& model, ModelKind kind,
-                            const ParameterVector& start, const std::vector<DatasetRow>& rows,
-                            const std::vector<PoseCorners>& corners, const CameraIntrinsics& camera,
-                            const CornerFitOptions& options) {
-  CornerFitOutcome out{WithCameraBlock(start, camera, options.camera_fixed), camera};
+// The Wald statistic of the refined intrinsics against the file's under their covariance
+// (scaled by the fit's reduced chi-square when above 1), and the number of intrinsics in it.
+std::pair<double, int> FileWaldStatistic(const CornerFitOutcome& fit,
+                                         const CameraIntrinsics& file) {
+  const ParameterVector& p = fit.parameters;
+  const Eigen::VectorXd file_values = CameraParameterValues(file);
+  std::vector<Eigen::Index> rows;
+  Eigen::VectorXd delta(p.camera_count());
+  for (size_t f = 0; f < fit.uncertainty.free_indices.size(); ++f) {
+    const int i = fit.uncertainty.free_indices[f];
+    if (i < p.camera_offset()) continue;
+    delta[static_cast<Eigen::Index>(rows.size())] =
+        p.values()[i] - file_values[i - p.camera_offset()];
+    rows.push_back(static_cast<Eigen::Index>(f));
+  }
+  const auto k = static_cast<Eigen::Index>(rows.size());
+  if (k == 0) return {0.0, 0};
+  const Eigen::MatrixXd C = fit.uncertainty.covariance(rows, rows);
+  const Eigen::VectorXd d = delta.head(k);
+  return {d.dot(C.ldlt().solve(d)), static_cast<int>(k)};
+}
+
+// One fit of the corner cost with the camera block free (fixed with `camera_fixed_reason`).
+CornerFitOutcome FitCornersOnce(const KinematicModel& model, ModelKind kind,
+                                const ParameterVector& start, const std::vector<DatasetRow>& rows,
+                                const std::vector<PoseCorners>& corners,
+                                const CameraIntrinsics& camera, const CornerFitOptions& options,
+                                const std::string& camera_fixed_reason) {
+  CornerFitOutcome out{WithCameraBlock(start, camera, camera_fixed_reason), camera};
   std::vector<DatasetRow> fit_rows;
   std::vector<PoseCorners> fit_corners;
   SelectPoses(rows, corners, options.min_corners_per_pose, &fit_rows, &fit_corners, &out.corners);
@@ -178,6 +231,10 @@ CornerFitOutcome FitCorners(const KinematicModel& model, ModelKind kind,
     return out;
   }
   CornerCost cost(model, fit_rows, fit_corners, camera);
+  if (camera_fixed_reason.empty() && options.use_file_covariance && camera.intrinsics_covariance) {
+    out.camera_prior =
+        cost.SetCameraPrior(CameraParameterValues(camera), *camera.intrinsics_covariance);
+  }
   Eigen::VectorXd r;
   Eigen::MatrixXd J;
   std::string why;
@@ -195,14 +252,52 @@ CornerFitOutcome FitCorners(const KinematicModel& model, ModelKind kind,
   out.rms_px_after = PixelRms(cost, r);
   out.uncertainty = ComputeUncertainty(out.parameters, r, J, /*weighted=*/true);
   out.joint_noise = AddJointNoise(out.parameters, r, J, JointColumnsOf(cost), &out.uncertainty);
+  if (options.weigh_joint_noise && !RefitWeighingJointNoise(&cost, options, &out, &r, &J)) {
+    return out;
+  }
   out.camera = WithCameraParameters(camera, out.parameters.camera_values());
   out.ok = out.minimizer.converged && out.uncertainty.ok;
   out.message = fmt::format(
       "{} poses, {} corners ({} rejected): corner RMS {:.4f} -> {:.4f} px, chi2/dof {:.3g}, "
-      "joint noise seen {:.3g} urad",
+      "joint noise seen {:.3g} urad{}",
       out.poses, out.corners, out.rejected_corners, out.rms_px_before, out.rms_px_after,
-      out.uncertainty.chi2_per_dof, 1e6 * out.joint_noise.sigma_q);
+      out.uncertainty.chi2_per_dof, 1e6 * out.joint_noise.sigma_q,
+      out.camera_prior ? "; intrinsics weighed by the camera file's covariance" : "");
   return out;
+}
+
+}  // namespace
+
+CornerFitOutcome FitCorners(const KinematicModel& model, ModelKind kind,
+                            const ParameterVector& start, const std::vector<DatasetRow>& rows,
+                            const std::vector<PoseCorners>& corners, const CameraIntrinsics& camera,
+                            const CornerFitOptions& options) {
+  if (options.camera_fixed) {
+    return FitCornersOnce(model, kind, start, rows, corners, camera, options,
+                          "kept from the camera file (--camera-fixed)");
+  }
+  CornerFitOutcome fit = FitCornersOnce(model, kind, start, rows, corners, camera, options, "");
+  const bool testable = fit.ok && !fit.camera_prior && options.file_consistency_significance > 0;
+  if (!testable) return fit;
+  const auto [wald, k] = FileWaldStatistic(fit, camera);
+  const double p_value = k > 0 ? ChiSquareUpperTail(wald, k) : 1.0;
+  fit.file_wald_statistic = wald;
+  fit.file_p_value = p_value;
+  if (p_value < options.file_consistency_significance) return fit;
+  CornerFitOutcome kept = FitCornersOnce(
+      model, kind, start, rows, corners, camera, options,
+      fmt::format("kept from the camera file: the corners do not show it wrong (Wald {:.3g} on "
+                  "{} intrinsics, p = {:.2g})",
+                  wald, k, p_value));
+  if (!kept.ok) return fit;
+  kept.file_wald_statistic = wald;
+  kept.file_p_value = p_value;
+  kept.camera_kept = true;
+  kept.message += fmt::format(
+      "; the camera file agrees with the corners (Wald {:.3g} on {} intrinsics, p = {:.2g}): "
+      "its intrinsics kept",
+      wald, k, p_value);
+  return kept;
 }
 
 std::vector<DatasetRow> RefitBoardPoses(const std::vector<DatasetRow>& rows,
@@ -257,7 +352,8 @@ std::vector<PoseCorners> CornersOfRows(const std::vector<DatasetRow>& all,
 std::optional<Eigen::MatrixXd> ConditionedOnCamera(const ParameterVector& p, const Uncertainty& u) {
   std::vector<Eigen::Index> robot, camera;
   for (size_t f = 0; f < u.free_indices.size(); ++f) {
-    (u.free_indices[f] >= p.camera_offset() ? camera : robot).push_back(static_cast<Eigen::Index>(f));
+    (u.free_indices[f] >= p.camera_offset() ? camera : robot)
+        .push_back(static_cast<Eigen::Index>(f));
   }
   if (camera.empty()) return std::nullopt;
   const Eigen::MatrixXd C_rr = u.covariance(robot, robot);
@@ -376,9 +472,9 @@ CornerPathOutcome IdentifyOnCorners(const AprioriModel& apriori, ModelKind kind,
   // holds what is left of the camera's uncertainty.
   IdentificationOptions refit_options = options;
   refit_options.camera_file.reset();
-  out.outcome = IdentifyFromStart(*apriori.model, apriori.parameters, start,
-                                  RowsWithIds(out.rows, calib_ids),
-                                  RowsWithIds(out.rows, first.valid_poses), refit_options);
+  out.outcome =
+      IdentifyFromStart(*apriori.model, apriori.parameters, start, RowsWithIds(out.rows, calib_ids),
+                        RowsWithIds(out.rows, first.valid_poses), refit_options);
   if (!out.outcome.summary.usable) return out;
   // The final poses are the refit's (its outlier judgement on unbiased poses): the corner
   // fit again on exactly those when they differ, from where it ended.
@@ -386,7 +482,7 @@ CornerPathOutcome IdentifyOnCorners(const AprioriModel& apriori, ModelKind kind,
   if (out.outcome.result.calib_poses != first.calib_poses) {
     CornerFitOutcome refit =
         FitCorners(*apriori.model, kind, start, final_calib,
-                   CornersOfRows(rows, corners, final_calib), out.fit.camera, corner_options);
+                   CornersOfRows(rows, corners, final_calib), camera, corner_options);
     if (refit.ok) out.fit = std::move(refit);
   }
   ApplyCornerFit(out.fit, *apriori.model, RowsWithIds(out.rows, out.outcome.result.calib_poses),

@@ -5,6 +5,7 @@
 // map) runs on poses the camera file no longer biases.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,21 @@ struct CornerFitOptions {
   /// A corner whose squared normalised residual exceeds this times the campaign's robust
   /// scale (from the median, chi-square with 2 dof) is rejected: chi-square(2)'s 1e-4 tail.
   double corner_outlier_chi2 = 18.42;
+  /// Weigh the intrinsics by what the camera file states of them (its intrinsics_covariance,
+  /// CornerCost::SetCameraPrior): a calibration's knowledge is not thrown away because the
+  /// robot's motion measures the camera too. Off: the corners alone determine them.
+  bool use_file_covariance = true;
+  /// Weigh each pose's corners by the encoder noise the residuals show (generalised least
+  /// squares, CornerCost::SetJointNoiseRatio): a reading's noise moves a pose's corners
+  /// together, so 144 corners are not 144 independent looks at the robot. Off: corners
+  /// weighed independently, the encoder noise only in the covariance (the sandwich).
+  bool weigh_joint_noise = true;
+  /// A camera file without a covariance is kept as it is when the corners do not show it
+  /// wrong: the Wald statistic of the refined intrinsics against the file's, under the
+  /// refined ones' covariance, has an upper-tail probability of at least this. Freeing
+  /// intrinsics the data cannot fault only adds their uncertainty to the robot (a uniform
+  /// scale of the robot is the focal length's). 0: always refine.
+  double file_consistency_significance = 0.05;
   IdentifiabilityOptions identifiability;
   LmOptions lm;
 };
@@ -59,6 +75,13 @@ struct CornerFitOutcome {
   int poses = 0;
   int corners = 0;           ///< in the fit
   int rejected_corners = 0;  ///< outliers, weight 0
+  /// The camera file's intrinsics_covariance entered the fit as a prior (use_file_covariance).
+  bool camera_prior = false;
+  /// The file's consistency with the corners (file_consistency_significance): the Wald
+  /// statistic and its upper-tail probability, when tested; `camera_kept` when the file's
+  /// intrinsics were kept for it.
+  std::optional<double> file_wald_statistic, file_p_value;
+  bool camera_kept = false;
   double rms_px_before = 0;  ///< corner residual RMS (px, per axis) at the start
   double rms_px_after = 0;
 };
