@@ -68,15 +68,20 @@ void PrintHeadline(const IdentificationOutcome& outcome) {
         1e3 * r.cross_validation->position_rms_m,
         DegreesFromRadians(r.cross_validation->rotation_rms_rad), r.cross_validation->reduced_chi2);
   }
-  if (r.predicted_position_accuracy_m) {
-    fmt::print("  predicted position accuracy (1 sigma, calibration poses): {:.4f} mm\n",
-               1e3 * *r.predicted_position_accuracy_m);
-  }
+  // Where the robot goes is the figure to judge a calibration by; the board's position in
+  // the camera frame is what the camera sees of it, and leaves out what the camera cannot
+  // tell apart from the robot (its own placement, its scale).
   if (r.predicted_robot_accuracy_m) {
     fmt::print(
         "  predicted robot accuracy (1 sigma, end-effector positions at the calibration poses, "
         "base frame registered): {:.4f} mm\n",
         1e3 * *r.predicted_robot_accuracy_m);
+  }
+  if (r.predicted_position_accuracy_m) {
+    fmt::print(
+        "  predicted board position accuracy in the camera frame (1 sigma, calibration poses; "
+        "not where the robot goes): {:.4f} mm\n",
+        1e3 * *r.predicted_position_accuracy_m);
   }
   for (const CorrelatedPair& c : r.correlations) {
     fmt::print("  correlated: {} ~ {} ({:.3f})\n", c.a, c.b, c.correlation);
