@@ -205,6 +205,24 @@ std::string CrossValidatedLines(const ValidationReport& report) {
                        : "Board pose error, each pose predicted by the fit without it:\n" + lines;
 }
 
+// Simulation: where the true robot goes through each identified model, beside what its
+// result predicted (the figure to judge a calibration by, measured against the truth).
+std::string TrueAccuracyLines(const ValidationReport& report) {
+  std::string t;
+  for (const auto& v : report.models) {
+    if (!v.true_accuracy) continue;
+    if (t.empty()) {
+      t = "True robot accuracy (simulation: each of the 81 grid poses commanded through the "
+          "model, reached by the true robot, base frame registered):\n";
+    }
+    const TrueAccuracy& a = *v.true_accuracy;
+    t += fmt::format("  {:<10} RMS {:.4f} mm, max {:.4f} mm, Z scale {:+.0f} ppm over {} poses\n",
+                     v.label, 1e3 * a.position_rms_m, 1e3 * a.position_max_m, a.z_scale_ppm,
+                     a.poses);
+  }
+  return t;
+}
+
 }  // namespace
 
 std::string FormatValidationText(const ValidationReport& report) {
@@ -228,6 +246,7 @@ std::string FormatValidationText(const ValidationReport& report) {
                      v.positioning.position_rms * 1e3, deg(v.positioning.theta_rms));
   }
   t += CrossValidatedLines(report);
+  t += TrueAccuracyLines(report);
   if (!report.models.front().straightness.empty()) {
     t += "Table 4: straightness (mm, RMS distance to the fitted line)\n";
     for (size_t m = 0; m < report.models.size(); ++m) {

@@ -12,6 +12,7 @@
 #include "host/kinematics/forward_kinematics.h"
 #include "host/kinematics/model12.h"
 #include "host/kinematics/paper_robot.h"
+#include "host/kinematics/pose_plan.h"
 
 namespace h4::host {
 namespace {
@@ -265,6 +266,13 @@ std::vector<EePose> PosesOfRows(const KinematicModel& model, const std::vector<D
   return poses;
 }
 
+// The paper's 81 grid poses in B, where the true accuracy is measured.
+std::vector<EePose> GridPoses() {
+  std::vector<EePose> poses;
+  for (const PlannedPose& p : GridPosePlan()) poses.push_back(p.x);
+  return poses;
+}
+
 // One candidate's figures: joint residuals (held-out and all poses), positioning error,
 // straightness runs and, for a Model 12 with the true robot known, the square path.
 ModelValidation ValidateCandidate(const ValidationInputs& in, const Candidate& c,
@@ -294,6 +302,7 @@ ModelValidation ValidateCandidate(const ValidationInputs& in, const Candidate& c
     v.calibration_poses = PosesOfRows(*c.model, FitRows(in.rows, *c.result, held));
     if (!AnyInAFit(in, held)) v.evaluated_poses = PosesOfRows(*c.model, held);
     v.cross_validation = c.result->cross_validation;
+    if (in.truth) v.true_accuracy = TrueAccuracyOfResult(*c.result, in.truth->robot, GridPoses());
     v.accuracy_map = AccuracyMapOfResult(*c.result, in.apriori.assembly);
     if (c.result->parameter_covariance_camera_exact) {
       IdentificationResult camera_exact = *c.result;

@@ -25,6 +25,7 @@
 #include "host/validation/measured_square.h"
 #include "host/validation/square_path.h"
 #include "host/validation/straightness.h"
+#include "host/validation/true_accuracy.h"
 
 namespace h4::host {
 
@@ -78,6 +79,10 @@ struct ModelValidation {
   /// only; a pose whose forward kinematics fails is left out.
   std::vector<EePose> calibration_poses;
   std::vector<EePose> evaluated_poses;
+  /// Simulation only (a truth file): where the true robot goes when driven through this
+  /// identified model over the paper's 81 grid poses, base frame registered (true_accuracy.h),
+  /// beside the result's own prediction. What no camera figure can show.
+  std::optional<TrueAccuracy> true_accuracy;
 };
 
 struct ValidationReport {
