@@ -35,11 +35,13 @@ inline std::vector<Condition> AllConditions() {
   isp.vignetting = 0.15;
   isp.full_well_electrons = 6000;
   isp.noise_sigma = 1.0;
-  // Blur of the pixel values after integration (demosaicing): an image formation the edge
-  // model does not assume (render_options.h), linear so that only the sampling differs.
+  // The blur acting on the pixel values after integration instead of on the light before
+  // it (as a renderer that blurs its pixels, or an ISP's demosaicing, does): an image
+  // formation the edge model does not assume (render_options.h), linear so that only the
+  // sampling differs.
   RenderOptions pixel_blur = clean;
-  pixel_blur.blur_sigma_px = 0.5;
-  pixel_blur.pixel_blur_sigma_px = 1.0;
+  pixel_blur.blur_sigma_px = 0.0;
+  pixel_blur.pixel_blur_sigma_px = 0.7;
   return {{"clean", clean},
           {"blur1.4", blur},
           {"gamma0.7+blur0.7", gamma},
@@ -47,7 +49,7 @@ inline std::vector<Condition> AllConditions() {
           {"gradient", gradient},
           {"all", RenderOptions::Processed()},
           {"isp:gamma0.7+blur1.4", isp},
-          {"pixelblur1.0", pixel_blur}};
+          {"pixelblur0.7", pixel_blur}};
 }
 
 }  // namespace h4::cam::bench

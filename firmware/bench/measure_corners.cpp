@@ -5,10 +5,17 @@
 // edge-fitted, their RMS error, the part of it a uniform erosion explains (what the pose
 // estimator fits away: firmware/pose/pose_estimator.h) and what is left, and the tags'
 // rotation error (the corners of a tag turning together about its centre, which moves the
-// board's rotation).
+// board's rotation). Then the corners h4cam exports (MeasurePipeline: `measure --corners-out`
+// and the campaign's corners, less the erosion the pose fit explains): their mean shift toward
+// their tag's centre (what a pixel-space fit downstream would read as a smaller board) against
+// the detected corners', the fitted erosion against the least-squares erosion of the true
+// errors, and the exported corners' RMS error on tags whose sides run within 3 deg of the
+// pixel axes and on the others (pixel locking, firmware/detection/edge_refinement.h).
 //
 // Usage: h4_measure_corners [board=legacy|kalibr] [condition=NAME|every] [scenes=12]
-//                           [seed=1] [refinement=edge|xcorner]
+//                           [seed=1] [refinement=edge|xcorner] [roll=any|aligned]
+// roll=aligned: the boards turned by a multiple of 90 deg (+-0.5) and tilted at most 2 deg,
+// so that every tag's sides run along the pixel axes.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -23,6 +30,7 @@
 #include "firmware/bench/bench_arguments.h"
 #include "firmware/bench/bench_conditions.h"
 #include "firmware/detection/board_detector.h"
+#include "firmware/pose/measure_pipeline.h"
 #include "firmware/render/paper_scenes.h"
 #include "firmware/sources/sim_source.h"
 
@@ -35,6 +43,7 @@ struct Args {
   int scenes = 12;
   uint64_t seed = 1;
   CornerRefinement refinement = CornerRefinement::kEdgeFit;
+  bool aligned = false;
 };
 
 bool ParseArgs(int argc, char** argv, Args* args) {
@@ -48,6 +57,8 @@ bool ParseArgs(int argc, char** argv, Args* args) {
       args->scenes = std::atoi(value.c_str());
     } else if (key == "seed") {
       args->seed = std::strtoull(value.c_str(), nullptr, 10);
+    } else if (key == "roll" && (value == "any" || value == "aligned")) {
+      args->aligned = value == "aligned";
     } else if (key == "refinement" && (value == "edge" || value == "xcorner")) {
       args->refinement = value == "edge" ? CornerRefinement::kEdgeFit : CornerRefinement::kXCorner;
     } else {
@@ -63,12 +74,69 @@ bool ParseArgs(int argc, char** argv, Args* args) {
 struct CornerTally {
   int expected = 0, found = 0, edge_fitted = 0, tags = 0;
   double error2 = 0, after_erosion2 = 0, tag_rotation2 = 0;
+  // The exported corners (MeasurePipeline) against the truth.
+  int exported = 0, aligned = 0, tilted = 0, scenes_measured = 0;
+  double inward_detected = 0, inward_exported = 0;  // sums of the shift toward the tag centre
+  double aligned2 = 0, tilted2 = 0;                 // squared errors by tag orientation
+  double erosion_fitted = 0, erosion_true = 0;      // sums over the measured scenes, px
 };
+
+// The true projection of a board corner.
+Eigen::Vector2d TrueUv(const CameraModel& camera, const RigidTransform& X_CT,
+                       const Eigen::Vector3d& p_TQ) {
+  Eigen::Vector2d uv;
+  camera.Project(X_CT * p_TQ, &uv);
+  return uv;
+}
+
+// Whether the sides of the tag whose true corners are `uv` run within 3 deg of the pixel axes.
+bool AlongPixelAxes(const std::vector<Eigen::Vector2d>& uv) {
+  for (size_t k = 0; k < uv.size(); ++k) {
+    const Eigen::Vector2d side = uv[(k + 1) % uv.size()] - uv[k];
+    const double angle = std::fmod(std::abs(std::atan2(side.y(), side.x())), M_PI / 2);
+    if (std::min(angle, M_PI / 2 - angle) > 3.0 * M_PI / 180) return false;
+  }
+  return true;
+}
+
+// The exported corners of one scene against the truth, tag by tag (tags with four corners).
+void AddExported(const Measurement& m, const BoardDetection& detection, const BoardModel& board,
+                 const CameraModel& camera, const RigidTransform& X_CT, double erosion_true,
+                 CornerTally* tally) {
+  if (!m.ok()) return;
+  ++tally->scenes_measured;
+  tally->erosion_fitted += m.erosion_px;
+  tally->erosion_true += erosion_true;
+  std::map<int, std::vector<size_t>> by_tag;
+  for (size_t i = 0; i < m.corners.size(); ++i) by_tag[m.corners[i].corner / 4].push_back(i);
+  std::map<int, Eigen::Vector2d> detected;
+  for (const CornerObservation& c : detection.corners) detected[c.id] = c.uv;
+  for (const auto& [tag, members] : by_tag) {
+    if (members.size() != 4) continue;
+    std::vector<Eigen::Vector2d> truth;
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    for (size_t i : members) {
+      truth.push_back(TrueUv(camera, X_CT, *board.Corner(m.corners[i].corner)));
+      centre += 0.25 * truth.back();
+    }
+    const bool along_axes = AlongPixelAxes(truth);
+    for (size_t k = 0; k < members.size(); ++k) {
+      const MeasuredCorner& c = m.corners[members[k]];
+      const Eigen::Vector2d inward = (centre - truth[k]).normalized();
+      const Eigen::Vector2d error = c.uv - truth[k];
+      tally->inward_exported += error.dot(inward);
+      tally->inward_detected += (detected[c.corner] - truth[k]).dot(inward);
+      (along_axes ? tally->aligned2 : tally->tilted2) += error.squaredNorm();
+      ++(along_axes ? tally->aligned : tally->tilted);
+      ++tally->exported;
+    }
+  }
+}
 
 // One scene's corners against the true projections: the image's uniform erosion (least
 // squares over its edge-fitted corners) taken out, and each tag's rotation about its centre.
-void AddScene(const BoardDetection& detection, const CameraModel& camera,
-              const RigidTransform& X_CT, CornerTally* tally) {
+double AddScene(const BoardDetection& detection, const CameraModel& camera,
+                const RigidTransform& X_CT, CornerTally* tally) {
   std::vector<Eigen::Vector2d> errors;
   double erosion_num = 0, erosion_den = 0;
   for (const CornerObservation& c : detection.corners) {
@@ -102,6 +170,23 @@ void AddScene(const BoardDetection& detection, const CameraModel& camera,
     ++tally->tags;
   }
   tally->found += static_cast<int>(detection.corners.size());
+  return erosion;
+}
+
+// The scenes: the paper's random poses, or (roll=aligned) boards turned by a multiple of 90 deg
+// and hardly tilted, whose tags' sides run along the pixel axes.
+std::vector<RigidTransform> ScenePoses(const Args& args) {
+  if (!args.aligned) return scenes::RandomPoses(args.scenes, args.seed);
+  cv::RNG rng(args.seed);
+  const AprilGridSpec board = scenes::PaperBoard();
+  std::vector<RigidTransform> poses;
+  for (int i = 0; i < args.scenes; ++i) {
+    const double roll = M_PI / 2 * (i % 4) + rng.uniform(-0.5, 0.5) * M_PI / 180;
+    poses.push_back(scenes::BoardPose(board, rng.uniform(0.45, 0.65),
+                                      rng.uniform(0.0, 2.0) * M_PI / 180, rng.uniform(-M_PI, M_PI),
+                                      roll, rng.uniform(-0.04, 0.04), rng.uniform(-0.03, 0.03)));
+  }
+  return poses;
 }
 
 CornerTally RunCondition(const bench::Condition& condition, const Args& args) {
@@ -116,13 +201,21 @@ CornerTally RunCondition(const bench::Condition& condition, const Args& args) {
   options.refinement = args.refinement;
   const BoardDetector detector(board, camera, options);
   const CameraModel model(camera);
+  PipelineOptions pipeline_options;
+  pipeline_options.detector = options;
+  const MeasurePipeline pipeline(board, camera, pipeline_options);
+  const BoardModel board_model(board);
   CornerTally tally;
-  for (const RigidTransform& X_CT : scenes::RandomPoses(args.scenes, args.seed)) {
+  for (const RigidTransform& X_CT : ScenePoses(args)) {
     source.SetPose(X_CT);
     FrameAverager averager(10);
     for (int k = 0; k < 10; ++k) averager.Add(*source.Next(std::chrono::milliseconds(0)));
-    AddScene(detector.Detect(averager.Mean()), model, X_CT, &tally);
-    tally.expected += BoardModel(board).corner_count();
+    const cv::Mat mean = averager.Mean();
+    const BoardDetection detection = detector.Detect(mean);
+    const double erosion = AddScene(detection, model, X_CT, &tally);
+    AddExported(pipeline.MeasureImage(mean, 10), detection, board_model, model, X_CT, erosion,
+                &tally);
+    tally.expected += board_model.corner_count();
   }
   return tally;
 }
@@ -136,14 +229,22 @@ int Run(const Args& args) {
       args.refinement == CornerRefinement::kEdgeFit ? "edge" : "xcorner");
   fmt::print(
       "| condition | corners found | edge-fitted | RMS px | RMS less erosion px | tag rotation "
-      "RMS urad |\n|---|---|---|---|---|---|\n");
+      "RMS urad | shift to tag centre, detected px | exported px | erosion fitted / true px | "
+      "exported RMS px, sides along pixel axes (n) | tilted (n) |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const bench::Condition& condition : bench::AllConditions()) {
     if (args.condition != "every" && args.condition != condition.name) continue;
     const CornerTally t = RunCondition(condition, args);
     const double n = std::max(t.found, 1);
-    fmt::print("| {} | {}/{} | {} | {:.4f} | {:.4f} | {:.1f} |\n", condition.name, t.found,
-               t.expected, t.edge_fitted, std::sqrt(t.error2 / n), std::sqrt(t.after_erosion2 / n),
-               1e6 * std::sqrt(t.tag_rotation2 / std::max(t.tags, 1)));
+    const double exported = std::max(t.exported, 1), scenes = std::max(t.scenes_measured, 1);
+    fmt::print(
+        "| {} | {}/{} | {} | {:.4f} | {:.4f} | {:.1f} | {:+.4f} | {:+.4f} | {:.3f} / {:.3f} | "
+        "{:.4f} ({}) | {:.4f} ({}) |\n",
+        condition.name, t.found, t.expected, t.edge_fitted, std::sqrt(t.error2 / n),
+        std::sqrt(t.after_erosion2 / n), 1e6 * std::sqrt(t.tag_rotation2 / std::max(t.tags, 1)),
+        t.inward_detected / exported, t.inward_exported / exported, t.erosion_fitted / scenes,
+        t.erosion_true / scenes, std::sqrt(t.aligned2 / std::max(t.aligned, 1)), t.aligned,
+        std::sqrt(t.tilted2 / std::max(t.tilted, 1)), t.tilted);
   }
   return 0;
 }
