@@ -7,6 +7,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "common/formats/format_error.h"
 #include "host/campaign/journal_file.h"
 
 namespace h4::host {
@@ -51,6 +52,15 @@ void DatasetJournal::Append(const DatasetRow& row) {
   }
   // One write per row: a kill between rows leaves whole rows only.
   const std::string line = DatasetCsvLine(row, kWithSet, kWithSigma) + "\n";
+  // Read back through the reader first: a row it would refuse (a joint beyond its bound, a
+  // sigma out of range) would make the whole dataset unreadable, so it is never written.
+  try {
+    ParseDatasetCsv(DatasetCsvHeader(kWithSet, kWithSigma) + "\n" + line, path());
+  } catch (const FormatError& e) {
+    throw std::invalid_argument(
+        fmt::format("{}: pose {} not recorded, its reader would refuse it: {}", path(),
+                    row.pose_id, e.what()));
+  }
   file_.Append(line);
   rows_.push_back(row);
   pose_ids_.insert(row.pose_id);

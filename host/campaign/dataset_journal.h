@@ -37,7 +37,8 @@ class DatasetJournal {
 
   /// Appends one row and flushes it to the disk; throws std::runtime_error (naming the file
   /// and the system error) when it cannot, leaving the file with its complete rows only,
-  /// and std::invalid_argument for a pose id already in the file.
+  /// and std::invalid_argument for a pose id already in the file or a row the dataset
+  /// reader would refuse (nothing is written then).
   void Append(const DatasetRow& row);
 
  private:
