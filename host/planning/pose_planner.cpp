@@ -7,6 +7,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "common/formats/corners_csv.h"
 #include "common/text/invalid_reason.h"
 #include "host/identification/verdict.h"
 #include "host/simulation/dataset_simulator.h"
@@ -80,6 +81,17 @@ PosePlan TargetPoses(const TargetRegion& region) {
     }
   }
   return poses;
+}
+
+bool PlanningProblemOptions::IsValid(std::string* why) const {
+  if (corner_sigma_px != 0.0 && !(corner_sigma_px >= kCornerSigmaBounds.min &&
+                                  corner_sigma_px <= kCornerSigmaBounds.max)) {
+    return Invalid(why, fmt::format("corner_sigma_px must be 0 (none) or in [{:g}, {:g}] px (the "
+                                    "corners CSV's sigma_px), got {:g}",
+                                    kCornerSigmaBounds.min, kCornerSigmaBounds.max,
+                                    corner_sigma_px));
+  }
+  return true;
 }
 
 std::vector<const InformationModel*> PlanningProblem::Models() const {
@@ -197,6 +209,8 @@ std::vector<PoseSigma> MeasuredPoseSigmas(const RobotDescription& robot, const C
 PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraModel& camera,
                                     const BoardModel& board,
                                     const PlanningProblemOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("pose planning: " + why);
   PlanningProblem problem;
   problem.candidates = MakeCandidateSet(robot, camera, board, options.candidates);
   problem.grid = ReachableGridPoses(robot, &problem.unreachable_grid_ids);
