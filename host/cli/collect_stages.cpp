@@ -21,6 +21,8 @@
 #include "host/formats/poses_csv.h"
 #include "host/formats/robot_yaml.h"
 #include "host/identification/identification.h"
+#include "host/kinematics/model12.h"
+#include "host/kinematics/model31.h"
 #include "host/planning/pose_planner.h"
 #include "host/planning/sequential_plan.h"
 
@@ -108,11 +110,37 @@ IdentificationResult IdentifyFirstStage(const RobotDescription& apriori,
 
 }  // namespace
 
+namespace {
+
+/// Poses of 6 residuals each to have at least one residual per parameter.
+int PosesForParameters(int parameters) { return (parameters + 5) / 6; }
+
+}  // namespace
+
+int MinimumFirstStagePoses() {
+  return PosesForParameters(Model12::kParameterCount + kPlacementParameterCount) + 1;
+}
+
+int MinimumSequentialPoses() {
+  return std::max(MinimumFirstStagePoses() + 1,
+                  PosesForParameters(Model31::kParameterCount + kPlacementParameterCount));
+}
+
 void ParseStageCounts(const std::vector<int>& counts, CollectStagesOptions* options) {
-  if (counts.size() != 2 || counts[0] < 1 || counts[0] >= counts[1]) {
-    throw std::invalid_argument(
-        "--sequential FIRST,TOTAL: FIRST poses in the first stage, TOTAL in the campaign, "
-        "0 < FIRST < TOTAL (e.g. 20,71)");
+  const int first_min = MinimumFirstStagePoses();
+  const int total_min = MinimumSequentialPoses();
+  const auto fail = [&](const std::string& what) {
+    throw std::invalid_argument(fmt::format(
+        "--sequential FIRST,TOTAL: {}; FIRST poses in the first stage, at least {} (a "
+        "residual per free parameter of Model 12, which the rest is planned on, and a pose to "
+        "spare), TOTAL in the campaign, FIRST < TOTAL, {}..{} (e.g. 20,71)",
+        what, first_min, total_min, kMaxSequentialPoses));
+  };
+  if (counts.size() != 2) fail("expected two numbers");
+  if (counts[0] < first_min) fail(fmt::format("FIRST {} is too few", counts[0]));
+  if (counts[0] >= counts[1]) fail(fmt::format("FIRST {} >= TOTAL {}", counts[0], counts[1]));
+  if (counts[1] < total_min || counts[1] > kMaxSequentialPoses) {
+    fail(fmt::format("TOTAL {} is out of range", counts[1]));
   }
   options->first_count = counts[0];
   options->total_count = counts[1];
@@ -166,6 +194,13 @@ PosePlan SecondStagePlan(const CollectStagesOptions& options, const PosePlan& fi
       PlanStage(options, identified,
                 NextStageOptions(StageProblemOptions(options), identified, first_stage_rows), count,
                 last_id + 1);
+  if (!std::isfinite(planned.predicted_position_rms)) {
+    throw std::runtime_error(fmt::format(
+        "stage 2 of 2: the {} poses planned with the {} measured predict no accuracy (the "
+        "robot stage 1 identified, {}, cannot be trusted to plan on): nothing measured; "
+        "measure more poses in the first stage (--sequential FIRST,TOTAL with a larger FIRST)",
+        planned.plan.size(), first_stage_rows.size(), files.first_result));
+  }
   WritePosesCsv(files.second_plan, RowsFromPosePlan(planned.plan));
   fmt::print(
       "stage 2 of 2: {} poses planned on the robot stage 1 identified ({}), predicted {:.4f} mm "

@@ -194,6 +194,55 @@ TEST_F(CollectCommandTest, FromLogReadsPastMessagesThatDoNotDecode) {
   EXPECT_NE(output.find(fmt::format("{} undecodable", hostile)), std::string::npos) << output;
 }
 
+// Issue 42, defect 4: joint states beyond one turn (7 rad, 1e300 rad) were recorded and the
+// dataset's own reader then refused it whole. They are refused where they enter, counted
+// as impossible, and the poses measured only with them are skipped: the dataset reads back.
+TEST_F(CollectCommandTest, JointReadingsBeyondTheReadersBoundAreNeverWritten) {
+  {
+    LogWriter log(log_);
+    ASSERT_TRUE(log.good());
+    for (int64_t id = 1; id <= 3; ++id) {
+      h4msgs::joint_state_t joints = SettledAt(id, log.utime());
+      if (id == 2) joints.position[1] = 7.0;
+      if (id == 3) joints.position[3] = -1e300;
+      for (int k = 0; k < 5; ++k) {
+        joints.utime = log.utime();
+        log.Write(channels::kJointState, joints);
+      }
+      log.Write(channels::kBoardPose, MeasurementOf(id, log.utime() - 2000));
+    }
+  }
+  std::string output;
+  EXPECT_EQ(RunProgram(Collect("--from-log " + log_), &output), 3) << output;
+  const std::vector<DatasetRow> rows = ReadDatasetCsv(out_);
+  ASSERT_EQ(rows.size(), 1u) << output;
+  EXPECT_EQ(rows[0].pose_id, 1);
+  EXPECT_NE(output.find("10 impossible"), std::string::npos) << output;
+  EXPECT_NE(output.find("beyond one turn"), std::string::npos) << output;
+}
+
+// Issue 42, defect 11: `--sequential 3,4` measured 4 poses and printed "predicted inf mm"
+// and "chi-square / dof -441", exit 0; `20,20000` failed only after the first stage. The
+// counts are checked before anything is planned, written or moved.
+TEST_F(CollectCommandTest, SequentialCountsAreCheckedBeforeAnythingMoves) {
+  const std::string robot = (dir_ / "robot.yaml").string();
+  WriteRobotYaml(robot, PaperAprioriRobot());
+  const std::string sequential =
+      kH4cal + " collect --out " + out_ + " --robot " + robot + " --camera " H4_SOURCE_DIR
+      "/boards/sim_camera_1024x768.yaml --board " H4_SOURCE_DIR
+      "/boards/aprilgrid_6x6_30mm.yaml --lcm-url memq:// --sequential ";
+  for (const char* counts : {"3,4", "0,10", "5,6", "8,7", "1,1000000", "20,20000"}) {
+    std::string output;
+    EXPECT_EQ(RunProgram(sequential + counts, &output), 1) << counts << ": " << output;
+    EXPECT_NE(output.find("--sequential FIRST,TOTAL"), std::string::npos) << output;
+    EXPECT_EQ(output.find("stage 1 of 2"), std::string::npos) << counts << ": " << output;
+    for (const auto& entry : fs::directory_iterator(dir_)) {
+      EXPECT_TRUE(entry.path().filename() == "robot.yaml" || entry.path().filename() == "plan.csv")
+          << counts << ": wrote " << entry.path();
+    }
+  }
+}
+
 /// True once another process holds the lock on `path` (polled; gives up after 20 s).
 bool WaitUntilLockedByAnother(const std::string& path) {
   for (int i = 0; i < 2000; ++i) {
