@@ -1,6 +1,7 @@
 // Durable, resumable, exclusive dataset appends; see dataset_journal.h.
 #include "host/campaign/dataset_journal.h"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -64,6 +65,26 @@ void DatasetJournal::Append(const DatasetRow& row) {
   file_.Append(line);
   rows_.push_back(row);
   pose_ids_.insert(row.pose_id);
+}
+
+void DatasetJournal::DropLastRows(size_t count) {
+  if (count > rows_.size()) {
+    throw std::invalid_argument(
+        fmt::format("{}: {} rows to drop of {}", path(), count, rows_.size()));
+  }
+  if (count == 0) return;
+  // After Load the file holds complete lines only, header first: cut the last `count`.
+  std::string text = file_.ReadAll();
+  for (size_t k = 0; k < count; ++k) {
+    const size_t end = text.rfind('\n', text.size() - 2);
+    if (end == std::string::npos) throw std::runtime_error(path() + ": fewer lines than rows");
+    text.resize(end + 1);
+  }
+  file_.Start(text, DatasetCsvHeader(kWithSet, kWithSigma));
+  rows_.resize(rows_.size() - count);
+  pose_ids_.clear();
+  for (const DatasetRow& row : rows_) pose_ids_.insert(row.pose_id);
+  resumed_count_ = std::min(resumed_count_, rows_.size());
 }
 
 }  // namespace h4::host

@@ -41,6 +41,12 @@ class DatasetJournal {
   /// reader would refuse (nothing is written then).
   void Append(const DatasetRow& row);
 
+  /// Cuts the last `count` rows off the file (durably) and forgets them, so that a resumed
+  /// campaign measures those poses again: the rows whose corners an interrupted run lost
+  /// (corners_journal.h ReconcileWithDataset). Throws std::runtime_error naming the file
+  /// when it cannot; std::invalid_argument for more rows than the file holds.
+  void DropLastRows(size_t count);
+
  private:
   /// Reads the file back (dropping a cut last line), or writes the header of a new one.
   void Load();

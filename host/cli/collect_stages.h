@@ -55,7 +55,9 @@ StageFiles StageFilesBeside(const std::string& dataset_path);
 /// it, else planned on the a priori robot and written there. Says which on stdout.
 PosePlan FirstStagePlan(const CollectStagesOptions& options);
 
-/// The second stage's poses: read back when an earlier run wrote them, else the rows of the
+/// The second stage's poses: read back when an earlier run wrote them (refused, naming the
+/// file and the poses, when empty, reusing a first-stage pose id, or shorter than TOTAL -
+/// FIRST: a resumed campaign then never measured the stage), else the rows of the
 /// first stage identified (Model 12, then Model 31 from it; the result written to
 /// StageFiles::first_result) and TOTAL - rows poses planned on that robot, with pose ids
 /// after the first stage's. Throws std::runtime_error when the first stage's rows identify

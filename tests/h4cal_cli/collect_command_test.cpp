@@ -243,6 +243,48 @@ TEST_F(CollectCommandTest, SequentialCountsAreCheckedBeforeAnythingMoves) {
   }
 }
 
+// Issue 42, defect 5: a resumed sequential campaign whose stage-2 plan file was empty or
+// reused stage 1's pose ids measured nothing of stage 2 and exited 0 ("6 of 6 planned
+// poses"). Stage 1 is whole in the dataset here, so nothing waits on the bus.
+TEST_F(CollectCommandTest, AResumedSecondStageThatIsNotTheRestIsRefusedNamingIt) {
+  const std::string robot = (dir_ / "robot.yaml").string();
+  WriteRobotYaml(robot, PaperAprioriRobot());
+  const std::string first = (dir_ / "dataset.stage1.plan.csv").string();
+  const std::string second = (dir_ / "dataset.stage2.plan.csv").string();
+  WritePlan(first, 6);
+  std::vector<DatasetRow> rows;
+  for (int64_t id = 1; id <= 6; ++id) {
+    DatasetRow row;
+    row.pose_id = id;
+    row.utime = 1'700'000'000'000'000 + id;
+    row.q = {0.01 * static_cast<double>(id), 0.2, 0.3, 0.4};
+    row.X_CT = RigidTransform::FromTranslationRpy(Eigen::Vector3d(0.0, 0.0, 0.5), Eigen::Vector3d::Zero());
+    row.sigma_t = 2e-4;
+    row.sigma_r = 5e-4;
+    rows.push_back(row);
+  }
+  WriteDatasetCsv(out_, rows);
+  const std::string sequential =
+      kH4cal + " collect --out " + out_ + " --robot " + robot + " --camera " H4_SOURCE_DIR
+      "/boards/sim_camera_1024x768.yaml --board " H4_SOURCE_DIR
+      "/boards/aprilgrid_6x6_30mm.yaml --lcm-url memq:// --sequential 6,9";
+  struct Case {
+    std::string plan, expected;
+  };
+  for (const Case& c : {Case{"pose_id,X,Y,Z,theta\n", "holds no pose"},
+                        Case{"pose_id,X,Y,Z,theta\n1,0.01,0,-0.45,0\n2,0.02,0,-0.45,0\n"
+                             "7,0.07,0,-0.45,0\n",
+                             "reuses pose ids of the first stage (1, 2)"},
+                        Case{"pose_id,X,Y,Z,theta\n7,0.07,0,-0.45,0\n", "holds 1 poses"}}) {
+    std::ofstream(second) << c.plan;
+    std::string output;
+    EXPECT_EQ(RunProgram(sequential, &output), 1) << output;
+    EXPECT_NE(output.find(second), std::string::npos) << output;
+    EXPECT_NE(output.find(c.expected), std::string::npos) << output;
+    EXPECT_EQ(ReadDatasetCsv(out_).size(), 6u);
+  }
+}
+
 /// True once another process holds the lock on `path` (polled; gives up after 20 s).
 bool WaitUntilLockedByAnother(const std::string& path) {
   for (int i = 0; i < 2000; ++i) {
