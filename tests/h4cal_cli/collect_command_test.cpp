@@ -221,6 +221,21 @@ TEST_F(CollectCommandTest, JointReadingsBeyondTheReadersBoundAreNeverWritten) {
   EXPECT_NE(output.find("beyond one turn"), std::string::npos) << output;
 }
 
+// Issue 42, defect 10: a new campaign beside an old STEM.corners.csv kept the old corners
+// for its poses, exit 0. It is refused, naming the corners file, and the file is untouched.
+TEST_F(CollectCommandTest, ANewCampaignBesideAnotherCampaignsCornersIsRefused) {
+  WriteHostileCampaignLog(log_, 3);
+  const std::string corners = (dir_ / "dataset.corners.csv").string();
+  const std::string old_corners =
+      "pose_id,tag_id,corner,u,v,sigma_px\n1,0,0,100,200,0.1\n2,0,0,110,200,0.1\n";
+  std::ofstream(corners) << old_corners;
+  std::string output;
+  EXPECT_EQ(RunProgram(Collect("--from-log " + log_), &output), 1) << output;
+  EXPECT_NE(output.find(corners + ": holds the corners of 2 poses"), std::string::npos) << output;
+  EXPECT_EQ(LogOrDatasetText(corners), old_corners);
+  EXPECT_TRUE(ReadDatasetCsv(out_).empty());
+}
+
 // Issue 42, defect 11: `--sequential 3,4` measured 4 poses and printed "predicted inf mm"
 // and "chi-square / dof -441", exit 0; `20,20000` failed only after the first stage. The
 // counts are checked before anything is planned, written or moved.
