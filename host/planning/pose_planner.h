@@ -47,7 +47,8 @@ PosePlan TargetPoses(const TargetRegion& region);
 /// judged as well as at the a priori's: the plan is for the robot it will meet, which the
 /// a priori only approximates (Bayesian I-optimality, pose_design.h PlanForMeanAccuracy).
 struct RobustOptions {
-  /// How many robots are drawn (Model 31 geometry and placement, true_robot.h); 0: the
+  /// How many robots are drawn (the planned model's geometry, Model 12's or Model 31's,
+  /// and placement, true_robot.h); 0: the
   /// a priori alone. The criterion and the prediction average over them and the a priori.
   int robots = 8;
   /// The spreads of the draws, and the first draw's seed: PerturbationOptions' geometry
