@@ -30,6 +30,7 @@
 #include "host/formats/dataset_csv.h"
 #include "host/formats/identification_result.h"
 #include "host/formats/robot_yaml.h"
+#include "host/identification/corner_checks.h"
 #include "host/identification/corner_identification.h"
 #include "host/identification/identification.h"
 #include "host/identification/identified_robot.h"
@@ -281,13 +282,20 @@ int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription&
   const BoardModel board(ReadBoardYaml(options.board_path));
   const CameraIntrinsics camera = ReadCameraYaml(options.camera_path);
   const std::vector<CornerObservation> observed = ReadCornersCsv(options.corners_path);
-  const std::vector<PoseCorners> corners =
+  RequireCornersInImage(rows, observed, camera);
+  std::vector<PoseCorners> corners =
       GroupCornersByRow(rows, observed, board, options.default_sigma_px);
+  for (const std::string& why : DropDegenerateCornerPoses(rows, &corners)) {
+    spdlog::warn("{}: {}", options.corners_path, why);
+  }
   CornerFitOptions corner_options;
   corner_options.camera_fixed = options.camera_fixed;
-  const CornerPathOutcome path =
+  CornerPathOutcome path =
       IdentifyOnCorners(AprioriModelOf(robot, model), model, pose_path, rows, corners, camera,
                         id_options, corner_options);
+  if (path.fit.ok && path.outcome.summary.usable) {
+    FlagOverstatedCornerNoise(path.fit.uncertainty.chi2_per_dof, &path.outcome);
+  }
   if (!path.fit.ok) {
     PrintCornerFit(path);
     throw std::runtime_error("the corner fit failed: " + path.fit.message);

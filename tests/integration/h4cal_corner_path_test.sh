@@ -115,6 +115,42 @@ run camera_alone 1 --model 31 --from "$dir/r12.json" --camera "$file_camera"
 grep -q -- '--camera and --board go together' "$dir/camera_alone.log" \
   || fail "--camera without --board: $(cat "$dir/camera_alone.log")"
 
+# Issue 42, defect 9: one corner at u = 999999 px (inside the CSV's bound) wrecked the corner
+# path into a result h4cal's own reader refused; a pose with every corner off the image was
+# named as another pose's forward-kinematics failure; a pose whose corners sit on one pixel
+# wrecked it too. And an overstated sigma_px (100 px) gave `good` at chi-square/dof 2e-5.
+awk -F, -v OFS=, 'NR == 2 { $4 = 999999 } 1' "$dir/sim/corners.csv" > "$dir/far.csv"
+run far 1 --model 31 --from "$dir/r12.json" --corners "$dir/far.csv" --board "$board" \
+  --camera "$file_camera"
+first=$(awk -F, 'NR == 2 { print $1 }' "$dir/sim/corners.csv")
+grep -q "pose $first: corner .* at (999999, .*) px is outside the camera's 1024x768 image" \
+  "$dir/far.log" || fail "a corner at u = 999999 px: $(tail -1 "$dir/far.log")"
+[ ! -e "$dir/far.json" ] || fail "a result was written from a corner off the image"
+awk -F, -v OFS=, -v p="$first" 'NR > 1 && $1 == p { $4 += 5000 } 1' "$dir/sim/corners.csv" \
+  > "$dir/off.csv"
+run off 1 --model 31 --from "$dir/r12.json" --corners "$dir/off.csv" --board "$board" \
+  --camera "$file_camera"
+grep -q "pose $first: every one of its [0-9]* corners is off the camera's 1024x768 image" \
+  "$dir/off.log" || fail "a pose with every corner off the image: $(tail -1 "$dir/off.log")"
+awk -F, -v OFS=, -v p="$first" 'NR > 1 && $1 == p { $4 = 500; $5 = 400 } 1' \
+  "$dir/sim/corners.csv" > "$dir/onepixel.csv"
+run onepixel 0 --model 31 --from "$dir/r12.json" --corners "$dir/onepixel.csv" --board "$board" \
+  --camera "$file_camera"
+grep -q "pose $first: its [0-9]* corners spread 0 px across at most .* left out" \
+  "$dir/onepixel.log" || fail "a pose on one pixel was not left out: $(tail -1 "$dir/onepixel.log")"
+grep -q '^corner path: 80 poses' "$dir/onepixel.txt" || fail "onepixel: $(grep '^corner path' "$dir/onepixel.txt")"
+if head -1 "$dir/sim/corners.csv" | grep -q ',sigma_px'; then
+  awk -F, -v OFS=, 'NR > 1 { $6 = 100 } 1' "$dir/sim/corners.csv" > "$dir/sigma100.csv"
+else
+  awk -F, -v OFS=, 'NR == 1 { print $0 ",sigma_px"; next } { print $0 ",100" }' \
+    "$dir/sim/corners.csv" > "$dir/sigma100.csv"
+fi
+run sigma100 3 --model 31 --from "$dir/r12.json" --corners "$dir/sigma100.csv" --board "$board" \
+  --camera "$file_camera"
+head -1 "$dir/sigma100.txt" | grep -q 'noise_overstated' ||
+  fail "sigma_px 100: $(head -1 "$dir/sigma100.txt")"
+grep -q '"code": "noise_overstated"' "$dir/sigma100.json" || fail "sigma_px 100: no verdict code"
+
 # The three files go together.
 run missing 1 --model 31 --from "$dir/r12.json" --corners "$dir/sim/corners.csv"
 grep -q 'needs --corners, --board and --camera together' "$dir/missing.log" \
