@@ -151,6 +151,16 @@ head -1 "$dir/sigma100.txt" | grep -q 'noise_overstated' ||
   fail "sigma_px 100: $(head -1 "$dir/sigma100.txt")"
 grep -q '"code": "noise_overstated"' "$dir/sigma100.json" || fail "sigma_px 100: no verdict code"
 
+# Issue 42, defect 17: validate with the wrong --board (88 mm tags for 30 mm) exited 0 and drew
+# hundreds of px as "where the camera model misfits"; it names the board and exits non-zero.
+"$h4cal" validate --robot "$dir/sim/robot.yaml" --data "$dir/sim/dataset.csv" \
+  --result31 "$dir/corner31.json" --corners "$dir/sim/corners.csv" \
+  --board "$boards/kalibr_aprilgrid_6x6_88mm.yaml" --camera "$file_camera" \
+  --report-dir "$dir/wrong_board" > "$dir/wrong_board.txt" 2>&1 &&
+  fail "validate with the wrong board exited 0"
+grep -q "do not match the board given (an AprilTag grid of 6x6 tag36h11 tags of 88 mm" \
+  "$dir/wrong_board.txt" || fail "the wrong board: $(tail -1 "$dir/wrong_board.txt")"
+
 # The three files go together.
 run missing 1 --model 31 --from "$dir/r12.json" --corners "$dir/sim/corners.csv"
 grep -q 'needs --corners, --board and --camera together' "$dir/missing.log" \
