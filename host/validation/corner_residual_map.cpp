@@ -17,10 +17,7 @@
 #include "host/identification/parameter_vector.h"
 
 namespace h4::host {
-namespace {
 
-// The intrinsics that predict the corners: the result's refined ones when it has them
-// (checked against the file's model, size and parameter names), else the file's.
 CameraIntrinsics PredictingCamera(const IdentificationResult& result, const CameraIntrinsics& file) {
   if (!result.camera) return file;
   const ResultCamera& refined = *result.camera;
@@ -49,6 +46,8 @@ CameraIntrinsics PredictingCamera(const IdentificationResult& result, const Came
   }
   return WithCameraParameters(file, values);
 }
+
+namespace {
 
 std::vector<DatasetRow> RowsNotRejected(const IdentificationResult& result,
                                         const std::vector<DatasetRow>& rows) {

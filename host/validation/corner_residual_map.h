@@ -50,6 +50,11 @@ struct CornerResidualMap {
   double outer_rms_px = 0.0;
 };
 
+/// The intrinsics that predict the corners: the result's refined ones when it has them (its
+/// `camera` key, checked against the file's model, size and parameter names; throws
+/// std::invalid_argument naming what differs), else the file's.
+CameraIntrinsics PredictingCamera(const IdentificationResult& result, const CameraIntrinsics& file);
+
 /// The largest per-axis corner residual RMS a map may show, px: a camera model's misfit
 /// (a wrong focal length, distortion, principal point) leaves a few pixels, a calibration
 /// gone wrong tens; a wrong board (another tag size or spacing) leaves hundreds (issue 42,

@@ -115,6 +115,31 @@ run camera_alone 1 --model 31 --from "$dir/r12.json" --camera "$file_camera"
 grep -q -- '--camera and --board go together' "$dir/camera_alone.log" \
   || fail "--camera without --board: $(cat "$dir/camera_alone.log")"
 
+# Issue 42, defect 7: fresh poses of the same unchanged robot, measured with the camera file,
+# were checked against the corner-path result (identified on poses measured again with its
+# refined camera): DRIFT on every pose. check refuses without the corners, saying what to
+# give, and with them measures the poses again with the result's camera: no drift.
+"$h4cal" simulate --truth 31 --seed 12 --robot-seed 5 --validation 0 --board "$board" \
+  --camera "$true_camera" --camera-file "$file_camera" --out-dir "$dir/check_sim" \
+  2> "$dir/check_sim.log" || fail "simulate the check's poses: $(tail -1 "$dir/check_sim.log")"
+"$h4cal" check --result "$dir/corner31.json" --data "$dir/check_sim/dataset.csv" \
+  > "$dir/check_bare.txt" 2>&1
+rc=$?
+[ $rc -eq 1 ] || fail "check of a corner-path result without corners: exit $rc: $(tail -3 "$dir/check_bare.txt")"
+grep -q "is a corner-path result .* Give the check's corners with --corners" "$dir/check_bare.txt" ||
+  fail "check without corners: $(tail -1 "$dir/check_bare.txt")"
+"$h4cal" check --result "$dir/corner31.json" --data "$dir/check_sim/dataset.csv" \
+  --corners "$dir/check_sim/corners.csv" --board "$board" --camera "$file_camera" \
+  > "$dir/check_corners.txt" 2>&1 ||
+  fail "check of the unchanged robot against the corner-path result: $(tail -2 "$dir/check_corners.txt")"
+grep -q "measured again from their corners with the result's camera" "$dir/check_corners.txt" ||
+  fail "check did not measure the poses again: $(head -2 "$dir/check_corners.txt")"
+"$h4cal" check --result "$dir/pose31.json" --data "$dir/check_sim/dataset.csv" \
+  --corners "$dir/check_sim/corners.csv" --board "$board" --camera "$file_camera" \
+  > "$dir/check_pose_corners.txt" 2>&1 && fail "--corners with a pose-path result was accepted"
+grep -q "is a pose-path result" "$dir/check_pose_corners.txt" ||
+  fail "--corners with a pose-path result: $(tail -1 "$dir/check_pose_corners.txt")"
+
 # Issue 42, defect 9: one corner at u = 999999 px (inside the CSV's bound) wrecked the corner
 # path into a result h4cal's own reader refused; a pose with every corner off the image was
 # named as another pose's forward-kinematics failure; a pose whose corners sit on one pixel
