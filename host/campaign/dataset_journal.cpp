@@ -58,9 +58,8 @@ void DatasetJournal::Append(const DatasetRow& row) {
   try {
     ParseDatasetCsv(DatasetCsvHeader(kWithSet, kWithSigma) + "\n" + line, path());
   } catch (const FormatError& e) {
-    throw std::invalid_argument(
-        fmt::format("{}: pose {} not recorded, its reader would refuse it: {}", path(),
-                    row.pose_id, e.what()));
+    throw std::invalid_argument(fmt::format(
+        "{}: pose {} not recorded, its reader would refuse it: {}", path(), row.pose_id, e.what()));
   }
   file_.Append(line);
   rows_.push_back(row);

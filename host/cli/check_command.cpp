@@ -85,8 +85,9 @@ std::vector<DatasetRow> PosesLikeTheResults(const CheckCommandOptions& o,
                                     ReadCameraYaml(o.camera_path), o.default_sigma_px, &dropped);
   fmt::print("check: {} poses measured again from their corners with the result's camera{}\n",
              rows.size(),
-             dropped.empty() ? "" : fmt::format(" ({} without enough corners left out: pose {})",
-                                                dropped.size(), fmt::join(dropped, ", ")));
+             dropped.empty() ? ""
+                             : fmt::format(" ({} without enough corners left out: pose {})",
+                                           dropped.size(), fmt::join(dropped, ", ")));
   return rows;
 }
 

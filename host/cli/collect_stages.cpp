@@ -90,8 +90,8 @@ void CheckEarlierSecondStage(const CollectStagesOptions& options, const std::str
         "never be measured; remove it to plan the stage again",
         path, fmt::join(reused, ", ")));
   }
-  const size_t needed = static_cast<size_t>(
-      std::max(1, options.total_count - static_cast<int>(first_stage.size())));
+  const size_t needed =
+      static_cast<size_t>(std::max(1, options.total_count - static_cast<int>(first_stage.size())));
   if (second_stage.size() < needed) {
     throw std::runtime_error(fmt::format(
         "{}: the stage 2 of 2 plan holds {} poses, the campaign of {} after the first stage's "

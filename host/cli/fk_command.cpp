@@ -1,8 +1,8 @@
 // `h4cal fk`: forward kinematics of joint readings
 // (common/formats/README.md#joints-csv-and-poses-csv-for-h4cal-fk--h4cal-ik): the end-effector pose
-// in B (a Model 31's mapped from B31, robot_source.h RobotInB) and the board pose X_CT = inv(X_BC) X_BE inv(X_TE) it implies. With --compare, the board
-// poses are scored against reference ones (e.g. a simulation's truth): the figure of issue "Host
-// solver".
+// in B (a Model 31's mapped from B31, robot_source.h RobotInB) and the board pose X_CT = inv(X_BC)
+// X_BE inv(X_TE) it implies. With --compare, the board poses are scored against reference ones
+// (e.g. a simulation's truth): the figure of issue "Host solver".
 #include <cmath>
 #include <map>
 #include <numbers>

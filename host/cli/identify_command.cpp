@@ -290,9 +290,8 @@ int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription&
   }
   CornerFitOptions corner_options;
   corner_options.camera_fixed = options.camera_fixed;
-  CornerPathOutcome path =
-      IdentifyOnCorners(AprioriModelOf(robot, model), model, pose_path, rows, corners, camera,
-                        id_options, corner_options);
+  CornerPathOutcome path = IdentifyOnCorners(AprioriModelOf(robot, model), model, pose_path, rows,
+                                             corners, camera, id_options, corner_options);
   if (path.fit.ok && path.outcome.summary.usable) {
     FlagOverstatedCornerNoise(path.fit.uncertainty.chi2_per_dof, &path.outcome);
   }

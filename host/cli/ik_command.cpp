@@ -45,9 +45,8 @@ int Run(const IkCommandOptions& options) {
     rows.push_back({p.pose_id, {ik.q[0], ik.q[1], ik.q[2], ik.q[3]}});
   }
   WriteJointsCsv(options.out_path, rows);
-  spdlog::info("ik with {}: {} of {} rows written to {} (targets in B{})", description,
-               rows.size(), poses.size(), options.out_path,
-               in_b.X_B31B ? ", mapped to Model 31's B31" : "");
+  spdlog::info("ik with {}: {} of {} rows written to {} (targets in B{})", description, rows.size(),
+               poses.size(), options.out_path, in_b.X_B31B ? ", mapped to Model 31's B31" : "");
   return LeftOutRowsExitCode(unreachable, "poses are out of reach");
 }
 

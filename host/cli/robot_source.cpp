@@ -73,7 +73,8 @@ RigidTransform AprioriX_B31B(const IdentificationResult& result) {
   double longest = 0.0;
   for (int i = 2; i <= 4; ++i) {
     const double alpha = AprioriOf(result, fmt::format("psi{}", i));
-    const Eigen::Vector2d unit(std::cos(alpha1) - std::cos(alpha), std::sin(alpha1) - std::sin(alpha));
+    const Eigen::Vector2d unit(std::cos(alpha1) - std::cos(alpha),
+                               std::sin(alpha1) - std::sin(alpha));
     if (unit.norm() <= longest) continue;
     longest = unit.norm();
     m12.R = Eigen::Vector2d(AprioriOf(result, fmt::format("x{}", i)),

@@ -48,11 +48,10 @@ void RequireCornersInImage(const std::vector<DatasetRow>& rows,
     }
   }
   for (const auto& [pose_id, c] : first_outside) {
-    throw std::invalid_argument(
-        fmt::format("pose {}: corner {} (tag {}) at ({:g}, {:g}) px is outside {}{}", pose_id,
-                    c->corner, c->tag_id, c->u, c->v, image,
-                    outside[pose_id] > 1 ? fmt::format(", {} such corners", outside[pose_id])
-                                         : std::string()));
+    throw std::invalid_argument(fmt::format(
+        "pose {}: corner {} (tag {}) at ({:g}, {:g}) px is outside {}{}", pose_id, c->corner,
+        c->tag_id, c->u, c->v, image,
+        outside[pose_id] > 1 ? fmt::format(", {} such corners", outside[pose_id]) : std::string()));
   }
 }
 
@@ -68,10 +67,9 @@ std::vector<std::string> DropDegenerateCornerPoses(const std::vector<DatasetRow>
     Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
     for (const Eigen::Vector2d& uv : c.uv) covariance += (uv - mean) * (uv - mean).transpose();
     covariance /= static_cast<double>(c.uv.size());
-    const double spread =
-        std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(covariance,
-                                                                                Eigen::EigenvaluesOnly)
-                                     .eigenvalues()[0]));
+    const double spread = std::sqrt(std::max(
+        0.0, Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(covariance, Eigen::EigenvaluesOnly)
+                 .eigenvalues()[0]));
     if (spread >= kMinCornerSpreadPx) continue;
     reasons.push_back(fmt::format(
         "pose {}: its {} corners spread {:.3g} px across at most (on one pixel or one line, "

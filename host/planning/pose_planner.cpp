@@ -84,12 +84,12 @@ PosePlan TargetPoses(const TargetRegion& region) {
 }
 
 bool PlanningProblemOptions::IsValid(std::string* why) const {
-  if (corner_sigma_px != 0.0 && !(corner_sigma_px >= kCornerSigmaBounds.min &&
-                                  corner_sigma_px <= kCornerSigmaBounds.max)) {
-    return Invalid(why, fmt::format("corner_sigma_px must be 0 (none) or in [{:g}, {:g}] px (the "
-                                    "corners CSV's sigma_px), got {:g}",
-                                    kCornerSigmaBounds.min, kCornerSigmaBounds.max,
-                                    corner_sigma_px));
+  if (corner_sigma_px != 0.0 &&
+      !(corner_sigma_px >= kCornerSigmaBounds.min && corner_sigma_px <= kCornerSigmaBounds.max)) {
+    return Invalid(why,
+                   fmt::format("corner_sigma_px must be 0 (none) or in [{:g}, {:g}] px (the "
+                               "corners CSV's sigma_px), got {:g}",
+                               kCornerSigmaBounds.min, kCornerSigmaBounds.max, corner_sigma_px));
   }
   return true;
 }

@@ -176,13 +176,10 @@ DriftCheckResult CheckResultForDrift(const IdentificationResult& result, const A
   return check;
 }
 
-std::vector<DatasetRow> RemeasuredWithResultCamera(const IdentificationResult& result,
-                                                   const std::vector<DatasetRow>& rows,
-                                                   const std::vector<CornerObservation>& corners,
-                                                   const BoardModel& board,
-                                                   const CameraIntrinsics& file_camera,
-                                                   double default_sigma_px,
-                                                   std::vector<int64_t>* dropped) {
+std::vector<DatasetRow> RemeasuredWithResultCamera(
+    const IdentificationResult& result, const std::vector<DatasetRow>& rows,
+    const std::vector<CornerObservation>& corners, const BoardModel& board,
+    const CameraIntrinsics& file_camera, double default_sigma_px, std::vector<int64_t>* dropped) {
   if (!result.camera) {
     throw std::invalid_argument(
         "the result has no refined camera (a pose-path result): its poses were measured with the "
@@ -192,8 +189,8 @@ std::vector<DatasetRow> RemeasuredWithResultCamera(const IdentificationResult& r
   RequireCornersInImage(rows, corners, file_camera);
   std::vector<PoseCorners> grouped = GroupCornersByRow(rows, corners, board, default_sigma_px);
   DropDegenerateCornerPoses(rows, &grouped);
-  std::vector<DatasetRow> remeasured = RefitBoardPoses(
-      rows, grouped, camera, CornerFitOptions{}.min_corners_per_pose, dropped);
+  std::vector<DatasetRow> remeasured =
+      RefitBoardPoses(rows, grouped, camera, CornerFitOptions{}.min_corners_per_pose, dropped);
   if (remeasured.empty()) {
     throw std::invalid_argument(
         "no pose of the check could be measured again from the corners given (none has enough "

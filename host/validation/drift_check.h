@@ -100,13 +100,10 @@ DriftCheckResult CheckResultForDrift(const IdentificationResult& result, const A
 /// 12477, limit 552). Each pose as the corner path measures it (corner_identification.h
 /// RefitBoardPoses); poses without enough corners go to *dropped. Throws std::invalid_argument
 /// when the result has no camera key, or no pose could be measured again.
-std::vector<DatasetRow> RemeasuredWithResultCamera(const IdentificationResult& result,
-                                                   const std::vector<DatasetRow>& rows,
-                                                   const std::vector<CornerObservation>& corners,
-                                                   const BoardModel& board,
-                                                   const CameraIntrinsics& file_camera,
-                                                   double default_sigma_px,
-                                                   std::vector<int64_t>* dropped);
+std::vector<DatasetRow> RemeasuredWithResultCamera(
+    const IdentificationResult& result, const std::vector<DatasetRow>& rows,
+    const std::vector<CornerObservation>& corners, const BoardModel& board,
+    const CameraIntrinsics& file_camera, double default_sigma_px, std::vector<int64_t>* dropped);
 
 /// Upper tail quantile of chi-square with an even number of degrees of freedom: the x with
 /// P(X > x) = tail_probability.

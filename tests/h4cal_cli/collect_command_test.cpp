@@ -242,10 +242,10 @@ TEST_F(CollectCommandTest, ANewCampaignBesideAnotherCampaignsCornersIsRefused) {
 TEST_F(CollectCommandTest, SequentialCountsAreCheckedBeforeAnythingMoves) {
   const std::string robot = (dir_ / "robot.yaml").string();
   WriteRobotYaml(robot, PaperAprioriRobot());
-  const std::string sequential =
-      kH4cal + " collect --out " + out_ + " --robot " + robot + " --camera " H4_SOURCE_DIR
-      "/boards/sim_camera_1024x768.yaml --board " H4_SOURCE_DIR
-      "/boards/aprilgrid_6x6_30mm.yaml --lcm-url memq:// --sequential ";
+  const std::string sequential = kH4cal + " collect --out " + out_ + " --robot " + robot +
+                                 " --camera " H4_SOURCE_DIR
+                                 "/boards/sim_camera_1024x768.yaml --board " H4_SOURCE_DIR
+                                 "/boards/aprilgrid_6x6_30mm.yaml --lcm-url memq:// --sequential ";
   for (const char* counts : {"3,4", "0,10", "5,6", "8,7", "1,1000000", "20,20000"}) {
     std::string output;
     EXPECT_EQ(RunProgram(sequential + counts, &output), 1) << counts << ": " << output;
@@ -273,15 +273,16 @@ TEST_F(CollectCommandTest, AResumedSecondStageThatIsNotTheRestIsRefusedNamingIt)
     row.pose_id = id;
     row.utime = 1'700'000'000'000'000 + id;
     row.q = {0.01 * static_cast<double>(id), 0.2, 0.3, 0.4};
-    row.X_CT = RigidTransform::FromTranslationRpy(Eigen::Vector3d(0.0, 0.0, 0.5), Eigen::Vector3d::Zero());
+    row.X_CT =
+        RigidTransform::FromTranslationRpy(Eigen::Vector3d(0.0, 0.0, 0.5), Eigen::Vector3d::Zero());
     row.sigma_t = 2e-4;
     row.sigma_r = 5e-4;
     rows.push_back(row);
   }
   WriteDatasetCsv(out_, rows);
   const std::string sequential =
-      kH4cal + " collect --out " + out_ + " --robot " + robot + " --camera " H4_SOURCE_DIR
-      "/boards/sim_camera_1024x768.yaml --board " H4_SOURCE_DIR
+      kH4cal + " collect --out " + out_ + " --robot " + robot +
+      " --camera " H4_SOURCE_DIR "/boards/sim_camera_1024x768.yaml --board " H4_SOURCE_DIR
       "/boards/aprilgrid_6x6_30mm.yaml --lcm-url memq:// --sequential 6,9";
   struct Case {
     std::string plan, expected;

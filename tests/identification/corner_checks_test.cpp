@@ -36,9 +36,10 @@ std::string WhatOf(const std::vector<CornerObservation>& corners) {
 }
 
 TEST(CornerChecks, ACornerOffTheImageIsRefusedNamingItsPose) {
-  std::vector<CornerObservation> corners = {
-      {1, 0, 0, 100, 100, 0.1}, {1, 0, 1, 1030, 760, 0.1},  // within the margin
-      {2, 0, 0, 200, 100, 0.1}, {2, 0, 1, 300, 100, 0.1}};
+  std::vector<CornerObservation> corners = {{1, 0, 0, 100, 100, 0.1},
+                                            {1, 0, 1, 1030, 760, 0.1},  // within the margin
+                                            {2, 0, 0, 200, 100, 0.1},
+                                            {2, 0, 1, 300, 100, 0.1}};
   EXPECT_EQ(WhatOf(corners), "");
   corners[1].u = 999999;
   EXPECT_NE(WhatOf(corners).find("pose 1: corner 1 (tag 0) at (999999, 760) px is outside the "
@@ -59,7 +60,7 @@ TEST(CornerChecks, APoseWhoseCornersSitOnOnePixelOrLineIsLeftOut) {
   std::vector<PoseCorners> grouped(3);
   for (int k = 0; k < 12; ++k) {
     grouped[0].uv.emplace_back(100 + 10 * (k % 4), 200 + 10 * (k / 4));  // a grid: kept
-    grouped[1].uv.emplace_back(500, 400);                                 // one pixel
+    grouped[1].uv.emplace_back(500, 400);                                // one pixel
     grouped[2].uv.emplace_back(100 + 10 * k, 200 + 10 * k);              // one line
     for (PoseCorners& g : grouped) {
       g.p_TQ.emplace_back(0, 0, 0);

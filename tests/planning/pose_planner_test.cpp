@@ -79,8 +79,8 @@ TEST(PlanningProblemOptions, TheCornerSigmaIsBoundedByTheCornersCsvs) {
     options.corner_sigma_px = sigma;
     EXPECT_TRUE(options.IsValid(&why)) << sigma << ": " << why;
   }
-  for (const double sigma : {std::nan(""), 1e160, -0.5, 1e-9, 100.5,
-                             std::numeric_limits<double>::infinity()}) {
+  for (const double sigma :
+       {std::nan(""), 1e160, -0.5, 1e-9, 100.5, std::numeric_limits<double>::infinity()}) {
     options.corner_sigma_px = sigma;
     EXPECT_FALSE(options.IsValid(&why)) << sigma;
     EXPECT_NE(why.find("corner_sigma_px"), std::string::npos) << why;
