@@ -293,7 +293,8 @@ int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription&
   CornerPathOutcome path = IdentifyOnCorners(AprioriModelOf(robot, model), model, pose_path, rows,
                                              corners, camera, id_options, corner_options);
   if (path.fit.ok && path.outcome.summary.usable) {
-    FlagOverstatedCornerNoise(path.fit.uncertainty.chi2_per_dof, &path.outcome);
+    FlagOverstatedCornerNoise(path.fit.uncertainty.chi2_per_dof, &path.outcome.verdict,
+                              &path.outcome.result);
   }
   if (!path.fit.ok) {
     PrintCornerFit(path);

@@ -10,7 +10,6 @@
 #include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 
-#include "host/identification/verdict.h"
 
 namespace h4::host {
 namespace {
@@ -80,11 +79,12 @@ std::vector<std::string> DropDegenerateCornerPoses(const std::vector<DatasetRow>
   return reasons;
 }
 
-bool FlagOverstatedCornerNoise(double corner_chi2_per_dof, IdentificationOutcome* outcome) {
+bool FlagOverstatedCornerNoise(double corner_chi2_per_dof, Verdict* code,
+                               IdentificationResult* result) {
   if (!(corner_chi2_per_dof < kOverstatedCornerChi2PerDof)) return false;
-  outcome->verdict = Verdict::kNoiseOverstated;
-  if (!outcome->result.verdict) outcome->result.verdict = ResultVerdict{};
-  ResultVerdict& verdict = *outcome->result.verdict;
+  *code = Verdict::kNoiseOverstated;
+  if (!result->verdict) result->verdict = ResultVerdict{};
+  ResultVerdict& verdict = *result->verdict;
   verdict.code = VerdictCode(Verdict::kNoiseOverstated);
   verdict.text = fmt::format(
       "The corners' sigma is overstated: the corner fit's chi-square / dof is {:.3g}, below "

@@ -14,7 +14,8 @@
 #include "common/camera/camera_intrinsics.h"
 #include "common/formats/corners_csv.h"
 #include "host/formats/dataset_csv.h"
-#include "host/identification/identification.h"
+#include "host/formats/identification_result.h"
+#include "host/identification/verdict.h"
 
 namespace h4::host {
 
@@ -45,7 +46,9 @@ std::vector<std::string> DropDegenerateCornerPoses(const std::vector<DatasetRow>
 inline constexpr double kOverstatedCornerChi2PerDof = 0.05;
 
 /// When `corner_chi2_per_dof` (the corner fit's) is below kOverstatedCornerChi2PerDof, the
-/// outcome's verdict becomes noise_overstated with the figure, whatever it was; true then.
-bool FlagOverstatedCornerNoise(double corner_chi2_per_dof, IdentificationOutcome* outcome);
+/// verdict (an IdentificationOutcome's `verdict` and its result's) becomes noise_overstated
+/// with the figure, whatever it was; true then.
+bool FlagOverstatedCornerNoise(double corner_chi2_per_dof, Verdict* verdict,
+                               IdentificationResult* result);
 
 }  // namespace h4::host

@@ -77,15 +77,15 @@ TEST(CornerChecks, APoseWhoseCornersSitOnOnePixelOrLineIsLeftOut) {
 }
 
 TEST(CornerChecks, AnOverstatedCornerSigmaIsNotGood) {
-  IdentificationOutcome outcome;
-  outcome.verdict = Verdict::kGood;
-  outcome.result.verdict = ResultVerdict{.code = "good", .text = "Good", .figures = {}};
-  EXPECT_FALSE(FlagOverstatedCornerNoise(0.8, &outcome));
-  EXPECT_EQ(outcome.verdict, Verdict::kGood);
-  EXPECT_TRUE(FlagOverstatedCornerNoise(2e-5, &outcome));
-  EXPECT_EQ(outcome.verdict, Verdict::kNoiseOverstated);
-  EXPECT_EQ(outcome.result.verdict->code, "noise_overstated");
-  EXPECT_NE(outcome.result.verdict->text.find("overstated"), std::string::npos);
+  Verdict verdict = Verdict::kGood;
+  IdentificationResult result;
+  result.verdict = ResultVerdict{.code = "good", .text = "Good", .figures = {}};
+  EXPECT_FALSE(FlagOverstatedCornerNoise(0.8, &verdict, &result));
+  EXPECT_EQ(verdict, Verdict::kGood);
+  EXPECT_TRUE(FlagOverstatedCornerNoise(2e-5, &verdict, &result));
+  EXPECT_EQ(verdict, Verdict::kNoiseOverstated);
+  EXPECT_EQ(result.verdict->code, "noise_overstated");
+  EXPECT_NE(result.verdict->text.find("overstated"), std::string::npos);
 }
 
 }  // namespace
