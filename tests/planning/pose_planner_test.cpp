@@ -88,6 +88,25 @@ TEST(PlanningProblemOptions, TheCornerSigmaIsBoundedByTheCornersCsvs) {
   }
 }
 
+// Issue 42, defect 13: `plan --model 12` failed on every robot tried ("forward kinematics not
+// converged") unless --robust-robots 0: the robots drawn for robustness were Model 31 robots,
+// whose rows a Model 12 information model was evaluated on. They are drawn in the planned
+// model's parameterisation.
+TEST(PosePlanner, AModel12PlanDrawsModel12Robots) {
+  PlanningProblemOptions options = CoarseRobustOptions();
+  options.model = ModelKind::k12;
+  const PlanningProblem problem = RobustProblem(options);
+  ASSERT_EQ(problem.drawn.size(), 2u);
+  for (const InformationModel& drawn : problem.drawn) {
+    EXPECT_EQ(drawn.model, ModelKind::k12);
+    EXPECT_EQ(drawn.parameter_count(), problem.info.parameter_count());
+  }
+  DesignOptions design;
+  design.pose_count = MinimumPlannedPoses(problem);
+  EXPECT_TRUE(std::isfinite(
+      PlanCampaign(problem, design, 1, PlanCriterion::kAccuracy).predicted_position_rms));
+}
+
 TEST(PlanForMeanAccuracy, IdenticalModelsGiveTheSingleModelsDesign) {
   const PlanningProblem& problem = SharedRobustProblem();
   DesignOptions options;
