@@ -257,9 +257,11 @@ int Run(const IdentifyCommandOptions& options, const std::string& command_line) 
   }
   IdentificationResult result = outcome.result;
   result.provenance = ProvenanceOf(options);
-  WriteIdentificationResult(options.out_path, result);
+  // The verdict first: a result its reader would refuse is not written (the write throws),
+  // and the verdict still says what went wrong.
   spdlog::debug("{}", outcome.summary.FullReport());
   PrintHeadline(outcome);
+  WriteIdentificationResult(options.out_path, result);
   spdlog::info("result written to {}", options.out_path);
   if (!outcome.summary.usable) {
     spdlog::error("the identification is not usable: {}", outcome.summary.message);
@@ -304,13 +306,13 @@ int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription&
   result.provenance = ProvenanceOf(options);
   result.provenance->inputs.insert(result.provenance->inputs.end(),
                                    {options.corners_path, options.board_path, options.camera_path});
+  PrintHeadline(path.outcome);
+  PrintCornerFit(path);
   WriteIdentificationResult(options.out_path, result);
   if (!options.camera_out_path.empty()) {
     WriteCameraYaml(options.camera_out_path, path.fit.camera);
     spdlog::info("refined camera written to {}", options.camera_out_path);
   }
-  PrintHeadline(path.outcome);
-  PrintCornerFit(path);
   spdlog::info("result written to {}", options.out_path);
   const int exit_code = path.outcome.verdict == Verdict::kGood && path.outcome.summary.usable
                             ? h4::cli::kExitSuccess
