@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -151,7 +152,13 @@ bool Campaign::Record(const h4msgs::board_pose_t& msg, std::optional<int64_t> jo
                        options_.pair_tolerance_s, ClockSkewNote());
     return false;
   }
-  journal_.Append(MakeDatasetRow(msg, *joints));
+  try {
+    journal_.Append(MakeDatasetRow(msg, *joints));
+  } catch (const std::invalid_argument& e) {  // a row the dataset's reader would refuse
+    ++counters_.impossible_values;
+    *why = e.what();
+    return false;
+  }
   history_.Forget(msg.pose_id);
   PairCornersOf(msg.pose_id, msg.utime);
   return true;

@@ -1,9 +1,12 @@
 // Durable, resumable board-corner appends; see corners_journal.h.
 #include "host/campaign/corners_journal.h"
 
+#include <algorithm>
+#include <cstddef>
 #include <filesystem>
 #include <stdexcept>
 
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 namespace h4::host {
@@ -81,6 +84,54 @@ void CornersJournal::Append(const std::vector<CornerObservation>& corners) {
   // One write per pose: a kill between poses leaves whole poses only.
   file_.Append(text);
   pose_ids_.insert(pose_id);
+}
+
+namespace {
+
+// Refuses corners of poses the dataset has no row of (another campaign's).
+void RefuseForeignCorners(const DatasetJournal& dataset, const CornersJournal& corners) {
+  std::vector<int64_t> foreign;
+  for (int64_t pose_id : corners.pose_ids()) {
+    if (!dataset.Contains(pose_id)) foreign.push_back(pose_id);
+  }
+  if (foreign.empty()) return;
+  const size_t shown = std::min<size_t>(foreign.size(), 10);
+  throw std::runtime_error(fmt::format(
+      "{}: holds the corners of {} poses the dataset {} has no row of (pose {}{}): another "
+      "campaign's corners, which the new poses would be mixed with; move the file away or "
+      "choose another --corners-out",
+      corners.path(), foreign.size(), dataset.path(),
+      fmt::join(foreign.begin(), foreign.begin() + static_cast<std::ptrdiff_t>(shown), ", "),
+      shown < foreign.size() ? ", ..." : ""));
+}
+
+}  // namespace
+
+std::vector<int64_t> ReconcileWithDataset(DatasetJournal& dataset, const CornersJournal& corners) {
+  RefuseForeignCorners(dataset, corners);
+  const std::vector<DatasetRow>& rows = dataset.rows();
+  size_t keep = rows.size();
+  while (keep > 0 && !corners.Contains(rows[keep - 1].pose_id)) --keep;
+  std::vector<int64_t> cut;
+  if (keep > 0) {  // the camera sends corners: the rows after the last with corners lost them
+    for (size_t i = keep; i < rows.size(); ++i) cut.push_back(rows[i].pose_id);
+  }
+  if (!cut.empty()) {
+    spdlog::warn(
+        "{}: the corners of the last {} poses recorded are not in {} (an interrupted run): "
+        "removing their rows to measure them again: pose {}",
+        dataset.path(), cut.size(), corners.path(), fmt::join(cut, ", "));
+    dataset.DropLastRows(cut.size());
+  }
+  std::vector<int64_t> without;
+  for (const DatasetRow& row : dataset.rows()) {
+    if (!corners.Contains(row.pose_id)) without.push_back(row.pose_id);
+  }
+  if (!without.empty()) {
+    spdlog::warn("{}: {} poses of {} have no corners there (kept): pose {}", corners.path(),
+                 without.size(), dataset.path(), fmt::join(without, ", "));
+  }
+  return cut;
 }
 
 std::string CornersPathBeside(const std::string& dataset_path) {

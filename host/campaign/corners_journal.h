@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/formats/corners_csv.h"
+#include "host/campaign/dataset_journal.h"
 #include "host/campaign/journal_file.h"
 
 namespace h4::host {
@@ -28,6 +29,7 @@ class CornersJournal {
   bool Contains(int64_t pose_id) const { return pose_ids_.count(pose_id) != 0; }
   /// Poses whose corners were in the file when it was opened, plus those appended since.
   size_t pose_count() const { return pose_ids_.size(); }
+  const std::set<int64_t>& pose_ids() const { return pose_ids_; }
 
   /// Appends the corners of one pose (every row's pose_id the same, not yet in the file)
   /// and flushes them to the disk; throws std::invalid_argument for an empty list, mixed or
@@ -41,6 +43,18 @@ class CornersJournal {
   JournalFile file_;
   std::set<int64_t> pose_ids_;
 };
+
+/// Makes a resumed campaign's dataset and corners agree, before the campaign starts (issue 42,
+/// defects 6 and 10). A pose's row is written first, then its corners: corners of a pose
+/// without a row are another campaign's (an old STEM.corners.csv beside a new dataset kept its
+/// pixels for the new poses): refused with std::runtime_error naming the file and the poses,
+/// nothing touched. Rows at the end of the dataset without corners, when the camera sends
+/// corners (an earlier row has them), are what a crash between a row and its corners left:
+/// cut off the dataset with a warning naming them, so the campaign measures them again (the
+/// summary said "12 of 12 planned poses, corners of 9 poses"). Other rows without corners
+/// (the camera sent none, or they were lost on the bus) are named in a warning. Returns the
+/// pose ids cut.
+std::vector<int64_t> ReconcileWithDataset(DatasetJournal& dataset, const CornersJournal& corners);
 
 /// The corners file beside `dataset_path`: its stem + ".corners.csv" in the same directory
 /// (`runs/day1.csv` -> `runs/day1.corners.csv`), the default of `h4cal collect --corners-out`.

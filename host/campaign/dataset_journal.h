@@ -37,8 +37,15 @@ class DatasetJournal {
 
   /// Appends one row and flushes it to the disk; throws std::runtime_error (naming the file
   /// and the system error) when it cannot, leaving the file with its complete rows only,
-  /// and std::invalid_argument for a pose id already in the file.
+  /// and std::invalid_argument for a pose id already in the file or a row the dataset
+  /// reader would refuse (nothing is written then).
   void Append(const DatasetRow& row);
+
+  /// Cuts the last `count` rows off the file (durably) and forgets them, so that a resumed
+  /// campaign measures those poses again: the rows whose corners an interrupted run lost
+  /// (corners_journal.h ReconcileWithDataset). Throws std::runtime_error naming the file
+  /// when it cannot; std::invalid_argument for more rows than the file holds.
+  void DropLastRows(size_t count);
 
  private:
   /// Reads the file back (dropping a cut last line), or writes the header of a new one.

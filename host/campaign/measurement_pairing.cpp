@@ -31,6 +31,15 @@ MessageProblem CheckJointState(const h4msgs::joint_state_t& msg, JointReading* r
     *why = "joint state with a non-finite position or a non-positive utime";
     return MessageProblem::kImpossibleValues;
   }
+  // The dataset reader's bound (dataset_csv.h kMaxJointReading): a row the campaign wrote
+  // with a larger reading would make its own dataset unreadable.
+  for (int i = 0; i < 4; ++i) {
+    if (!IsJointReadingInBounds(msg.position[i])) {
+      *why = fmt::format("joint state with q{} = {:g} rad, beyond one turn (|q| <= 2 pi rad)",
+                         i + 1, msg.position[i]);
+      return MessageProblem::kImpossibleValues;
+    }
+  }
   reading->utime = msg.utime;
   reading->pose_id = msg.pose_id;
   for (int i = 0; i < 4; ++i) reading->q[i] = msg.position[i];

@@ -272,6 +272,7 @@ CampaignEnd RunCampaignOver(const CollectOptions& options, const PosePlan& plan,
       options.auth_key_path.empty() ? "" : ", authenticated with " + options.auth_key_path);
   DatasetJournal journal(options.out_path);
   CornersJournal corners(options.corners_out_path);
+  ReconcileWithDataset(journal, corners);
   Campaign campaign(bus, plan, journal, corners, options.campaign);
 
   Progress progress("collect", campaign.planned_count());

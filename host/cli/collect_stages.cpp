@@ -6,10 +6,12 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include "common/formats/board_yaml.h"
@@ -21,6 +23,8 @@
 #include "host/formats/poses_csv.h"
 #include "host/formats/robot_yaml.h"
 #include "host/identification/identification.h"
+#include "host/kinematics/model12.h"
+#include "host/kinematics/model31.h"
 #include "host/planning/pose_planner.h"
 #include "host/planning/sequential_plan.h"
 
@@ -54,11 +58,46 @@ PlannedCampaign PlanStage(const CollectStagesOptions& options, const RobotDescri
 }
 
 /// The plan an earlier run of the same campaign wrote, if any (its poses, not planned again).
+/// An empty one is refused: a campaign over it measured nothing and exited 0.
 std::optional<PosePlan> ReadEarlierPlan(const std::string& path, const char* stage) {
   if (!fs::exists(path)) return std::nullopt;
   PosePlan plan = PosePlanFromRows(ReadPosesCsv(path));
+  if (plan.empty()) {
+    throw std::runtime_error(fmt::format(
+        "{}: {} plan written by an earlier run holds no pose (damaged?): nothing measured; "
+        "remove it to plan the stage again",
+        path, stage));
+  }
   fmt::print("{}: {} poses, planned by an earlier run ({})\n", stage, plan.size(), path);
   return plan;
+}
+
+/// A second stage's plan read back must be the rest of the campaign: none of its pose ids
+/// in the first stage (a resumed campaign then counted those as measured and never measured
+/// stage 2, exit 0), and at least TOTAL - FIRST poses. Throws std::runtime_error naming the
+/// file and the poses otherwise.
+void CheckEarlierSecondStage(const CollectStagesOptions& options, const std::string& path,
+                             const PosePlan& first_stage, const PosePlan& second_stage) {
+  std::set<int64_t> first_ids;
+  for (const PlannedPose& pose : first_stage) first_ids.insert(pose.pose_id);
+  std::vector<int64_t> reused;
+  for (const PlannedPose& pose : second_stage) {
+    if (first_ids.count(pose.pose_id)) reused.push_back(pose.pose_id);
+  }
+  if (!reused.empty()) {
+    throw std::runtime_error(fmt::format(
+        "{}: the stage 2 of 2 plan reuses pose ids of the first stage ({}): its poses would "
+        "never be measured; remove it to plan the stage again",
+        path, fmt::join(reused, ", ")));
+  }
+  const size_t needed =
+      static_cast<size_t>(std::max(1, options.total_count - static_cast<int>(first_stage.size())));
+  if (second_stage.size() < needed) {
+    throw std::runtime_error(fmt::format(
+        "{}: the stage 2 of 2 plan holds {} poses, the campaign of {} after the first stage's "
+        "{} needs at least {} (damaged, or another TOTAL): remove it to plan the stage again",
+        path, second_stage.size(), options.total_count, first_stage.size(), needed));
+  }
 }
 
 /// "1.70 mm", or what stands in for a figure that is not there.
@@ -108,11 +147,37 @@ IdentificationResult IdentifyFirstStage(const RobotDescription& apriori,
 
 }  // namespace
 
+namespace {
+
+/// Poses of 6 residuals each to have at least one residual per parameter.
+int PosesForParameters(int parameters) { return (parameters + 5) / 6; }
+
+}  // namespace
+
+int MinimumFirstStagePoses() {
+  return PosesForParameters(Model12::kParameterCount + kPlacementParameterCount) + 1;
+}
+
+int MinimumSequentialPoses() {
+  return std::max(MinimumFirstStagePoses() + 1,
+                  PosesForParameters(Model31::kParameterCount + kPlacementParameterCount));
+}
+
 void ParseStageCounts(const std::vector<int>& counts, CollectStagesOptions* options) {
-  if (counts.size() != 2 || counts[0] < 1 || counts[0] >= counts[1]) {
-    throw std::invalid_argument(
-        "--sequential FIRST,TOTAL: FIRST poses in the first stage, TOTAL in the campaign, "
-        "0 < FIRST < TOTAL (e.g. 20,71)");
+  const int first_min = MinimumFirstStagePoses();
+  const int total_min = MinimumSequentialPoses();
+  const auto fail = [&](const std::string& what) {
+    throw std::invalid_argument(fmt::format(
+        "--sequential FIRST,TOTAL: {}; FIRST poses in the first stage, at least {} (a "
+        "residual per free parameter of Model 12, which the rest is planned on, and a pose to "
+        "spare), TOTAL in the campaign, FIRST < TOTAL, {}..{} (e.g. 20,71)",
+        what, first_min, total_min, kMaxSequentialPoses));
+  };
+  if (counts.size() != 2) fail("expected two numbers");
+  if (counts[0] < first_min) fail(fmt::format("FIRST {} is too few", counts[0]));
+  if (counts[0] >= counts[1]) fail(fmt::format("FIRST {} >= TOTAL {}", counts[0], counts[1]));
+  if (counts[1] < total_min || counts[1] > kMaxSequentialPoses) {
+    fail(fmt::format("TOTAL {} is out of range", counts[1]));
   }
   options->first_count = counts[0];
   options->total_count = counts[1];
@@ -150,6 +215,7 @@ PosePlan SecondStagePlan(const CollectStagesOptions& options, const PosePlan& fi
                          const std::vector<DatasetRow>& first_stage_rows) {
   const StageFiles files = StageFilesBeside(options.dataset_path);
   if (std::optional<PosePlan> earlier = ReadEarlierPlan(files.second_plan, "stage 2 of 2")) {
+    CheckEarlierSecondStage(options, files.second_plan, first_stage, *earlier);
     return *earlier;
   }
   fmt::print("stage 1 of 2 measured: identifying its {} poses to plan the rest on\n",
@@ -166,6 +232,13 @@ PosePlan SecondStagePlan(const CollectStagesOptions& options, const PosePlan& fi
       PlanStage(options, identified,
                 NextStageOptions(StageProblemOptions(options), identified, first_stage_rows), count,
                 last_id + 1);
+  if (!std::isfinite(planned.predicted_position_rms)) {
+    throw std::runtime_error(fmt::format(
+        "stage 2 of 2: the {} poses planned with the {} measured predict no accuracy (the "
+        "robot stage 1 identified, {}, cannot be trusted to plan on): nothing measured; "
+        "measure more poses in the first stage (--sequential FIRST,TOTAL with a larger FIRST)",
+        planned.plan.size(), first_stage_rows.size(), files.first_result));
+  }
   WritePosesCsv(files.second_plan, RowsFromPosePlan(planned.plan));
   fmt::print(
       "stage 2 of 2: {} poses planned on the robot stage 1 identified ({}), predicted {:.4f} mm "

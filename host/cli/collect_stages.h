@@ -21,8 +21,27 @@ struct CollectStagesOptions {
   std::string dataset_path;     ///< the campaign's --out: the stage files go beside it
 };
 
+/// The free parameters a fit has beside the kinematic ones: the camera's placement X_BC and
+/// the board's X_TE, 6 each (parameter_vector.h).
+inline constexpr int kPlacementParameterCount = 12;
+/// The most poses a sequential campaign may plan: over 12 times the paper's 81 grid poses,
+/// within the candidates a default plan has (`20,20000` failed only after the first stage,
+/// asking more poses than there are candidates).
+inline constexpr int kMaxSequentialPoses = 1000;
+/// The fewest poses of a first stage: what identify needs to fit Model 12 at all, a
+/// residual per free parameter (kinematic and placement; 6 residuals a pose), and a pose to
+/// spare for cross-validation's held-out fold. The first stage's Model 12 fit plans the rest;
+/// with fewer (`3,4`) it predicted "inf mm" and a negative chi-square. (identify's verdict
+/// calls a fit of fewer than 20 poses too_few_poses: the first stage plans, it does not
+/// calibrate.)
+int MinimumFirstStagePoses();
+/// The fewest poses of the whole campaign: more than the first stage, and a residual per
+/// free parameter of Model 31, which the campaign is planned for.
+int MinimumSequentialPoses();
+
 /// FIRST,TOTAL of --sequential; throws std::invalid_argument naming the option unless
-/// 0 < FIRST < TOTAL.
+/// MinimumFirstStagePoses() <= FIRST < TOTAL and MinimumSequentialPoses() <= TOTAL <=
+/// kMaxSequentialPoses: checked before anything is planned or moves.
 void ParseStageCounts(const std::vector<int>& counts, CollectStagesOptions* options);
 
 /// The stage files beside the dataset DIR/STEM.csv: DIR/STEM.stage1.plan.csv,
@@ -36,11 +55,14 @@ StageFiles StageFilesBeside(const std::string& dataset_path);
 /// it, else planned on the a priori robot and written there. Says which on stdout.
 PosePlan FirstStagePlan(const CollectStagesOptions& options);
 
-/// The second stage's poses: read back when an earlier run wrote them, else the rows of the
+/// The second stage's poses: read back when an earlier run wrote them (refused, naming the
+/// file and the poses, when empty, reusing a first-stage pose id, or shorter than TOTAL -
+/// FIRST: a resumed campaign then never measured the stage), else the rows of the
 /// first stage identified (Model 12, then Model 31 from it; the result written to
 /// StageFiles::first_result) and TOTAL - rows poses planned on that robot, with pose ids
 /// after the first stage's. Throws std::runtime_error when the first stage's rows identify
-/// no model (the message says to measure more poses in the first stage).
+/// no model, or the plan on it predicts no accuracy (the message says to measure more poses
+/// in the first stage); the plan is then not written.
 PosePlan SecondStagePlan(const CollectStagesOptions& options, const PosePlan& first_stage,
                          const std::vector<DatasetRow>& first_stage_rows);
 

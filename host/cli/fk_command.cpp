@@ -1,8 +1,8 @@
 // `h4cal fk`: forward kinematics of joint readings
 // (common/formats/README.md#joints-csv-and-poses-csv-for-h4cal-fk--h4cal-ik): the end-effector pose
-// in B and the board pose X_CT = inv(X_BC) X_BE inv(X_TE) it implies. With --compare, the board
-// poses are scored against reference ones (e.g. a simulation's truth): the figure of issue "Host
-// solver".
+// in B (a Model 31's mapped from B31, robot_source.h RobotInB) and the board pose X_CT = inv(X_BC)
+// X_BE inv(X_TE) it implies. With --compare, the board poses are scored against reference ones
+// (e.g. a simulation's truth): the figure of issue "Host solver".
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -63,7 +63,8 @@ int Run(const FkCommandOptions& options) {
                              {"--robot", options.robot.robot_path},
                              {"--assembly-from", options.robot.assembly_robot_path}});
   std::string description;
-  const IdentifiedRobot robot = LoadRobot(options.robot, &description);
+  const RobotInB in_b = LoadRobotInB(options.robot, &description);
+  const IdentifiedRobot& robot = in_b.robot;
   const std::vector<JointsRow> joints = ReadJointsCsv(options.joints_path);
   std::vector<FkRow> rows;
   std::vector<int64_t> failed;
@@ -79,13 +80,15 @@ int Run(const FkCommandOptions& options) {
       continue;
     }
     guess = fk.x;  // neighbouring rows are usually close: start the next one here
+    const EePose x_B = in_b.FromModelFrame(fk.x);  // X_BC is in the model's frame, as fk.x
     rows.push_back(
-        {.pose = {.pose_id = j.pose_id, .X = fk.x[0], .Y = fk.x[1], .Z = fk.x[2], .theta = fk.x[3]},
+        {.pose = {.pose_id = j.pose_id, .X = x_B[0], .Y = x_B[1], .Z = x_B[2], .theta = x_B[3]},
          .X_CT = PredictedBoardPose(robot.X_BC, fk.x, robot.X_TE)});
   }
   WriteFkCsv(options.out_path, rows);
-  spdlog::info("fk with {}: {} of {} rows written to {}", description, rows.size(), joints.size(),
-               options.out_path);
+  spdlog::info("fk with {}: {} of {} rows written to {} (end-effector poses in B{})", description,
+               rows.size(), joints.size(), options.out_path,
+               in_b.X_B31B ? ", mapped from Model 31's B31" : "");
   if (!options.compare_path.empty()) Compare(rows, options.compare_path);
   return LeftOutRowsExitCode(failed.size(), "rows had no forward kinematic solution");
 }
@@ -99,12 +102,17 @@ void DeclareFkCommand(CLI::App* command) {
                               "Joints CSV: pose_id,q1,q2,q3,q4 (rad)")
       ->required();
   h4::cli::AddOutOption(command, &options->out_path,
-                        "Output CSV: pose_id,X,Y,Z,theta,x,y,z,qw,qx,qy,qz");
+                        "Output CSV: pose_id,X,Y,Z,theta (the end-effector pose in B, m, rad), "
+                        "x,y,z,qw,qx,qy,qz (the board pose in the camera frame)");
   h4::cli::AddInputFileOption(command, "--compare", &options->compare_path,
                               "Reference board poses in the same layout (e.g. a simulation's "
                               "heldout_truth.csv): print the RMS position and rotation error");
   command->footer(
-      "Rows without a solution are reported and left out (exit code 3), never written as NaN.");
+      "Rows without a solution are reported and left out (exit code 3), never written as NaN. "
+      "Poses are in B, the a priori robot's base frame, for either model: a Model 31 works in "
+      "B31 (origin at P_1) and its poses are mapped through X_B31B, the nominal map of the a "
+      "priori Model 12 (--robot beside --result, an export's model12 block, else the a priori "
+      "the result was identified from).");
   h4::cli::RunWhenParsedForExitCode(command, options, Run);
 }
 

@@ -30,6 +30,7 @@
 #include "host/formats/dataset_csv.h"
 #include "host/formats/identification_result.h"
 #include "host/formats/robot_yaml.h"
+#include "host/identification/corner_checks.h"
 #include "host/identification/corner_identification.h"
 #include "host/identification/identification.h"
 #include "host/identification/identified_robot.h"
@@ -256,9 +257,11 @@ int Run(const IdentifyCommandOptions& options, const std::string& command_line) 
   }
   IdentificationResult result = outcome.result;
   result.provenance = ProvenanceOf(options);
-  WriteIdentificationResult(options.out_path, result);
+  // The verdict first: a result its reader would refuse is not written (the write throws),
+  // and the verdict still says what went wrong.
   spdlog::debug("{}", outcome.summary.FullReport());
   PrintHeadline(outcome);
+  WriteIdentificationResult(options.out_path, result);
   spdlog::info("result written to {}", options.out_path);
   if (!outcome.summary.usable) {
     spdlog::error("the identification is not usable: {}", outcome.summary.message);
@@ -281,13 +284,20 @@ int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription&
   const BoardModel board(ReadBoardYaml(options.board_path));
   const CameraIntrinsics camera = ReadCameraYaml(options.camera_path);
   const std::vector<CornerObservation> observed = ReadCornersCsv(options.corners_path);
-  const std::vector<PoseCorners> corners =
+  RequireCornersInImage(rows, observed, camera);
+  std::vector<PoseCorners> corners =
       GroupCornersByRow(rows, observed, board, options.default_sigma_px);
+  for (const std::string& why : DropDegenerateCornerPoses(rows, &corners)) {
+    spdlog::warn("{}: {}", options.corners_path, why);
+  }
   CornerFitOptions corner_options;
   corner_options.camera_fixed = options.camera_fixed;
-  const CornerPathOutcome path =
-      IdentifyOnCorners(AprioriModelOf(robot, model), model, pose_path, rows, corners, camera,
-                        id_options, corner_options);
+  CornerPathOutcome path = IdentifyOnCorners(AprioriModelOf(robot, model), model, pose_path, rows,
+                                             corners, camera, id_options, corner_options);
+  if (path.fit.ok && path.outcome.summary.usable) {
+    FlagOverstatedCornerNoise(path.fit.uncertainty.chi2_per_dof, &path.outcome.verdict,
+                              &path.outcome.result);
+  }
   if (!path.fit.ok) {
     PrintCornerFit(path);
     throw std::runtime_error("the corner fit failed: " + path.fit.message);
@@ -296,13 +306,13 @@ int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription&
   result.provenance = ProvenanceOf(options);
   result.provenance->inputs.insert(result.provenance->inputs.end(),
                                    {options.corners_path, options.board_path, options.camera_path});
+  PrintHeadline(path.outcome);
+  PrintCornerFit(path);
   WriteIdentificationResult(options.out_path, result);
   if (!options.camera_out_path.empty()) {
     WriteCameraYaml(options.camera_out_path, path.fit.camera);
     spdlog::info("refined camera written to {}", options.camera_out_path);
   }
-  PrintHeadline(path.outcome);
-  PrintCornerFit(path);
   spdlog::info("result written to {}", options.out_path);
   const int exit_code = path.outcome.verdict == Verdict::kGood && path.outcome.summary.usable
                             ? h4::cli::kExitSuccess

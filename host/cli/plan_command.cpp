@@ -116,6 +116,8 @@ PlanningProblemOptions ProblemOptions(const PlanCommandOptions& o) {
   if (o.first_stage) options = FirstStageOptions(options);
   options.robust.robots = o.robust_robots;
   options.corner_sigma_px = o.corner_sigma_px;
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("--corner-sigma-px: " + why);
   options.robust.spread.camera_translation_std = 1e-3 * o.setup_sigma_mm;
   options.robust.spread.camera_rotation_std = RadiansFromDegrees(o.setup_sigma_deg);
   return options;
@@ -340,7 +342,8 @@ void AddTargetAndRobustOptions(CLI::App* command, PlanCommandOptions* options) {
       command, "--corner-sigma-px", &options->corner_sigma_px,
       "Corner noise of the camera, px: each pose's noise from the board pose "
       "solved from its corners, as the camera reports it (0: 0.2 mm, 0.03 deg "
-      "for every pose, as a dataset without sigma columns)",
+      "for every pose, as a dataset without sigma columns); else within the corners CSV's "
+      "sigma_px bounds, 1e-06..100",
       CLI::NonNegativeNumber);
   command->add_flag("--first-stage", options->first_stage,
                     "Sequential campaign, first stage: candidates inside the target region only "

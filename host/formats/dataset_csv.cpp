@@ -34,11 +34,10 @@ std::optional<double> BoundedSigma(const CsvTable& table, size_t row, const char
   return sigma;
 }
 
-// An encoder reading within a turn: a larger value is a unit mistake (degrees, encoder
-// counts) or a damaged file, and 1e308 made the kinematics non-finite.
+// An encoder reading within a turn (kMaxJointReading).
 double JointReading(const CsvTable& table, size_t row, const std::string& column) {
   const double value = table.GetDouble(row, column);
-  if (!(std::abs(value) <= 2.0 * std::numbers::pi)) {
+  if (!IsJointReadingInBounds(value)) {
     table.Fail(row, column,
                "expected a joint angle within one turn (|q| <= 2 pi rad), got " +
                    FormatDouble(value, column));

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <numbers>
 #include <optional>
@@ -35,6 +36,14 @@ struct SigmaBounds {
 };
 inline constexpr SigmaBounds kSigmaTBounds{1e-9, 1.0};               // m
 inline constexpr SigmaBounds kSigmaRBounds{1e-9, std::numbers::pi};  // rad
+
+/// The largest encoder reading a dataset row may carry, rad: one turn either way. A larger
+/// value is a unit mistake (degrees, encoder counts) or damage, and 1e308 made the kinematics
+/// non-finite. The reader refuses a row beyond it, and the campaign refuses such a joint
+/// reading where it enters (measurement_pairing.h CheckJointState): one bound for both.
+inline constexpr double kMaxJointReading = 2.0 * std::numbers::pi;
+/// Whether `q` is a joint reading a dataset may hold: finite, |q| <= kMaxJointReading.
+inline bool IsJointReadingInBounds(double q) { return std::abs(q) <= kMaxJointReading; }
 
 /// Reads a dataset CSV; throws FormatError naming file, line and field on any
 /// malformed input (missing column or field, non-number, non-unit quaternion,

@@ -10,9 +10,11 @@
 #include <stdexcept>
 
 #include <Eigen/Eigenvalues>
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "common/formats/csv_table.h"
+#include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
 #include "host/formats/json_fields.h"
 #include "host/kinematics/model_parameters.h"
@@ -467,7 +469,17 @@ std::string FormatIdentificationResult(const IdentificationResult& result) {
 }
 
 void WriteIdentificationResult(const std::string& path, const IdentificationResult& result) {
-  WriteTextFile(path, FormatIdentificationResult(result));
+  const std::string text = FormatIdentificationResult(result);
+  // Never a result its own reader refuses (issue 42, defect 9: the corner path wrote psi2 =
+  // 7.6 rad and x2 = -55 km, which every later command refused): checked before writing.
+  try {
+    ParseIdentificationResult(text, path);
+  } catch (const FormatError& e) {
+    throw std::runtime_error(fmt::format(
+        "{}: not written: the result cannot be trusted, h4cal's own reader refuses it ({})", path,
+        e.what()));
+  }
+  WriteTextFile(path, text);
 }
 
 }  // namespace h4

@@ -40,7 +40,7 @@ struct CorrelatedPair {
 /// technician acts on, and the figures that decided it (name -> number, SI or plain ratio).
 struct ResultVerdict {
   std::string code;  ///< good | model_cannot_describe | inconsistent_with_apriori |
-                     ///< not_identifiable | too_few_poses
+                     ///< not_identifiable | too_few_poses | noise_overstated
   std::string text;
   std::vector<std::pair<std::string, double>> figures;
 };
@@ -140,7 +140,8 @@ struct IdentificationResult {
 /// `camera_error_floor`'s rotation within 2 pi and translation within kMaxRobotSize_m, both >= 0.
 /// The extra keys may be absent or null. The writer writes every key (absent optionals as null, std
 /// as null for fixed parameters), shortest round-trip numbers, and throws std::invalid_argument on
-/// a non-finite number (JSON has no NaN).
+/// a non-finite number (JSON has no NaN). WriteIdentificationResult reads its text back first
+/// and throws std::runtime_error, writing nothing, when this reader would refuse it.
 IdentificationResult ReadIdentificationResult(const std::string& path);
 IdentificationResult ParseIdentificationResult(const std::string& text,
                                                const std::string& source_name);

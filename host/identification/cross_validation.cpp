@@ -63,7 +63,9 @@ FoldUncertainty UncertaintyOf(const CrossValidationInputs& in, const std::vector
   u.scale = ColumnScale(J_free);
   const Eigen::MatrixXd J_s = J_free * u.scale.cwiseInverse().asDiagonal();
   u.normal.compute(J_s.transpose() * J_s);
-  u.ok = u.normal.info() == Eigen::Success;
+  // Fewer training residuals than free parameters (a fold of a handful of poses) leave the
+  // normal matrix singular: its "uncertainty" is noise, and gave a chi-square of -441.
+  u.ok = u.normal.info() == Eigen::Success && u.normal.isPositive() && J_s.rows() >= J_s.cols();
   return u;
 }
 
@@ -78,7 +80,10 @@ double HeldOutChi2(const FoldUncertainty& u, const ParameterVector& p, const Eig
   const Eigen::MatrixXd J_s = FreeColumns(J, p) * u.scale.cwiseInverse().asDiagonal();
   const Eigen::MatrixXd S =
       Eigen::MatrixXd::Identity(r.size(), r.size()) + J_s * u.normal.solve(J_s.transpose());
-  return r.dot(S.ldlt().solve(r));
+  const double chi2 = r.dot(S.ldlt().solve(r));
+  // S = I + PSD has every eigenvalue >= 1: a chi-square below 0 or above r^T r is rounding
+  // in a near-singular fold, never a figure.
+  return std::isfinite(chi2) && chi2 >= 0.0 ? std::min(chi2, r.squaredNorm()) : r.squaredNorm();
 }
 
 // One held-out pose predicted by the fold's parameters.

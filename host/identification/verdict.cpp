@@ -186,9 +186,9 @@ std::vector<std::pair<std::string, double>> Figures(const VerdictInputs& in) {
 
 }  // namespace
 
-constexpr EnumNames<Verdict, Verdict::kTooFewPoses> kVerdictCodes = {
-    "good", "model_cannot_describe", "inconsistent_with_apriori", "not_identifiable",
-    "too_few_poses"};
+constexpr EnumNames<Verdict, Verdict::kNoiseOverstated> kVerdictCodes = {
+    "good",          "model_cannot_describe", "inconsistent_with_apriori", "not_identifiable",
+    "too_few_poses", "noise_overstated"};
 
 int MinimumPosesInFit(int free_parameters, double residuals_per_pose,
                       const VerdictOptions& options) {

@@ -23,10 +23,13 @@ enum class Verdict {
   kInconsistentWithApriori,  ///< units, frames, joint order or offsets of robot.yaml wrong
   kNotIdentifiable,          ///< no covariance, or parameters the poses cannot separate
   kTooFewPoses,              ///< not enough poses for the parameters and a test of the fit
+  /// the corner path's corners carry a sigma far above their scatter: the chi-square test
+  /// cannot judge the fit (corner_checks.h FlagOverstatedCornerNoise)
+  kNoiseOverstated,
 };
 
 /// "good", "model_cannot_describe", "inconsistent_with_apriori", "not_identifiable",
-/// "too_few_poses": the `verdict.code` of the result JSON.
+/// "too_few_poses", "noise_overstated": the `verdict.code` of the result JSON.
 const char* VerdictCode(Verdict verdict);
 
 struct VerdictOptions {

@@ -7,6 +7,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "common/formats/corners_csv.h"
 #include "common/text/invalid_reason.h"
 #include "host/identification/verdict.h"
 #include "host/simulation/dataset_simulator.h"
@@ -82,6 +83,17 @@ PosePlan TargetPoses(const TargetRegion& region) {
   return poses;
 }
 
+bool PlanningProblemOptions::IsValid(std::string* why) const {
+  if (corner_sigma_px != 0.0 &&
+      !(corner_sigma_px >= kCornerSigmaBounds.min && corner_sigma_px <= kCornerSigmaBounds.max)) {
+    return Invalid(why,
+                   fmt::format("corner_sigma_px must be 0 (none) or in [{:g}, {:g}] px (the "
+                               "corners CSV's sigma_px), got {:g}",
+                               kCornerSigmaBounds.min, kCornerSigmaBounds.max, corner_sigma_px));
+  }
+  return true;
+}
+
 std::vector<const InformationModel*> PlanningProblem::Models() const {
   std::vector<const InformationModel*> models = {&info};
   for (const InformationModel& model : drawn) models.push_back(&model);
@@ -106,14 +118,21 @@ std::vector<char> ReachedBy(const SimulatedRobot& robot, const std::vector<EePos
   return reached;
 }
 
-// The robots of options.robust, drawn around `robot`.
-std::vector<SimulatedRobot> DrawnRobots(const RobotDescription& robot,
-                                        const RobustOptions& options) {
+// The robots of options.robust, drawn around `robot` in the parameterisation of the model
+// planned for: each drawn robot's information is that model's at the drawn robot, its rows
+// exactly what the model predicts there. Model 31 robots under a Model 12 plan gave rows
+// of a Model 31 truth evaluated at the nominal Model 12, whose forward kinematics failed
+// at some pose for every robot tried (issue 42, defect 13: plan --model 12 worked only
+// with --robust-robots 0).
+std::vector<SimulatedRobot> DrawnRobots(const RobotDescription& robot, const RobustOptions& options,
+                                        ModelKind model) {
+  const TrueGeometry geometry =
+      model == ModelKind::k12 ? TrueGeometry::kPerturbedModel12 : TrueGeometry::kPerturbedModel31;
   std::vector<SimulatedRobot> drawn;
   for (int k = 0; k < options.robots; ++k) {
     PerturbationOptions spread = options.spread;
     spread.seed += static_cast<uint64_t>(k);
-    drawn.push_back(MakeTrueRobot(robot, TrueGeometry::kPerturbedModel31, spread));
+    drawn.push_back(MakeTrueRobot(robot, geometry, spread));
   }
   return drawn;
 }
@@ -197,12 +216,14 @@ std::vector<PoseSigma> MeasuredPoseSigmas(const RobotDescription& robot, const C
 PlanningProblem MakePlanningProblem(const RobotDescription& robot, const CameraModel& camera,
                                     const BoardModel& board,
                                     const PlanningProblemOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("pose planning: " + why);
   PlanningProblem problem;
   problem.candidates = MakeCandidateSet(robot, camera, board, options.candidates);
   problem.grid = ReachableGridPoses(robot, &problem.unreachable_grid_ids);
   PosePlan target = TargetPoses(options.target);
   problem.target_lattice_size = static_cast<int>(target.size());
-  std::vector<SimulatedRobot> drawn = DrawnRobots(robot, options.robust);
+  std::vector<SimulatedRobot> drawn = DrawnRobots(robot, options.robust, options.model);
   drawn.insert(drawn.begin(), SimulatedRobot::FromDescription(robot));  // the a priori too
   KeepPosesEveryRobotReaches(drawn, &problem, &target);
   KeepCandidatesEveryCameraSees(drawn, camera, board, options.candidates, &problem);

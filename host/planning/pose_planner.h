@@ -47,7 +47,8 @@ PosePlan TargetPoses(const TargetRegion& region);
 /// judged as well as at the a priori's: the plan is for the robot it will meet, which the
 /// a priori only approximates (Bayesian I-optimality, pose_design.h PlanForMeanAccuracy).
 struct RobustOptions {
-  /// How many robots are drawn (Model 31 geometry and placement, true_robot.h); 0: the
+  /// How many robots are drawn (the planned model's geometry, Model 12's or Model 31's,
+  /// and placement, true_robot.h); 0: the
   /// a priori alone. The criterion and the prediction average over them and the a priori.
   int robots = 8;
   /// The spreads of the draws, and the first draw's seed: PerturbationOptions' geometry
@@ -68,11 +69,16 @@ struct PlanningProblemOptions {
   RobustOptions robust;
   /// Corner noise of the camera, px: each measured pose's noise is the covariance of the
   /// board pose solved from its corners (pose_noise.h), as the camera module reports it.
-  /// 0: cost's constant sigmas for every pose (a dataset without sigma columns).
+  /// 0: cost's constant sigmas for every pose (a dataset without sigma columns); else
+  /// within the corners CSV's kCornerSigmaBounds (common/formats/corners_csv.h).
   double corner_sigma_px = 0.0;
   /// Poses measured already, in B (the first batch of a sequential campaign): the plan
   /// completes them, and the prediction counts them.
   std::vector<EePose> existing_poses_B;
+
+  /// corner_sigma_px 0 or within kCornerSigmaBounds (NaN and 1e160 px fell back to the
+  /// cost's constant sigmas without a word); `why` names the field and the range.
+  bool IsValid(std::string* why) const;
 };
 
 struct PlanningProblem {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <set>
 #include <stdexcept>
+#include <variant>
 
 #include <spdlog/fmt/fmt.h>
 
@@ -16,10 +17,7 @@
 #include "host/identification/parameter_vector.h"
 
 namespace h4::host {
-namespace {
 
-// The intrinsics that predict the corners: the result's refined ones when it has them
-// (checked against the file's model, size and parameter names), else the file's.
 CameraIntrinsics PredictingCamera(const IdentificationResult& result, const CameraIntrinsics& file) {
   if (!result.camera) return file;
   const ResultCamera& refined = *result.camera;
@@ -48,6 +46,8 @@ CameraIntrinsics PredictingCamera(const IdentificationResult& result, const Came
   }
   return WithCameraParameters(file, values);
 }
+
+namespace {
 
 std::vector<DatasetRow> RowsNotRejected(const IdentificationResult& result,
                                         const std::vector<DatasetRow>& rows) {
@@ -108,6 +108,28 @@ class Binning {
   Eigen::Vector2d inner_ = Eigen::Vector2d::Zero(), outer_ = Eigen::Vector2d::Zero();
 };
 
+// The board in words: what a wrong --board differs by.
+std::string DescribeBoard(const BoardModel& board) {
+  if (const auto* grid = std::get_if<AprilGridSpec>(&board.spec())) {
+    return fmt::format("an AprilTag grid of {}x{} {} tags of {:g} mm, spacing {:g}", grid->cols,
+                       grid->rows, grid->tag_family, grid->tag_size * 1e3, grid->tag_spacing);
+  }
+  const auto& chess = std::get<CheckerboardSpec>(board.spec());
+  return fmt::format("a chessboard of {}x{} inner corners, {:g} x {:g} mm", chess.cols, chess.rows,
+                     chess.col_spacing * 1e3, chess.row_spacing * 1e3);
+}
+
+// A map whose residuals are far beyond any camera error is not a camera model's misfit:
+// validate drew 126-432 px with a wrong --board as "where the camera model misfits".
+void RequireCornersMatchTheBoard(const CornerResidualMap& map, const BoardModel& board) {
+  if (map.rms_px <= kBoardMismatchRmsPx) return;
+  throw std::invalid_argument(fmt::format(
+      "the corners miss their prediction by {:.0f} px RMS per axis over {} poses, far beyond "
+      "any camera error (over {:g} px): they do not match the board given ({}; corners measured "
+      "on another board?) or the camera file: check --board and --camera",
+      map.rms_px, map.poses, kBoardMismatchRmsPx, DescribeBoard(board)));
+}
+
 }  // namespace
 
 CornerResidualMap ComputeCornerResidualMap(const IdentificationResult& result,
@@ -158,6 +180,7 @@ CornerResidualMap ComputeCornerResidualMap(const IdentificationResult& result,
         "result kept");
   }
   binning.Finish();
+  RequireCornersMatchTheBoard(map, board);
   return map;
 }
 

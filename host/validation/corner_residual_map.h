@@ -50,12 +50,24 @@ struct CornerResidualMap {
   double outer_rms_px = 0.0;
 };
 
+/// The intrinsics that predict the corners: the result's refined ones when it has them (its
+/// `camera` key, checked against the file's model, size and parameter names; throws
+/// std::invalid_argument naming what differs), else the file's.
+CameraIntrinsics PredictingCamera(const IdentificationResult& result, const CameraIntrinsics& file);
+
+/// The largest per-axis corner residual RMS a map may show, px: a camera model's misfit
+/// (a wrong focal length, distortion, principal point) leaves a few pixels, a calibration
+/// gone wrong tens; a wrong board (another tag size or spacing) leaves hundreds (issue 42,
+/// defect 17: 126-432 px were drawn as the camera's misfit).
+inline constexpr double kBoardMismatchRmsPx = 50.0;
+
 /// The map of `result` (its model rebuilt with `assembly`) on the dataset `rows` and their
 /// `observed` corners on `board`. `file_camera` gives the camera model, size and skew, and
 /// the intrinsics unless the result carries refined ones (its `camera` key). Poses the
 /// result rejected are left out. Throws std::invalid_argument when the result's camera
-/// does not match the file's (model, size), when no corner belongs to a dataset row, or on
-/// a grid under 1 x 1.
+/// does not match the file's (model, size), when no corner belongs to a dataset row, on
+/// a grid under 1 x 1, or when the residual RMS exceeds kBoardMismatchRmsPx (the message
+/// names the board: the corners do not match it or the camera file).
 CornerResidualMap ComputeCornerResidualMap(const IdentificationResult& result,
                                            const Assembly& assembly,
                                            const std::vector<DatasetRow>& rows,

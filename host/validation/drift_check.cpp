@@ -9,7 +9,10 @@
 
 #include "common/text/invalid_reason.h"
 #include "common/units.h"
+#include "host/identification/corner_checks.h"
+#include "host/identification/corner_identification.h"
 #include "host/identification/identified_robot.h"
+#include "host/validation/corner_residual_map.h"
 
 namespace h4::host {
 
@@ -171,6 +174,29 @@ DriftCheckResult CheckResultForDrift(const IdentificationResult& result, const A
   DriftCheckResult check = CheckForDrift(*robot.model, p, C, rows, options, camera_floor);
   check.with_correlations = with_correlations;
   return check;
+}
+
+std::vector<DatasetRow> RemeasuredWithResultCamera(
+    const IdentificationResult& result, const std::vector<DatasetRow>& rows,
+    const std::vector<CornerObservation>& corners, const BoardModel& board,
+    const CameraIntrinsics& file_camera, double default_sigma_px, std::vector<int64_t>* dropped) {
+  if (!result.camera) {
+    throw std::invalid_argument(
+        "the result has no refined camera (a pose-path result): its poses were measured with the "
+        "camera file, as the check's are; the corners are not needed");
+  }
+  const CameraIntrinsics camera = PredictingCamera(result, file_camera);
+  RequireCornersInImage(rows, corners, file_camera);
+  std::vector<PoseCorners> grouped = GroupCornersByRow(rows, corners, board, default_sigma_px);
+  DropDegenerateCornerPoses(rows, &grouped);
+  std::vector<DatasetRow> remeasured =
+      RefitBoardPoses(rows, grouped, camera, CornerFitOptions{}.min_corners_per_pose, dropped);
+  if (remeasured.empty()) {
+    throw std::invalid_argument(
+        "no pose of the check could be measured again from the corners given (none has enough "
+        "corners on the board): are they the check's?");
+  }
+  return remeasured;
 }
 
 }  // namespace h4::host

@@ -24,6 +24,9 @@
 
 #include <Eigen/Core>
 
+#include "common/board/board_model.h"
+#include "common/camera/camera_intrinsics.h"
+#include "common/formats/corners_csv.h"
 #include "host/formats/dataset_csv.h"
 #include "host/formats/identification_result.h"
 #include "host/identification/identification_cost.h"
@@ -88,6 +91,19 @@ DriftCheckResult CheckResultForDrift(const IdentificationResult& result, const A
                                      const DriftCheckOptions& options = DriftCheckOptions{},
                                      bool use_parameter_uncertainty = true,
                                      bool use_camera_floor = true);
+
+/// The check's poses measured again from their `corners` (on `board`, `default_sigma_px` for
+/// a corner without its own) through the intrinsics of a corner-path `result` (its `camera`
+/// key; `file_camera` the camera file the poses were measured with): the poses its
+/// kinematics were identified on were measured so, and poses measured with the file judged
+/// against it flagged every pose of an unchanged robot (issue 42, defect 7: 81 of 81, chi-square
+/// 12477, limit 552). Each pose as the corner path measures it (corner_identification.h
+/// RefitBoardPoses); poses without enough corners go to *dropped. Throws std::invalid_argument
+/// when the result has no camera key, or no pose could be measured again.
+std::vector<DatasetRow> RemeasuredWithResultCamera(
+    const IdentificationResult& result, const std::vector<DatasetRow>& rows,
+    const std::vector<CornerObservation>& corners, const BoardModel& board,
+    const CameraIntrinsics& file_camera, double default_sigma_px, std::vector<int64_t>* dropped);
 
 /// Upper tail quantile of chi-square with an even number of degrees of freedom: the x with
 /// P(X > x) = tail_probability.

@@ -117,6 +117,73 @@ TEST_F(CornersJournalTest, DropsThePoseACrashCut) {
   EXPECT_EQ(ReadTextFile(corners_path_), "pose_id,tag_id,corner,u,v,sigma_px\n");
 }
 
+DatasetRow RowOfPose(int64_t id) {
+  DatasetRow row;
+  row.pose_id = id;
+  row.utime = 1'700'000'000'000'000 + id;
+  row.q = {0.01 * static_cast<double>(id), 0.2, 0.3, 0.4};
+  row.X_CT = RigidTransform::FromTranslationRpy(Eigen::Vector3d(0.01, 0.02, 0.5),
+                                                Eigen::Vector3d(0.1, -0.2, 0.3));
+  row.sigma_t = 2e-4;
+  row.sigma_r = 5e-4;
+  return row;
+}
+
+// Issue 42, defect 6: a crash between a pose's row and its corners lost the corners for
+// good ("12 of 12 planned poses, corners of 9 poses"). The rows at the end without corners
+// are cut from the dataset so that the resumed campaign measures them again.
+TEST_F(CornersJournalTest, RowsWhoseCornersACrashLostAreMeasuredAgain) {
+  {
+    DatasetJournal dataset(path_);
+    CornersJournal corners(corners_path_);
+    for (int64_t id = 1; id <= 4; ++id) dataset.Append(RowOfPose(id));
+    for (int64_t id = 1; id <= 2; ++id) corners.Append(CornersOfPose(id));
+  }  // killed before the corners of 3 and 4
+  DatasetJournal dataset(path_);
+  CornersJournal corners(corners_path_);
+  EXPECT_EQ(ReconcileWithDataset(dataset, corners), (std::vector<int64_t>{3, 4}));
+  EXPECT_FALSE(dataset.Contains(3));
+  EXPECT_FALSE(dataset.Contains(4));
+  ASSERT_EQ(ReadDatasetCsv(path_).size(), 2u);
+  dataset.Append(RowOfPose(3));
+  corners.Append(CornersOfPose(3));
+  EXPECT_EQ(ReadDatasetCsv(path_).size(), 3u);
+  EXPECT_TRUE(ReconcileWithDataset(dataset, corners).empty());
+}
+
+// Rows of a camera that sends no corners are kept: nothing says they lost any.
+TEST_F(CornersJournalTest, RowsOfACameraWithoutCornersAreKept) {
+  DatasetJournal dataset(path_);
+  CornersJournal corners(corners_path_);
+  dataset.Append(RowOfPose(1));
+  dataset.Append(RowOfPose(2));
+  EXPECT_TRUE(ReconcileWithDataset(dataset, corners).empty());
+  EXPECT_EQ(dataset.rows().size(), 2u);
+}
+
+// Issue 42, defect 10: a new campaign beside an old STEM.corners.csv kept the old corners
+// for the new poses (identify --corners then fitted stale pixels). Corners of poses the
+// dataset has no row of are refused, naming them, and neither file changes.
+TEST_F(CornersJournalTest, AnotherCampaignsCornersAreRefused) {
+  {
+    CornersJournal old(corners_path_);
+    for (int64_t id = 1; id <= 3; ++id) old.Append(CornersOfPose(id));
+  }
+  const std::string before = ReadTextFile(corners_path_);
+  DatasetJournal dataset(path_);
+  CornersJournal corners(corners_path_);
+  try {
+    ReconcileWithDataset(dataset, corners);
+    ADD_FAILURE() << "the old corners were accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("pose 1, 2, 3"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("another campaign's corners"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(ReadTextFile(corners_path_), before);
+  EXPECT_TRUE(dataset.rows().empty());
+}
+
 TEST_F(CornersJournalTest, RefusesAFileWithOtherColumnsOrMalformedRows) {
   WriteText(corners_path_, "pose_id,tag_id,corner,u,v\n1,0,0,1,1\n");
   try {

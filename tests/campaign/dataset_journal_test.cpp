@@ -60,6 +60,20 @@ TEST_F(DatasetJournalTest, WritesRowsThatReadBackAsADataset) {
   }
 }
 
+// Issue 42, defect 4: a row its own reader refuses is never written (the file stays
+// readable, the pose is not counted as recorded).
+TEST_F(DatasetJournalTest, RefusesARowItsReaderWouldRefuse) {
+  DatasetJournal journal(path_);
+  journal.Append(Row(1));
+  DatasetRow bad = Row(2);
+  bad.q[1] = 7.0;
+  EXPECT_THROW(journal.Append(bad), std::invalid_argument);
+  EXPECT_FALSE(journal.Contains(2));
+  const std::vector<DatasetRow> on_disk = ReadDatasetCsv(path_);
+  ASSERT_EQ(on_disk.size(), 1u);
+  journal.Append(Row(2));
+}
+
 TEST_F(DatasetJournalTest, ResumesWithThePosesAlreadyRecorded) {
   {
     DatasetJournal journal(path_);

@@ -79,6 +79,24 @@ TEST(CheckJointStateTest, RejectsAWrongJointCountAndNonFinitePositions) {
   EXPECT_TRUE(r.settled);
 }
 
+// Issue 42, defect 4: 7 rad and 1e300 rad passed (only NaN was refused) and made the
+// dataset unreadable by its own reader; the bound is the reader's (kMaxJointReading).
+TEST(CheckJointStateTest, RefusesAReadingTheDatasetReaderWouldRefuse) {
+  h4msgs::joint_state_t m{};
+  m.utime = 10;
+  m.joint_count = 4;
+  JointReading r;
+  for (const double q : {7.0, -7.0, 1e300, kMaxJointReading * (1.0 + 1e-12)}) {
+    m.position = {0.1, 0.2, q, 0.4};
+    std::string why;
+    EXPECT_EQ(CheckJointState(m, &r, &why), MessageProblem::kImpossibleValues) << q;
+    EXPECT_NE(why.find("q3"), std::string::npos) << why;
+  }
+  m.position = {0.1, 0.2, kMaxJointReading, -kMaxJointReading};
+  std::string why;
+  EXPECT_EQ(CheckJointState(m, &r, &why), MessageProblem::kNone) << why;
+}
+
 TEST(JointHistoryTest, FindsTheNearestSettledReadingOfThePoseWithinTolerance) {
   JointHistory history;
   history.Add(Reading(1000, 3, true, 0.30));

@@ -194,6 +194,113 @@ TEST_F(CollectCommandTest, FromLogReadsPastMessagesThatDoNotDecode) {
   EXPECT_NE(output.find(fmt::format("{} undecodable", hostile)), std::string::npos) << output;
 }
 
+// Issue 42, defect 4: joint states beyond one turn (7 rad, 1e300 rad) were recorded and the
+// dataset's own reader then refused it whole. They are refused where they enter, counted
+// as impossible, and the poses measured only with them are skipped: the dataset reads back.
+TEST_F(CollectCommandTest, JointReadingsBeyondTheReadersBoundAreNeverWritten) {
+  {
+    LogWriter log(log_);
+    ASSERT_TRUE(log.good());
+    for (int64_t id = 1; id <= 3; ++id) {
+      h4msgs::joint_state_t joints = SettledAt(id, log.utime());
+      if (id == 2) joints.position[1] = 7.0;
+      if (id == 3) joints.position[3] = -1e300;
+      for (int k = 0; k < 5; ++k) {
+        joints.utime = log.utime();
+        log.Write(channels::kJointState, joints);
+      }
+      log.Write(channels::kBoardPose, MeasurementOf(id, log.utime() - 2000));
+    }
+  }
+  std::string output;
+  EXPECT_EQ(RunProgram(Collect("--from-log " + log_), &output), 3) << output;
+  const std::vector<DatasetRow> rows = ReadDatasetCsv(out_);
+  ASSERT_EQ(rows.size(), 1u) << output;
+  EXPECT_EQ(rows[0].pose_id, 1);
+  EXPECT_NE(output.find("10 impossible"), std::string::npos) << output;
+  EXPECT_NE(output.find("beyond one turn"), std::string::npos) << output;
+}
+
+// Issue 42, defect 10: a new campaign beside an old STEM.corners.csv kept the old corners
+// for its poses, exit 0. It is refused, naming the corners file, and the file is untouched.
+TEST_F(CollectCommandTest, ANewCampaignBesideAnotherCampaignsCornersIsRefused) {
+  WriteHostileCampaignLog(log_, 3);
+  const std::string corners = (dir_ / "dataset.corners.csv").string();
+  const std::string old_corners =
+      "pose_id,tag_id,corner,u,v,sigma_px\n1,0,0,100,200,0.1\n2,0,0,110,200,0.1\n";
+  std::ofstream(corners) << old_corners;
+  std::string output;
+  EXPECT_EQ(RunProgram(Collect("--from-log " + log_), &output), 1) << output;
+  EXPECT_NE(output.find(corners + ": holds the corners of 2 poses"), std::string::npos) << output;
+  EXPECT_EQ(LogOrDatasetText(corners), old_corners);
+  EXPECT_TRUE(ReadDatasetCsv(out_).empty());
+}
+
+// Issue 42, defect 11: `--sequential 3,4` measured 4 poses and printed "predicted inf mm"
+// and "chi-square / dof -441", exit 0; `20,20000` failed only after the first stage. The
+// counts are checked before anything is planned, written or moved.
+TEST_F(CollectCommandTest, SequentialCountsAreCheckedBeforeAnythingMoves) {
+  const std::string robot = (dir_ / "robot.yaml").string();
+  WriteRobotYaml(robot, PaperAprioriRobot());
+  const std::string sequential = kH4cal + " collect --out " + out_ + " --robot " + robot +
+                                 " --camera " H4_SOURCE_DIR
+                                 "/boards/sim_camera_1024x768.yaml --board " H4_SOURCE_DIR
+                                 "/boards/aprilgrid_6x6_30mm.yaml --lcm-url memq:// --sequential ";
+  for (const char* counts : {"3,4", "0,10", "5,6", "8,7", "1,1000000", "20,20000"}) {
+    std::string output;
+    EXPECT_EQ(RunProgram(sequential + counts, &output), 1) << counts << ": " << output;
+    EXPECT_NE(output.find("--sequential FIRST,TOTAL"), std::string::npos) << output;
+    EXPECT_EQ(output.find("stage 1 of 2"), std::string::npos) << counts << ": " << output;
+    for (const auto& entry : fs::directory_iterator(dir_)) {
+      EXPECT_TRUE(entry.path().filename() == "robot.yaml" || entry.path().filename() == "plan.csv")
+          << counts << ": wrote " << entry.path();
+    }
+  }
+}
+
+// Issue 42, defect 5: a resumed sequential campaign whose stage-2 plan file was empty or
+// reused stage 1's pose ids measured nothing of stage 2 and exited 0 ("6 of 6 planned
+// poses"). Stage 1 is whole in the dataset here, so nothing waits on the bus.
+TEST_F(CollectCommandTest, AResumedSecondStageThatIsNotTheRestIsRefusedNamingIt) {
+  const std::string robot = (dir_ / "robot.yaml").string();
+  WriteRobotYaml(robot, PaperAprioriRobot());
+  const std::string first = (dir_ / "dataset.stage1.plan.csv").string();
+  const std::string second = (dir_ / "dataset.stage2.plan.csv").string();
+  WritePlan(first, 6);
+  std::vector<DatasetRow> rows;
+  for (int64_t id = 1; id <= 6; ++id) {
+    DatasetRow row;
+    row.pose_id = id;
+    row.utime = 1'700'000'000'000'000 + id;
+    row.q = {0.01 * static_cast<double>(id), 0.2, 0.3, 0.4};
+    row.X_CT =
+        RigidTransform::FromTranslationRpy(Eigen::Vector3d(0.0, 0.0, 0.5), Eigen::Vector3d::Zero());
+    row.sigma_t = 2e-4;
+    row.sigma_r = 5e-4;
+    rows.push_back(row);
+  }
+  WriteDatasetCsv(out_, rows);
+  const std::string sequential =
+      kH4cal + " collect --out " + out_ + " --robot " + robot +
+      " --camera " H4_SOURCE_DIR "/boards/sim_camera_1024x768.yaml --board " H4_SOURCE_DIR
+      "/boards/aprilgrid_6x6_30mm.yaml --lcm-url memq:// --sequential 6,9";
+  struct Case {
+    std::string plan, expected;
+  };
+  for (const Case& c : {Case{"pose_id,X,Y,Z,theta\n", "holds no pose"},
+                        Case{"pose_id,X,Y,Z,theta\n1,0.01,0,-0.45,0\n2,0.02,0,-0.45,0\n"
+                             "7,0.07,0,-0.45,0\n",
+                             "reuses pose ids of the first stage (1, 2)"},
+                        Case{"pose_id,X,Y,Z,theta\n7,0.07,0,-0.45,0\n", "holds 1 poses"}}) {
+    std::ofstream(second) << c.plan;
+    std::string output;
+    EXPECT_EQ(RunProgram(sequential, &output), 1) << output;
+    EXPECT_NE(output.find(second), std::string::npos) << output;
+    EXPECT_NE(output.find(c.expected), std::string::npos) << output;
+    EXPECT_EQ(ReadDatasetCsv(out_).size(), 6u);
+  }
+}
+
 /// True once another process holds the lock on `path` (polled; gives up after 20 s).
 bool WaitUntilLockedByAnother(const std::string& path) {
   for (int i = 0; i < 2000; ++i) {

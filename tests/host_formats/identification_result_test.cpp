@@ -3,6 +3,7 @@
 #include "host/formats/identification_result.h"
 
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -151,6 +152,24 @@ TEST(IdentificationResult, RoundTripIsExact) {
   EXPECT_EQ(b.predicted_position_accuracy_m, r.predicted_position_accuracy_m);
   EXPECT_EQ(b.predicted_robot_accuracy_m, r.predicted_robot_accuracy_m);
   EXPECT_EQ(b.log, r.log);
+}
+
+// Issue 42, defect 9: the corner path wrote psi2 = 7.6 rad and x2 = -55 km, which every
+// later command refused. A result the reader would refuse is not written.
+TEST(IdentificationResult, AResultItsReaderRefusesIsNotWritten) {
+  IdentificationResult r = FullResult();
+  r.X_BC = RigidTransform(r.X_BC.rotation(), Eigen::Vector3d(0, 0, -55e3));
+  const std::string path = TempPath("refused.json");
+  try {
+    WriteIdentificationResult(path, r);
+    ADD_FAILURE() << "written";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("not written: the result cannot be trusted"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("X_BC.translation[2]"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::ifstream(path).good());
 }
 
 TEST(IdentificationResult, VerdictRejectedPosesAndProvenanceRoundTrip) {

@@ -192,7 +192,7 @@ expect_error "collect --auth-key of 16 bytes" "short.key: auth key: 16 bytes; ex
 [ ! -e "$dir/c.csv" ] || fail "collect made a dataset with a refused key"
 # A sequential campaign (issue 29): counts out of order, and what it plans for missing.
 boards=$(cd "$(dirname "$0")/../../boards" && pwd)
-expect_error "collect --sequential 20,10" "0 < FIRST < TOTAL" \
+expect_error "collect --sequential 20,10" "FIRST 20 >= TOTAL 10" \
   "$h4cal" collect --out "$dir/c.csv" --lcm-url memq:// --sequential 20,10 --robot "$robot" \
   --camera "$boards/sim_camera_1024x768.yaml" --board "$boards/aprilgrid_6x6_30mm.yaml"
 expect_error "collect --sequential without --camera" "give --robot, --camera and --board" \

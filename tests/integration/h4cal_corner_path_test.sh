@@ -115,6 +115,77 @@ run camera_alone 1 --model 31 --from "$dir/r12.json" --camera "$file_camera"
 grep -q -- '--camera and --board go together' "$dir/camera_alone.log" \
   || fail "--camera without --board: $(cat "$dir/camera_alone.log")"
 
+# Issue 42, defect 7: fresh poses of the same unchanged robot, measured with the camera file,
+# were checked against the corner-path result (identified on poses measured again with its
+# refined camera): DRIFT on every pose. check refuses without the corners, saying what to
+# give, and with them measures the poses again with the result's camera: no drift.
+"$h4cal" simulate --truth 31 --seed 12 --robot-seed 5 --validation 0 --board "$board" \
+  --camera "$true_camera" --camera-file "$file_camera" --out-dir "$dir/check_sim" \
+  2> "$dir/check_sim.log" || fail "simulate the check's poses: $(tail -1 "$dir/check_sim.log")"
+"$h4cal" check --result "$dir/corner31.json" --data "$dir/check_sim/dataset.csv" \
+  > "$dir/check_bare.txt" 2>&1
+rc=$?
+[ $rc -eq 1 ] || fail "check of a corner-path result without corners: exit $rc: $(tail -3 "$dir/check_bare.txt")"
+grep -q "is a corner-path result .* Give the check's corners with --corners" "$dir/check_bare.txt" ||
+  fail "check without corners: $(tail -1 "$dir/check_bare.txt")"
+"$h4cal" check --result "$dir/corner31.json" --data "$dir/check_sim/dataset.csv" \
+  --corners "$dir/check_sim/corners.csv" --board "$board" --camera "$file_camera" \
+  > "$dir/check_corners.txt" 2>&1 ||
+  fail "check of the unchanged robot against the corner-path result: $(tail -2 "$dir/check_corners.txt")"
+grep -q "measured again from their corners with the result's camera" "$dir/check_corners.txt" ||
+  fail "check did not measure the poses again: $(head -2 "$dir/check_corners.txt")"
+"$h4cal" check --result "$dir/pose31.json" --data "$dir/check_sim/dataset.csv" \
+  --corners "$dir/check_sim/corners.csv" --board "$board" --camera "$file_camera" \
+  > "$dir/check_pose_corners.txt" 2>&1 && fail "--corners with a pose-path result was accepted"
+grep -q "is a pose-path result" "$dir/check_pose_corners.txt" ||
+  fail "--corners with a pose-path result: $(tail -1 "$dir/check_pose_corners.txt")"
+
+# Issue 42, defect 9: one corner at u = 999999 px (inside the CSV's bound) wrecked the corner
+# path into a result h4cal's own reader refused; a pose with every corner off the image was
+# named as another pose's forward-kinematics failure; a pose whose corners sit on one pixel
+# wrecked it too. And an overstated sigma_px (100 px) gave `good` at chi-square/dof 2e-5.
+awk -F, -v OFS=, 'NR == 2 { $4 = 999999 } 1' "$dir/sim/corners.csv" > "$dir/far.csv"
+run far 1 --model 31 --from "$dir/r12.json" --corners "$dir/far.csv" --board "$board" \
+  --camera "$file_camera"
+first=$(awk -F, 'NR == 2 { print $1 }' "$dir/sim/corners.csv")
+grep -q "pose $first: corner .* at (999999, .*) px is outside the camera's 1024x768 image" \
+  "$dir/far.log" || fail "a corner at u = 999999 px: $(tail -1 "$dir/far.log")"
+[ ! -e "$dir/far.json" ] || fail "a result was written from a corner off the image"
+awk -F, -v OFS=, -v p="$first" 'NR > 1 && $1 == p { $4 += 5000 } 1' "$dir/sim/corners.csv" \
+  > "$dir/off.csv"
+run off 1 --model 31 --from "$dir/r12.json" --corners "$dir/off.csv" --board "$board" \
+  --camera "$file_camera"
+grep -q "pose $first: every one of its [0-9]* corners is off the camera's 1024x768 image" \
+  "$dir/off.log" || fail "a pose with every corner off the image: $(tail -1 "$dir/off.log")"
+awk -F, -v OFS=, -v p="$first" 'NR > 1 && $1 == p { $4 = 500; $5 = 400 } 1' \
+  "$dir/sim/corners.csv" > "$dir/onepixel.csv"
+run onepixel 0 --model 31 --from "$dir/r12.json" --corners "$dir/onepixel.csv" --board "$board" \
+  --camera "$file_camera"
+grep -q "pose $first: its [0-9]* corners spread 0 px across at most .* left out" \
+  "$dir/onepixel.log" || fail "a pose on one pixel was not left out: $(tail -1 "$dir/onepixel.log")"
+grep -q '^corner path: 80 poses' "$dir/onepixel.txt" || fail "onepixel: $(grep '^corner path' "$dir/onepixel.txt")"
+if head -1 "$dir/sim/corners.csv" | grep -q ',sigma_px'; then
+  awk -F, -v OFS=, 'NR > 1 { $6 = 100 } 1' "$dir/sim/corners.csv" > "$dir/sigma100.csv"
+else
+  awk -F, -v OFS=, 'NR == 1 { print $0 ",sigma_px"; next } { print $0 ",100" }' \
+    "$dir/sim/corners.csv" > "$dir/sigma100.csv"
+fi
+run sigma100 3 --model 31 --from "$dir/r12.json" --corners "$dir/sigma100.csv" --board "$board" \
+  --camera "$file_camera"
+head -1 "$dir/sigma100.txt" | grep -q 'noise_overstated' ||
+  fail "sigma_px 100: $(head -1 "$dir/sigma100.txt")"
+grep -q '"code": "noise_overstated"' "$dir/sigma100.json" || fail "sigma_px 100: no verdict code"
+
+# Issue 42, defect 17: validate with the wrong --board (88 mm tags for 30 mm) exited 0 and drew
+# hundreds of px as "where the camera model misfits"; it names the board and exits non-zero.
+"$h4cal" validate --robot "$dir/sim/robot.yaml" --data "$dir/sim/dataset.csv" \
+  --result31 "$dir/corner31.json" --corners "$dir/sim/corners.csv" \
+  --board "$boards/kalibr_aprilgrid_6x6_88mm.yaml" --camera "$file_camera" \
+  --report-dir "$dir/wrong_board" > "$dir/wrong_board.txt" 2>&1 &&
+  fail "validate with the wrong board exited 0"
+grep -q "do not match the board given (an AprilTag grid of 6x6 tag36h11 tags of 88 mm" \
+  "$dir/wrong_board.txt" || fail "the wrong board: $(tail -1 "$dir/wrong_board.txt")"
+
 # The three files go together.
 run missing 1 --model 31 --from "$dir/r12.json" --corners "$dir/sim/corners.csv"
 grep -q 'needs --corners, --board and --camera together' "$dir/missing.log" \

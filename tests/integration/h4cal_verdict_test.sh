@@ -2,11 +2,28 @@
 # The verdict of `h4cal identify` on simulated campaigns (paper protocol, 81 poses): a
 # normal campaign is "good" with exit 0; a robot.yaml in millimetres, swapped joint
 # columns, Model 12 on a Model 31 robot and a 10-pose dataset each get their own verdict,
-# printed first, in the result JSON, and exit code 3.
+# printed first, in the result JSON, and exit code 3; a fit whose result the reader would
+# refuse (decimetres, swapped joints) prints its verdict and writes no result, exit 1.
 set -uo pipefail
 . "$(dirname "$0")/h4cal_test_lib.sh"
 
 # expect_verdict NAME CODE RC ROBOT DATA [identify options...]
+# expect_unwritten NAME CODE ROBOT DATA: the verdict printed first, but a fit whose result
+# h4cal's own reader refuses (a negative length) is not written: exit 1 (issue 42, defect 9).
+expect_unwritten() {
+  local name=$1 code=$2 robot=$3 data=$4
+  "$h4cal" identify --robot "$robot" --data "$data" --out "$dir/$name.json" \
+    > "$dir/$name.txt" 2> "$dir/$name.log"
+  local rc=$?
+  [ "$rc" -eq 1 ] || fail "$name: exit $rc, expected 1: $(head -3 "$dir/$name.txt")"
+  head -1 "$dir/$name.txt" | grep -q "^VERDICT: $code\$" \
+    || fail "$name: first line '$(head -1 "$dir/$name.txt")', expected VERDICT: $code"
+  grep -q "$name.json: not written: the result cannot be trusted, h4cal's own reader refuses it" \
+    "$dir/$name.log" || fail "$name: $(tail -1 "$dir/$name.log")"
+  [ ! -e "$dir/$name.json" ] || fail "$name: a result its reader refuses was written"
+  echo "$name: $(sed -n 2p "$dir/$name.txt")"
+}
+
 expect_verdict() {
   local name=$1 code=$2 rc_expected=$3 robot=$4 data=$5
   shift 5
@@ -46,15 +63,16 @@ rc=$?
 grep -q "field 'model12.arm': expected a length within 10 m, got 260" "$dir/millimetres.log" \
   || fail "millimetres: $(cat "$dir/millimetres.log")"
 # The arm ten times too long (a unit slip within the bound) reads, and the verdict says the
-# a priori is wrong.
+# a priori is wrong. Its fit ends with a negative arm, which h4cal's reader refuses: the
+# result is not written, exit 1, after the verdict.
 sed -E 's/^(  arm: )([0-9.]+)/echo "\1$(awk "BEGIN{print \2*10}")"/e' "$dir/m12/robot.yaml" \
   > "$dir/robot_dm.yaml"
 grep -q '^  arm: 2.6' "$dir/robot_dm.yaml" || fail "robot_dm.yaml: $(grep arm "$dir/robot_dm.yaml")"
-expect_verdict decimetres inconsistent_with_apriori 3 "$dir/robot_dm.yaml" "$dir/m12/dataset.csv"
+expect_unwritten decimetres inconsistent_with_apriori "$dir/robot_dm.yaml" "$dir/m12/dataset.csv"
 
 # Joint columns q1 and q2 swapped (a controller reporting its joints in another order).
 awk -F, 'BEGIN{OFS=","} NR > 1 {t=$3; $3=$4; $4=t} {print}' "$dir/m12/dataset.csv" > "$dir/swapped.csv"
-expect_verdict swapped_joints inconsistent_with_apriori 3 "$dir/m12/robot.yaml" "$dir/swapped.csv"
+expect_unwritten swapped_joints inconsistent_with_apriori "$dir/m12/robot.yaml" "$dir/swapped.csv"
 
 # Ten poses: the header and the first ten rows, no held-out split.
 head -11 "$dir/m12/dataset.csv" | sed -E 's/,valid(,|$)/,calib\1/' > "$dir/ten.csv"

@@ -63,6 +63,9 @@ interrupted=$(rows dataset.csv)
 [ "$(grep -c 'planned by an earlier run' resumed.log)" -eq 2 ] ||
   fail "the resumed campaign did not read both stages' plans back"
 ! grep -q "poses planned on the" resumed.log || fail "the resumed campaign planned again"
+# A row whose corners the interruption lost is measured again (issue 42, defect 6).
+cut=$(sed -n 's/.*the corners of the last \([0-9]*\) poses recorded are not in.*/\1/p' resumed.log | head -1)
+interrupted=$(( interrupted - ${cut:-0} ))
 grep -q "$interrupted already in dataset.csv" resumed.log ||
   fail "the resumed campaign did not start from the $interrupted rows measured"
 first_rows=$(ids dataset.csv | awk -v last="$last_first" '$1 <= last' | wc -l)

@@ -7,11 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <gtest/gtest.h>
 
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
+#include "common/formats/corners_csv.h"
 #include "host/kinematics/paper_robot.h"
 
 namespace h4::host {
@@ -66,6 +68,43 @@ TEST(TargetRegion, TheLatticeSpansTheRegionFacesIncluded) {
   EXPECT_NEAR(high[3], region.theta_max, 1e-12);
   region.theta_max = region.theta_min - 0.1;
   EXPECT_THROW(TargetPoses(region), std::invalid_argument);
+}
+
+// Issue 42, defect 12: NaN and 1e160 px fell back to the constant sigmas without a word.
+TEST(PlanningProblemOptions, TheCornerSigmaIsBoundedByTheCornersCsvs) {
+  PlanningProblemOptions options;
+  std::string why;
+  EXPECT_TRUE(options.IsValid(&why)) << why;  // 0: none
+  for (const double sigma : {kCornerSigmaBounds.min, 0.3, kCornerSigmaBounds.max}) {
+    options.corner_sigma_px = sigma;
+    EXPECT_TRUE(options.IsValid(&why)) << sigma << ": " << why;
+  }
+  for (const double sigma :
+       {std::nan(""), 1e160, -0.5, 1e-9, 100.5, std::numeric_limits<double>::infinity()}) {
+    options.corner_sigma_px = sigma;
+    EXPECT_FALSE(options.IsValid(&why)) << sigma;
+    EXPECT_NE(why.find("corner_sigma_px"), std::string::npos) << why;
+    EXPECT_THROW(RobustProblem(options), std::invalid_argument) << sigma;
+  }
+}
+
+// Issue 42, defect 13: `plan --model 12` failed on every robot tried ("forward kinematics not
+// converged") unless --robust-robots 0: the robots drawn for robustness were Model 31 robots,
+// whose rows a Model 12 information model was evaluated on. They are drawn in the planned
+// model's parameterisation.
+TEST(PosePlanner, AModel12PlanDrawsModel12Robots) {
+  PlanningProblemOptions options = CoarseRobustOptions();
+  options.model = ModelKind::k12;
+  const PlanningProblem problem = RobustProblem(options);
+  ASSERT_EQ(problem.drawn.size(), 2u);
+  for (const InformationModel& drawn : problem.drawn) {
+    EXPECT_EQ(drawn.model, ModelKind::k12);
+    EXPECT_EQ(drawn.parameter_count(), problem.info.parameter_count());
+  }
+  DesignOptions design;
+  design.pose_count = MinimumPlannedPoses(problem);
+  EXPECT_TRUE(std::isfinite(
+      PlanCampaign(problem, design, 1, PlanCriterion::kAccuracy).predicted_position_rms));
 }
 
 TEST(PlanForMeanAccuracy, IdenticalModelsGiveTheSingleModelsDesign) {

@@ -69,6 +69,19 @@ TEST(CrossValidationTest, EveryPoseIsInTheFitAndHeldOutFiguresComeFromTheFolds) 
   EXPECT_EQ(r.verdict->code, "good") << r.verdict->text;
 }
 
+// Issue 42, defect 11: `collect --sequential 3,4` identified its first 3 poses and printed
+// "chi-square / dof -441": folds with fewer residuals than parameters. A chi-square is
+// never negative.
+TEST(CrossValidationTest, AFewPosesNeverGiveANegativeChiSquare) {
+  std::vector<DatasetRow> rows = CampaignRows(TrueGeometry::kPerturbedModel12, 3);
+  rows.resize(3);
+  const IdentificationOutcome out =
+      IdentifyRobot(PaperAprioriRobot(), ModelKind::k12, rows, IdentificationOptions{});
+  ASSERT_TRUE(out.result.cross_validation.has_value());
+  EXPECT_GE(out.result.cross_validation->reduced_chi2, 0.0);
+  EXPECT_TRUE(std::isfinite(out.result.cross_validation->reduced_chi2));
+}
+
 TEST(CrossValidationTest, ExplicitValidationCountStillGivesTheFixedSplit) {
   const std::vector<DatasetRow> rows = CampaignRows(TrueGeometry::kPerturbedModel12, 3);
   const IdentificationOutcome out =
