@@ -183,9 +183,11 @@ TEST(ServiceConfigTest, SimRendersTheProcessedPresetUnlessToldOtherwise) {
 
   const ServiceConfig c = ParseServiceConfig(
       "source: sim\nsim:\n  preset: clean\n  blur_sigma_px: 1.4\n  response: gamma:0.7\n"
-      "  illumination_gradient: 0.3\n  read_noise: 0.5\n",
+      "  illumination_gradient: 0.3\n  read_noise: 0.5\n  pixel_blur_sigma_px: 0.6\n",
       "c.yaml");
   EXPECT_EQ(c.sim_render.blur_sigma_px, 1.4);
+  EXPECT_EQ(c.sim_render.pixel_blur_sigma_px, 0.6);
+  EXPECT_EQ(RenderOptions::Processed().pixel_blur_sigma_px, 0.0);
   EXPECT_EQ(c.sim_render.response, ResponseCurve::kGamma);
   EXPECT_EQ(c.sim_render.response_gamma, 0.7);
   EXPECT_EQ(c.sim_render.illumination_gradient, 0.3);
@@ -207,6 +209,7 @@ TEST(ServiceConfigTest, SimErrorsNameTheLineAndField) {
   ExpectError("sim:\n  preset: vivid\n", 2, "sim.preset", "clean or processed");
   ExpectError("sim:\n  preset: clean\n  blur_sigma_px: 25\n", 3, "sim.blur_sigma_px", "0..20");
   ExpectError("sim:\n  vignetting: 1\n", 2, "sim.vignetting", "0..0.9");
+  ExpectError("sim:\n  pixel_blur_sigma_px: -1\n", 2, "sim.pixel_blur_sigma_px", "0..20");
   ExpectError("sim:\n  response: gamma:x\n", 2, "sim.response", "gamma:EXPONENT");
   ExpectError("sim:\n  response: gamma:40\n", 2, "sim.response", "0.1..10");
   ExpectError("sim:\n  full_well_electrons: 50\n", 2, "sim.full_well_electrons", "100..1e7");

@@ -4,7 +4,10 @@
 // (gradient, defocus, saturation).
 #include "firmware/render/board_renderer.h"
 
+#include <string>
+
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
 
 #include "common/board/board_model.h"
 #include "common/camera/camera_model.h"
@@ -48,6 +51,30 @@ TEST(BoardRendererTest, PixelHalfCoveredByAnEdgeIsMidGrey) {
   // quarter black.
   const double expected = 0.75 * options.white_level + 0.25 * options.black_level;
   EXPECT_NEAR(image.at<float>(80, 130), expected, 0.5);
+}
+
+TEST(BoardRendererTest, PixelBlurActsOnThePixelValuesAfterIntegration) {
+  // Without optical blur the row across the tag's left edge is white, mid grey (the pixel the
+  // edge halves), black; the pixel blur then convolves those pixel values with a sampled
+  // Gaussian, as an image pipeline's filter does (not the light before the pixels integrate it).
+  RenderOptions options;
+  cv::Mat sharp, blurred;
+  ASSERT_NO_FATAL_FAILURE(RenderFacingCamera(OneTagBoard(), options, 80.25, &sharp));
+  options.pixel_blur_sigma_px = 0.7;
+  ASSERT_NO_FATAL_FAILURE(RenderFacingCamera(OneTagBoard(), options, 80.25, &blurred));
+  const cv::Mat kernel = cv::getGaussianKernel(7, 0.7, CV_64F);
+  for (int u = 97; u <= 103; ++u) {
+    double expected = 0;
+    for (int k = -3; k <= 3; ++k) {
+      expected += kernel.at<double>(k + 3) * sharp.at<float>(120, u - k);
+    }
+    EXPECT_NEAR(blurred.at<float>(120, u), expected, 0.05) << u;
+  }
+  EXPECT_GT(blurred.at<float>(120, 101) - sharp.at<float>(120, 101), 20.0);
+  std::string why;
+  options.pixel_blur_sigma_px = 21;
+  EXPECT_FALSE(options.IsValid(&why));
+  EXPECT_NE(why.find("pixel blur"), std::string::npos) << why;
 }
 
 TEST(BoardRendererTest, SameSeedGivesSameFramesAndNoiseHasRequestedSigma) {
