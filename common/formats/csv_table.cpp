@@ -1,7 +1,6 @@
 // CSV table parsing with strict typed cells; see csv_table.h.
 #include "common/formats/csv_table.h"
 
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -10,6 +9,7 @@
 #include "common/formats/file_kind.h"
 #include "common/formats/file_output.h"
 #include "common/formats/format_error.h"
+#include "common/formats/input_file.h"
 #include "common/formats/number_text.h"
 
 namespace h4 {
@@ -212,13 +212,6 @@ void WriteTextFile(const std::string& path, const std::string& text) {
   WriteFileAtomically(path, text);
 }
 
-std::string ReadTextFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FormatError(path, 0, "", "cannot open the file for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw FormatError(path, 0, "", "read failed");
-  return text.str();
-}
+std::string ReadTextFile(const std::string& path) { return ReadDataFile(path); }
 
 }  // namespace h4
