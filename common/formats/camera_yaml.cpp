@@ -77,15 +77,12 @@ std::string WriteMatrix(const std::string& name, int rows, int cols, const doubl
   return text + " ]\n";
 }
 
-std::string SizeLimits() {
-  return fmt::format("1..{} px a side, at most {} px in all", kMaxImageSide_px, kMaxImagePixels);
-}
+std::string SizeLimits() { return ImageSizeLimits(); }
 
 int ImageSize(const YamlMap& root, const std::string& key) {
   const int64_t size = root.Int(key);
-  if (size < 1 || size > kMaxImageSide_px) {
-    root.Fail(key,
-              fmt::format("expected a positive image size in px ({}), got {}", SizeLimits(), size));
+  if (size < kMinImageSide_px || size > kMaxImageSide_px) {
+    root.Fail(key, fmt::format("expected an image size in px ({}), got {}", SizeLimits(), size));
   }
   return static_cast<int>(size);
 }
@@ -234,9 +231,8 @@ CameraIntrinsics ParseKalibrCamera(const YamlMap& block) {
   CameraIntrinsics camera;
   const std::vector<int64_t> resolution = block.Ints("resolution", 2);
   for (size_t i = 0; i < 2; ++i) {
-    if (resolution[i] < 1 || resolution[i] > kMaxImageSide_px) {
-      block.FailElement("resolution", i,
-                        "expected a positive image size in px (" + SizeLimits() + ")");
+    if (resolution[i] < kMinImageSide_px || resolution[i] > kMaxImageSide_px) {
+      block.FailElement("resolution", i, "expected an image size in px (" + SizeLimits() + ")");
     }
   }
   camera.width = static_cast<int>(resolution[0]);

@@ -433,6 +433,28 @@ TEST(CalibrateIntrinsicsCommand, CopiesOfOneImageFailWithoutWritingAFile) {
   EXPECT_FALSE(fs::exists(args.out_path));
 }
 
+// Issue 42 points 1 and 2: calibrate-intrinsics read images with cv::imread, with no pixel
+// limit (a 1 MB PNG of 32000 x 32000 px took 3.6 GB) and no smallest side (a 64 x 3 PNG
+// crashed libapriltag). It reads them as every h4cam command does (ImageFileSource).
+TEST(CalibrateIntrinsicsCommand, ATinyImageIsRefusedNamingItsSize) {
+  const TempDir dir("h4_tiny_image");
+  const std::string image = (dir.path / "tiny.png").string();
+  cv::imwrite(image, cv::Mat(3, 64, CV_8UC1, cv::Scalar(128)));
+  CalibrateIntrinsicsArgs args;
+  args.board_path = std::string(H4_SOURCE_DIR) + "/boards/aprilgrid_6x6_30mm.yaml";
+  args.images = {image};
+  args.out_path = (dir.path / "camera.yaml").string();
+  std::ostringstream report;
+  try {
+    RunCalibrateIntrinsics(args, report);
+    ADD_FAILURE() << "calibrated from a 64 x 3 image";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(image + ": image 64x3 px: expected 32..16384"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // `--model` takes radtan, rational and equidistant; any other name is a usage error
 // before anything runs. (A known name gets as far as the calibration, which then fails
 // for want of views: a blank image has no board.)
