@@ -281,6 +281,7 @@ int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription&
   const BoardModel board(ReadBoardYaml(options.board_path));
   const CameraIntrinsics camera = ReadCameraYaml(options.camera_path);
   const std::vector<CornerObservation> observed = ReadCornersCsv(options.corners_path);
+  RequireCornersOfDataset(rows, observed, options.corners_path);
   const std::vector<PoseCorners> corners =
       GroupCornersByRow(rows, observed, board, options.default_sigma_px);
   CornerFitOptions corner_options;
