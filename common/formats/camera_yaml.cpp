@@ -9,6 +9,7 @@
 #include <Eigen/Eigenvalues>
 #include <fmt/core.h>
 
+#include "common/camera/camera_model.h"
 #include "common/formats/csv_table.h"
 #include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
@@ -106,6 +107,15 @@ void RequirePrincipalPointInImage(double cx, double cy, int width, int height, F
                           FormatDouble(point[i], i == 0 ? "cx" : "cy")));
     }
   }
+}
+
+// A lens model that folds inside the image gives part of the image no ray (issue 42 point 19:
+// a calibration whose corners covered 18 of 48 cells folded 291 px from the centre):
+// measure, plan and the corner path would use it without a sign.
+template <typename Fail>
+void RequireOneToOneOverTheImage(const CameraIntrinsics& camera, Fail fail) {
+  const std::string fold = CameraModel(camera).FoldInsideImage();
+  if (!fold.empty()) fail(fold + " (calibrate again with views that reach the image's corners)");
 }
 
 DistortionModel ReadDistortionModel(const YamlMap& map, const std::string& key) {
@@ -214,6 +224,9 @@ CameraIntrinsics ParseOpenCvCamera(const YamlMap& root) {
     if (error < 0.0) root.Fail("avg_reprojection_error", "expected a non-negative RMS in px");
     camera.avg_reprojection_error = error;
   }
+  RequireOneToOneOverTheImage(camera, [&](const std::string& why) {
+    root.Fail("distortion_coefficients", why);
+  });
   if (root.Has("intrinsics_covariance")) ReadIntrinsicsCovariance(root, &camera);
   return camera;
 }
@@ -263,6 +276,9 @@ CameraIntrinsics ParseKalibrCamera(const YamlMap& block) {
   }
   const std::vector<double> d = block.Doubles("distortion_coeffs", 4);
   camera.distortion = Eigen::Map<const Eigen::Vector4d>(d.data());
+  RequireOneToOneOverTheImage(camera, [&](const std::string& why) {
+    block.Fail("distortion_coeffs", why);
+  });
   return camera;
 }
 

@@ -246,6 +246,21 @@ TEST(CameraYamlErrors, ImageSideBelowTheDetectorsSmallestIsRefused) {
   EXPECT_EQ(ParseCameraYaml(text, "c.yaml").height, kMinImageSide_px);
 }
 
+// Issue 42 point 19: a camera file whose lens model folds inside the image was read and
+// used by measure, plan and identify. k1 -5 folds about 213 px from the principal point
+// of this 1456 x 1088 camera; k1 -0.1 (the file as written) does not fold at all.
+TEST(CameraYamlErrors, ALensModelThatFoldsInsideTheImageIsRefused) {
+  const std::string folding = CameraFileWith("data: [ -1.0000000000000001e-01,", "data: [ -5.,");
+  EXPECT_TRUE(FailsWith([&] { ParseCameraYaml(folding, "c.yaml"); }, "c.yaml", 12,
+                        "distortion_coefficients", "the lens model folds about"));
+  const std::string kalibr =
+      "camera_model: pinhole\ndistortion_model: radtan\nintrinsics: [800, 800, 512, 384]\n"
+      "distortion_coeffs: [-0.8, 0, 0, 0]\nresolution: [1024, 768]\n";
+  EXPECT_TRUE(FailsWith([&] { ParseCameraYaml(kalibr, "k.yaml"); }, "k.yaml", 4,
+                        "distortion_coeffs", "the lens model folds about"));
+  EXPECT_NO_THROW(ParseCameraYaml(kOpenCvFile, "c.yaml"));
+}
+
 TEST(CameraYamlErrors, DistortionCountMustBe4Or5Or8) {
   // 2 x 2 holds 4 values but is not a vector.
   const std::string text = CameraFileWith("rows: 5\n   cols: 1", "rows: 2\n   cols: 2");

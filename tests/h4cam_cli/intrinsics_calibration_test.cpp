@@ -225,6 +225,29 @@ TEST(IntrinsicsCalibration, FrontoParallelViewsAreRefused) {
   EXPECT_LT(result.max_tilt_deg, 1.0) << result.Report();
 }
 
+// Issue 42 point 19: a distortion fit that folds inside the image was accepted and used (a
+// real 8-view set folded 291 px from the centre: a third of the image without a valid ray).
+// Exact views through a lens whose k1 = -0.8 folds at r = 0.65 (distorted radius 0.43, the
+// 640 x 480 image's corners reach 0.52): the fit recovers that lens, and is refused.
+TEST(IntrinsicsCalibration, AFitThatFoldsInsideTheImageIsRefused) {
+  std::vector<CalibrationView> views = SyntheticViews(10);
+  const cv::Mat folding = (cv::Mat_<double>(5, 1) << -0.8, 0.0, 0.0, 0.0, 0.0);
+  for (size_t i = 0; i < views.size(); ++i) {
+    const double a = 0.5 * std::sin(1.7 * i), b = 0.5 * std::cos(1.3 * i);
+    const cv::Vec3d rvec(a, b, 0.1 * i);
+    const cv::Vec3d tvec(-0.1 + 0.01 * (i % 3), -0.06 + 0.01 * (i % 2), 0.4 + 0.02 * i);
+    cv::projectPoints(views[i].object_points, rvec, tvec, TrueK(), folding,
+                      views[i].image_points);
+  }
+  const auto result = CalibrateIntrinsics(views, cv::Size(640, 480), {});
+  EXPECT_EQ(result.status, IntrinsicsCalibrationResult::Status::kFoldingDistortion)
+      << result.message;
+  EXPECT_NEAR(result.camera.distortion[0], -0.8, 0.05) << "the fit found the folding lens";
+  EXPECT_NE(result.message.find("the lens model folds about"), std::string::npos)
+      << result.message;
+  EXPECT_NE(result.Report().find("calibration failed: the lens model folds"), std::string::npos);
+}
+
 TEST(IntrinsicsCalibration, RefusesFewerViewsThanTheMinimum) {
   const auto result = CalibrateIntrinsics(SyntheticViews(7), cv::Size(640, 480), {});
   EXPECT_EQ(result.status, IntrinsicsCalibrationResult::Status::kTooFewViews);
