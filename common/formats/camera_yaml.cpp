@@ -330,6 +330,32 @@ CameraIntrinsics ParseCameraYaml(const std::string& text, const std::string& sou
   return ParseOpenCvCamera(root);
 }
 
+std::string CameraIntrinsicsProblem(const CameraIntrinsics& camera) {
+  if (std::string problem = ImageSizeProblem(camera.width, camera.height); !problem.empty()) {
+    return "image " + problem;
+  }
+  const double fx = camera.K(0, 0), fy = camera.K(1, 1);
+  if (!(fx > 0.0 && fy > 0.0 && std::isfinite(fx) && std::isfinite(fy))) {
+    return fmt::format("expected positive finite focal lengths fx, fy, got {}, {}", fx, fy);
+  }
+  if (!std::isfinite(camera.K(0, 1)) || !std::isfinite(camera.K(0, 2)) ||
+      !std::isfinite(camera.K(1, 2))) {
+    return "expected a finite skew and principal point";
+  }
+  std::string why;
+  RequirePrincipalPointInImage(camera.K(0, 2), camera.K(1, 2), camera.width, camera.height,
+                               [&](size_t, const std::string& what) { why = what; });
+  if (!why.empty()) return why;
+  const Eigen::Index n = camera.distortion.size();
+  if (!IsSupportedDistortionCount(camera.distortion_model, n)) {
+    return fmt::format("expected {} distortion coefficients for the {} model, got {}",
+                       ExpectedDistortionCoefficients(camera.distortion_model),
+                       ToString(camera.distortion_model), n);
+  }
+  if (!camera.distortion.allFinite()) return "expected finite distortion coefficients";
+  return CameraModel(camera).FoldInsideImage();
+}
+
 CameraIntrinsics ReadCameraYaml(const std::string& path) {
   // "camchain.yaml#cam1": one camera of a Kalibr camchain.
   const size_t hash = path.rfind('#');

@@ -32,6 +32,14 @@ namespace h4 {
 /// "cam0.distortion_coeffs").
 CameraIntrinsics ParseCameraYaml(const std::string& text, const std::string& source_name,
                                  const std::string& kalibr_camera = "");
+/// Empty when `camera` holds what the camera file's reader accepts (the bounds physics
+/// allows): an image size within image_size.h's limits, finite positive focal lengths, a
+/// finite skew, the principal point within the image, a supported number of finite
+/// distortion coefficients, a lens model one to one over the image
+/// (CameraModel::FoldInsideImage); else why. For the intrinsics other files carry (the
+/// identification result's `camera` key).
+std::string CameraIntrinsicsProblem(const CameraIntrinsics& camera);
+
 /// Reads `path`; "camchain.yaml#cam1" reads camera cam1 of a Kalibr camchain.
 CameraIntrinsics ReadCameraYaml(const std::string& path);
 

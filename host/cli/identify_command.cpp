@@ -293,6 +293,12 @@ int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription&
     PrintCornerFit(path);
     throw std::runtime_error("the corner fit failed: " + path.fit.message);
   }
+  // A refined camera the camera file's reader would refuse (a lens that folds inside the
+  // image, a principal point off it) is not written: the result would not read back.
+  if (const std::string problem = CameraIntrinsicsProblem(path.fit.camera); !problem.empty()) {
+    PrintCornerFit(path);
+    throw std::runtime_error("the corner fit's camera cannot be trusted: " + problem);
+  }
   IdentificationResult result = path.outcome.result;
   result.provenance = ProvenanceOf(options);
   result.provenance->inputs.insert(result.provenance->inputs.end(),
