@@ -22,6 +22,7 @@
 #include "common/geometry/rotation.h"
 #include "common/units.h"
 #include "firmware/calibration/board_views.h"
+#include "firmware/calibration/intrinsics_report.h"
 #include "firmware/cli/calibrate_intrinsics_command.h"
 #include "firmware/render/board_renderer.h"
 
@@ -246,6 +247,32 @@ TEST(IntrinsicsCalibration, AFitThatFoldsInsideTheImageIsRefused) {
   EXPECT_NE(result.message.find("the lens model folds about"), std::string::npos)
       << result.message;
   EXPECT_NE(result.Report().find("calibration failed: the lens model folds"), std::string::npos);
+}
+
+// Issue 42 point 18: camera-report.html linked its files by bare names, so a camera file
+// named "javascript:alert(document.domain);x.yaml" made every link a script on click. Every
+// href and src is a relative URL ("./", percent-encoded): no name can make it a scheme.
+TEST(IntrinsicsReport, LinksAreRelativeUrlsThatCannotBeSchemes) {
+  const auto result = CalibrateIntrinsics(SyntheticViews(10), cv::Size(640, 480), {});
+  ASSERT_TRUE(result.ok()) << result.message;
+  const std::string hostile = "javascript:alert(document.domain);x";
+  const ReportFiles files = {hostile + ".yaml", hostile + "-coverage.svg",
+                             hostile + "-residuals.svg", hostile + "-report.txt"};
+  const std::string html = ReportHtml(result, CornerCoverage(result), files);
+  int links = 0;
+  for (const std::string attribute : {"href=\"", "src=\""}) {
+    for (size_t at = html.find(attribute); at != std::string::npos;
+         at = html.find(attribute, at + 1)) {
+      const std::string url = html.substr(at + attribute.size(), 2);
+      if (url[0] == '#') continue;  // an anchor of the page
+      EXPECT_EQ(url, "./") << html.substr(at, 80);
+      ++links;
+    }
+  }
+  EXPECT_EQ(links, 6);  // two figures (href and src each), the camera file, the text report
+  EXPECT_NE(html.find("href=\"./javascript%3Aalert%28document.domain%29%3Bx.yaml\""),
+            std::string::npos);
+  EXPECT_EQ(html.find("href=\"javascript"), std::string::npos);
 }
 
 TEST(IntrinsicsCalibration, RefusesFewerViewsThanTheMinimum) {
