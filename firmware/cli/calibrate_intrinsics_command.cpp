@@ -71,6 +71,8 @@ void WriteReportFiles(const IntrinsicsCalibrationResult& result, const std::stri
 
 IntrinsicsCalibrationResult RunCalibrateIntrinsics(const CalibrateIntrinsicsArgs& args,
                                                    std::ostream& out) {
+  // Before the calibration, not after it (issue 42): the folder the files go to.
+  RequireOutputFolder({"--out", args.out_path});
   const BoardSpec board = ReadBoardYaml(args.board_path);
   const BoardModel board_model(board);
   const BoardViewFinder finder(board);

@@ -483,6 +483,26 @@ TEST(CalibrateIntrinsicsCommand, CopiesOfOneImageFailWithoutWritingAFile) {
   EXPECT_FALSE(fs::exists(args.out_path));
 }
 
+// Issue 42: `--out` into a missing folder failed only after the whole calibration. The
+// folder is checked first: the images (missing here) are not even read.
+TEST(CalibrateIntrinsicsCommand, OutIntoAMissingFolderIsRefusedBeforeAnythingRuns) {
+  const TempDir dir("h4_out_missing_folder");
+  CalibrateIntrinsicsArgs args;
+  args.board_path = std::string(H4_SOURCE_DIR) + "/boards/aprilgrid_6x6_30mm.yaml";
+  args.images = {(dir.path / "not_read.png").string()};
+  args.out_path = (dir.path / "missing" / "camera.yaml").string();
+  std::ostringstream report;
+  try {
+    RunCalibrateIntrinsics(args, report);
+    ADD_FAILURE() << "ran with --out into a missing folder";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--out " + args.out_path + ": the folder " +
+                                         (dir.path / "missing").string() + " does not exist"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // Issue 42 points 1 and 2: calibrate-intrinsics read images with cv::imread, with no pixel
 // limit (a 1 MB PNG of 32000 x 32000 px took 3.6 GB) and no smallest side (a 64 x 3 PNG
 // crashed libapriltag). It reads them as every h4cam command does (ImageFileSource).
