@@ -296,7 +296,11 @@ TEST(IntrinsicsCalibration, NamesAnOutlierViewAndDropsItWhenAsked) {
   }
   IntrinsicsCalibrationOptions options;
   const auto kept = CalibrateIntrinsics(views, cv::Size(640, 480), options);
-  ASSERT_TRUE(kept.ok()) << kept.message;
+  // Kept, the blurred view bends the distortion fit until it folds inside the image (about
+  // 391 px from the principal point, the image reaching 418 px; the true lens does not
+  // fold): refused since issue 42 point 19, with every view still judged and reported.
+  ASSERT_EQ(kept.status, IntrinsicsCalibrationResult::Status::kFoldingDistortion)
+      << kept.message;
   for (size_t i = 0; i < views.size(); ++i) EXPECT_EQ(kept.views[i].outlier, i == 4) << i;
   EXPECT_EQ(kept.views_used, 11);
   EXPECT_NE(kept.Report().find("view4: 54 points"), std::string::npos);
