@@ -59,6 +59,10 @@ bool ImageFileSource::Open() {
       files_.insert(files_.end(), found.begin(), found.end());
     } else if (fs::is_regular_file(path, ec)) {
       files_.push_back(path);
+    } else if (fs::exists(path, ec)) {
+      // A FIFO or a device named as an image: refused as the reader would (input_file.h).
+      error_ = path + ": not a regular file";
+      return false;
     } else {
       error_ = path + ": no such file or directory";
       return false;

@@ -164,6 +164,10 @@ TEST(ImageFileSourceTest, AFifoOrADeviceIsRefusedWithoutWaiting) {
     EXPECT_NE(why.get().find(path + ": cannot read the image: not a regular file"),
               std::string::npos);
   }
+  // Named to the source (h4cam measure, capture): refused by name, not "no such file".
+  ImageFileSource source({fifo});
+  EXPECT_FALSE(source.Open());
+  EXPECT_EQ(source.error(), fifo + ": not a regular file");
 }
 
 TEST(ImageFileSourceTest, MissingPathFailsOpen) {
