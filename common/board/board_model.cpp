@@ -1,6 +1,8 @@
 // Board corner positions; see board_model.h.
 #include "common/board/board_model.h"
 
+#include <fmt/format.h>
+
 namespace h4 {
 
 BoardModel::BoardModel(const BoardSpec& spec) : spec_(spec) {
@@ -58,6 +60,26 @@ int BoardModel::TagCornerId(int tag_id, int k) const {
   const int index = tag_id - grid->first_id;
   if (index < 0 || index >= grid->rows * grid->cols) return -1;
   return 4 * index + k;
+}
+
+std::string BoardModel::CornerTagProblem(int tag_id, int corner_id) const {
+  if (corner_id < 0 || corner_id >= corner_count()) {
+    return fmt::format("corner {} is not on the board ({} corners)", corner_id, corner_count());
+  }
+  const auto* grid = std::get_if<AprilGridSpec>(&spec_);
+  if (grid == nullptr) {
+    if (tag_id == -1) return "";
+    return fmt::format("tag_id {} on a chessboard, whose corners carry tag_id -1", tag_id);
+  }
+  const int expected = grid->first_id + corner_id / 4;
+  if (tag_id == expected) return "";
+  if (TagCornerId(tag_id, 0) < 0) {
+    return fmt::format("tag_id {} is not on the board (tags {}..{}); corner {} is tag {}'s",
+                       tag_id, grid->first_id, grid->first_id + grid->rows * grid->cols - 1,
+                       corner_id, expected);
+  }
+  return fmt::format("corner {} is a corner of tag {}, not of tag_id {}", corner_id, expected,
+                     tag_id);
 }
 
 Eigen::Vector2d BoardModel::TagOrigin(int row, int col) const {

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -39,6 +40,11 @@ class BoardModel {
   /// AprilTag grid: corner id of corner k (0..3) of tag `tag_id`, or -1 when the tag id
   /// is not on this board (or the board is a chessboard).
   int TagCornerId(int tag_id, int k) const;
+  /// Empty when a corners CSV row's (tag_id, corner) names a corner of this board: on an
+  /// AprilTag grid corner id 4 * (tag_id - firstId) + k of a tag on the board, on a
+  /// chessboard a corner id in range with tag_id -1 (common/formats/README.md#board-corners-csv);
+  /// else why ("tag_id 99 is not on the board (tags 0..35); corner 4 is tag 1's").
+  std::string CornerTagProblem(int tag_id, int corner_id) const;
   /// AprilTag grid: outer top-left corner (x0, y0) of the tag in row `row` (counted from
   /// the top of the print), column `col`, m. Tags are laid out with pitch
   /// tagSize * (1 + tagSpacing).

@@ -14,6 +14,7 @@
 #include <limits>
 
 #include <Eigen/LU>
+#include <fmt/format.h>
 
 namespace h4 {
 namespace {
@@ -49,6 +50,44 @@ CameraModel::CameraModel(const CameraIntrinsics& intrinsics) : intrinsics_(intri
     max_ray_theta_ = max_theta_;
   }
   max_r_ = max_theta_ < kHalfPi ? std::tan(max_theta_) : std::numeric_limits<double>::infinity();
+}
+
+std::string CameraModel::FoldInsideImage() const {
+  if (!valid_) return "";
+  // The distorted normalised radius where the radial map folds (none: one to one).
+  double fold_theta = 0;
+  double fold_radius = 0;
+  if (intrinsics_.distortion_model == DistortionModel::kEquidistant) {
+    if (!(max_ray_theta_ < kPi)) return "";
+    fold_theta = max_ray_theta_;
+    fold_radius = max_ray_theta_d_;
+  } else {
+    if (!(max_theta_ < kHalfPi)) return "";
+    fold_theta = max_theta_;
+    const double r = max_r_;
+    const double r2 = r * r, r4 = r2 * r2, r6 = r4 * r2;
+    const double a = 1 + d_[0] * r2 + d_[1] * r4 + d_[4] * r6;
+    const double b = 1 + d_[5] * r2 + d_[6] * r4 + d_[7] * r6;
+    fold_radius = r * a / b;
+  }
+  // The image's farthest pixel from any point inside it is one of its corners.
+  double farthest = 0;
+  double farthest_px = 0;
+  const double w = intrinsics_.width - 1.0, h = intrinsics_.height - 1.0;
+  for (const Eigen::Vector2d& uv : {Eigen::Vector2d(0, 0), Eigen::Vector2d(w, 0),
+                                    Eigen::Vector2d(0, h), Eigen::Vector2d(w, h)}) {
+    const double yd = (uv.y() - cy_) / fy_;
+    const double xd = (uv.x() - cx_ - skew_ * yd) / fx_;
+    farthest = std::max(farthest, std::hypot(xd, yd));
+    farthest_px = std::max(farthest_px, std::hypot(uv.x() - cx_, uv.y() - cy_));
+  }
+  if (std::isfinite(fold_radius) && farthest < fold_radius) return "";
+  const double fold_px = fold_radius * 0.5 * (fx_ + fy_);
+  return fmt::format(
+      "the lens model folds about {:.0f} px from the principal point ({:.1f} deg off the axis) "
+      "but the image reaches {:.0f} px: beyond the fold the distortion sends rays back toward "
+      "the centre, so part of the image has no ray and undistortion returns a wrong one",
+      fold_px, fold_theta * 180.0 / kPi, farthest_px);
 }
 
 bool CameraModel::InValidField(const Eigen::Vector3d& p_CQ) const {

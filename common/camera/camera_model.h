@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 
 #include <Eigen/Core>
 
@@ -50,6 +51,15 @@ class CameraModel {
   /// the camera's image plane); radtan, max_field_angle() (a pinhole has no ray at 90
   /// degrees or more).
   double max_ray_angle() const { return max_ray_theta_; }
+
+  /// Where the lens model folds inside the image, if it does: the image's farthest pixel
+  /// (a corner of the image) lies beyond the distorted radius the radial map reaches at its
+  /// first fold (max_ray_angle()), so that part of the image has no ray, or two (a fit on
+  /// corners that cover little of the image can give such a model: issue 42 point 19). The
+  /// tangential terms are left out, as in max_field_angle(). Empty when the model is one to
+  /// one over the whole image, else why ("the lens model folds about 291 px from the
+  /// principal point (39.1 deg off the axis) but the image reaches 640 px: ...").
+  std::string FoldInsideImage() const;
 
   /// Pixel of a point p_CQ (m) seen at any angle up to max_ray_angle() from the axis, z <= 0
   /// included on a fisheye; false (uv untouched) beyond it or at the camera centre.

@@ -9,6 +9,7 @@
 #include <Eigen/Eigenvalues>
 #include <fmt/core.h>
 
+#include "common/camera/camera_model.h"
 #include "common/formats/csv_table.h"
 #include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
@@ -77,15 +78,12 @@ std::string WriteMatrix(const std::string& name, int rows, int cols, const doubl
   return text + " ]\n";
 }
 
-std::string SizeLimits() {
-  return fmt::format("1..{} px a side, at most {} px in all", kMaxImageSide_px, kMaxImagePixels);
-}
+std::string SizeLimits() { return ImageSizeLimits(); }
 
 int ImageSize(const YamlMap& root, const std::string& key) {
   const int64_t size = root.Int(key);
-  if (size < 1 || size > kMaxImageSide_px) {
-    root.Fail(key,
-              fmt::format("expected a positive image size in px ({}), got {}", SizeLimits(), size));
+  if (size < kMinImageSide_px || size > kMaxImageSide_px) {
+    root.Fail(key, fmt::format("expected an image size in px ({}), got {}", SizeLimits(), size));
   }
   return static_cast<int>(size);
 }
@@ -109,6 +107,15 @@ void RequirePrincipalPointInImage(double cx, double cy, int width, int height, F
                           FormatDouble(point[i], i == 0 ? "cx" : "cy")));
     }
   }
+}
+
+// A lens model that folds inside the image gives part of the image no ray (issue 42 point 19:
+// a calibration whose corners covered 18 of 48 cells folded 291 px from the centre):
+// measure, plan and the corner path would use it without a sign.
+template <typename Fail>
+void RequireOneToOneOverTheImage(const CameraIntrinsics& camera, Fail fail) {
+  const std::string fold = CameraModel(camera).FoldInsideImage();
+  if (!fold.empty()) fail(fold + " (calibrate again with views that reach the image's corners)");
 }
 
 DistortionModel ReadDistortionModel(const YamlMap& map, const std::string& key) {
@@ -217,6 +224,9 @@ CameraIntrinsics ParseOpenCvCamera(const YamlMap& root) {
     if (error < 0.0) root.Fail("avg_reprojection_error", "expected a non-negative RMS in px");
     camera.avg_reprojection_error = error;
   }
+  RequireOneToOneOverTheImage(camera, [&](const std::string& why) {
+    root.Fail("distortion_coefficients", why);
+  });
   if (root.Has("intrinsics_covariance")) ReadIntrinsicsCovariance(root, &camera);
   return camera;
 }
@@ -234,9 +244,8 @@ CameraIntrinsics ParseKalibrCamera(const YamlMap& block) {
   CameraIntrinsics camera;
   const std::vector<int64_t> resolution = block.Ints("resolution", 2);
   for (size_t i = 0; i < 2; ++i) {
-    if (resolution[i] < 1 || resolution[i] > kMaxImageSide_px) {
-      block.FailElement("resolution", i,
-                        "expected a positive image size in px (" + SizeLimits() + ")");
+    if (resolution[i] < kMinImageSide_px || resolution[i] > kMaxImageSide_px) {
+      block.FailElement("resolution", i, "expected an image size in px (" + SizeLimits() + ")");
     }
   }
   camera.width = static_cast<int>(resolution[0]);
@@ -267,6 +276,9 @@ CameraIntrinsics ParseKalibrCamera(const YamlMap& block) {
   }
   const std::vector<double> d = block.Doubles("distortion_coeffs", 4);
   camera.distortion = Eigen::Map<const Eigen::Vector4d>(d.data());
+  RequireOneToOneOverTheImage(camera, [&](const std::string& why) {
+    block.Fail("distortion_coeffs", why);
+  });
   return camera;
 }
 
@@ -316,6 +328,32 @@ CameraIntrinsics ParseCameraYaml(const std::string& text, const std::string& sou
     return ParseKalibrCamera(KalibrCameraBlock(root, document, kalibr_camera));
   }
   return ParseOpenCvCamera(root);
+}
+
+std::string CameraIntrinsicsProblem(const CameraIntrinsics& camera) {
+  if (std::string problem = ImageSizeProblem(camera.width, camera.height); !problem.empty()) {
+    return "image " + problem;
+  }
+  const double fx = camera.K(0, 0), fy = camera.K(1, 1);
+  if (!(fx > 0.0 && fy > 0.0 && std::isfinite(fx) && std::isfinite(fy))) {
+    return fmt::format("expected positive finite focal lengths fx, fy, got {}, {}", fx, fy);
+  }
+  if (!std::isfinite(camera.K(0, 1)) || !std::isfinite(camera.K(0, 2)) ||
+      !std::isfinite(camera.K(1, 2))) {
+    return "expected a finite skew and principal point";
+  }
+  std::string why;
+  RequirePrincipalPointInImage(camera.K(0, 2), camera.K(1, 2), camera.width, camera.height,
+                               [&](size_t, const std::string& what) { why = what; });
+  if (!why.empty()) return why;
+  const Eigen::Index n = camera.distortion.size();
+  if (!IsSupportedDistortionCount(camera.distortion_model, n)) {
+    return fmt::format("expected {} distortion coefficients for the {} model, got {}",
+                       ExpectedDistortionCoefficients(camera.distortion_model),
+                       ToString(camera.distortion_model), n);
+  }
+  if (!camera.distortion.allFinite()) return "expected finite distortion coefficients";
+  return CameraModel(camera).FoldInsideImage();
 }
 
 CameraIntrinsics ReadCameraYaml(const std::string& path) {

@@ -11,21 +11,14 @@
 #include <string>
 
 #include "common/camera/camera_intrinsics.h"
+#include "common/formats/image_size.h"
 
 namespace h4 {
 
-/// The largest image a camera file may describe: 16384 px a side and 16.8 Mpx (2^24) in
-/// all, 1.4 times the 12 Mpx of the largest Raspberry Pi camera module. What is sized from
-/// the camera grows with its area (measured: `h4cam render` of one 64 Mpx frame took 143 s
-/// and 2.7 GB, of one 16.8 Mpx frame 39 s and 0.7 GB); a 20000 x 20000 file is refused
-/// before anything is allocated.
-constexpr int kMaxImageSide_px = 16384;
-constexpr int64_t kMaxImagePixels = int64_t{1} << 24;
-
 /// Reads an OpenCV camera file (with or without the `%YAML:1.0` line and `---`; other
 /// top-level keys such as calibration_time are ignored, keys inside a matrix must be
-/// rows/cols/dt/data). Checks: image size 1..kMaxImageSide_px a side and at most
-/// kMaxImagePixels; camera_matrix 3x3 with fx, fy > 0,
+/// rows/cols/dt/data). Checks: image size kMinImageSide_px..kMaxImageSide_px a side and at
+/// most kMaxImagePixels (image_size.h); camera_matrix 3x3 with fx, fy > 0,
 /// K(1,0) = 0 and last row (0, 0, 1); distortion_model 'radtan' or 'equidistant' when
 /// given; distortion_coefficients a 1xN or Nx1 matrix with N in {4, 5, 8} (radtan) or
 /// N = 4 (equidistant); dt 'd' or 'f'; rows * cols data values; avg_reprojection_error
@@ -39,6 +32,14 @@ constexpr int64_t kMaxImagePixels = int64_t{1} << 24;
 /// "cam0.distortion_coeffs").
 CameraIntrinsics ParseCameraYaml(const std::string& text, const std::string& source_name,
                                  const std::string& kalibr_camera = "");
+/// Empty when `camera` holds what the camera file's reader accepts (the bounds physics
+/// allows): an image size within image_size.h's limits, finite positive focal lengths, a
+/// finite skew, the principal point within the image, a supported number of finite
+/// distortion coefficients, a lens model one to one over the image
+/// (CameraModel::FoldInsideImage); else why. For the intrinsics other files carry (the
+/// identification result's `camera` key).
+std::string CameraIntrinsicsProblem(const CameraIntrinsics& camera);
+
 /// Reads `path`; "camchain.yaml#cam1" reads camera cam1 of a Kalibr camchain.
 CameraIntrinsics ReadCameraYaml(const std::string& path);
 

@@ -9,6 +9,7 @@
 #include <fmt/core.h>
 
 #include "common/formats/csv_table.h"
+#include "common/formats/format_error.h"
 #include "common/formats/number_text.h"
 
 namespace h4 {
@@ -90,7 +91,13 @@ std::vector<CornerObservation> ParseCornersCsv(const std::string& text,
 }
 
 std::vector<CornerObservation> ReadCornersCsv(const std::string& path) {
-  return ParseCornersCsv(ReadTextFile(path), path);
+  std::vector<CornerObservation> corners = ParseCornersCsv(ReadTextFile(path), path);
+  // A corners file given to a command is its input: with no row it gives nothing to fit or
+  // map, which a command would otherwise report as "no corners given" and exit 0.
+  if (corners.empty()) {
+    throw FormatError(path, 0, "", "no corner rows: the file holds only its header");
+  }
+  return corners;
 }
 
 std::string CornersCsvHeader(bool with_sigma) {

@@ -34,7 +34,10 @@ inline constexpr CornerSigmaBounds kCornerSigmaBounds{1e-6, 100.0};
 
 /// Reads a corner CSV; throws FormatError naming file, line and field on malformed input
 /// (missing column, non-number or non-finite value, a pixel coordinate beyond +-1e6 px, a
-/// sigma outside kCornerSigmaBounds, the same (pose_id, corner) twice).
+/// sigma outside kCornerSigmaBounds, the same (pose_id, corner) twice). A file with no corner
+/// row (only its header) is refused too: every command that reads one needs corners.
+/// Whether tag_id belongs to the board is checked where the corners meet the board
+/// (CornerOnBoard, common/board/board_model.h).
 std::vector<CornerObservation> ReadCornersCsv(const std::string& path);
 std::vector<CornerObservation> ParseCornersCsv(const std::string& text,
                                                const std::string& source_name);

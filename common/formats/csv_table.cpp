@@ -1,7 +1,6 @@
 // CSV table parsing with strict typed cells; see csv_table.h.
 #include "common/formats/csv_table.h"
 
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
@@ -10,6 +9,7 @@
 #include "common/formats/file_kind.h"
 #include "common/formats/file_output.h"
 #include "common/formats/format_error.h"
+#include "common/formats/input_file.h"
 #include "common/formats/number_text.h"
 
 namespace h4 {
@@ -71,6 +71,19 @@ std::vector<std::string> SplitLine(std::string_view line, const std::string& sou
   return cells;
 }
 
+// A first line of numbers is a row whose header is missing (no format names a column with
+// a number): say so, instead of "column appears twice in the header" for "1,0,0,...".
+void RejectDataAsHeader(const std::vector<std::string>& cells, const std::string& source_name,
+                        int line_no) {
+  for (const std::string& cell : cells) {
+    double value = 0;
+    if (cell.empty() || !ParseDouble(cell, &value)) return;
+  }
+  throw FormatError(source_name, line_no, "",
+                    "the header is missing: the first line holds numbers where the column names "
+                    "belong (a data row?)");
+}
+
 }  // namespace
 
 CsvTable CsvTable::Parse(const std::string& text, const std::string& source_name) {
@@ -97,6 +110,7 @@ CsvTable CsvTable::Parse(const std::string& text, const std::string& source_name
     std::vector<std::string> cells = SplitLine(line, source_name, line_no);
     if (table.header_.empty()) {
       table.header_line_ = line_no;
+      RejectDataAsHeader(cells, source_name, line_no);
       for (size_t c = 0; c < cells.size(); ++c) {
         if (cells[c].empty()) {
           throw FormatError(source_name, line_no, "",
@@ -212,13 +226,6 @@ void WriteTextFile(const std::string& path, const std::string& text) {
   WriteFileAtomically(path, text);
 }
 
-std::string ReadTextFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FormatError(path, 0, "", "cannot open the file for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw FormatError(path, 0, "", "read failed");
-  return text.str();
-}
+std::string ReadTextFile(const std::string& path) { return ReadDataFile(path); }
 
 }  // namespace h4

@@ -92,7 +92,9 @@ std::string FormatCsvLines(std::string_view header, const std::vector<Row>& rows
 /// write leaves the previous file whole); throws std::runtime_error naming the path.
 void WriteTextFile(const std::string& path, const std::string& text);
 
-/// Reads the whole file; throws FormatError(path, 0, "", ...) when it cannot be read.
+/// Reads the whole file (ReadDataFile, input_file.h: a regular file of at most
+/// kMaxDataFileBytes, opened without waiting on a FIFO); throws FormatError(path, 0, "", ...)
+/// when it cannot be read.
 std::string ReadTextFile(const std::string& path);
 
 }  // namespace h4

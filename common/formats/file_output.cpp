@@ -124,4 +124,13 @@ void RequireOutputIsNotAnInput(const NamedPath& output, const std::vector<NamedP
   }
 }
 
+void RequireOutputFolder(const NamedPath& output) {
+  if (output.path.empty()) return;
+  const fs::path parent = fs::path(output.path).parent_path();
+  std::error_code error;
+  if (parent.empty() || fs::is_directory(parent, error)) return;
+  throw std::invalid_argument(output.option + " " + output.path + ": the folder " +
+                              parent.string() + " does not exist (create it first)");
+}
+
 }  // namespace h4

@@ -33,4 +33,9 @@ struct NamedPath {
 /// overwrite an input".
 void RequireOutputIsNotAnInput(const NamedPath& output, const std::vector<NamedPath>& inputs);
 
+/// Throws std::invalid_argument when the folder `output` is to be written into does not
+/// exist: "--out out/camera.yaml: the folder out does not exist (create it first)". For a
+/// command that works long before it writes (calibrate-intrinsics), checked first.
+void RequireOutputFolder(const NamedPath& output);
+
 }  // namespace h4

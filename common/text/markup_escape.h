@@ -10,4 +10,10 @@ namespace h4 {
 /// double-quoted attributes of XML, SVG and HTML.
 std::string MarkupEscape(const std::string& text);
 
+/// A link to the file `path` relative to the page (a name beside it, or below it): "./" and
+/// the path percent-encoded but for A-Z a-z 0-9 - . _ ~ /, so that no name can make it a
+/// scheme ("javascript:alert(1);x.yaml" becomes "./javascript%3Aalert%281%29%3Bx.yaml") or
+/// break out of an attribute. Safe in a double-quoted href or src as it is.
+std::string RelativeFileUrl(const std::string& path);
+
 }  // namespace h4

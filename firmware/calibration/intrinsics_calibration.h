@@ -61,7 +61,16 @@ struct ViewReport {
 };
 
 struct IntrinsicsCalibrationResult {
-  enum class Status { kOk, kInvalidOptions, kTooFewViews, kDegenerateViews, kFailed };
+  /// kFoldingDistortion: the fitted lens model folds inside the image
+  /// (CameraModel::FoldInsideImage), so part of the image would have no ray.
+  enum class Status {
+    kOk,
+    kInvalidOptions,
+    kTooFewViews,
+    kDegenerateViews,
+    kFoldingDistortion,
+    kFailed
+  };
   Status status = Status::kFailed;
   std::string message;      ///< why it is not kOk, or a note (outliers dropped)
   CameraIntrinsics camera;  ///< with avg_reprojection_error = rms_px

@@ -228,8 +228,9 @@ std::string HtmlViewTable(const IntrinsicsCalibrationResult& result) {
 }
 
 std::string HtmlFigure(const std::string& file, const std::string& caption) {
-  const std::string name = MarkupEscape(file);
-  return "<figure><a href=\"" + name + "\"><img src=\"" + name + "\" alt=\"" +
+  // A relative URL, never a bare name: a file named "javascript:...svg" would be a script.
+  const std::string url = RelativeFileUrl(file);
+  return "<figure><a href=\"" + url + "\"><img src=\"" + url + "\" alt=\"" +
          MarkupEscape(caption) + "\"></a><figcaption>" + MarkupEscape(caption) +
          "</figcaption></figure>\n";
 }
@@ -382,9 +383,12 @@ std::string ReportHtml(const IntrinsicsCalibrationResult& result, const Coverage
   html += "<h2>Residuals</h2>\n" +
           HtmlFigure(files.residuals_svg, "residual vectors, against radius, histogram");
   html += "<h2>Views</h2>\n" + HtmlViewTable(result);
-  html += "<p>Files: <a href=\"" + MarkupEscape(files.camera_yaml) + "\">" +
-          MarkupEscape(files.camera_yaml) + "</a>, <a href=\"" + MarkupEscape(files.text_report) +
-          "\">" + MarkupEscape(files.text_report) + "</a> (the console report).</p>\n";
+  // Relative URLs (issue 42 point 18: a camera file named "javascript:alert(1);x.yaml" made
+  // every bare-name link a script).
+  html += "<p>Files: <a href=\"" + RelativeFileUrl(files.camera_yaml) + "\">" +
+          MarkupEscape(files.camera_yaml) + "</a>, <a href=\"" +
+          RelativeFileUrl(files.text_report) + "\">" + MarkupEscape(files.text_report) +
+          "</a> (the console report).</p>\n";
   return html + "</body></html>\n";
 }
 

@@ -9,7 +9,6 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
-#include <opencv2/imgcodecs.hpp>
 
 #include "common/board/board_model.h"
 #include "common/cli/shared_options.h"
@@ -18,6 +17,7 @@
 #include "common/formats/camera_yaml.h"
 #include "common/formats/file_output.h"
 #include "firmware/calibration/intrinsics_report.h"
+#include "firmware/sources/image_file_source.h"
 
 namespace h4::cam {
 namespace {
@@ -71,6 +71,8 @@ void WriteReportFiles(const IntrinsicsCalibrationResult& result, const std::stri
 
 IntrinsicsCalibrationResult RunCalibrateIntrinsics(const CalibrateIntrinsicsArgs& args,
                                                    std::ostream& out) {
+  // Before the calibration, not after it (issue 42): the folder the files go to.
+  RequireOutputFolder({"--out", args.out_path});
   const BoardSpec board = ReadBoardYaml(args.board_path);
   const BoardModel board_model(board);
   const BoardViewFinder finder(board);
@@ -79,8 +81,11 @@ IntrinsicsCalibrationResult RunCalibrateIntrinsics(const CalibrateIntrinsicsArgs
   std::vector<CalibrationView> views;
   cv::Size image_size;
   for (const auto& path : args.images) {
-    const cv::Mat grey = cv::imread(path, cv::IMREAD_GRAYSCALE);
-    if (grey.empty()) throw std::runtime_error(path + ": cannot read the image");
+    // The image reader every h4cam command uses: a regular file, its header's size within
+    // the limits before anything is decoded (a 32000 x 32000 PNG took 3.6 GB, issue 42).
+    std::string read_why;
+    const cv::Mat grey = ImageFileSource::ReadGrey(path, &read_why);
+    if (grey.empty()) throw std::runtime_error(read_why);
     if (image_size.empty()) image_size = grey.size();
     if (grey.size() != image_size) {
       throw std::runtime_error(fmt::format("{}: image is {}x{}, expected {}x{} like {}", path,

@@ -5,6 +5,8 @@
 
 #include <apriltag/apriltag.h>
 #include <fmt/format.h>
+
+#include "common/formats/image_size.h"
 #include <opencv2/imgproc.hpp>
 
 namespace h4::cam {
@@ -52,6 +54,9 @@ std::vector<TagDetection> AprilTagDetector::DetectCandidates(const cv::Mat& gray
 std::vector<TagDetection> AprilTagDetector::DetectAll(const cv::Mat& gray8, bool skip_known) const {
   std::vector<TagDetection> out;
   if (detector_ == nullptr || gray8.empty() || gray8.type() != CV_8UC1) return out;
+  // libapriltag crashes on an image 4 px high or less (issue 42 point 1); no tag fits in
+  // one below the smallest side anyway (image_size.h).
+  if (gray8.cols < kMinImageSide_px || gray8.rows < kMinImageSide_px) return out;
   Search(gray8, 0, skip_known, &out);
   if (open_contacts_px_ > 0) {
     const int size = 2 * open_contacts_px_ + 1;

@@ -78,7 +78,8 @@ class AprilTagDetector {
   /// 10 with Kalibr's 2-cell border).
   int border_cells() const;
 
-  /// Tags found in a CV_8UC1 image (any other type gives no detection).
+  /// Tags found in a CV_8UC1 image (any other type, or an image under kMinImageSide_px a side,
+  /// common/formats/image_size.h, gives no detection).
   std::vector<TagDetection> Detect(const cv::Mat& gray8) const;
   /// Every detection of both searches (open_contacts_px), a tag id possibly once per
   /// search, first search first: for a caller that checks each candidate (a quad fused

@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "common/camera/camera_model.h"
+#include "common/formats/image_size.h"
 #include "common/text/enum_names.h"
 #include "firmware/detection/chessboard_corners.h"
 
@@ -27,8 +28,14 @@ BoardDetector::BoardDetector(const BoardSpec& board, const CameraIntrinsics& cam
       width_(camera.width),
       height_(camera.height) {
   const CameraModel model(camera);
-  if (!model.valid() || width_ <= 0 || height_ <= 0) {
-    error_ = "camera intrinsics invalid (size, focal length or distortion count)";
+  if (!model.valid()) {
+    error_ = "camera intrinsics invalid (focal length or distortion count)";
+    return;
+  }
+  // The sizes libapriltag and the chessboard detector handle (image_size.h: an image 4 px
+  // high crashes libapriltag).
+  if (const std::string problem = ImageSizeProblem(width_, height_); !problem.empty()) {
+    error_ = "camera image size " + problem;
     return;
   }
   if (const auto* grid = std::get_if<AprilGridSpec>(&board)) {

@@ -118,10 +118,8 @@ bool ServiceConfig::IsValid(std::string* why) const {
   if (!(heartbeat_period_s > 0) || heartbeat_period_s > 3600) {
     return Invalid(why, "heartbeat period: expected (0, 3600] s");
   }
-  if (width_px < 1 || height_px < 1 || width_px > kMaxImageSide_px ||
-      height_px > kMaxImageSide_px || int64_t{width_px} * height_px > kMaxImagePixels) {
-    return Invalid(why, fmt::format("camera stream {}x{}: expected 1..{} px a side, at most {} px",
-                                    width_px, height_px, kMaxImageSide_px, kMaxImagePixels));
+  if (const std::string problem = ImageSizeProblem(width_px, height_px); !problem.empty()) {
+    return Invalid(why, "camera stream " + problem);
   }
   if (!(exposure_time_us >= 0 && exposure_time_us <= kMaxExposureTime_us)) {
     return Invalid(why, fmt::format("exposure time {:g} us: expected 0..{:g} us", exposure_time_us,
@@ -162,9 +160,9 @@ ServiceConfig ParseServiceConfig(const std::string& text, const std::string& sou
     config.camera_id = OptionalString(camera, "id", "");
     config.camera_name = OptionalString(camera, "name", "");
     config.width_px = OptionalInt(camera, "width", config.width_px);
-    CheckRange(camera, "width", config.width_px, 1, kMaxImageSide_px);
+    CheckRange(camera, "width", config.width_px, kMinImageSide_px, kMaxImageSide_px);
     config.height_px = OptionalInt(camera, "height", config.height_px);
-    CheckRange(camera, "height", config.height_px, 1, kMaxImageSide_px);
+    CheckRange(camera, "height", config.height_px, kMinImageSide_px, kMaxImageSide_px);
     if (int64_t{config.width_px} * config.height_px > kMaxImagePixels) {
       camera.Fail(camera.Has("height") ? "height" : "width",
                   fmt::format("stream {}x{} is too large (at most {} px)", config.width_px,

@@ -5,14 +5,14 @@
 #include <cctype>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <set>
 #include <vector>
 
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include "common/formats/input_file.h"
 
 namespace h4::cam {
 namespace fs = std::filesystem;
@@ -26,13 +26,6 @@ bool IsImageName(const fs::path& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return kExtensions.count(ext) > 0;
-}
-
-bool ReadFileBytes(const std::string& path, std::vector<uint8_t>* bytes) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return false;
-  bytes->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  return !in.bad();
 }
 
 }  // namespace
@@ -66,6 +59,10 @@ bool ImageFileSource::Open() {
       files_.insert(files_.end(), found.begin(), found.end());
     } else if (fs::is_regular_file(path, ec)) {
       files_.push_back(path);
+    } else if (fs::exists(path, ec)) {
+      // A FIFO or a device named as an image: refused as the reader would (input_file.h).
+      error_ = path + ": not a regular file";
+      return false;
     } else {
       error_ = path + ": no such file or directory";
       return false;
@@ -79,24 +76,72 @@ bool ImageFileSource::Open() {
   return true;
 }
 
-cv::Mat ImageFileSource::ReadGrey(const std::string& path, std::string* why) {
-  std::vector<uint8_t> bytes;
-  if (!ReadFileBytes(path, &bytes)) {
-    *why = path + ": cannot read the image (missing, unreadable or not an image format)";
-    return {};
+std::optional<ImageHeaderSize> ImageFileSource::CheckedSize(std::string_view bytes,
+                                                           const std::string& name,
+                                                           std::string* why) {
+  std::string header_why;
+  const std::optional<ImageHeaderSize> size = ReadImageHeaderSize(bytes, &header_why);
+  if (!size) {
+    *why = name + ": cannot read the image: " + header_why;
+    return std::nullopt;
   }
-  if (IsTruncatedJpeg(bytes)) {
-    *why = path +
+  if (const std::string problem = ImageSizeProblem(size->width, size->height); !problem.empty()) {
+    *why = name + ": image " + problem;
+    return std::nullopt;
+  }
+  return size;
+}
+
+std::optional<ImageHeaderSize> ImageFileSource::HeaderSize(const std::string& path,
+                                                           std::string* why) {
+  InputFile file(path);
+  std::string header;
+  if (!file.ReadPrefix(kImageHeaderBytes, &header)) {
+    *why = path + ": cannot read the image: " + file.error();
+    return std::nullopt;
+  }
+  return CheckedSize(header, path, why);
+}
+
+cv::Mat ImageFileSource::DecodeGrey(const std::string& bytes, const std::string& name,
+                                    std::string* why) {
+  // The size its header declares, checked before OpenCV decodes (and allocates) anything:
+  // a 1 MB PNG of 32000 x 32000 px took 3.6 GB (issue 42 point 2).
+  const std::optional<ImageHeaderSize> size = CheckedSize(bytes, name, why);
+  if (!size) return {};
+  const std::vector<uint8_t> data(bytes.begin(), bytes.end());
+  if (IsTruncatedJpeg(data)) {
+    *why = name +
            ": truncated JPEG (no end-of-image marker FF D9: a partial copy or an "
            "interrupted write)";
     return {};
   }
-  const cv::Mat image = bytes.empty() ? cv::Mat() : cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
+  cv::Mat image;
+  try {
+    image = cv::imdecode(data, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception&) {
+    image.release();  // OpenCV's refusal of a malformed file: said below, naming it
+  }
   if (image.empty()) {
-    *why = path + ": cannot read the image (missing, unreadable or not an image format)";
+    *why = name + ": cannot read the image (not an image format OpenCV decodes, or damaged)";
     return {};
   }
-  return ToGrey(image, path, why);
+  if (image.cols != size->width || image.rows != size->height) {
+    *why = fmt::format("{}: decoded as {}x{} px, its header says {}x{}", name, image.cols,
+                       image.rows, size->width, size->height);
+    return {};
+  }
+  return ToGrey(image, name, why);
+}
+
+cv::Mat ImageFileSource::ReadGrey(const std::string& path, std::string* why) {
+  InputFile file(path);
+  std::string bytes;
+  if (!file.ReadAll(kMaxImageFileBytes, &bytes)) {
+    *why = path + ": cannot read the image: " + file.error();
+    return {};
+  }
+  return DecodeGrey(bytes, path, why);
 }
 
 cv::Mat ImageFileSource::ToGrey(const cv::Mat& image, const std::string& name, std::string* why) {

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include "common/geometry/covariance_check.h"
 #include "common/geometry/rotation.h"
 #include "messages/board_pose_status.h"
 
@@ -93,6 +94,13 @@ MessageProblem CheckBoardPose(const h4msgs::board_pose_t& msg, std::string* why)
           bounds.max);
       return MessageProblem::kNonPhysicalCovariance;
     }
+  }
+  // The diagonal alone passes a symmetric matrix that is no covariance (issue 42): the
+  // identification would weigh the pose by its inverse.
+  const Eigen::Map<const Eigen::Matrix<double, 6, 6, Eigen::RowMajor>> C(msg.covariance);
+  if (const std::string problem = CovarianceProblem(C); !problem.empty()) {
+    *why = fmt::format("board pose {}: the covariance is {}", msg.pose_id, problem);
+    return MessageProblem::kNonPhysicalCovariance;
   }
   return MessageProblem::kNone;
 }

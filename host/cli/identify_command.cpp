@@ -284,6 +284,7 @@ int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription&
   const BoardModel board(ReadBoardYaml(options.board_path));
   const CameraIntrinsics camera = ReadCameraYaml(options.camera_path);
   const std::vector<CornerObservation> observed = ReadCornersCsv(options.corners_path);
+  RequireCornersOfDataset(rows, observed, options.corners_path);
   RequireCornersInImage(rows, observed, camera);
   std::vector<PoseCorners> corners =
       GroupCornersByRow(rows, observed, board, options.default_sigma_px);
@@ -301,6 +302,12 @@ int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription&
   if (!path.fit.ok) {
     PrintCornerFit(path);
     throw std::runtime_error("the corner fit failed: " + path.fit.message);
+  }
+  // A refined camera the camera file's reader would refuse (a lens that folds inside the
+  // image, a principal point off it) is not written: the result would not read back.
+  if (const std::string problem = CameraIntrinsicsProblem(path.fit.camera); !problem.empty()) {
+    PrintCornerFit(path);
+    throw std::runtime_error("the corner fit's camera cannot be trusted: " + problem);
   }
   IdentificationResult result = path.outcome.result;
   result.provenance = ProvenanceOf(options);

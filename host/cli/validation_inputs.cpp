@@ -14,6 +14,7 @@
 #include "common/formats/corners_csv.h"
 #include "common/units.h"
 #include "host/formats/poses_csv.h"
+#include "host/identification/corner_identification.h"
 #include "host/formats/robot_yaml.h"
 #include "host/simulation/simulation_folder.h"
 
@@ -93,6 +94,7 @@ void LoadCorners(const ValidationFileOptions& o, ValidationInputs* in) {
         "and the camera file it measured with");
   }
   in->corners = ReadCornersCsv(o.corners_path);
+  RequireCornersOfDataset(in->rows, in->corners, o.corners_path);
   in->board.emplace(ReadBoardYaml(o.board_path));
   in->camera = ReadCameraYaml(o.camera_path);
 }

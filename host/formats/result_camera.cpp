@@ -2,10 +2,15 @@
 #include "host/formats/result_camera.h"
 
 #include <cmath>
+#include <optional>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "common/camera/camera_intrinsics.h"
+#include "common/formats/camera_yaml.h"
 #include "common/formats/number_text.h"
+#include "common/geometry/covariance_check.h"
 #include "host/formats/json_fields.h"
 
 namespace h4 {
@@ -32,6 +37,65 @@ ResultCameraParameter ReadParameter(const JsonValue& entry) {
   return p;
 }
 
+// The intrinsics the parameters hold (their values, or the file's): fx, fy, cx, cy in this
+// order, then the distortion coefficients; empty when the names are not in that order.
+std::optional<CameraIntrinsics> IntrinsicsOf(const ResultCamera& camera, bool file_values) {
+  static const char* kFirst[4] = {"camera.fx", "camera.fy", "camera.cx", "camera.cy"};
+  const size_t n = camera.parameters.size();
+  if (n < 4) return std::nullopt;
+  for (size_t i = 0; i < 4; ++i) {
+    if (camera.parameters[i].name != kFirst[i]) return std::nullopt;
+  }
+  const auto value = [&](size_t i) {
+    return file_values ? camera.parameters[i].file_value : camera.parameters[i].value;
+  };
+  CameraIntrinsics intrinsics = CameraIntrinsics::Pinhole(camera.width, camera.height, value(0),
+                                                          value(1), value(2), value(3));
+  intrinsics.K(0, 1) = camera.skew;
+  intrinsics.distortion_model = *DistortionModelFromName(camera.distortion_model);
+  intrinsics.distortion.resize(static_cast<Eigen::Index>(n - 4));
+  for (size_t i = 4; i < n; ++i) intrinsics.distortion[static_cast<Eigen::Index>(i - 4)] = value(i);
+  return intrinsics;
+}
+
+// The camera block bounded as the camera file's reader bounds a camera (camera_yaml.h): a
+// principal point of 1e300 px was read and ended in gnuplot's "undefined variable: inf".
+void RequirePhysicalCamera(const JsonValue& object, const ResultCamera& camera) {
+  for (const bool file_values : {false, true}) {
+    const std::optional<CameraIntrinsics> intrinsics = IntrinsicsOf(camera, file_values);
+    if (!intrinsics) {
+      object["parameters"].Fail(
+          "expected camera.fx, camera.fy, camera.cx, camera.cy, then the distortion "
+          "coefficients");
+    }
+    if (const std::string problem = CameraIntrinsicsProblem(*intrinsics); !problem.empty()) {
+      object["parameters"].Fail(std::string(file_values ? "the file's camera (file_value): "
+                                                        : "the refined camera (value): ") +
+                                problem);
+    }
+  }
+}
+
+// The covariance a covariance (common/geometry/covariance_check.h) whose diagonal is the
+// parameters' std squared, with zero rows for the parameters kept from the file.
+void RequireCovarianceOfTheSigmas(const JsonValue& field, const ResultCamera& camera) {
+  const Eigen::MatrixXd& C = *camera.covariance;
+  if (const std::string problem = CovarianceProblem(C); !problem.empty()) {
+    field.Fail("expected a covariance: it is " + problem);
+  }
+  for (size_t i = 0; i < camera.parameters.size(); ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    const std::optional<double>& sigma = camera.parameters[i].std;
+    const double expected = sigma ? *sigma * *sigma : 0.0;
+    const bool row_zero = sigma || C.row(k).isZero(0.0);
+    if (!(std::abs(C(k, k) - expected) <= 1e-9 * expected) || !row_zero) {
+      field.Fail(fmt::format(
+          "expected {:g} on the diagonal at {} (the std of {} squared{}), got {:g}", expected, i,
+          camera.parameters[i].name, sigma ? "" : ": kept from the file, so a zero row", C(k, k)));
+    }
+  }
+}
+
 }  // namespace
 
 ResultCamera ReadResultCamera(const JsonValue& object) {
@@ -41,11 +105,13 @@ ResultCamera ReadResultCamera(const JsonValue& object) {
   if (camera.distortion_model != "radtan" && camera.distortion_model != "equidistant") {
     object["distortion_model"].Fail("expected \"radtan\" or \"equidistant\"");
   }
-  camera.width = static_cast<int>(object["width"].Integer());
-  camera.height = static_cast<int>(object["height"].Integer());
-  if (camera.width <= 0 || camera.height <= 0 || camera.width > 100000 || camera.height > 100000) {
-    object["width"].Fail("expected an image size of 1 to 100000 px");
+  const int64_t width = object["width"].Integer();
+  const int64_t height = object["height"].Integer();
+  if (const std::string problem = ImageSizeProblem(width, height); !problem.empty()) {
+    object["width"].Fail("expected the camera file's image size: " + problem);
   }
+  camera.width = static_cast<int>(width);
+  camera.height = static_cast<int>(height);
   camera.skew = object["skew"].Number();
   const JsonValue list = object["parameters"];
   const size_t n = list.ArraySize();
@@ -59,12 +125,13 @@ ResultCamera ReadResultCamera(const JsonValue& object) {
       for (size_t j = 0; j < n; ++j)
         C(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = row[j];
     }
-    if (!C.isApprox(C.transpose(), 1e-9) && C.norm() > 0) field.Fail("expected a symmetric matrix");
     camera.covariance = C;
+    RequireCovarianceOfTheSigmas(field, camera);
   }
   camera.corners = static_cast<int>(object["corners"].Integer());
   camera.rejected_corners = static_cast<int>(object["rejected_corners"].Integer());
   camera.corner_rms_px = object["corner_rms_px"].NonNegativeNumber();
+  RequirePhysicalCamera(object, camera);
   return camera;
 }
 

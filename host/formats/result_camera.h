@@ -35,8 +35,12 @@ struct ResultCamera {
 };
 
 class JsonValue;
-/// Reads the object; throws FormatError naming the field (finite numbers, std >= 0, the
-/// covariance n x n and symmetric, focal lengths positive, sizes positive).
+/// Reads the object; throws FormatError naming the field: finite numbers, std >= 0, the
+/// refined and the file's camera each within the camera file's bounds
+/// (CameraIntrinsicsProblem, common/formats/camera_yaml.h: image size, focal lengths,
+/// principal point in the image, coefficient count, no fold inside the image), the
+/// covariance n x n, symmetric and positive semi-definite with the std's squares on its
+/// diagonal (zero rows for parameters kept from the file).
 ResultCamera ReadResultCamera(const JsonValue& object);
 /// The object as written; throws std::invalid_argument on a non-finite number.
 nlohmann::ordered_json ResultCameraJson(const ResultCamera& camera);

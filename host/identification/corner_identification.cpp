@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 #include <Eigen/Cholesky>
@@ -90,17 +91,36 @@ std::vector<PoseCorners> GroupCornersByRow(const std::vector<DatasetRow>& rows,
   for (const CornerObservation& c : corners) {
     const auto it = row_of.find(c.pose_id);
     if (it == row_of.end()) continue;
-    const std::optional<Eigen::Vector3d> p_TQ = board.Corner(c.corner);
-    if (!p_TQ) {
-      throw std::invalid_argument(fmt::format("pose {}: corner {} is not on the board ({} corners)",
-                                              c.pose_id, c.corner, board.corner_count()));
+    // Where the corners meet the board: the corner id and its tag id both of this board
+    // (a tag id 99 on a 36-tag board, 7 for corner 4, a tag id on a chessboard: issue 42).
+    if (const std::string problem = board.CornerTagProblem(c.tag_id, c.corner); !problem.empty()) {
+      throw std::invalid_argument(fmt::format("pose {}: {}", c.pose_id, problem));
     }
+    const std::optional<Eigen::Vector3d> p_TQ = board.Corner(c.corner);
     PoseCorners& g = grouped[it->second];
     g.p_TQ.push_back(*p_TQ);
     g.uv.emplace_back(c.u, c.v);
     g.weight.push_back(1.0 / c.sigma_px.value_or(default_sigma_px));
   }
   return grouped;
+}
+
+void RequireCornersOfDataset(const std::vector<DatasetRow>& rows,
+                             const std::vector<CornerObservation>& corners,
+                             const std::string& corners_name) {
+  std::set<int64_t> pose_ids;
+  for (const DatasetRow& row : rows) pose_ids.insert(row.pose_id);
+  if (corners.empty() || rows.empty()) return;
+  int64_t low = corners.front().pose_id, high = low;
+  for (const CornerObservation& c : corners) {
+    if (pose_ids.count(c.pose_id) > 0) return;
+    low = std::min(low, c.pose_id);
+    high = std::max(high, c.pose_id);
+  }
+  throw std::invalid_argument(fmt::format(
+      "{}: no pose id of the corners ({}..{}) is a pose id of the dataset ({}..{}): corners of "
+      "another campaign?",
+      corners_name, low, high, *pose_ids.begin(), *pose_ids.rbegin()));
 }
 
 ParameterVector WithoutCameraBlock(const ParameterVector& p, const KinematicModel& model) {

@@ -27,10 +27,17 @@ namespace h4::host {
 
 /// The corners of each row (in row order) with their board points: corners of pose ids that
 /// are not rows are dropped, rows without corners get none. `default_sigma_px` weighs a
-/// corner without its own sigma. Throws std::invalid_argument on a corner id off the board.
+/// corner without its own sigma. Throws std::invalid_argument on a corner id off the board or
+/// a tag id that is not that corner's (BoardModel::CornerTagProblem).
 std::vector<PoseCorners> GroupCornersByRow(const std::vector<DatasetRow>& rows,
                                            const std::vector<CornerObservation>& corners,
                                            const BoardModel& board, double default_sigma_px);
+
+/// Throws std::invalid_argument naming `corners_name` when corners are given but none has a
+/// pose id of `rows` (another campaign's corners), instead of a fit that finds "0 poses".
+void RequireCornersOfDataset(const std::vector<DatasetRow>& rows,
+                             const std::vector<CornerObservation>& corners,
+                             const std::string& corners_name);
 
 struct CornerFitOptions {
   /// Keep every intrinsic at the file's value (`identify --camera-fixed`).

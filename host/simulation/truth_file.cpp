@@ -1,13 +1,12 @@
 // The simulation truth file; see truth_file.h.
 #include "host/simulation/truth_file.h"
 
-#include <fstream>
-#include <sstream>
 
 #include <fmt/core.h>
 
 #include "common/formats/file_output.h"
 #include "common/formats/format_error.h"
+#include "common/formats/input_file.h"
 #include "common/formats/number_text.h"
 #include "common/formats/yaml_map.h"
 #include "host/formats/robot_yaml.h"
@@ -65,11 +64,7 @@ SimulationTruth ParseTruthYaml(const std::string& text, const std::string& sourc
 }
 
 SimulationTruth ReadTruthYaml(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw FormatError(path, 0, "", "cannot open the truth file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return ParseTruthYaml(text.str(), path);
+  return ParseTruthYaml(ReadDataFile(path), path);
 }
 
 }  // namespace h4::host

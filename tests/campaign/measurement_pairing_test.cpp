@@ -59,6 +59,22 @@ TEST(CheckBoardPoseTest, RejectsEachImpossibleValueWithAReason) {
   }
 }
 
+// Issue 42: only the diagonal was checked, so a symmetric matrix that is no covariance (a
+// correlation above 1 between x and y: eigenvalue 4e-8 (1 - 1.5) < 0) was recorded; and an
+// asymmetric one too. A correlation within +-1 is a covariance and passes.
+TEST(CheckBoardPoseTest, RejectsACovarianceThatIsNotPositiveSemiDefiniteOrNotSymmetric) {
+  h4msgs::board_pose_t m = GoodBoardPose();
+  m.covariance[1] = m.covariance[6] = 1.5 * 4e-8;
+  std::string why;
+  EXPECT_EQ(CheckBoardPose(m, &why), MessageProblem::kNonPhysicalCovariance);
+  EXPECT_NE(why.find("the covariance is not positive semi-definite"), std::string::npos) << why;
+  m.covariance[1] = m.covariance[6] = 0.5 * 4e-8;
+  EXPECT_EQ(CheckBoardPose(m, &why), MessageProblem::kNone) << why;
+  m.covariance[6] = -0.5 * 4e-8;
+  EXPECT_EQ(CheckBoardPose(m, &why), MessageProblem::kNonPhysicalCovariance);
+  EXPECT_NE(why.find("the covariance is not symmetric"), std::string::npos) << why;
+}
+
 TEST(CheckJointStateTest, RejectsAWrongJointCountAndNonFinitePositions) {
   h4msgs::joint_state_t m{};
   m.utime = 10;

@@ -132,6 +132,28 @@ TEST(BoardModelTest, TagIdsOffTheBoardHaveNoCorners) {
   EXPECT_FALSE(board.Corner(144).has_value());
 }
 
+// Issue 42 point 15: a corners CSV's tag_id was never checked: 99 on a 36-tag board, 7 for
+// corner 4 (tag 1's), a tag id on a chessboard all fitted. The board says which pairs are its.
+TEST(BoardModelTest, ACornerRowsTagIdMustBeItsCornersTag) {
+  AprilGridSpec grid;
+  grid.first_id = 5;
+  const BoardModel board(grid);
+  EXPECT_EQ(board.CornerTagProblem(5, 0), "");
+  EXPECT_EQ(board.CornerTagProblem(6, 4), "");
+  EXPECT_EQ(board.CornerTagProblem(5 + 35, 143), "");
+  EXPECT_EQ(board.CornerTagProblem(99, 4),
+            "tag_id 99 is not on the board (tags 5..40); corner 4 is tag 6's");
+  EXPECT_EQ(board.CornerTagProblem(7, 4), "corner 4 is a corner of tag 6, not of tag_id 7");
+  EXPECT_EQ(board.CornerTagProblem(-1, 4), "tag_id -1 is not on the board (tags 5..40); corner 4 "
+                                           "is tag 6's");
+  EXPECT_EQ(board.CornerTagProblem(5, 144), "corner 144 is not on the board (144 corners)");
+  const BoardModel chessboard(Chessboard(9, 6, 0.025, 0.02));
+  EXPECT_EQ(chessboard.CornerTagProblem(-1, 53), "");
+  EXPECT_EQ(chessboard.CornerTagProblem(0, 3),
+            "tag_id 0 on a chessboard, whose corners carry tag_id -1");
+  EXPECT_EQ(chessboard.CornerTagProblem(-1, 54), "corner 54 is not on the board (54 corners)");
+}
+
 TEST(BoardModelTest, ChessboardCornersAreRowMajorFromFirstInnerCorner) {
   const CheckerboardSpec spec = Chessboard(9, 6, 0.025, 0.02);
   const BoardModel board(spec);

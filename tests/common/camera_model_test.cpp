@@ -196,6 +196,31 @@ TEST(CameraModelTest, RadTanFieldEndsWhereTheRadialMapFolds) {
   EXPECT_FALSE(camera.InValidField(Eigen::Vector3d(0, 0, -1)));  // behind the camera
 }
 
+// Issue 42 point 19: a distortion fit that folds inside the image was used (a third of the
+// image without a valid ray). The fold matters where the image reaches past it: radtan
+// k1 -0.8 folds at r = 0.65 (distorted radius 0.43, about 346 px) inside a 1024 x 768 image
+// reaching 0.80; k1 -0.2 folds at 52 deg, distorted radius 0.86, beyond the image.
+TEST(CameraModelTest, FoldInsideImageSaysWhereALensFoldsWithinTheImage) {
+  EXPECT_EQ(CameraModel(Camera(5)).FoldInsideImage(), "");
+  EXPECT_EQ(CameraModel(Camera(8)).FoldInsideImage(), "");
+  EXPECT_EQ(CameraModel(Fisheye()).FoldInsideImage(), "");
+  CameraIntrinsics radtan = Camera(5);
+  radtan.distortion.setZero();
+  radtan.distortion[0] = -0.8;
+  const std::string fold = CameraModel(radtan).FoldInsideImage();
+  EXPECT_NE(fold.find("the lens model folds about 346 px from the principal point (32.8 deg off "
+                      "the axis) but the image reaches 640 px"),
+            std::string::npos)
+      << fold;
+  radtan.distortion[0] = -0.2;
+  ASSERT_LT(CameraModel(radtan).max_field_angle(), 0.95);  // it folds, outside the image
+  EXPECT_EQ(CameraModel(radtan).FoldInsideImage(), "");
+  CameraIntrinsics fisheye = Fisheye();
+  fisheye.distortion = Eigen::Vector4d(-0.5, 0, 0, 0);  // folds at theta_d 0.54: 164 px
+  EXPECT_NE(CameraModel(fisheye).FoldInsideImage().find("folds about 164 px"), std::string::npos)
+      << CameraModel(fisheye).FoldInsideImage();
+}
+
 TEST(CameraModelTest, EquidistantFieldEndsAtTheFoldAndAnUndistortedLensSeesTheHalfSpace) {
   CameraIntrinsics folding = Fisheye();
   folding.distortion = Eigen::Vector4d(-30, 0, 0, 0);  // issue 27: folds at about 6 deg

@@ -132,7 +132,7 @@ void ExpectEachEditFails(const std::vector<CameraFileEdit>& edits) {
 TEST(CameraYamlErrors, NameLineAndField) {
   // Line numbers are those of the file, the %YAML line included.
   ExpectEachEditFails({
-      {"image_width: 1456", "image_width: 0", 4, "image_width", "positive image size"},
+      {"image_width: 1456", "image_width: 0", 4, "image_width", "expected an image size in px"},
       {"image_height: 1088", "image_height: 10.5", 5, "image_height", "expected an integer"},
       {"image_height: 1088\n", "", 0, "image_height", "missing key"},
       {"dt: d", "dt: u", 9, "camera_matrix.dt", "expected 'd' or 'f'"},
@@ -210,7 +210,7 @@ TEST(CameraYamlErrors, TheIntrinsicsCovarianceIsChecked) {
 TEST(CameraYamlErrors, ImageSizeIsLimitedBeforeAnythingIsAllocated) {
   EXPECT_TRUE(FailsWith(
       [] { ParseCameraYaml(CameraFileWith("image_width: 1456", "image_width: 20000"), "c.yaml"); },
-      "c.yaml", 4, "image_width", "1..16384 px a side"));
+      "c.yaml", 4, "image_width", "32..16384 px a side"));
   EXPECT_TRUE(FailsWith(
       [] {
         ParseCameraYaml(CameraFileWith("image_height: 1088", "image_height: 16385"), "c.yaml");
@@ -225,6 +225,40 @@ TEST(CameraYamlErrors, ImageSizeIsLimitedBeforeAnythingIsAllocated) {
   const std::string largest = CameraFileWith("image_width: 1456\nimage_height: 1088",
                                              "image_width: 16384\nimage_height: 1024");
   EXPECT_EQ(ParseCameraYaml(largest, "c.yaml").width, kMaxImageSide_px);
+}
+
+// Issue 42 point 1: a camera file with image_height 4 was accepted, and libapriltag segfaults
+// on an image 4 px high (h4cam run died on its first measurement). Below kMinImageSide_px a
+// side, the file is refused naming the field; at it, it is read.
+TEST(CameraYamlErrors, ImageSideBelowTheDetectorsSmallestIsRefused) {
+  EXPECT_TRUE(FailsWith(
+      [] { ParseCameraYaml(CameraFileWith("image_height: 1088", "image_height: 4"), "c.yaml"); },
+      "c.yaml", 5, "image_height", "got 4"));
+  EXPECT_TRUE(FailsWith(
+      [] { ParseCameraYaml(CameraFileWith("image_width: 1456", "image_width: 31"), "c.yaml"); },
+      "c.yaml", 4, "image_width", "32..16384 px a side"));
+  const std::string smallest =
+      CameraFileWith("image_width: 1456\nimage_height: 1088", "image_width: 32\nimage_height: 32");
+  // The principal point must lie in the image: put it there.
+  std::string text = smallest;
+  text.replace(text.find("7.2810000000000002e+02"), 22, "16.");
+  text.replace(text.find("544.,"), 5, "16.,");
+  EXPECT_EQ(ParseCameraYaml(text, "c.yaml").height, kMinImageSide_px);
+}
+
+// Issue 42 point 19: a camera file whose lens model folds inside the image was read and
+// used by measure, plan and identify. k1 -5 folds about 213 px from the principal point
+// of this 1456 x 1088 camera; k1 -0.1 (the file as written) does not fold at all.
+TEST(CameraYamlErrors, ALensModelThatFoldsInsideTheImageIsRefused) {
+  const std::string folding = CameraFileWith("data: [ -1.0000000000000001e-01,", "data: [ -5.,");
+  EXPECT_TRUE(FailsWith([&] { ParseCameraYaml(folding, "c.yaml"); }, "c.yaml", 12,
+                        "distortion_coefficients", "the lens model folds about"));
+  const std::string kalibr =
+      "camera_model: pinhole\ndistortion_model: radtan\nintrinsics: [800, 800, 512, 384]\n"
+      "distortion_coeffs: [-0.8, 0, 0, 0]\nresolution: [1024, 768]\n";
+  EXPECT_TRUE(FailsWith([&] { ParseCameraYaml(kalibr, "k.yaml"); }, "k.yaml", 4,
+                        "distortion_coeffs", "the lens model folds about"));
+  EXPECT_NO_THROW(ParseCameraYaml(kOpenCvFile, "c.yaml"));
 }
 
 TEST(CameraYamlErrors, DistortionCountMustBe4Or5Or8) {

@@ -104,6 +104,24 @@ TEST(CornersCsvErrors, NameLineAndField) {
        {kHeader + "1,0,0,1,1,\r2,0,0,1,1,\n", 2, "", "carriage return"}});
 }
 
+// Issue 42 point 16: a file without its header said "field '0': column appears twice in the
+// header" (the first data row read as column names); it says the header is missing.
+TEST(CornersCsvErrors, AMissingHeaderIsNamedAsSuch) {
+  EXPECT_TRUE(FailsWith([] { ParseCornersCsv("1,0,0,100.5,200.25\n1,0,1,110,200\n", "c.csv"); },
+                        "c.csv", 1, "", "the header is missing"));
+  EXPECT_TRUE(FailsWith([] { ParseCornersCsv("1,-1,0,1e2,2,0.1\n", "c.csv"); }, "c.csv", 1, "",
+                        "the header is missing"));
+}
+
+// Issue 42 point 16: a corners file with its header and no row gave "no corners given" and
+// exit 0 (validate); the reader of a command's corners file refuses it naming the file.
+TEST(CornersCsvErrors, AHeaderOnlyFileIsAnErrorNamingIt) {
+  const std::string path = TempPath("header_only.csv");
+  WriteTextFile(path, kHeader);
+  EXPECT_TRUE(FailsWith([&] { ReadCornersCsv(path); }, path, 0, "", "no corner rows"));
+  EXPECT_TRUE(ParseCornersCsv(kHeader, path).empty()) << "the campaign's journal starts so";
+}
+
 TEST(CornersCsvErrors, AnUnreadableFileIsAFormatErrorNamingIt) {
   const std::string path = TempPath("missing.csv");
   EXPECT_TRUE(FailsWith([&] { ReadCornersCsv(path); }, path, 0, ""));

@@ -1,12 +1,10 @@
 // Fuzz target: an image file through the measure path of `h4cam measure`. The bytes are
-// decoded by OpenCV as a file would be (cv::imdecode, IMREAD_UNCHANGED), made grey as
-// ImageFileSource does (8-bit only, 1, 3 or 4 channels), then measured with the demo's
-// AprilGrid and with a 4 x 3 checkerboard: detection and pose on a camera of the image's
-// size.
+// read as ImageFileSource reads a file (ImageFileSource::DecodeGrey: the header's size checked
+// against the image size limits, then cv::imdecode with IMREAD_UNCHANGED, 8-bit only, 1, 3
+// or 4 channels), then measured with the demo's AprilGrid and with a 4 x 3 checkerboard:
+// detection and pose on a camera of the image's size.
 // Images larger than kMaxFuzzPixels are not measured (detection time grows with the
 // area; the fuzzer's worth is in odd contents and shapes, not in size).
-#include <opencv2/imgcodecs.hpp>
-
 #include "firmware/pose/measure_pipeline.h"
 #include "firmware/sources/image_file_source.h"
 #include "tests/fuzz/fuzz_support.h"
@@ -53,20 +51,15 @@ void MeasureWith(const h4::BoardSpec& board, const cv::Mat& grey) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace h4;
-  const cv::Mat bytes(1, static_cast<int>(size), CV_8UC1, const_cast<uint8_t*>(data));
-  cv::Mat decoded;
-  try {
-    decoded = cv::imdecode(bytes, cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception&) {
-    return 0;  // OpenCV's refusal of a malformed file (h4cam reports it naming the file)
-  }
-  if (decoded.empty()) return 0;
   std::string why;
-  const cv::Mat grey = cam::ImageFileSource::ToGrey(decoded, "image", &why);
+  const cv::Mat grey = cam::ImageFileSource::DecodeGrey(
+      std::string(reinterpret_cast<const char*>(data), size), "image", &why);
   if (grey.empty()) {
     fuzz::Require(!why.empty(), "a refused image says why");
     return 0;
   }
+  fuzz::Require(ImageSizeProblem(grey.cols, grey.rows).empty(),
+                "an accepted image is within the size limits");
   if (int64_t{grey.cols} * grey.rows > kMaxFuzzPixels) return 0;
   MeasureWith(DemoAprilGrid(), grey);
   MeasureWith(SmallCheckerboard(), grey);

@@ -73,7 +73,9 @@ TEST(ServiceConfigTest, ErrorsNameTheFileLineAndField) {
 // A stream or camera control no camera has: a 100000 x 100000 stream would size every
 // frame buffer from it, 1e300 us does not convert to libcamera's integer controls.
 TEST(ServiceConfigTest, ImpossibleStreamSizesAndControlsAreRefusedWithTheirLine) {
-  ExpectError("camera:\n  width: 100000\n", 2, "camera.width", "1..16384");
+  ExpectError("camera:\n  width: 100000\n", 2, "camera.width", "32..16384");
+  // Issue 42 point 1: libapriltag segfaults on a frame 4 px high.
+  ExpectError("camera:\n  height: 4\n", 2, "camera.height", "32..16384");
   ExpectError("camera:\n  width: 8192\n  height: 8192\n", 3, "camera.height", "too large");
   ExpectError("camera:\n  exposure_time_us: 1e300\n", 2, "camera.exposure_time_us", "0..1e+07");
   ExpectError("camera:\n  analogue_gain: 1e300\n", 2, "camera.analogue_gain", "1..64");

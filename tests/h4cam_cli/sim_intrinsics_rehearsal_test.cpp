@@ -164,8 +164,8 @@ void ExpectWritesTheReportBesideTheCameraFileNamedAfterIt() {
         << *SimIntrinsicsRehearsalStudy::calibrate_output_;
   }
   const std::string html = ReadText(*SimIntrinsicsRehearsalStudy::dir_ / "camera-report.html");
-  for (const char* link : {"href=\"camera-coverage.svg\"", "src=\"camera-coverage.svg\"",
-                           "href=\"camera-residuals.svg\"", "href=\"camera.yaml\""}) {
+  for (const char* link : {"href=\"./camera-coverage.svg\"", "src=\"./camera-coverage.svg\"",
+                           "href=\"./camera-residuals.svg\"", "href=\"./camera.yaml\""}) {
     EXPECT_NE(html.find(link), std::string::npos) << link;
   }
   EXPECT_NE(html.find("<td>fx</td>"), std::string::npos);

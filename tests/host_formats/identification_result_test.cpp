@@ -223,6 +223,69 @@ TEST(IdentificationResultErrors, ANegativeOrHugeCameraErrorFloorNamesTheField) {
   EXPECT_TRUE(WrittenResultFailsAt(r, "camera_error_floor.rotation_rad", "at most 2 pi"));
 }
 
+// A corner path's camera block: 1024 x 768, fx, fy, cx, cy refined (std 0.1 px, covariance
+// 0.01 px^2 on the diagonal), the five radtan coefficients kept from the file.
+ResultCamera CornerPathCamera() {
+  ResultCamera camera;
+  camera.distortion_model = "radtan";
+  camera.width = 1024;
+  camera.height = 768;
+  const std::vector<std::pair<std::string, double>> values = {
+      {"camera.fx", 800.0}, {"camera.fy", 801.0}, {"camera.cx", 512.0}, {"camera.cy", 384.0},
+      {"camera.k1", -0.1},  {"camera.k2", 0.02},  {"camera.p1", 0.0},   {"camera.p2", 0.0},
+      {"camera.k3", 0.0}};
+  for (size_t i = 0; i < values.size(); ++i) {
+    const bool refined = i < 4;
+    camera.parameters.push_back({values[i].first, values[i].second, values[i].second,
+                                 refined ? std::optional<double>(0.1) : std::nullopt,
+                                 refined ? "" : "kept"});
+  }
+  Eigen::MatrixXd C = Eigen::MatrixXd::Zero(9, 9);
+  C.topLeftCorner<4, 4>().diagonal().setConstant(0.01);
+  camera.covariance = C;
+  camera.corners = 11664;
+  camera.corner_rms_px = 0.05;
+  return camera;
+}
+
+// Issue 42 point 14: the result's camera key bounded nothing but fx > 0: cx = 1e300 was read
+// and ended in gnuplot's "undefined variable: inf"; its covariance was not checked positive
+// semi-definite nor against std. Both cameras (refined, file) are bounded as the camera
+// file's reader bounds a camera, the covariance is one with std^2 on its diagonal.
+TEST(IdentificationResult, TheCameraBlockIsBoundedAsACameraFileIs) {
+  IdentificationResult r = FullResult();
+  r.camera = CornerPathCamera();
+  const IdentificationResult back =
+      ParseIdentificationResult(FormatIdentificationResult(r), "r.json");
+  ASSERT_TRUE(back.camera.has_value());
+  EXPECT_EQ(*back.camera->covariance, *r.camera->covariance);
+
+  IdentificationResult far = r;
+  far.camera->parameters[2].value = 1e300;
+  EXPECT_TRUE(WrittenResultFailsAt(far, "camera.parameters",
+                                   "the refined camera (value): expected the principal point cx"));
+  IdentificationResult file_far = r;
+  file_far.camera->parameters[3].file_value = -5.0;
+  EXPECT_TRUE(WrittenResultFailsAt(file_far, "camera.parameters", "the file's camera"));
+  IdentificationResult folding = r;
+  folding.camera->parameters[4].value = -5.0;  // k1 -5 folds 14.5 deg off the axis
+  EXPECT_TRUE(WrittenResultFailsAt(folding, "camera.parameters", "the lens model folds"));
+  IdentificationResult tiny = r;
+  tiny.camera->height = 4;
+  EXPECT_TRUE(WrittenResultFailsAt(tiny, "camera.width", "1024x4 px: expected 32..16384"));
+
+  // fx and fy correlated beyond 1: symmetric, the diagonal right, not a covariance.
+  IdentificationResult not_psd = r;
+  (*not_psd.camera->covariance)(0, 1) = (*not_psd.camera->covariance)(1, 0) = 0.02;
+  EXPECT_TRUE(WrittenResultFailsAt(not_psd, "camera.covariance", "not positive semi-definite"));
+  IdentificationResult wrong_sigma = r;
+  (*wrong_sigma.camera->covariance)(2, 2) = 0.04;  // std 0.1 says 0.01
+  EXPECT_TRUE(WrittenResultFailsAt(wrong_sigma, "camera.covariance", "the std of camera.cx"));
+  IdentificationResult kept_row = r;
+  (*kept_row.camera->covariance)(5, 5) = 1e-6;  // camera.k2 is kept: its row is zero
+  EXPECT_TRUE(WrittenResultFailsAt(kept_row, "camera.covariance", "a zero row"));
+}
+
 TEST(IdentificationResult, OlderResultsWithoutAVerdictStillRead) {
   const IdentificationResult r = ParseIdentificationResult(kResult, "old.json");
   EXPECT_FALSE(r.verdict.has_value());

@@ -227,4 +227,26 @@ expect_error "plan on tagCircle21h7" "circle.yaml:.*tagCircle21h7.*families h4ca
 sed 's/^firstId: .*/firstId: 560/' "$boards/aprilgrid_6x6_30mm.yaml" > "$dir/past_ids.yaml"
 expect_error "plan on ids past tag36h11" "past_ids.yaml:.*past the 587 codes of tag36h11" \
   "$h4cal" plan "${plan_inputs[@]}" --board "$dir/past_ids.yaml" --out "$dir/plan.csv"
+# Issue 42 point 3: --data, --robot and --corners naming a FIFO hung forever (and /dev/zero
+# was read until the memory ran out): refused at once as not regular files. 10 s each at
+# most, so that a regression fails here instead of hanging.
+mkfifo "$dir/fifo.csv" "$dir/fifo.yaml"
+expect_fifo_refused() {
+  local name=$1 pattern=$2 out rc
+  shift 2
+  out=$(timeout 10 "$@" 2>&1)
+  rc=$?
+  [ $rc -eq 1 ] || fail "$name: exit code $rc, expected 1 (124: it waited on the FIFO): $out"
+  echo "$out" | grep -q -- "$pattern" || fail "$name: message does not match '$pattern': $out"
+}
+expect_fifo_refused "--data FIFO" "fifo.csv: not a regular file (a FIFO)" \
+  "$h4cal" identify --robot "$robot" --data "$dir/fifo.csv" --out "$dir/r.json"
+expect_fifo_refused "--robot FIFO" "fifo.yaml: not a regular file (a FIFO)" \
+  "$h4cal" identify --robot "$dir/fifo.yaml" --data "$dir/sim/dataset.csv" --out "$dir/r.json"
+expect_fifo_refused "--data /dev/null" "/dev/null: not a regular file (a character device)" \
+  "$h4cal" identify --robot "$robot" --data /dev/null --out "$dir/r.json"
+expect_fifo_refused "--corners FIFO" "fifo.csv: not a regular file (a FIFO)" \
+  "$h4cal" identify --robot "$robot" --data "$dir/sim/dataset.csv" --model 12 --folds 0 \
+  --corners "$dir/fifo.csv" --board "$boards/aprilgrid_6x6_30mm.yaml" \
+  --camera "$boards/sim_camera_1024x768.yaml" --out "$dir/r.json"
 echo "PASS"

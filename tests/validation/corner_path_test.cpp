@@ -4,8 +4,11 @@
 // calibration does, and the accuracy measured where the true robot goes when driven
 // through the identified model (host/validation/true_accuracy.h).
 #include <cmath>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "common/board/board_model.h"
@@ -88,6 +91,49 @@ PathAccuracies RunBothPaths(const SimulatedRobot& truth, const CameraIntrinsics&
 
 SimulatedRobot Robot(uint64_t seed) {
   return MakeTrueRobot(PaperAprioriRobot(), TrueGeometry::kPerturbedModel31, {.seed = seed});
+}
+
+// Issue 42 point 15: where the corners meet the board, a tag id that is not the corner's tag
+// is refused naming the pose (it was fitted: 99 on a 36-tag board, 7 for corner 4).
+TEST(GroupCornersByRow, RefusesATagIdThatIsNotTheCornersTag) {
+  const BoardModel board = LegacyBoard();
+  std::vector<DatasetRow> rows(2);
+  rows[0].pose_id = 1;
+  rows[1].pose_id = 2;
+  const std::vector<CornerObservation> good = {{1, 0, 0, 10, 10, {}}, {2, 1, 4, 20, 20, {}}};
+  EXPECT_EQ(GroupCornersByRow(rows, good, board, 0.05)[1].uv.size(), 1u);
+  for (const CornerObservation& bad :
+       {CornerObservation{2, 99, 4, 20, 20, {}}, CornerObservation{2, 7, 4, 20, 20, {}},
+        CornerObservation{2, -1, 4, 20, 20, {}}}) {
+    try {
+      GroupCornersByRow(rows, {good[0], bad}, board, 0.05);
+      ADD_FAILURE() << "tag_id " << bad.tag_id << " for corner 4 was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(fmt::format("pose 2: ")), std::string::npos);
+      EXPECT_NE(std::string(e.what()).find(fmt::format("tag_id {}", bad.tag_id)),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+// Issue 42 point 16: another campaign's corners gave "0 poses have at least 12 corners"; they
+// are named as not sharing a pose id with the dataset.
+TEST(GroupCornersByRow, CornersOfAnotherCampaignAreNamedAsSuch) {
+  std::vector<DatasetRow> rows(3);
+  for (int j = 0; j < 3; ++j) rows[static_cast<size_t>(j)].pose_id = j + 1;
+  const std::vector<CornerObservation> other = {{101, 0, 0, 10, 10, {}}, {140, 0, 0, 10, 10, {}}};
+  try {
+    RequireCornersOfDataset(rows, other, "other.corners.csv");
+    ADD_FAILURE() << "another campaign's corners were accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("other.corners.csv: no pose id of the corners (101..140) "
+                                         "is a pose id of the dataset (1..3)"),
+              std::string::npos)
+        << e.what();
+  }
+  // One shared pose id is enough: the others are the campaign's business.
+  EXPECT_NO_THROW(RequireCornersOfDataset(rows, {{3, 0, 0, 1, 1, {}}, {140, 0, 0, 1, 1, {}}}, "c"));
 }
 
 TEST(BoardPoseFit, RecoversThePoseFromExactCornersAndDepthFollowsTheFocalLength) {
