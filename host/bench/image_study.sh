@@ -10,6 +10,8 @@
 # path's Model 31). Each result is scored where the true robot goes (h4_true_accuracy).
 #   host/bench/image_study.sh BUILD_DIR OUT_DIR [--robots N] [--first-seed S]
 #                            [--conditions "NAME ..."] [--files "exact typical"] [--frames F]
+#                            [--corner-args "ARGS"] (more `identify --corners` options, e.g.
+#                            --weigh-encoder-noise)
 # Conditions (h4cam render options): linear (0.7 px optical blur, linear response), gamma
 # (gamma 0.7, 1.4 px blur, 20 % gradient, 15 % vignetting, shot noise: an ISP's encoded
 # output), pixelblur (linear, no optical blur, 0.7 px of blur of the pixel values after they
@@ -20,7 +22,7 @@ root=$(cd "$(dirname "$0")/../.." && pwd)
 [ $# -ge 2 ] || { sed -n '2,16p' "$0" >&2; exit 2; }
 build=$(cd "$1" && pwd) out=$2
 shift 2
-robots=3 first_seed=1 frames=10
+robots=3 first_seed=1 frames=10 corner_args=
 conditions="linear gamma" files="exact typical"
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -29,6 +31,7 @@ while [ $# -gt 0 ]; do
     --conditions) conditions=$2; shift ;;
     --files) files=$2; shift ;;
     --frames) frames=$2; shift ;;
+    --corner-args) corner_args=$2; shift ;;
     *) echo "image_study: unknown option '$1'" >&2; exit 2 ;;
   esac
   shift
@@ -98,7 +101,8 @@ identify() {  # dir dataset camera_file corners
     --out "$dir/result31_pose_path.json" > "$dir/identify31.txt" 2>&1 || rc=$?
   [ $rc -le 3 ] || { echo "identify Model 31 failed (exit $rc), see $dir/identify31.txt" >&2; return 1; }
   rc=0; "$h4cal" identify "${common[@]}" --model 31 --from "$dir/result12.json" \
-    --corners "$corners" --out "$dir/result31_corners.json" > "$dir/identify_corners.txt" 2>&1 || rc=$?
+    --corners "$corners" $corner_args --out "$dir/result31_corners.json" \
+    > "$dir/identify_corners.txt" 2>&1 || rc=$?
   [ $rc -le 3 ] || { echo "the corner path failed (exit $rc), see $dir/identify_corners.txt" >&2; return 1; }
 }
 

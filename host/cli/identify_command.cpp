@@ -61,6 +61,7 @@ struct IdentifyCommandOptions {
   std::string board_path;
   std::string camera_path;
   bool camera_fixed = false;
+  bool weigh_encoder_noise = false;  ///< CornerFitOptions::weigh_joint_noise
   double default_sigma_px = 0.1;
   std::string camera_out_path;
 };
@@ -129,11 +130,12 @@ void PrintCornerFit(const CornerPathOutcome& path) {
 // Which files go together, said before any work: the corner path needs its three; the
 // camera file with its board alone gives the pose path the file's uncertainty.
 void RequireCameraFiles(const IdentifyCommandOptions& options) {
-  const bool corner_only = options.camera_fixed || !options.camera_out_path.empty();
+  const bool corner_only =
+      options.camera_fixed || options.weigh_encoder_noise || !options.camera_out_path.empty();
   if (options.corners_path.empty() && corner_only) {
     throw std::invalid_argument(
-        "--camera-fixed and --camera-out belong to the corner path: give --corners, --board "
-        "and --camera");
+        "--camera-fixed, --weigh-encoder-noise and --camera-out belong to the corner path: give "
+        "--corners, --board and --camera");
   }
   if (!options.corners_path.empty() &&
       (options.board_path.empty() || options.camera_path.empty())) {
@@ -293,6 +295,7 @@ int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription&
   }
   CornerFitOptions corner_options;
   corner_options.camera_fixed = options.camera_fixed;
+  corner_options.weigh_joint_noise = options.weigh_encoder_noise;
   CornerPathOutcome path = IdentifyOnCorners(AprioriModelOf(robot, model), model, pose_path, rows,
                                              corners, camera, id_options, corner_options);
   if (path.fit.ok && path.outcome.summary.usable) {
@@ -394,6 +397,9 @@ void DeclareIdentifyCommand(CLI::App* command) {
                            "--corners, its intrinsics are refined");
   command->add_flag("--camera-fixed", options->camera_fixed,
                     "Corner path: keep every intrinsic at the camera file's value");
+  command->add_flag("--weigh-encoder-noise", options->weigh_encoder_noise,
+                    "Corner path: weigh each pose's corners by the encoder noise they show "
+                    "(generalised least squares; common/README.md#identification-from-corners)");
   h4::cli::AddOptionShowingDefault(
       command, "--corner-sigma", &options->default_sigma_px,
       "Corner path: per-axis corner sigma (px) of corners without a sigma_px column",
