@@ -147,29 +147,37 @@ void SelectPoses(const std::vector<DatasetRow>& rows, const std::vector<PoseCorn
   }
 }
 
-// Levenberg-Marquardt on the free parameters, then the corner outliers out and a refit
-// (once). Leaves r, J at the solution; false when the cost cannot be evaluated there.
-bool SolveWithCornerOutliers(CornerCost* cost, const CornerFitOptions& options,
-                             CornerFitOutcome* out, Eigen::VectorXd* r, Eigen::MatrixXd* J) {
+// Levenberg-Marquardt on the free parameters from their values in `out`. Leaves r, J at the
+// solution; false (with the reason in out->message) when the cost cannot be evaluated there.
+bool MinimizeCorners(CornerCost* cost, const LmOptions& lm, CornerFitOutcome* out,
+                     Eigen::VectorXd* r, Eigen::MatrixXd* J) {
   const ParameterCost evaluate = [cost](const ParameterVector& p, Eigen::VectorXd* res,
                                         Eigen::MatrixXd* jac) {
     return cost->Evaluate(p, res, jac);
   };
+  FreeParameterResiduals f(evaluate, out->parameters);
+  Eigen::VectorXd v = out->parameters.FreeValues();
+  out->minimizer = MinimizeWithLevenbergMarquardt(f, lm, &v);
+  out->parameters.SetFreeValues(v);
+  std::string why;
+  if (!cost->Evaluate(out->parameters, r, J, &why)) {
+    out->message = "the corner cost cannot be evaluated at the solution: " + why;
+    return false;
+  }
+  return true;
+}
+
+// The fit, then the corner outliers out and a refit (once). Leaves r, J at the solution;
+// false when the cost cannot be evaluated there.
+bool SolveWithCornerOutliers(CornerCost* cost, const CornerFitOptions& options,
+                             CornerFitOutcome* out, Eigen::VectorXd* r, Eigen::MatrixXd* J) {
   for (int round = 0; round < 2; ++round) {
-    FreeParameterResiduals f(evaluate, out->parameters);
-    Eigen::VectorXd v = out->parameters.FreeValues();
-    out->minimizer = MinimizeWithLevenbergMarquardt(f, options.lm, &v);
-    out->parameters.SetFreeValues(v);
-    std::string why;
-    if (!cost->Evaluate(out->parameters, r, J, &why)) {
-      out->message = "the corner cost cannot be evaluated at the solution: " + why;
-      return false;
-    }
+    if (!MinimizeCorners(cost, options.lm, out, r, J)) return false;
     if (round == 1) break;
     const int rejected = RejectCornerOutliers(cost, *r, options.corner_outlier_chi2);
     out->rejected_corners += rejected;
     if (rejected == 0) break;
-    if (!cost->Evaluate(out->parameters, r, J, &why)) return false;
+    if (!cost->Evaluate(out->parameters, r, J)) return false;
   }
   return true;
 }
@@ -191,19 +199,7 @@ bool RefitWeighingJointNoise(CornerCost* cost, const CornerFitOptions& options,
   const JointNoise& noise = out->joint_noise;
   if (!noise.estimated || !(noise.sigma_q > 0)) return true;
   cost->SetJointNoiseRatio(noise.sigma_q / std::sqrt(std::max(noise.pixel_scale2, 1e-12)));
-  const ParameterCost evaluate = [cost](const ParameterVector& p, Eigen::VectorXd* res,
-                                        Eigen::MatrixXd* jac) {
-    return cost->Evaluate(p, res, jac);
-  };
-  FreeParameterResiduals f(evaluate, out->parameters);
-  Eigen::VectorXd v = out->parameters.FreeValues();
-  out->minimizer = MinimizeWithLevenbergMarquardt(f, options.lm, &v);
-  out->parameters.SetFreeValues(v);
-  std::string why;
-  if (!cost->Evaluate(out->parameters, r, J, &why)) {
-    out->message = "the corner cost weighing the encoder noise cannot be evaluated: " + why;
-    return false;
-  }
+  if (!MinimizeCorners(cost, options.lm, out, r, J)) return false;
   out->uncertainty = ComputeUncertainty(out->parameters, *r, *J, /*weighted=*/true);
   cost->SetJointNoiseRatio(0);
   Eigen::VectorXd unwhitened;
