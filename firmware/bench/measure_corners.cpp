@@ -10,7 +10,8 @@
 // their tag's centre (what a pixel-space fit downstream would read as a smaller board) against
 // the detected corners', the fitted erosion against the least-squares erosion of the true
 // errors, and the exported corners' RMS error on tags whose sides run within 3 deg of the
-// pixel axes and on the others (pixel locking, firmware/detection/edge_refinement.h).
+// pixel axes and on the others (pixel locking, firmware/detection/edge_refinement.h), and
+// whether their stated sigma_px is honest: its RMS against the per-axis RMS error.
 //
 // Usage: h4_measure_corners [board=legacy|kalibr] [condition=NAME|every] [scenes=12]
 //                           [seed=1] [refinement=edge|xcorner] [roll=any|aligned]
@@ -79,6 +80,7 @@ struct CornerTally {
   double inward_detected = 0, inward_exported = 0;  // sums of the shift toward the tag centre
   double aligned2 = 0, tilted2 = 0;                 // squared errors by tag orientation
   double erosion_fitted = 0, erosion_true = 0;      // sums over the measured scenes, px
+  double stated2 = 0;                               // sum of the exported sigma_px^2 (per axis)
 };
 
 // The true projection of a board corner.
@@ -127,6 +129,7 @@ void AddExported(const Measurement& m, const BoardDetection& detection, const Bo
       tally->inward_exported += error.dot(inward);
       tally->inward_detected += (detected[c.corner] - truth[k]).dot(inward);
       (along_axes ? tally->aligned2 : tally->tilted2) += error.squaredNorm();
+      tally->stated2 += c.sigma_px * c.sigma_px;
       ++(along_axes ? tally->aligned : tally->tilted);
       ++tally->exported;
     }
@@ -230,8 +233,9 @@ int Run(const Args& args) {
   fmt::print(
       "| condition | corners found | edge-fitted | RMS px | RMS less erosion px | tag rotation "
       "RMS urad | shift to tag centre, detected px | exported px | erosion fitted / true px | "
-      "exported RMS px, sides along pixel axes (n) | tilted (n) |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "exported RMS px, sides along pixel axes (n) | tilted (n) | stated sigma_px / per-axis "
+      "RMS |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const bench::Condition& condition : bench::AllConditions()) {
     if (args.condition != "every" && args.condition != condition.name) continue;
     const CornerTally t = RunCondition(condition, args);
@@ -239,12 +243,13 @@ int Run(const Args& args) {
     const double exported = std::max(t.exported, 1), scenes = std::max(t.scenes_measured, 1);
     fmt::print(
         "| {} | {}/{} | {} | {:.4f} | {:.4f} | {:.1f} | {:+.4f} | {:+.4f} | {:.3f} / {:.3f} | "
-        "{:.4f} ({}) | {:.4f} ({}) |\n",
+        "{:.4f} ({}) | {:.4f} ({}) | {:.4f} / {:.4f} |\n",
         condition.name, t.found, t.expected, t.edge_fitted, std::sqrt(t.error2 / n),
         std::sqrt(t.after_erosion2 / n), 1e6 * std::sqrt(t.tag_rotation2 / std::max(t.tags, 1)),
         t.inward_detected / exported, t.inward_exported / exported, t.erosion_fitted / scenes,
         t.erosion_true / scenes, std::sqrt(t.aligned2 / std::max(t.aligned, 1)), t.aligned,
-        std::sqrt(t.tilted2 / std::max(t.tilted, 1)), t.tilted);
+        std::sqrt(t.tilted2 / std::max(t.tilted, 1)), t.tilted, std::sqrt(t.stated2 / exported),
+        std::sqrt((t.aligned2 + t.tilted2) / (2 * exported)));
   }
   return 0;
 }

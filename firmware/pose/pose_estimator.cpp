@@ -13,6 +13,7 @@
 
 #include "common/geometry/rotation.h"
 #include "firmware/detection/planar_pose_starts.h"
+#include "firmware/pose/corner_noise.h"
 
 namespace h4::cam {
 namespace {
@@ -187,24 +188,6 @@ Eigen::MatrixXd EdgeGroupCovariance(const std::vector<CornerObservation>& corner
   return correction * H_inverse * meat * H_inverse;
 }
 
-// Corner indices grouped by edge group (a corner outside any group is a group of its own).
-std::vector<std::vector<Eigen::Index>> CornersByEdgeGroup(
-    const std::vector<CornerObservation>& corners) {
-  std::vector<std::pair<int, Eigen::Index>> group_of;
-  for (size_t i = 0; i < corners.size(); ++i) {
-    const int group = corners[i].edge_group;
-    group_of.emplace_back(group >= 0 ? group : -1 - static_cast<int>(i),
-                          static_cast<Eigen::Index>(i));
-  }
-  std::sort(group_of.begin(), group_of.end());
-  std::vector<std::vector<Eigen::Index>> groups;
-  for (size_t k = 0; k < group_of.size(); ++k) {
-    if (k == 0 || group_of[k].first != group_of[k - 1].first) groups.emplace_back();
-    groups.back().push_back(group_of[k].second);
-  }
-  return groups;
-}
-
 // Covariance of the parameters from the edge fits' pixel noise: the corners of a tag are
 // the intersections of its four fitted sides, so their errors are correlated (a side's
 // angle noise moves its two corners in opposite directions, which the tag's centre hardly
@@ -266,8 +249,8 @@ int CountEdgeGroups(const std::vector<CornerObservation>& corners) {
 
 // Each corner's per-axis standard deviation under the noise the covariance was built from:
 // with the edge noise, its own share of the edge fits' noise (trace(N N^T) / 2 per axis)
-// plus the excess the residuals show; otherwise the residuals' sigma^2; then the floor.
-// What travels with the pose (common/formats/README.md#board-corners-csv).
+// plus the corners' own excess (corner_noise.h); otherwise the residuals' own sigma^2; then
+// the floor. What travels with the pose (common/formats/README.md#board-corners-csv).
 std::vector<double> CornerSigmas(const std::vector<CornerObservation>& corners, bool edge_noise,
                                  double independent_variance, double floor_px) {
   std::vector<double> sigmas;
@@ -396,7 +379,11 @@ bool FillCovariance(const std::vector<CornerObservation>& corners, const CameraM
       std::sqrt(std::max(0.0, estimate->covariance.topLeftCorner<3, 3>().trace() / 3));
   estimate->sigma_r =
       std::sqrt(std::max(0.0, estimate->covariance.bottomRightCorner<3, 3>().trace() / 3));
-  estimate->corner_sigma_px = CornerSigmas(corners, edge_noise, excess, floor_px);
+  // The corners' own share of the excess: what a wrong camera file leaves is smooth over the
+  // board and belongs to the camera, not to the corners (corner_noise.h).
+  const double own = ExcessBeyondSmoothField(corners, J, r);
+  const double corner_excess = own >= 0 ? std::min(own, excess) : excess;
+  estimate->corner_sigma_px = CornerSigmas(corners, edge_noise, corner_excess, floor_px);
   const int k = basis.count();
   CornerErosion(corners, basis, sol.state.erosion, full.bottomRightCorner(k, k), estimate);
   return true;

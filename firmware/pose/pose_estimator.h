@@ -97,7 +97,9 @@ struct PoseEstimate {
   int erosion_parameters = 0;  ///< nuisance parameters fitted (0, 1, 3 or one per tag)
   /// Per-axis standard deviation of each corner (input order), px: the per-corner noise the
   /// covariance is built from (CovarianceModel: the edge fits' noise, or the residuals' sigma,
-  /// plus the excess and the floor). Empty when not ok.
+  /// plus the excess and the floor), less the part of the excess a field smooth over the board
+  /// explains (a wrong camera file's misfit, firmware/pose/corner_noise.h), plus the fitted
+  /// erosion's share. Empty when not ok.
   std::vector<double> corner_sigma_px;
   /// Displacement of each corner (input order) that the fitted erosion explains, px:
   /// uv - corner_erosion_px[i] is the corner as the camera model sees it (the projection of

@@ -11,7 +11,7 @@
 #   host/bench/image_study.sh BUILD_DIR OUT_DIR [--robots N] [--first-seed S]
 #                            [--conditions "NAME ..."] [--files "exact typical"] [--frames F]
 #                            [--corner-args "ARGS"] (more `identify --corners` options, e.g.
-#                            --weigh-encoder-noise)
+#                            --no-weigh-encoder-noise)
 # Conditions (h4cam render options): linear (0.7 px optical blur, linear response), gamma
 # (gamma 0.7, 1.4 px blur, 20 % gradient, 15 % vignetting, shot noise: an ISP's encoded
 # output), pixelblur (linear, no optical blur, 0.7 px of blur of the pixel values after they

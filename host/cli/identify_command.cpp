@@ -61,7 +61,7 @@ struct IdentifyCommandOptions {
   std::string board_path;
   std::string camera_path;
   bool camera_fixed = false;
-  bool weigh_encoder_noise = false;  ///< CornerFitOptions::weigh_joint_noise
+  bool no_weigh_encoder_noise = false;  ///< CornerFitOptions::weigh_joint_noise off
   double default_sigma_px = 0.1;
   std::string camera_out_path;
 };
@@ -131,10 +131,10 @@ void PrintCornerFit(const CornerPathOutcome& path) {
 // camera file with its board alone gives the pose path the file's uncertainty.
 void RequireCameraFiles(const IdentifyCommandOptions& options) {
   const bool corner_only =
-      options.camera_fixed || options.weigh_encoder_noise || !options.camera_out_path.empty();
+      options.camera_fixed || options.no_weigh_encoder_noise || !options.camera_out_path.empty();
   if (options.corners_path.empty() && corner_only) {
     throw std::invalid_argument(
-        "--camera-fixed, --weigh-encoder-noise and --camera-out belong to the corner path: give "
+        "--camera-fixed, --no-weigh-encoder-noise and --camera-out belong to the corner path: give "
         "--corners, --board and --camera");
   }
   if (!options.corners_path.empty() &&
@@ -295,7 +295,7 @@ int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription&
   }
   CornerFitOptions corner_options;
   corner_options.camera_fixed = options.camera_fixed;
-  corner_options.weigh_joint_noise = options.weigh_encoder_noise;
+  corner_options.weigh_joint_noise = !options.no_weigh_encoder_noise;
   CornerPathOutcome path = IdentifyOnCorners(AprioriModelOf(robot, model), model, pose_path, rows,
                                              corners, camera, id_options, corner_options);
   if (path.fit.ok && path.outcome.summary.usable) {
@@ -397,9 +397,10 @@ void DeclareIdentifyCommand(CLI::App* command) {
                            "--corners, its intrinsics are refined");
   command->add_flag("--camera-fixed", options->camera_fixed,
                     "Corner path: keep every intrinsic at the camera file's value");
-  command->add_flag("--weigh-encoder-noise", options->weigh_encoder_noise,
-                    "Corner path: weigh each pose's corners by the encoder noise they show "
-                    "(generalised least squares; common/README.md#identification-from-corners)");
+  command->add_flag("--no-weigh-encoder-noise", options->no_weigh_encoder_noise,
+                    "Corner path: weigh every corner as an independent look at the robot instead "
+                    "of each pose's corners by the encoder noise they show (generalised least "
+                    "squares, the default; common/README.md#identification-from-corners)");
   h4::cli::AddOptionShowingDefault(
       command, "--corner-sigma", &options->default_sigma_px,
       "Corner path: per-axis corner sigma (px) of corners without a sigma_px column",

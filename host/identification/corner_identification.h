@@ -52,15 +52,13 @@ struct CornerFitOptions {
   /// robot's motion measures the camera too. Off: the corners alone determine them.
   bool use_file_covariance = true;
   /// Weigh each pose's corners by the encoder noise the residuals show (generalised least
-  /// squares, CornerCost::SetJointNoiseRatio; `identify --weigh-encoder-noise`): a reading's
-  /// noise moves a pose's corners together, so 144 corners are not 144 independent looks at
-  /// the robot. Off (the default): corners weighed independently, the encoder noise only in
-  /// the covariance (the sandwich). Measured over 12 simulated robots it is 28 % more
-  /// accurate and its prediction honest, but its Z scale spreads as wide (68 against 59 ppm
-  /// RMS) and one robot in 12 ends at 159 ppm, beyond the 150 ppm the corner path promises
-  /// per robot (docs/results.md#a-real-cameras-pixels-the-image-study): not the default
-  /// until that spread is understood.
-  bool weigh_joint_noise = false;
+  /// squares, CornerCost::SetJointNoiseRatio): a reading's noise moves a pose's corners
+  /// together, so 144 corners are not 144 independent looks at the robot. Weighed as
+  /// independent, the poses count for more than they hold and an exact camera file ends less
+  /// accurate than the pose path (docs/results.md#a-real-cameras-pixels-the-image-study).
+  /// Off (`identify --no-weigh-encoder-noise`): corners weighed independently, the encoder
+  /// noise only in the covariance (the sandwich).
+  bool weigh_joint_noise = true;
   /// A camera file without a covariance is kept as it is when the corners do not show it
   /// wrong: the Wald statistic of the refined intrinsics against the file's, under the
   /// refined ones' covariance, has an upper-tail probability of at least this. Freeing
