@@ -407,8 +407,8 @@ std::string Campaign::StaleCameraNote() const {
 // A key on one end only (messages/README.md#authenticated-messages): each end sees the other's
 // messages refused or read unchecked, and says which end lacks the key.
 std::string Campaign::KeyMismatchNote() const {
-  const int64_t refused = bus_.auth_failures(channels::kCameraStatus) +
-                          bus_.auth_failures(channels::kBoardPose);
+  const int64_t refused =
+      bus_.auth_failures(channels::kCameraStatus) + bus_.auth_failures(channels::kBoardPose);
   if (refused > bus_.stale_messages(channels::kCameraStatus)) {
     return fmt::format(
         "the camera answers but its messages are not authenticated with this key ({} dropped): "
@@ -420,6 +420,24 @@ std::string Campaign::KeyMismatchNote() const {
            "its key: give collect the same --auth-key, or neither";
   }
   return "";
+}
+
+// Camera messages refused for their key before any was accepted: enough to tell a key on
+// this end only from a stray corrupted message (the camera's heartbeat is 1 Hz, so about 3 s).
+constexpr int64_t kKeyMismatchEvidence = 3;
+
+void Campaign::StopOnKeyMismatch() const {
+  const int64_t refused = bus_.auth_failures(channels::kCameraStatus) +
+                          bus_.auth_failures(channels::kBoardPose) -
+                          bus_.stale_messages(channels::kCameraStatus);
+  // Refusals while the camera is heard are another campaign's traffic, not ours.
+  const bool ours_refused = !camera_heard_ && refused >= kKeyMismatchEvidence;
+  const bool signed_unchecked = bus_.unchecked_signed(channels::kCameraStatus) > 0;
+  if (!ours_refused && !signed_unchecked) return;
+  throw std::runtime_error(
+      "the campaign and the camera do not share a key, stopped before "
+      "the robot moves: " +
+      KeyMismatchNote());
 }
 
 void Campaign::NoteWhoWasHeard(Clock::time_point now) {
@@ -489,6 +507,7 @@ bool Campaign::Step(Clock::time_point now) {
 // Do not send into the void: a target published before the robot subscribes is lost.
 void Campaign::WaitForDevices(Clock::time_point now) {
   if (phase_start_ == Clock::time_point{}) phase_start_ = now;
+  StopOnKeyMismatch();
   if (joints_heard_ && camera_heard_) {
     spdlog::info("robot and camera heard; starting");
     phase_ = Phase::kSendTarget;
@@ -574,7 +593,7 @@ void Campaign::WaitForMeasurement(Clock::time_point now) {
     Retry(retry_from, *failed_attempt_, now);
   } else if (Seconds(now - phase_start_) > options_.capture_timeout_s) {
     const std::string key = KeyMismatchNote();
-    const std::string hint = !key.empty()     ? " (" + key + ")"
+    const std::string hint = !key.empty()    ? " (" + key + ")"
                              : camera_heard_ ? ""
                                              : " (no camera status heard at all: is h4cam "
                                                "running?)";
