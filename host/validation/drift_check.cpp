@@ -94,7 +94,13 @@ std::string DriftCheckResult::Summary() const {
          CameraFloorNote(camera_floor) +
          (with_correlations ? ""
                             : "\n(the result has no parameter_covariance: its sigmas were used "
-                              "without their correlations, which widens what is allowed)");
+                              "without their correlations, which widens what is allowed)") +
+         (drift ? fmt::format("\nnext: measure the same check poses again (an unchanged robot is "
+                              "called DRIFT in at most {:.0f} % of checks); DRIFT again: the "
+                              "robot has changed, recalibrate (collect a campaign, identify, "
+                              "export the result whose verdict is good)",
+                              100 * false_alarm)
+                : "");
 }
 
 DriftCheckResult CheckForDrift(const KinematicModel& model, const ParameterVector& p,
@@ -115,6 +121,7 @@ DriftCheckResult CheckForDrift(const KinematicModel& model, const ParameterVecto
   result.dof = 6 * n;
   result.pose_threshold = ChiSquareUpperQuantileEvenDof(6, options.pose_false_alarm / n);
   result.total_threshold = ChiSquareUpperQuantileEvenDof(result.dof, options.total_false_alarm);
+  result.false_alarm = options.pose_false_alarm + options.total_false_alarm;
 
   IdentificationCost cost(CostKind::kMeasurement, model, rows, options.cost);
   Eigen::VectorXd r;

@@ -63,12 +63,15 @@ struct DriftCheckResult {
   int dof = 0;                  ///< 6 per pose
   double pose_threshold = 0.0;  ///< d^2 above this flags a pose
   double total_threshold = 0.0;
+  /// At most how often an unchanged robot is called DRIFT: the two tests' false alarms.
+  double false_alarm = 0.0;
   bool evaluable = true;  ///< false: a pose could not be evaluated (why in message)
   bool drift = false;
   std::string message;
   bool with_correlations = true;  ///< false: C was the diagonal of the sigmas (older result)
   /// The floor D was built from; absent: none was used (older result, or asked), D = I.
   std::optional<CameraErrorFloor> camera_floor;
+  /// The verdict line, and on DRIFT what to do next (measure again, then recalibrate).
   std::string Summary() const;
 };
 

@@ -93,6 +93,22 @@ TEST(DriftCheck, AGrossDriftFlagsEveryPose) {
                     Campaign(WithJointOffsetMoved(truth, 0.01), 1, true));
   EXPECT_TRUE(check.drift);
   for (const PoseCheck& pose : check.poses) EXPECT_TRUE(pose.flagged) << pose.pose_id;
+  // Issue 43 point 3: the DRIFT line says what to do next, with the false-alarm rate.
+  EXPECT_NE(check.Summary().find("next: measure the same check poses again (an unchanged robot "
+                                 "is called DRIFT in at most 3 % of checks)"),
+            std::string::npos)
+      << check.Summary();
+  EXPECT_NE(check.Summary().find("recalibrate"), std::string::npos);
+}
+
+TEST(DriftCheck, AMatchSaysNoNextStep) {
+  const SimulatedRobot truth = Truth();
+  const ParameterVector result = ResultOf(truth);
+  const DriftCheckResult check =
+      CheckForDrift(*truth.MakeModel(), result, Eigen::MatrixXd::Zero(result.size(), result.size()),
+                    Campaign(truth, 1, false));
+  EXPECT_FALSE(check.drift);
+  EXPECT_EQ(check.Summary().find("next:"), std::string::npos) << check.Summary();
 }
 
 TEST(DriftCheck, ParameterUncertaintyWidensWhatIsAllowed) {
