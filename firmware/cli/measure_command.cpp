@@ -51,8 +51,9 @@ struct MeasureOutputs {
              << ToString(m.status);
     if (m.ok()) {
       const Eigen::Vector3d& p = m.X_CT.translation();
-      progress << ", " << m.corners_used << " corners, rms " << m.rms_px << " px, z " << p.z()
-               << " m, sigma_t " << m.sigma_t * 1e3 << " mm";
+      // As many digits as the figures hold (issue 43 point 8: they printed 7).
+      progress << fmt::format(", {} corners, rms {:.4f} px, z {:.4f} m, sigma_t {:.4f} mm",
+                              m.corners_used, m.rms_px, p.z(), m.sigma_t * 1e3);
     } else if (!m.message.empty()) {
       progress << " (" << m.message << ")";
     }

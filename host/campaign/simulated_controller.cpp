@@ -28,8 +28,10 @@ JointVector WrappedDifference(const JointVector& a, const JointVector& b) {
   return d;
 }
 
+// In degrees, as collect --dry-run and --joint-range-deg speak of joints (issue 43 point 8).
 std::string FormatJoints(const JointVector& q) {
-  return fmt::format("({:.4f}, {:.4f}, {:.4f}, {:.4f}) rad", q[0], q[1], q[2], q[3]);
+  return fmt::format("({:.2f}, {:.2f}, {:.2f}, {:.2f}) deg", DegreesFromRadians(q[0]),
+                     DegreesFromRadians(q[1]), DegreesFromRadians(q[2]), DegreesFromRadians(q[3]));
 }
 
 }  // namespace
@@ -124,10 +126,12 @@ TargetResult SimulatedController::SetTarget(int64_t pose_id, const JointVector& 
   const JointVector from_home = WrappedDifference(q, q_home_);
   for (int i = 0; i < 4; ++i) {
     if (std::abs(from_home[i]) > options_.joint_range) {
-      return Refuse(pose_id, TargetStatus::kOutsideLimits,
-                    fmt::format("joint {} target {:.4f} rad is {:.4f} rad from its home {:.4f} "
-                                "rad, beyond the joint range {:.4f} rad",
-                                i + 1, q[i], from_home[i], q_home_[i], options_.joint_range));
+      return Refuse(
+          pose_id, TargetStatus::kOutsideLimits,
+          fmt::format("joint {} target {:.2f} deg is {:.2f} deg from its home {:.2f} "
+                      "deg, beyond the joint range {:.2f} deg",
+                      i + 1, DegreesFromRadians(q[i]), DegreesFromRadians(from_home[i]),
+                      DegreesFromRadians(q_home_[i]), DegreesFromRadians(options_.joint_range)));
     }
     if (options_.joint_limits &&
         (q[i] < (*options_.joint_limits)[0] || q[i] > (*options_.joint_limits)[1])) {

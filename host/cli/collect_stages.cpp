@@ -117,7 +117,7 @@ double HeldOutPositionRms(const IdentificationOutcome& outcome) {
   return result.valid_position_rms_m.value_or(std::numeric_limits<double>::max());
 }
 
-/// Model 12, then Model 31 from it, as `collect --identify` does; the result that predicts
+/// Model 12, then Model 31 from it, as `collect --report-dir` does; the result that predicts
 /// the poses it was not fitted to best, Model 31 on a tie. With the few poses of a first
 /// stage, Model 31 can fit them and predict nothing: in one live run of 8 poses it held
 /// one out as an outlier and predicted the rest to 171 mm and 93 deg, Model 12 to 1.7 mm,

@@ -1,5 +1,5 @@
 // What `identify` prints of an identification, shared by every command that identifies
-// (`identify`, `collect --identify`): the verdict first (what the technician acts on),
+// (`identify`, `collect --report-dir`): the verdict first (what the technician acts on),
 // then the figures that decided it.
 #pragma once
 

@@ -197,7 +197,7 @@ IdentificationOutcome IdentifyModel31FromModel12(const RobotDescription& robot,
                                                  const std::vector<DatasetRow>& rows,
                                                  const IdentificationOptions& options);
 
-/// Both models as the demo, `collect --identify` and the studies run them (paper III.C):
+/// Both models as the demo, `collect --report-dir` and the studies run them (paper III.C):
 /// Model 12 from the a priori robot, then Model 31 from its result
 /// (IdentifyModel31FromModel12), whether or not Model 12 was usable: the caller judges.
 struct ModelPairOutcome {

@@ -130,16 +130,16 @@ pids=()
 cmp dataset.csv from_log.csv || fail "--from-log rebuilt other rows"
 cmp dataset.corners.csv from_log.corners.csv || fail "--from-log rebuilt other corners"
 grep -q " 0 not authentic" from_log.log || fail "--from-log with the key dropped messages"
-# collect --identify judges its results as identify does: a verdict for each model first,
+# collect --report-dir judges its results as identify does: a verdict for each model first,
 # exit 3 when none is good (twelve poses are too few, below).
 "$h4cal" collect --from-log campaign.lcmlog --plan plan.csv --out from_log_id.csv \
   --auth-key h4.key --report-dir identified --robot sim/robot.yaml > from_log_id.log 2>&1 \
   && status=0 || status=$?
-[ $status -eq 3 ] || fail "collect --identify on 12 poses exited $status, expected 3"
+[ $status -eq 3 ] || fail "collect --report-dir on 12 poses exited $status, expected 3"
 [ "$(grep -c '^VERDICT: too_few_poses' from_log_id.log)" -eq 2 ] ||
-  fail "collect --identify did not print both verdicts: $(grep -c VERDICT from_log_id.log)"
+  fail "collect --report-dir did not print both verdicts: $(grep -c VERDICT from_log_id.log)"
 grep -q "^collect: no model's verdict is good" from_log_id.log || fail "no closing verdict line"
-[ -s identified/report.html ] || fail "collect --identify wrote no report"
+[ -s identified/report.html ] || fail "collect --report-dir wrote no report"
 "$h4cal" collect --passive --plan plan.csv --out passive.csv > passive.log 2>&1 &
 listener=$!; pids+=($listener)
 "$h4cal" collect --passive --plan plan.csv --out foreign.csv --auth-key other.key \
