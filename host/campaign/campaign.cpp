@@ -407,8 +407,7 @@ std::string Campaign::StaleCameraNote() const {
 // A key on one end only (messages/README.md#authenticated-messages): each end sees the other's
 // messages refused or read unchecked, and says which end lacks the key.
 std::string Campaign::KeyMismatchNote() const {
-  const int64_t refused =
-      bus_.auth_failures(channels::kCameraStatus) + bus_.auth_failures(channels::kBoardPose);
+  const int64_t refused = RefusedCameraMessages();
   if (refused > bus_.stale_messages(channels::kCameraStatus)) {
     return fmt::format(
         "the camera answers but its messages are not authenticated with this key ({} dropped): "
@@ -422,16 +421,19 @@ std::string Campaign::KeyMismatchNote() const {
   return "";
 }
 
+int64_t Campaign::RefusedCameraMessages() const {
+  return bus_.auth_failures(channels::kCameraStatus) + bus_.auth_failures(channels::kBoardPose);
+}
+
 // Camera messages refused for their key before any was accepted: enough to tell a key on
 // this end only from a stray corrupted message (the camera's heartbeat is 1 Hz, so about 3 s).
 constexpr int64_t kKeyMismatchEvidence = 3;
 
 void Campaign::StopOnKeyMismatch() const {
-  const int64_t refused = bus_.auth_failures(channels::kCameraStatus) +
-                          bus_.auth_failures(channels::kBoardPose) -
-                          bus_.stale_messages(channels::kCameraStatus);
   // Refusals while the camera is heard are another campaign's traffic, not ours.
-  const bool ours_refused = !camera_heard_ && refused >= kKeyMismatchEvidence;
+  const int64_t for_their_key =
+      RefusedCameraMessages() - bus_.stale_messages(channels::kCameraStatus);
+  const bool ours_refused = !camera_heard_ && for_their_key >= kKeyMismatchEvidence;
   const bool signed_unchecked = bus_.unchecked_signed(channels::kCameraStatus) > 0;
   if (!ours_refused && !signed_unchecked) return;
   throw std::runtime_error(

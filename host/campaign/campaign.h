@@ -179,6 +179,8 @@ class Campaign {
   /// Why no camera status was heard, when the bus dropped them as stale: their clock.
   std::string StaleCameraNote() const;
   std::string KeyMismatchNote() const;
+  /// Camera statuses and board poses the bus refused (stale ones included).
+  int64_t RefusedCameraMessages() const;
   /// Throws, naming the fix, when the campaign and the camera do not share a key, before
   /// the robot moves: the camera would refuse every request, or every answer be dropped.
   void StopOnKeyMismatch() const;

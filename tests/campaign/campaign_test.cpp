@@ -1429,6 +1429,15 @@ TEST_F(CampaignTest, RefusedForeignMessagesBesideAHeardCameraDoNotStopIt) {
   bus::MessageAuthenticator foreign(OtherKey().key, OtherKey().options);
   DatasetJournal journal(path_);
   Campaign campaign(bus, Plan(2), journal, FastOptions());
+  // Before the robot is heard: five foreign statuses refused and one of our camera's accepted.
+  for (int k = 0; k < 5; ++k) PublishCameraStatus(bus, &foreign);
+  h4msgs::camera_status_t ours{};
+  ours.utime = NowUtime();
+  ours.state = h4msgs::camera_status_t::STATE_IDLE;
+  bus.Publish(channels::kCameraStatus, ours);  // signed with the campaign's key
+  while (bus.Handle(std::chrono::milliseconds(1)) > 0) {
+  }
+  ASSERT_EQ(bus.auth_failures(channels::kCameraStatus), 5);
   Run(bus, campaign, &cell, 20.0, [&] { PublishCameraStatus(bus, &foreign); });
   EXPECT_TRUE(campaign.finished());
   EXPECT_GE(bus.auth_failures(channels::kCameraStatus), 3);
