@@ -11,22 +11,35 @@ namespace h4::cam {
 
 SimSource::SimSource(const BoardSpec& board, const CameraIntrinsics& camera,
                      SimSourceOptions options)
-    : options_(options), renderer_(board, camera, options.render) {
-  SetPose(std::nullopt);
-}
+    : options_(options), renderer_(board, camera, options.render) {}
 
 void SimSource::SetPose(const std::optional<RigidTransform>& X_CT) {
+  // Only stored: the next frame renders it. A moving robot sends a pose per joint state,
+  // and a camera that is not capturing would otherwise render every one of them (~50 ms
+  // each optimised, ~3 s under the sanitizers).
+  std::lock_guard<std::mutex> lock(mutex_);
+  X_CT_ = X_CT;
+}
+
+namespace {
+bool SamePose(const std::optional<RigidTransform>& a, const std::optional<RigidTransform>& b) {
+  return a.has_value() == b.has_value() && (!a || a->matrix() == b->matrix());
+}
+}  // namespace
+
+cv::Mat SimSource::CleanImage() {
+  std::optional<RigidTransform> X_CT;
   {
-    // A robot at rest sends the same pose again and again: render it once.
     std::lock_guard<std::mutex> lock(mutex_);
-    const bool same =
-        X_CT.has_value() == X_CT_.has_value() && (!X_CT || X_CT->matrix() == X_CT_->matrix());
-    if (same && !clean_.empty()) return;
+    // A robot at rest sends the same pose again and again: render it once.
+    if (!clean_.empty() && SamePose(X_CT_, clean_pose_)) return clean_;
+    X_CT = X_CT_;
   }
   cv::Mat clean = X_CT ? renderer_.RenderClean(*X_CT) : renderer_.RenderBackground();
   std::lock_guard<std::mutex> lock(mutex_);
-  X_CT_ = X_CT;
+  clean_pose_ = X_CT;
   clean_ = clean;
+  return clean;
 }
 
 std::optional<RigidTransform> SimSource::pose() const {
@@ -63,11 +76,7 @@ std::optional<Frame> SimSource::Next(std::chrono::milliseconds timeout) {
     utime = std::max(due, NowUtime());
     last_utime_ = utime;
   }
-  cv::Mat clean;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    clean = clean_;
-  }
+  const cv::Mat clean = CleanImage();
   cv::RNG rng(options_.seed * 1000003ULL + static_cast<uint64_t>(sequence_));
   Frame frame;
   frame.image = renderer_.Expose(clean, rng);

@@ -1,6 +1,6 @@
 // The synthetic camera: frames of a board rendered at a settable pose X_CT (the camera
 // service's `--source sim`, the tests and benchmarks). The noise-free image is rendered
-// once per pose; each frame adds fresh sensor noise seeded by (seed, sequence), so a run
+// when a frame is asked for, once per pose; each frame adds fresh sensor noise seeded by (seed, sequence), so a run
 // is reproducible.
 #pragma once
 
@@ -36,8 +36,8 @@ class SimSource final : public DevicelessFrameSource {
  public:
   SimSource(const BoardSpec& board, const CameraIntrinsics& camera, SimSourceOptions options);
 
-  /// Places the board (thread-safe: may be called from a message handler); std::nullopt
-  /// takes it out of view.
+  /// Places the board for the next frames (thread-safe: may be called from a message
+  /// handler); std::nullopt takes it out of view.
   void SetPose(const std::optional<RigidTransform>& X_CT);
   std::optional<RigidTransform> pose() const;
 
@@ -47,11 +47,15 @@ class SimSource final : public DevicelessFrameSource {
   std::string Describe() const override { return "sim"; }
 
  private:
+  /// The noise-free image of the current pose, rendered if the pose changed since.
+  cv::Mat CleanImage();
+
   SimSourceOptions options_;
   BoardRenderer renderer_;
   mutable std::mutex mutex_;
-  std::optional<RigidTransform> X_CT_;
-  cv::Mat clean_;  // CV_32F noise-free image of the current scene
+  std::optional<RigidTransform> X_CT_;         ///< where the board is to be seen
+  std::optional<RigidTransform> clean_pose_;   ///< where it is in clean_
+  cv::Mat clean_;  // CV_32F noise-free image at clean_pose_ (empty: none rendered yet)
   int64_t sequence_ = 0;
   std::optional<int64_t> last_utime_;  ///< real time: stamp of the last frame
 };
