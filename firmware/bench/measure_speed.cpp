@@ -22,10 +22,20 @@ AprilGridSpec BoardIn(AprilGridLayout layout) {
   return board;
 }
 
+// The board tilted and rolled (its tags' sides at every angle to the pixel axes), or facing
+// the camera square (kAxisAligned: every side along a pixel axis, each fitted with both blur
+// stages, edge_refinement.h).
+enum class Roll { kTilted, kAxisAligned };
+
+RigidTransform PoseFor(Roll roll) {
+  return roll == Roll::kTilted ? scenes::BoardPose(scenes::PaperBoard(), 0.55, 0.3, 0.8, 0.4)
+                               : scenes::BoardPose(scenes::PaperBoard(), 0.55, 0.01, 0.8, 0.002);
+}
+
 struct Scene {
-  explicit Scene(AprilGridLayout layout = AprilGridLayout::kH4Legacy)
+  explicit Scene(AprilGridLayout layout = AprilGridLayout::kH4Legacy, Roll roll = Roll::kTilted)
       : source(BoardIn(layout), scenes::PaperCamera(), SimSourceOptions{}) {
-    source.SetPose(scenes::BoardPose(scenes::PaperBoard(), 0.55, 0.3, 0.8, 0.4));
+    source.SetPose(PoseFor(roll));
     for (int k = 0; k < 10; ++k) frames.push_back(*source.Next(std::chrono::milliseconds(0)));
     FrameAverager averager(10);
     for (const Frame& f : frames) averager.Add(f);
@@ -90,6 +100,17 @@ void BM_DetectEdgeFit(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(detector.Detect(scene.mean));
 }
 BENCHMARK(BM_DetectEdgeFit)->Unit(benchmark::kMillisecond);
+
+// Sides along the pixel axes: argument 0 with the pixel-blur refit (the default), 1 without
+// (EdgeFitOptions::pixel_blur_check_deg = 0): what the refit costs where it runs.
+void BM_DetectEdgeFitAxisAligned(benchmark::State& state) {
+  static const Scene scene(AprilGridLayout::kH4Legacy, Roll::kAxisAligned);
+  DetectorOptions options;
+  if (state.range(0) == 1) options.edge_fit.pixel_blur_check_deg = 0.0;
+  const BoardDetector detector(scenes::PaperBoard(), scenes::PaperCamera(), options);
+  for (auto _ : state) benchmark::DoNotOptimize(detector.Detect(scene.mean));
+}
+BENCHMARK(BM_DetectEdgeFitAxisAligned)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 void BM_DetectAprilTagOnly(benchmark::State& state) {
   const Scene& scene = TheScene();

@@ -18,6 +18,13 @@
 
 namespace h4::cam {
 
+/// Where the image's blur acted. A lens blurs the light before the pixels integrate it
+/// (kOptical, the profile above); an ISP's demosaicing and filters, or a renderer that blurs
+/// its pixels, blur the integrated pixel values (kPixel: a sampled Gaussian kernel over
+/// neighbouring pixels that integrated a sharp step). On sides along the pixel axes the two
+/// profiles differ in shape.
+enum class BlurStage { kOptical, kPixel };
+
 struct EdgeFitOptions {
   double band_px = 2.5;  ///< half width of the pixel band fitted around a side
   /// Width of the quad in cells (libapriltag's width_at_border: 8 for tag36h11, 10 with
@@ -47,6 +54,9 @@ struct EdgeFitOptions {
   /// A side whose RMS fit residual exceeds this fraction of its contrast fails (the band
   /// holds something other than a clean blurred step: an occluder, a shadow edge).
   double max_residual = 0.04;
+  /// Sides within this angle of a pixel axis are fitted with both blur stages and keep the
+  /// better fit (with the wrong one they lock to the pixel grid); 0: optical only.
+  double pixel_blur_check_deg = 6.0;
   /// Fit the light changing linearly along each side (an illumination gradient or
   /// vignetting scales the side's dark and bright levels together); with constant levels
   /// the fitted side tilts toward its darker end.

@@ -11,6 +11,7 @@
 #include <random>
 
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
 
 namespace h4::cam {
 namespace {
@@ -32,10 +33,10 @@ CameraIntrinsics FisheyeCamera() {
   return camera;
 }
 
-// Corners (ideal coordinates) of a 50 px square rotated by 17 degrees, clockwise in the
-// image (v down), centred off the pixel grid.
-Quad IdealSquare(const Eigen::Vector2d& centre, double half_side = 25.0) {
-  const double a = 17.0 * M_PI / 180.0;
+// Corners (ideal coordinates) of a 50 px square rotated by `degrees` (17 unless given),
+// clockwise in the image (v down), centred off the pixel grid.
+Quad IdealSquare(const Eigen::Vector2d& centre, double half_side = 25.0, double degrees = 17.0) {
+  const double a = degrees * M_PI / 180.0;
   const Eigen::Matrix2d R =
       (Eigen::Matrix2d() << std::cos(a), -std::sin(a), std::sin(a), std::cos(a)).finished();
   Quad q;
@@ -72,6 +73,34 @@ cv::Mat RenderQuad(const IdealPixelMap& map, const Quad& ideal, double blur_px,
       }
       image.at<float>(v, u) =
           static_cast<float>(kBright + (kDark - kBright) * inside / (kSamples * kSamples));
+    }
+  }
+  return image;
+}
+
+// The exact image of an axis-aligned square [x0, x1] x [y0, y1] (pixel coordinates of a lens
+// without distortion) blurred optically by `sigma`: each pixel the integral over its area,
+// separable in u and v (the integral of Phi is G(z) = z Phi(z) + pdf(z)). Exact at any
+// sub-pixel position, where supersampling would quantise the area.
+double CoveredFraction(double u, double lo, double hi, double sigma) {
+  const auto G = [](double z) {
+    return 0.5 * z * std::erfc(-z / std::sqrt(2.0)) + std::exp(-0.5 * z * z) / std::sqrt(2 * M_PI);
+  };
+  const auto beyond = [&](double edge) {
+    return sigma * (G((u + 0.5 - edge) / sigma) - G((u - 0.5 - edge) / sigma));
+  };
+  return beyond(lo) - beyond(hi);
+}
+
+cv::Mat RenderAlignedSquare(const IdealPixelMap& map, const Eigen::Vector2d& centre,
+                            double half_side, double sigma) {
+  cv::Mat image(map.height(), map.width(), CV_32FC1);
+  for (int v = 0; v < map.height(); ++v) {
+    for (int u = 0; u < map.width(); ++u) {
+      const double inside =
+          CoveredFraction(u, centre.x() - half_side, centre.x() + half_side, sigma) *
+          CoveredFraction(v, centre.y() - half_side, centre.y() + half_side, sigma);
+      image.at<float>(v, u) = static_cast<float>(kBright + (kDark - kBright) * inside);
     }
   }
   return image;
@@ -119,6 +148,48 @@ TEST(EdgeRefinement, FindsTheCornersOfABlurredQuadFromHalfAPixelOff) {
     // The start is 0.5 px off; a corner detector without the sides' model is pulled
     // inward by tenths of a pixel under such blur.
     EXPECT_LT(LargestError(corners, truth), 0.006) << "blur " << blur;
+  }
+}
+
+// Pixel locking (edge_refinement.h, BlurStage): a square whose sides run along the pixel
+// axes, its pixel values blurred after they integrated the light (OpenCV's GaussianBlur, as
+// an ISP's filters), sharp before or after 0.5 px of optical blur. Fitted with the optical
+// profile alone its corners land off by a few hundredths of a pixel depending on where the
+// edge falls within its pixel; with both profiles tried they must not. Several sub-pixel
+// positions, as locking depends on them.
+TEST(EdgeRefinement, SidesAlongThePixelAxesDoNotLockToThePixelGridUnderAPixelBlur) {
+  const IdealPixelMap map{CameraModel(PinholeCamera())};
+  EdgeFitOptions optical_only;
+  optical_only.pixel_blur_check_deg = 0.0;
+  for (double optical_blur : {0.02, 0.5}) {
+    double worst = 0, worst_optical_only = 0;
+    for (double phase : {0.0, 0.2, 0.35, 0.5, 0.7}) {
+      const Eigen::Vector2d centre(80.0 + phase, 60.0 + 0.5 * phase);
+      const Quad truth = PixelsOf(map, IdealSquare(centre, 25.0, 0.0));
+      cv::Mat image = RenderAlignedSquare(map, centre, 25.0, optical_blur);
+      cv::GaussianBlur(image, image, cv::Size(), 0.7, 0.7, cv::BORDER_REPLICATE);
+      Quad corners = Perturbed(truth), corners_optical_only = Perturbed(truth);
+      ASSERT_TRUE(RefineQuadCorners(image, map, EdgeFitOptions{}, &corners)) << phase;
+      ASSERT_TRUE(RefineQuadCorners(image, map, optical_only, &corners_optical_only)) << phase;
+      worst = std::max(worst, LargestError(corners, truth));
+      worst_optical_only = std::max(worst_optical_only, LargestError(corners_optical_only, truth));
+    }
+    EXPECT_LT(worst, 0.005) << "optical blur " << optical_blur;
+    // The scene can embarrass the optical profile: alone it locks.
+    EXPECT_GT(worst_optical_only, 3.0 * worst) << "optical blur " << optical_blur;
+  }
+}
+
+// The same square blurred optically only: the pixel blur must not be taken for it.
+TEST(EdgeRefinement, SidesAlongThePixelAxesUnderAnOpticalBlurKeepTheOpticalFit) {
+  const IdealPixelMap map{CameraModel(PinholeCamera())};
+  for (double phase : {0.0, 0.35, 0.7}) {
+    const Eigen::Vector2d centre(80.0 + phase, 60.0 + 0.5 * phase);
+    const Quad truth = PixelsOf(map, IdealSquare(centre, 25.0, 0.0));
+    Quad corners = Perturbed(truth);
+    ASSERT_TRUE(RefineQuadCorners(RenderAlignedSquare(map, centre, 25.0, 0.8), map,
+                                  EdgeFitOptions{}, &corners));
+    EXPECT_LT(LargestError(corners, truth), 0.002) << "phase " << phase;
   }
 }
 
