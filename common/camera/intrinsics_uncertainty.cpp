@@ -3,6 +3,9 @@
 // body rotation dw and a translation dt; its pixel by the camera model's J_uv_pCQ.
 #include "common/camera/intrinsics_uncertainty.h"
 
+#include <algorithm>
+#include <vector>
+
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 
@@ -49,17 +52,20 @@ bool ViewJacobiansOf(const CameraModel& model, const CalibrationViewFit& view,
 
 std::optional<IntrinsicsCovariance> IntrinsicsCovarianceOf(
     const CameraIntrinsics& camera, const std::vector<CalibrationViewFit>& views,
-    bool tie_focal_lengths) {
+    bool tie_focal_lengths, const std::vector<int>& held) {
   const CameraModel model(camera);
   const int n = model.intrinsic_count();
-  // Free intrinsics -> all: with tied focal lengths one column f, fx = (fx/fy) fy.
-  Eigen::MatrixXd T = Eigen::MatrixXd::Identity(n, n);
-  if (tie_focal_lengths) {
-    T = Eigen::MatrixXd::Zero(n, n - 1);
-    T(0, 0) = camera.K(0, 0) / camera.K(1, 1);
-    T(1, 0) = 1.0;
-    T.bottomRightCorner(n - 2, n - 2).setIdentity();
+  // Free intrinsics -> all: with tied focal lengths one column f, fx = (fx/fy) fy; a held
+  // intrinsic has no column.
+  std::vector<int> free_columns;
+  for (int i = tie_focal_lengths ? 1 : 0; i < n; ++i) {
+    if (i < 2 || std::find(held.begin(), held.end(), i) == held.end()) free_columns.push_back(i);
   }
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(n, static_cast<Eigen::Index>(free_columns.size()));
+  for (size_t c = 0; c < free_columns.size(); ++c) {
+    T(free_columns[c], static_cast<Eigen::Index>(c)) = 1.0;
+  }
+  if (tie_focal_lengths) T(0, 0) = camera.K(0, 0) / camera.K(1, 1);
   const Eigen::Index free = T.cols();
   Eigen::MatrixXd schur = Eigen::MatrixXd::Zero(free, free);
   double sum_sq = 0;

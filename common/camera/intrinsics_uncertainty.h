@@ -38,11 +38,13 @@ struct IntrinsicsCovariance {
 
 /// The intrinsics' covariance from the views that calibrated `camera` (formula above).
 /// `tie_focal_lengths`: the calibration kept fx/fy at its ratio (one focal parameter; the
-/// covariance of fx and fy is then fully correlated). nullopt when the views do not
-/// determine the intrinsics (a singular Schur complement) or a corner is behind the camera.
+/// covariance of fx and fy is then fully correlated). `held`: intrinsics the calibration
+/// held at their value (indices into fx, fy, cx, cy, distortion...; from 2 on), whose rows
+/// and columns are then zero. nullopt when the views do not determine the intrinsics (a
+/// singular Schur complement) or a corner is behind the camera.
 std::optional<IntrinsicsCovariance> IntrinsicsCovarianceOf(
     const CameraIntrinsics& camera, const std::vector<CalibrationViewFit>& views,
-    bool tie_focal_lengths);
+    bool tie_focal_lengths, const std::vector<int>& held = {});
 
 /// dX_CT/dc (6 x intrinsic count; body rotation, translation in C) of a board pose solved
 /// from the points `p_TQ` seen at X_CT through `camera`, using those that project inside

@@ -49,6 +49,7 @@ double CalibratePinhole(const std::vector<std::vector<cv::Point3f>>& object_poin
   *distortion = cv::Mat::zeros(rational ? 8 : 5, 1, CV_64F);
   int flags = options.fix_aspect_ratio ? cv::CALIB_FIX_ASPECT_RATIO : 0;
   if (rational) flags |= cv::CALIB_RATIONAL_MODEL;
+  if (options.hold_k3) flags |= cv::CALIB_FIX_K3;
   // OpenCV's default stops after 30 iterations; the rational model's 8 coefficients,
   // strongly correlated, are still moving then (0.03 px at the corner on exact data).
   const cv::TermCriteria criteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS,
@@ -272,6 +273,10 @@ bool IntrinsicsCalibrationOptions::IsValid(std::string* why) const {
     *why = fmt::format("outlier_factor must be > 1, got {:f}", outlier_factor);
     return false;
   }
+  if (hold_k3 && model == IntrinsicsModel::kEquidistant) {
+    *why = "hold_k3 is not available with the equidistant model (its k3 is another term)";
+    return false;
+  }
   if (fix_aspect_ratio && model == IntrinsicsModel::kEquidistant) {
     *why =
         "fix_aspect_ratio is not available with the equidistant model (cv::fisheye has no "
@@ -363,18 +368,19 @@ void FillCameraWithCovariance(const Solution& solution, cv::Size image_size,
                                                       [](const auto& v) { return v.used; }));
   FillCamera(solution, image_size, options.model, &result->camera);
   result->camera.avg_reprojection_error = result->rms_px;
-  if (const auto covariance =
-          IntrinsicsCovarianceOf(result->camera, solution.fits, options.fix_aspect_ratio)) {
+  // k3 comes after fx, fy, cx, cy and k1 k2 p1 p2.
+  constexpr int kK3Index = 8;
+  const std::vector<int> held = options.hold_k3 ? std::vector<int>{kK3Index} : std::vector<int>{};
+  if (const auto covariance = IntrinsicsCovarianceOf(result->camera, solution.fits,
+                                                     options.fix_aspect_ratio, held)) {
     result->camera.intrinsics_covariance = covariance->covariance;
     result->residual_sigma_px = covariance->sigma_px;
   }
 }
 
-}  // namespace
-
-IntrinsicsCalibrationResult CalibrateIntrinsics(const std::vector<CalibrationView>& views,
-                                                cv::Size image_size,
-                                                const IntrinsicsCalibrationOptions& options) {
+IntrinsicsCalibrationResult CalibrateOnce(const std::vector<CalibrationView>& views,
+                                          cv::Size image_size,
+                                          const IntrinsicsCalibrationOptions& options) {
   IntrinsicsCalibrationResult result;
   result.model = options.model;
   if (!options.IsValid(&result.message)) {
@@ -418,6 +424,30 @@ IntrinsicsCalibrationResult CalibrateIntrinsics(const std::vector<CalibrationVie
   }
   result.status = IntrinsicsCalibrationResult::Status::kOk;
   return result;
+}
+
+}  // namespace
+
+IntrinsicsCalibrationResult CalibrateIntrinsics(const std::vector<CalibrationView>& views,
+                                                cv::Size image_size,
+                                                const IntrinsicsCalibrationOptions& options) {
+  IntrinsicsCalibrationResult result = CalibrateOnce(views, image_size, options);
+  if (result.status != IntrinsicsCalibrationResult::Status::kFoldingDistortion ||
+      options.model != IntrinsicsModel::kRadTan || options.hold_k3) {
+    return result;
+  }
+  // The r^6 term is the one that bends the model back inside the image when the corners
+  // leave its edge empty (a real 30-view set: folding 404 px from the centre, the image
+  // reaching 407 px; tests/calibration/real_frames_test.cpp). Held at 0, as OpenCV's users
+  // often do, the others may describe the lens; if they fold too, the first refusal stands.
+  IntrinsicsCalibrationOptions without_k3 = options;
+  without_k3.hold_k3 = true;
+  IntrinsicsCalibrationResult held = CalibrateOnce(views, image_size, without_k3);
+  if (!held.ok()) return result;
+  const std::string fold = result.message.substr(0, result.message.find(". Add views"));
+  const std::string note = "k3 held at 0: with it free, " + fold;
+  held.message = held.message.empty() ? note : note + "; " + held.message;
+  return held;
 }
 
 std::string IntrinsicsCalibrationResult::Report() const {

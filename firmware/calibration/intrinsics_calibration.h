@@ -43,6 +43,9 @@ struct IntrinsicsCalibrationOptions {
   double outlier_factor = 3.0;
   /// Drop the outlier views and calibrate once more on the others (if >= min_views remain).
   bool drop_outliers = false;
+  /// Hold k3 at 0 (not with kEquidistant). CalibrateIntrinsics does so by itself when a
+  /// radtan fit with k3 free folds inside the image.
+  bool hold_k3 = false;
 
   bool IsValid(std::string* why) const;
 };

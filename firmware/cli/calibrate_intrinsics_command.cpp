@@ -132,6 +132,9 @@ void DeclareCalibrateIntrinsicsCommand(CLI::App* command) {
       ->transform(CLI::CheckedTransformer(models))
       ->default_str("radtan");
   command->add_flag("--fix-aspect-ratio", args->options.fix_aspect_ratio, "Calibrate with fx = fy");
+  command->add_flag("--hold-k3", args->options.hold_k3,
+                    "Hold k3 at 0 (radtan, rational); radtan does so by itself when k3 folds "
+                    "the lens model inside the image");
   command
       ->add_option("--min-views", args->options.min_views,
                    "Fewest images with the board to calibrate from")

@@ -240,9 +240,11 @@ TEST(IntrinsicsCalibration, AFitThatFoldsInsideTheImageIsRefused) {
     cv::projectPoints(views[i].object_points, rvec, tvec, TrueK(), folding,
                       views[i].image_points);
   }
+  // k1 folds it, not k3: holding k3 at 0 cannot help, and the first refusal stands.
   const auto result = CalibrateIntrinsics(views, cv::Size(640, 480), {});
   EXPECT_EQ(result.status, IntrinsicsCalibrationResult::Status::kFoldingDistortion)
       << result.message;
+  EXPECT_NE(result.camera.distortion[4], 0.0) << "the refusal of the fit with k3 free";
   EXPECT_NEAR(result.camera.distortion[0], -0.8, 0.05) << "the fit found the folding lens";
   EXPECT_NE(result.message.find("the lens model folds about"), std::string::npos)
       << result.message;
@@ -298,9 +300,13 @@ TEST(IntrinsicsCalibration, NamesAnOutlierViewAndDropsItWhenAsked) {
   const auto kept = CalibrateIntrinsics(views, cv::Size(640, 480), options);
   // Kept, the blurred view bends the distortion fit until it folds inside the image (about
   // 391 px from the principal point, the image reaching 418 px; the true lens does not
-  // fold): refused since issue 42 point 19, with every view still judged and reported.
-  ASSERT_EQ(kept.status, IntrinsicsCalibrationResult::Status::kFoldingDistortion)
+  // fold): fitted again with k3 held at 0, which says so, with every view still judged and
+  // reported.
+  ASSERT_TRUE(kept.ok()) << kept.message;
+  EXPECT_NE(kept.message.find("k3 held at 0: with it free, the lens model folds about"),
+            std::string::npos)
       << kept.message;
+  EXPECT_NE(kept.Report().find("k3 held at 0"), std::string::npos);
   for (size_t i = 0; i < views.size(); ++i) EXPECT_EQ(kept.views[i].outlier, i == 4) << i;
   EXPECT_EQ(kept.views_used, 11);
   EXPECT_NE(kept.Report().find("view4: 54 points"), std::string::npos);
