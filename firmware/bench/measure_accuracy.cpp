@@ -16,6 +16,12 @@
 //                            through the equidistant fisheye)
 //                            [board=legacy|kalibr] (the paper's 6 x 6 30 mm grid in h4cam's
 //                            earlier design, or in Kalibr's: 2-cell borders, corner squares)
+//                            [pixel_blur_check_deg=6] (EdgeFitOptions' field; 0: the optical
+//                            blur profile alone)
+//                            [roll=any|aligned] (aligned: the boards turned by a multiple of
+//                            90 deg and hardly tilted, every tag's sides along the pixel axes,
+//                            where an edge model that blurs differently from the image locks to
+//                            the pixel grid: firmware/detection/edge_refinement.h)
 // Conditions: clean, blur1.4, gamma0.7+blur0.7, srgb+blur1.0, gradient, all (the
 // "processed" preset: sRGB, defocus, gradient, vignetting, shot noise). Depths: range
 // 0.45-0.65 m, near 0.44-0.46 m, far 0.64-0.66 m, close 0.25-0.35 m. `rows` prints every
@@ -67,6 +73,8 @@ struct Args {
   std::string covariance;
   std::string camera_path;  ///< "" = scenes::PaperCamera()
   AprilGridLayout layout = AprilGridLayout::kH4Legacy;
+  bool aligned = false;
+  double pixel_blur_check_deg = EdgeFitOptions{}.pixel_blur_check_deg;
 };
 
 bool ParseArgs(int argc, char** argv, Args* args) {
@@ -93,6 +101,10 @@ bool ParseArgs(int argc, char** argv, Args* args) {
       args->camera_path = value;
     } else if (key == "board" && (value == "legacy" || value == "kalibr")) {
       args->layout = value == "kalibr" ? AprilGridLayout::kKalibr : AprilGridLayout::kH4Legacy;
+    } else if (key == "pixel_blur_check_deg") {
+      args->pixel_blur_check_deg = std::atof(value.c_str());
+    } else if (key == "roll" && (value == "any" || value == "aligned")) {
+      args->aligned = value == "aligned";
     } else if (key == "corner_floor_px") {
       args->corner_floor_px = std::atof(value.c_str());
     } else {
@@ -188,7 +200,9 @@ Result RunCondition(const Condition& condition, const DepthRange& depth, const A
   plain.refinement = CornerRefinement::kNone;
   const BoardDetector baseline(board, camera, plain);
   Result result;
-  const auto poses = scenes::RandomPoses(args.scenes, args.seed, depth.min_depth, depth.max_depth);
+  const auto poses =
+      args.aligned ? scenes::AxisAlignedPoses(args.scenes, args.seed, depth.min_depth, depth.max_depth)
+                   : scenes::RandomPoses(args.scenes, args.seed, depth.min_depth, depth.max_depth);
   for (size_t i = 0; i < poses.size(); ++i) {
     const RigidTransform& X_CT = poses[i];
     source.SetPose(X_CT);
@@ -249,6 +263,7 @@ int Run(const Args& args) {
                                 : args.refinement == "none"    ? CornerRefinement::kNone
                                 : args.refinement == "xcorner" ? CornerRefinement::kXCorner
                                                                : CornerRefinement::kEdgeFit;
+  options.detector.edge_fit.pixel_blur_check_deg = args.pixel_blur_check_deg;
   options.pose.corner_floor_px = args.corner_floor_px;
   options.pose.corner_floor_erosion_gain = args.corner_floor_erosion_gain;
   if (args.covariance == "residual") options.pose.covariance = CovarianceModel::kResidual;

@@ -179,17 +179,8 @@ double AddScene(const BoardDetection& detection, const CameraModel& camera,
 // The scenes: the paper's random poses, or (roll=aligned) boards turned by a multiple of 90 deg
 // and hardly tilted, whose tags' sides run along the pixel axes.
 std::vector<RigidTransform> ScenePoses(const Args& args) {
-  if (!args.aligned) return scenes::RandomPoses(args.scenes, args.seed);
-  cv::RNG rng(args.seed);
-  const AprilGridSpec board = scenes::PaperBoard();
-  std::vector<RigidTransform> poses;
-  for (int i = 0; i < args.scenes; ++i) {
-    const double roll = M_PI / 2 * (i % 4) + rng.uniform(-0.5, 0.5) * M_PI / 180;
-    poses.push_back(scenes::BoardPose(board, rng.uniform(0.45, 0.65),
-                                      rng.uniform(0.0, 2.0) * M_PI / 180, rng.uniform(-M_PI, M_PI),
-                                      roll, rng.uniform(-0.04, 0.04), rng.uniform(-0.03, 0.03)));
-  }
-  return poses;
+  return args.aligned ? scenes::AxisAlignedPoses(args.scenes, args.seed)
+                      : scenes::RandomPoses(args.scenes, args.seed);
 }
 
 CornerTally RunCondition(const bench::Condition& condition, const Args& args) {

@@ -522,9 +522,10 @@ SideFit FitPixelBlur(const std::vector<Sample>& pixels, const SideFit& start, do
 // Gauss-Newton on both diverges from some starts), then once more at the vertex of the
 // parabola through the best value and its neighbours. A short trial comes first, three
 // iterations on every third pixel of the band (on a side along the pixel axes every row sees
-// the same offsets): where it explains the pixels no better than the optical fit (an optical
-// blur, the usual case) nothing else is tried and the result's rms is infinite. The screen is
-// most of what the refit costs there (h4_measure_speed, BM_DetectEdgeFitAxisAligned).
+// the same offsets): where its residuals' RMS is not below kScreenRatio of the optical fit's
+// (an optical blur, the usual case) nothing else is tried and the result's rms is infinite.
+// The screen is most of what the refit costs there (h4_measure_speed,
+// BM_DetectEdgeFitAxisAligned; h4_measure_accuracy roll=aligned, CPU per pose).
 SideFit BestPixelBlurFit(const std::vector<Sample>& samples, const SideFit& optical_fit,
                          const EdgeFitOptions& options, double pixel_scale,
                          const InnerEdge& inner) {
@@ -532,6 +533,8 @@ SideFit BestPixelBlurFit(const std::vector<Sample>& samples, const SideFit& opti
   constexpr size_t kFirstTrial = 1;
   constexpr int kScreenIterations = 3;
   constexpr size_t kScreenStride = 3;
+  // Looser than the 0.8 RefitWithPixelBlur asks of the best fit: the screen's fit is short.
+  constexpr double kScreenRatio = 0.85;
   const auto fit = [&](const std::vector<Sample>& pixels, double optical, int iterations) {
     return FitPixelBlur(pixels, optical_fit, optical, iterations, pixel_scale,
                         options.fit_shading, inner);
@@ -539,7 +542,8 @@ SideFit BestPixelBlurFit(const std::vector<Sample>& samples, const SideFit& opti
   std::vector<Sample> screen;
   for (size_t i = 0; i < samples.size(); i += kScreenStride) screen.push_back(samples[i]);
   if (static_cast<int>(screen.size()) >= options.min_pixels &&
-      !(fit(screen, kOpticalParts[kFirstTrial], kScreenIterations).rms < optical_fit.rms)) {
+      !(fit(screen, kOpticalParts[kFirstTrial], kScreenIterations).rms <
+        kScreenRatio * optical_fit.rms)) {
     return SideFit{};
   }
   std::array<SideFit, kOpticalParts.size()> trials;
@@ -576,9 +580,11 @@ void RefitWithPixelBlur(const std::vector<Sample>& samples, const EdgeFitOptions
   // neither profile fits and the pixel blur's explains a little more while biasing the side
   // more. So the pixel blur must explain the pixels clearly better: its residuals' RMS below
   // kMaxRatio of the optical fit's, and their sum of squares lower by kEvidence times the
-  // noise's variance. Measured with h4_measure_corners roll=aligned scenes=3, the RMS ratio
-  // per side is 0.49 on average with a blur of the pixel values (830 of 864 sides below 0.8)
-  // and above 0.9 on every side of the optical-blur conditions, gamma and sRGB included.
+  // noise's variance. Measured with h4_measure_corners roll=aligned scenes=3 while the pixel
+  // blur had no optical part, the RMS ratio per side was 0.49 on average with a blur of the
+  // pixel values (830 of 864 sides below 0.8) and above 0.9 on every side of the
+  // optical-blur conditions, gamma and sRGB included; with the optical part tried, the
+  // benchmark's optical-blur figures stay unchanged (docs/results.md).
   constexpr double kMaxRatio = 0.8;
   constexpr double kEvidence = 9.0;
   const double n = static_cast<double>(samples.size());

@@ -53,6 +53,21 @@ std::vector<RigidTransform> RandomPoses(int count, uint64_t seed, double min_dep
   return poses;
 }
 
+std::vector<RigidTransform> AxisAlignedPoses(int count, uint64_t seed, double min_depth,
+                                             double max_depth) {
+  cv::RNG rng(seed);
+  const AprilGridSpec board = PaperBoard();
+  std::vector<RigidTransform> poses;
+  for (int i = 0; i < count; ++i) {
+    const double roll = std::numbers::pi / 2 * (i % 4) + RadiansFromDegrees(rng.uniform(-0.5, 0.5));
+    poses.push_back(BoardPose(board, rng.uniform(min_depth, max_depth),
+                              RadiansFromDegrees(rng.uniform(0.0, 2.0)),
+                              rng.uniform(-std::numbers::pi, std::numbers::pi), roll,
+                              rng.uniform(-0.04, 0.04), rng.uniform(-0.03, 0.03)));
+  }
+  return poses;
+}
+
 cv::Mat AveragedFrames(const BoardRenderer& renderer, const cv::Mat& clean, int frames,
                        uint64_t seed) {
   cv::RNG rng(seed);

@@ -26,6 +26,10 @@ RigidTransform BoardPose(const AprilGridSpec& board, double depth, double tilt, 
 /// the board centre's depth drawn in [min_depth, max_depth] (m) instead.
 std::vector<RigidTransform> RandomPoses(int count, uint64_t seed, double min_depth = 0.45,
                                         double max_depth = 0.65);
+/// Scene poses whose tags' sides run along the pixel axes: the board turned by a multiple of
+/// 90 deg (+-0.5) and tilted at most 2 deg, its centre's depth in [min_depth, max_depth] (m).
+std::vector<RigidTransform> AxisAlignedPoses(int count, uint64_t seed, double min_depth = 0.45,
+                                             double max_depth = 0.65);
 /// The CV_32F mean of `frames` noisy renderings of the clean image.
 cv::Mat AveragedFrames(const BoardRenderer& renderer, const cv::Mat& clean, int frames,
                        uint64_t seed);
