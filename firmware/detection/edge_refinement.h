@@ -21,8 +21,8 @@ namespace h4::cam {
 /// Where the image's blur acted. A lens blurs the light before the pixels integrate it
 /// (kOptical, the profile above); an ISP's demosaicing and filters, or a renderer that blurs
 /// its pixels, blur the integrated pixel values (kPixel: a sampled Gaussian kernel over
-/// neighbouring pixels that integrated a sharp step). On sides along the pixel axes the two
-/// profiles differ in shape.
+/// neighbouring pixels that integrated a step the lens blurred a little). On sides along the
+/// pixel axes the two profiles differ in shape.
 enum class BlurStage { kOptical, kPixel };
 
 struct EdgeFitOptions {
@@ -54,8 +54,9 @@ struct EdgeFitOptions {
   /// A side whose RMS fit residual exceeds this fraction of its contrast fails (the band
   /// holds something other than a clean blurred step: an occluder, a shadow edge).
   double max_residual = 0.04;
-  /// Sides within this angle of a pixel axis are fitted with both blur stages and keep the
-  /// better fit (with the wrong one they lock to the pixel grid); 0: optical only.
+  /// Sides within this angle of a pixel axis are also fitted with a pixel blur where a short
+  /// screening fit says it may fit better, and keep it where it clearly does (with the wrong
+  /// profile they lock to the pixel grid); 0: optical only.
   double pixel_blur_check_deg = 6.0;
   /// Fit the light changing linearly along each side (an illumination gradient or
   /// vignetting scales the side's dark and bright levels together); with constant levels
