@@ -37,13 +37,11 @@
 #include "firmware/calibration/intrinsics_calibration.h"
 #include "firmware/detection/board_detector.h"
 #include "firmware/detection/tag_prediction.h"
+#include "tests/calibration/real_frames_helpers.h"
 
 namespace h4::cam {
 namespace {
 
-namespace fs = std::filesystem;
-
-const std::string kSet = "yac_mocap_d435i";
 
 // Each frame (its file name less .jpg) with the number of tags whose whole border is in
 // the image.
@@ -64,16 +62,6 @@ const std::array<Frame, 30> kFrames = {{
     {"1606154148298093319", 36}, {"1606154155277716398", 30}, {"1606154165058666229", 36},
 }};
 
-// The folder of the set, or "" when no candidate holds it.
-std::string SetDir() {
-  std::vector<std::string> roots;
-  if (const char* env = std::getenv("H4_REAL_FRAMES_DIR")) roots.emplace_back(env);
-  roots.push_back(std::string(H4_SOURCE_DIR) + "/tests/data/real_frames");
-  for (const std::string& root : roots) {
-    if (fs::is_directory(root + "/" + kSet)) return root + "/" + kSet;
-  }
-  return "";
-}
 
 BoardSpec Board() {
   return ReadBoardYaml(std::string(H4_SOURCE_DIR) + "/boards/kalibr_aprilgrid_6x6_88mm.yaml");
@@ -109,9 +97,10 @@ bool OuterGridCorner(int corner_id) {
 class RealFrames : public testing::Test {
  protected:
   void SetUp() override {
-    dir_ = SetDir();
+    dir_ = RealFramesDir();
     if (dir_.empty()) {
-      GTEST_SKIP() << "no " << kSet << "/ in $H4_REAL_FRAMES_DIR or tests/data/real_frames "
+      GTEST_SKIP() << "no " << kRealFrameSet
+                   << "/ in $H4_REAL_FRAMES_DIR or tests/data/real_frames "
                    << "(tests/data/real_frames/README.md says where to get them)";
     }
     for (const Frame& frame : kFrames) {

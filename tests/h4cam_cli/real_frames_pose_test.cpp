@@ -24,23 +24,14 @@
 #include "firmware/calibration/intrinsics_calibration.h"
 #include "firmware/detection/board_detector.h"
 #include "firmware/pose/pose_estimator.h"
+#include "tests/calibration/real_frames_helpers.h"
 
 namespace h4::cam {
 namespace {
 
 namespace fs = std::filesystem;
 
-const std::string kSet = "yac_mocap_d435i";
 
-std::string SetDir() {
-  std::vector<std::string> roots;
-  if (const char* env = std::getenv("H4_REAL_FRAMES_DIR")) roots.emplace_back(env);
-  roots.push_back(std::string(H4_SOURCE_DIR) + "/tests/data/real_frames");
-  for (const std::string& root : roots) {
-    if (fs::is_directory(root + "/" + kSet)) return root + "/" + kSet;
-  }
-  return "";
-}
 
 struct FrameFile {
   std::string name;
@@ -71,9 +62,10 @@ struct Mean {
 };
 
 TEST(RealFramesPose, ErosionAgreesBetweenHalvesAndThePixelBlurRefitDoesNotWorsenThePose) {
-  const std::string dir = SetDir();
+  const std::string dir = RealFramesDir();
   if (dir.empty()) {
-    GTEST_SKIP() << "no " << kSet << "/ in $H4_REAL_FRAMES_DIR or tests/data/real_frames "
+    GTEST_SKIP() << "no " << kRealFrameSet
+                   << "/ in $H4_REAL_FRAMES_DIR or tests/data/real_frames "
                  << "(tests/data/real_frames/README.md says where to get them)";
   }
   const std::vector<FrameFile> frames = ReadFrames(dir);
