@@ -19,6 +19,16 @@ endif()
 h4_add_man_page(h4cal "vision-based kinematic calibration of H4 parallel robots" h4cal)
 h4_add_man_page(h4cam "camera module of the H4 calibration: board poses from images" h4cal
                 h4cam)
+# Everything `cmake --install` copies from the build tree, and no more: scripts/demo builds
+# this, so that installing after the demo works (tests/packaging/install_test.sh checks it
+# against the install rules).
+set(h4_installed_targets h4cal h4cam)
+foreach(page h4cal_man_page h4cam_man_page)
+  if(TARGET ${page})
+    list(APPEND h4_installed_targets ${page})
+  endif()
+endforeach()
+add_custom_target(h4_workstation DEPENDS ${h4_installed_targets})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/boards/ DESTINATION share/h4cal/boards COMPONENT h4cal
         FILES_MATCHING PATTERN "*.yaml" PATTERN "*.svg" PATTERN "*.pdf" PATTERN "*.md")
 foreach(doc README.md common/README.md common/formats/README.md messages/README.md

@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Installed like a tool: `cmake --install` into a scratch DESTDIR puts h4cal and
-# h4cam in bin, their man pages in share/man/man1 (one section per subcommand), the boards
+# Installed like a tool: `cmake --install BUILD --prefix P` (every component, as after the
+# demo) writes nothing outside P (issue 43: the camera's unit and configuration went to /etc
+# and /lib/systemd whatever the prefix), the unit it puts in P names P's program and
+# configuration; it puts h4cal and h4cam in bin, their man pages in share/man/man1 (one section per subcommand), the boards
 # in share/h4cal/boards and the documentation in share/doc/h4cal; both installed programs
 # answer --version and --help, and so does every subcommand (exit 0, non-empty output).
 # Then the workstation package, h4cal_<version>_<arch>.deb (cpack --config
@@ -16,6 +18,33 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 DESTDIR=$scratch/root cmake --install "$build" --prefix /opt/h4 > "$scratch/install.log" 2>&1 \
   || { cat "$scratch/install.log"; fail "cmake --install"; }
 prefix=$scratch/root/opt/h4
+# What the install copies from the build tree (the install rules name it) is made by the
+# target h4_workstation, all that scripts/demo builds: installing after the demo works.
+if [ -f "$build/build.ninja" ]; then
+  inputs() {  # the inputs ninja names for each target (not what it feeds: "outputs:")
+    for target in "$@"; do
+      ninja -C "$build" -t query "$target" |
+        awk '/^  input:/ { on = 1; next } /^  outputs:/ { on = 0 } on { print $NF }'
+    done
+  }
+  first=$(inputs h4_workstation)
+  made=$(printf '%s\n' $first; inputs $first)
+  copied=$(grep -rh '^ *file(INSTALL ' "$build" --include=cmake_install.cmake |
+             grep -oE "\"$build/[^\"]+\"" | tr -d '"' | sort -u)
+  [ -n "$copied" ] || fail "no install rule copies a file of the build tree: the check reads nothing"
+  for file in $copied; do
+    grep -qxF "${file#"$build"/}" <<< "$made" ||
+      fail "cmake --install copies ${file#"$build"/}, which target h4_workstation (the demo's build) does not make"
+  done
+fi
+# A scratch DESTDIR, so that a rule escaping the prefix lands in it, where it shows.
+outside=$(find "$scratch/root" -not -type d -not -path "$prefix/*")
+[ -z "$outside" ] || fail "cmake --install --prefix /opt/h4 wrote outside the prefix: $outside"
+unit=$prefix/lib/systemd/system/h4cam.service
+[ -s "$unit" ] || fail "the camera service's unit is not in P/lib/systemd/system"
+[ -s "$prefix/etc/h4cam/h4cam.yaml" ] || fail "the camera's configuration is not in P/etc/h4cam"
+grep -qx "ExecStart=/opt/h4/bin/h4cam run --config /opt/h4/etc/h4cam/h4cam.yaml" "$unit" ||
+  fail "the unit does not run P's h4cam with P's configuration: $(grep ExecStart= "$unit")"
 
 subcommands() {  # CLI11's listing of the program's subcommands
   "$1" --help | sed -nE '/^(Subcommands|SUBCOMMANDS):/,/^$/ s/^  ([a-z][a-z0-9-]*)( .*)?$/\1/p'
