@@ -1,6 +1,7 @@
 // Loading the validation inputs and the text summary (see validation_inputs.h).
 #include "host/cli/validation_inputs.h"
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <iterator>
@@ -52,7 +53,7 @@ std::optional<IdentificationResult> ReadResult(const std::string& path, ModelKin
 
 // The square plan and the measured runs; the plan also sets the simulated square.
 void LoadSquareRuns(const ValidationFileOptions& o, const std::string& result12_path,
-                    ValidationInputs* in) {
+                    const std::string& result31_path, ValidationInputs* in) {
   if (o.square_measured.empty() != o.square_plan_path.empty()) {
     throw std::invalid_argument(
         o.square_measured.empty()
@@ -61,10 +62,23 @@ void LoadSquareRuns(const ValidationFileOptions& o, const std::string& result12_
             : "--square-measured needs --square-plan, the plan the runs were collected along");
   }
   if (o.square_measured.empty()) return;
-  if (result12_path.empty()) {
-    throw std::invalid_argument(
-        "--square-measured needs --result12: the Model 12 result's camera and board placement "
-        "(X_BC, X_TE) turn the measured board poses into end-effector poses");
+  const auto has_result = [&](ModelKind kind) {
+    return !(kind == ModelKind::k12 ? result12_path : result31_path).empty();
+  };
+  for (const std::string& value : o.square_measured) {
+    const std::string label = SplitSquareMeasured(value).first;
+    const std::optional<ModelKind> model = ModelDrivingSquare(label);
+    if (model && !has_result(*model)) {
+      throw std::invalid_argument(fmt::format(
+          "--square-measured \"{}\" needs --result{}: a square {} drove is judged in {}'s "
+          "base frame, through the camera and board placement (X_BC, X_TE) it identified",
+          label, ToString(*model), ModelLabel(*model), ModelLabel(*model)));
+    }
+    if (!model && !has_result(ModelKind::k12) && !has_result(ModelKind::k31)) {
+      throw std::invalid_argument(
+          "--square-measured needs --result12 or --result31: an identified camera and board "
+          "placement (X_BC, X_TE) turns the measured board poses into end-effector poses");
+    }
   }
   CheckExists(o.square_plan_path);
   in->square_plan = SquarePlanFromPoses(ReadPosesCsv(o.square_plan_path), o.square_plan_path);
@@ -78,7 +92,7 @@ void LoadSquareRuns(const ValidationFileOptions& o, const std::string& result12_
   for (const std::string& value : o.square_measured) {
     const auto [label, path] = SplitSquareMeasured(value);
     CheckExists(path);
-    in->square_measured.push_back({label, path, ReadDatasetCsv(path)});
+    in->square_measured.push_back({label, path, ReadDatasetCsv(path), ModelDrivingSquare(label)});
   }
 }
 
@@ -127,8 +141,10 @@ void AddValidationFileOptions(CLI::App* command, ValidationFileOptions* o) {
   command
       ->add_option("--square-measured", o->square_measured,
                    "LABEL=DATASET, repeatable: dataset CSV collected along --square-plan by the "
-                   "LABEL controller (e.g. \"a priori=sq_apriori.csv\"); needs --result12 for "
-                   "the camera and board placement")
+                   "LABEL controller (e.g. \"a priori=sq_apriori.csv\"). LABEL \"Model 12\" or "
+                   "\"Model 31\": that model drove it, and its square is judged in that model's "
+                   "base frame (needs its --result12/--result31); another LABEL is judged in "
+                   "the frame of --result12, else --result31")
       ->take_all();
   h4::cli::AddInputFileOption(command, "--corners", &o->corners_path,
                               "Corners CSV measured with the dataset's poses (h4cal collect, "
@@ -138,6 +154,43 @@ void AddValidationFileOptions(CLI::App* command, ValidationFileOptions* o) {
   h4::cli::AddCameraOption(command, &o->camera_path,
                            "Camera YAML h4cam measured with the corners (OpenCV, or Kalibr's "
                            "camchain.yaml#camN)");
+}
+
+std::optional<ModelKind> ModelDrivingSquare(const std::string& label) {
+  std::string key;
+  for (const char c : label) {
+    if (c != ' ') key += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  if (key.rfind("model", 0) == 0) key.erase(0, 5);
+  return ParseModelKind(key);
+}
+
+std::string MeasuredSquareLines(const std::vector<MeasuredSquareRun>& runs) {
+  std::string t;
+  bool another_frame = false;
+  for (const MeasuredSquareRun& m : runs) {
+    const SquareRun& s = m.run;
+    another_frame = another_frame || !m.own_frame;
+    // The shape first: it needs no frame. The offset and the mean error depend on the frame.
+    t += fmt::format(
+        "Square (measured), {} controller, in {}'s base frame{}: shape {:.2f} mm (offset "
+        "removed); side RMS {:.2f} {:.2f} {:.2f} {:.2f} mm, mean |measured - commanded| {:.2f} "
+        "mm, offset ({:.2f}, {:.2f}, {:.2f}) mm; {} of {} points",
+        m.label, ModelLabel(m.frame), m.own_frame ? " (its own)" : "", s.shape_rms * 1e3,
+        s.sides[0].rms * 1e3, s.sides[1].rms * 1e3, s.sides[2].rms * 1e3, s.sides[3].rms * 1e3,
+        s.mean_position_error * 1e3, s.offset[0] * 1e3, s.offset[1] * 1e3, s.offset[2] * 1e3,
+        s.reached.size(), m.planned);
+    t += (m.missing_ids.empty() ? "\n" : " (missing pose ids " + PoseIdList(m.missing_ids) + ")\n");
+  }
+  if (!runs.empty()) {
+    t += "  offset: mean measured - commanded position. A square judged in the base frame of "
+         "the model that drove it: that model's absolute error there.";
+    t += another_frame ? " Judged in another model's frame (the a priori model has no camera "
+                         "placement of its own): it also holds the difference between the two "
+                         "base frames, which the camera cannot separate; compare shapes.\n"
+                       : "\n";
+  }
+  return t;
 }
 
 std::pair<std::string, std::string> SplitSquareMeasured(const std::string& value) {
@@ -161,9 +214,9 @@ ValidationInputs LoadValidationInputs(const ValidationFileOptions& o) {
   const std::string r31 =
       Resolve(o.result31_path, has_sim ? sim.result(ModelKind::k31) : "", false, "");
   const std::string truth = Resolve(o.truth_path, has_sim ? sim.truth() : "", false, "");
-  // The square runs first: a missing --result12 is named before any file is read.
+  // The square runs first: a missing result is named before any file is read.
   in.square.side = o.square_mm * 1e-3;
-  LoadSquareRuns(o, r12, &in);
+  LoadSquareRuns(o, r12, r31, &in);
   for (const auto& path : {robot, data, truth}) CheckExists(path);
   in.apriori = ReadRobotYaml(robot);
   in.rows = ReadDatasetCsv(data);
@@ -270,17 +323,7 @@ std::string FormatValidationText(const ValidationReport& report) {
         v.square->sides[2].rms * 1e3, v.square->sides[3].rms * 1e3, v.square->shape_rms * 1e3,
         v.square->mean_position_error * 1e3);
   }
-  for (const auto& m : report.measured_squares) {
-    const SquareRun& s = m.run;
-    t += fmt::format(
-        "Square (measured), {} controller: side RMS {:.2f} {:.2f} {:.2f} {:.2f} mm, shape "
-        "{:.2f} mm, mean |measured - commanded| {:.2f} mm, offset ({:.2f}, {:.2f}, {:.2f}) mm; "
-        "{} of {} points",
-        m.label, s.sides[0].rms * 1e3, s.sides[1].rms * 1e3, s.sides[2].rms * 1e3,
-        s.sides[3].rms * 1e3, s.shape_rms * 1e3, s.mean_position_error * 1e3, s.offset[0] * 1e3,
-        s.offset[1] * 1e3, s.offset[2] * 1e3, s.reached.size(), m.planned);
-    t += (m.missing_ids.empty() ? "\n" : " (missing pose ids " + PoseIdList(m.missing_ids) + ")\n");
-  }
+  t += MeasuredSquareLines(report.measured_squares);
   for (const auto& v : report.models) {
     if (!v.accuracy_map) continue;
     t += fmt::format(

@@ -4,6 +4,7 @@
 // datasets); or --sim-dir, the folder `h4cal simulate` wrote.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -39,7 +40,16 @@ struct ValidationFileOptions {
 /// is empty or there is no '='.
 std::pair<std::string, std::string> SplitSquareMeasured(const std::string& value);
 
+/// The identified model a --square-measured LABEL names as the one that drove the run:
+/// "Model 12", "model31", "31" (case and spaces aside); nullopt for any other controller
+/// ("a priori").
+std::optional<ModelKind> ModelDrivingSquare(const std::string& label);
+
 void AddValidationFileOptions(CLI::App* command, ValidationFileOptions* options);
+
+/// The console lines of the measured square runs: each run's shape (offset removed) first,
+/// then its side errors and offset in the frame it is judged in, and what the offset is.
+std::string MeasuredSquareLines(const std::vector<MeasuredSquareRun>& runs);
 
 /// Reads every file; throws naming the file on any problem (missing file, wrong model).
 ValidationInputs LoadValidationInputs(const ValidationFileOptions& options);

@@ -35,6 +35,12 @@ IdentifiedRobot RebuildFromResult(const IdentificationResult& result, const Asse
   return robot;
 }
 
+RigidTransform CameraInPlanFrame(const IdentificationResult& result,
+                                 const Model12Parameters& apriori) {
+  if (result.model == ModelKind::k12) return result.X_BC;
+  return NominalX_B31B(apriori).inverse() * result.X_BC;
+}
+
 void RequireModel12Result(const IdentificationResult& result, const std::string& source,
                           const std::string& use) {
   if (result.model == ModelKind::k12) return;

@@ -31,6 +31,14 @@ struct IdentifiedRobot {
 IdentifiedRobot RebuildFromResult(const IdentificationResult& result,
                                   const Assembly& assembly = Assembly{});
 
+/// The identified camera pose in B, the frame plans and the control law command poses in
+/// (host/campaign/control_law.h): a Model 12 result's X_BC as it is; a Model 31 result's
+/// X_B31C moved to B with the a priori Model 12's nominal X_B31B, the transform the control
+/// law maps B to B31 with (X_BC = inv(X_B31B) X_B31C). This is the model's own base frame
+/// as a user of that controller sees it.
+RigidTransform CameraInPlanFrame(const IdentificationResult& result,
+                                 const Model12Parameters& apriori);
+
 /// The one check that a result is Model 12's (the --from start of Model 31): throws
 /// std::invalid_argument "SOURCE: USE needs a Model 12 result, this is Model 31" (without "SOURCE:
 /// " when source is empty).

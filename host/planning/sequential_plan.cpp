@@ -36,8 +36,8 @@ RobotDescription IdentifiedDescription(const RobotDescription& apriori,
   robot.X_TE = identified.X_TE;
   if (const auto* model31 = dynamic_cast<const Model31*>(identified.model.get())) {
     robot.model31 = model31->model31_parameters();
-    // X_BC = inv(X_B31B) X_B31C: B is the a priori's, as the plan's poses are.
-    robot.X_BC = NominalX_B31B(apriori.model12).inverse() * identified.X_BC;
+    // B is the a priori's, as the plan's poses are.
+    robot.X_BC = CameraInPlanFrame(result, apriori.model12);
   } else {
     robot.model12 = dynamic_cast<const Model12&>(*identified.model).model12_parameters();
     robot.model31.reset();

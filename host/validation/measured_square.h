@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 
 #include "common/geometry/rigid_transform.h"
+#include "host/kinematics/model_kind.h"
 #include "host/formats/dataset_csv.h"
 #include "host/formats/poses_csv.h"
 #include "host/validation/square_path.h"
@@ -43,6 +44,12 @@ SquarePlan SquarePlanFromPoses(const std::vector<EndEffectorPoseRow>& rows,
 struct MeasuredSquareRun {
   std::string label;                 ///< the controller that drove the robot, e.g. "a priori"
   std::string dataset_name;          ///< for messages and the report
+  /// The identified model whose base frame the square is judged in (its camera and board
+  /// placement turn the board poses into end-effector positions), and whether that model
+  /// drove the run. In its own frame the offset is the model's absolute error; in another
+  /// model's it also holds the two base frames' difference, which no measurement separates.
+  ModelKind frame = ModelKind::k12;
+  bool own_frame = false;
   SquareRun run;                     ///< over the measured points (reached = measured)
   size_t planned = 0;                ///< points in the plan
   std::vector<int64_t> missing_ids;  ///< plan points with no row in the dataset (skipped)

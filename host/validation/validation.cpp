@@ -97,15 +97,35 @@ bool SameModel12(const Model12Parameters& a, const Model12Parameters& b) {
   return same;
 }
 
-// The measured square runs: the board poses through the Model 12 result's placement.
+// The result whose base frame a measured run is judged in: the model that drove it, else
+// (the a priori controller, which has no camera placement of its own) Model 12's, else 31's.
+const IdentificationResult& FrameOfRun(const ValidationInputs& in, const MeasuredSquareInput& m) {
+  const auto given = [&in](ModelKind kind) -> const std::optional<IdentificationResult>& {
+    return kind == ModelKind::k12 ? in.result12 : in.result31;
+  };
+  if (m.driven_by) {
+    if (!given(*m.driven_by)) {
+      throw std::invalid_argument(fmt::format(
+          "the measured square \"{}\" was driven by {}: its square is judged in that model's "
+          "base frame, give its result (--result{})",
+          m.label, ModelLabel(*m.driven_by), ToString(*m.driven_by)));
+    }
+    return *given(*m.driven_by);
+  }
+  if (in.result12) return *in.result12;
+  if (in.result31) return *in.result31;
+  throw std::invalid_argument(fmt::format(
+      "the measured square \"{}\" needs an identified result (--result12 or --result31): its "
+      "camera and board placement X_BC, X_TE turn the measured board poses into end-effector "
+      "poses",
+      m.label));
+}
+
+// The measured square runs: the board poses through the placement of the model that drove
+// each (FrameOfRun).
 std::vector<MeasuredSquareRun> MeasuredSquares(const ValidationInputs& in) {
   std::vector<MeasuredSquareRun> runs;
   if (in.square_measured.empty()) return runs;
-  if (!in.result12) {
-    throw std::invalid_argument(
-        "the measured square runs need a Model 12 result (--result12): its identified camera "
-        "and board placement X_BC, X_TE turn the measured board poses into end-effector poses");
-  }
   if (!in.square_plan) {
     throw std::invalid_argument(
         "the measured square runs need the plan they were driven through (--square-plan)");
@@ -116,8 +136,13 @@ std::vector<MeasuredSquareRun> MeasuredSquares(const ValidationInputs& in) {
       throw std::invalid_argument(
           fmt::format("two measured square runs are labelled \"{}\"", m.label));
     }
-    runs.push_back(MeasuredSquareOf(*in.square_plan, m.rows, in.result12->X_BC, in.result12->X_TE,
-                                    m.label, m.dataset_name));
+    const IdentificationResult& frame = FrameOfRun(in, m);
+    MeasuredSquareRun run =
+        MeasuredSquareOf(*in.square_plan, m.rows, CameraInPlanFrame(frame, in.apriori.model12),
+                         frame.X_TE, m.label, m.dataset_name);
+    run.frame = frame.model;
+    run.own_frame = m.driven_by == frame.model;
+    runs.push_back(std::move(run));
   }
   return runs;
 }

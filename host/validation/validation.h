@@ -35,6 +35,10 @@ struct MeasuredSquareInput {
   std::string label;
   std::string dataset_name;  ///< for messages
   std::vector<DatasetRow> rows;
+  /// The identified model whose inverse kinematics drove the robot, when one did (labels
+  /// "Model 12", "Model 31"): its square is judged in that model's base frame. Empty for
+  /// another controller (the a priori model), judged in the frame of the result given.
+  std::optional<ModelKind> driven_by;
 };
 
 struct ValidationInputs {
@@ -47,7 +51,7 @@ struct ValidationInputs {
   std::optional<SimulationTruth> truth;              ///< simulation: the true robot
   SquareOptions square;                              ///< the simulated square
   std::optional<SquarePlan> square_plan;             ///< commanded points of the measured runs
-  std::vector<MeasuredSquareInput> square_measured;  ///< needs square_plan and result12
+  std::vector<MeasuredSquareInput> square_measured;  ///< needs square_plan and a result
   /// The corners the camera measured with the dataset's poses, on `board`, through `camera`
   /// (the camera file h4cam measured with): the report's corner residual map. All three or
   /// none.

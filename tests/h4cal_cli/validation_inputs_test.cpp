@@ -44,9 +44,24 @@ TEST(ValidateText, HeldOutPosesAreCountedAsNotInTheFit) {
 TEST(ValidateText, MeasuredSquaresArePrinted) {
   const std::string text =
       cli::FormatValidationText(Validate(WithMeasuredSquares(PaperValidationInputs())));
-  EXPECT_TRUE(Contains(text, "Square (measured), a priori controller: side RMS"));
-  EXPECT_TRUE(
-      Contains(text, "Square (measured), Model 12 controller: side RMS 0.00 0.00 0.00 0.00 mm"));
+  EXPECT_TRUE(Contains(text, "Square (measured), a priori controller, in Model 12's base frame: "
+                             "shape "));
+  EXPECT_TRUE(Contains(text,
+                       "Square (measured), Model 12 controller, in Model 12's base frame (its "
+                       "own): shape 0.00 mm (offset removed); side RMS 0.00 0.00 0.00 0.00 mm"));
+  EXPECT_TRUE(Contains(text, "  offset: mean measured - commanded position."));
+}
+
+// A label names the model that drove the run (its square is judged in that model's frame);
+// any other controller is nullopt.
+TEST(ValidationInputs, SquareMeasuredLabelNamesTheModelThatDroveTheRun) {
+  EXPECT_EQ(cli::ModelDrivingSquare("Model 12"), ModelKind::k12);
+  EXPECT_EQ(cli::ModelDrivingSquare("Model 31"), ModelKind::k31);
+  EXPECT_EQ(cli::ModelDrivingSquare("model31"), ModelKind::k31);
+  EXPECT_EQ(cli::ModelDrivingSquare("31"), ModelKind::k31);
+  EXPECT_EQ(cli::ModelDrivingSquare("a priori"), std::nullopt);
+  EXPECT_EQ(cli::ModelDrivingSquare("Model 13"), std::nullopt);
+  EXPECT_EQ(cli::ModelDrivingSquare("Model 12 retake"), std::nullopt);
 }
 
 TEST(ValidationInputs, SquareMeasuredSplitsLabelAndDatasetAtTheFirstEquals) {

@@ -150,8 +150,13 @@ TEST(Report, MeasuredSquareRunsAddTheirRowsAndFigure) {
   // Residuals, histograms, straightness, square, measured square.
   EXPECT_EQ(Count(html, "<svg"), 6);
   EXPECT_EQ(NotComputedOutsideCamera(html), 0);
-  EXPECT_NE(html.find("<th>a &lt;priori&gt; (measured)</th>"), std::string::npos);
-  EXPECT_NE(html.find("<th>Model 12 (measured)</th>"), std::string::npos);
+  // Each run with its shape first and the frame it is judged in: Model 12's own for the
+  // run it drove, Model 12's (not its own) for the a priori controller.
+  EXPECT_NE(html.find("<th>a &lt;priori&gt;</th><td>"), std::string::npos);
+  EXPECT_NE(html.find("</td><td>Model 12</td>"), std::string::npos);
+  EXPECT_NE(html.find("<th>Model 12</th><td>0.0000</td><td>Model 12 (its own)</td>"),
+            std::string::npos);
+  EXPECT_EQ(html.find("Model 12 inverse kinematics, and the camera measured"), std::string::npos);
   EXPECT_EQ(html.find("<priori>"), std::string::npos);
   EXPECT_EQ(html.find("nan"), std::string::npos);
 }
@@ -164,7 +169,8 @@ TEST(Report, MeasuredSquareRunsWithoutTruthStillFillTheSquareSection) {
   const size_t square = html.find("<section id=\"square\">");
   ASSERT_NE(square, std::string::npos);
   const size_t end = html.find("</section>", square);
-  EXPECT_NE(html.substr(square, end - square).find("Model 12 (measured)"), std::string::npos);
+  EXPECT_NE(html.substr(square, end - square).find("<th>Model 12</th><td>0.0000</td>"),
+            std::string::npos);
   EXPECT_EQ(html.substr(square, end - square).find("Not computed"), std::string::npos);
   EXPECT_NE(html.find(std::string("<section id=\"") + kMeasuredSquareSection + "\">"),
             std::string::npos);

@@ -107,9 +107,11 @@ ValidationInputs WithMeasuredSquares(ValidationInputs in) {
   const Model12 identified(in.truth->robot.model12, in.truth->robot.assembly);
   in.square_plan = DefaultSquarePlan();
   in.square_measured.push_back(
-      {"a priori", "sq_apriori.csv", CameraSeesSquare(apriori, in.truth->robot, *in.square_plan)});
+      {"a priori", "sq_apriori.csv", CameraSeesSquare(apriori, in.truth->robot, *in.square_plan),
+       std::nullopt});
   in.square_measured.push_back(
-      {"Model 12", "sq_m12.csv", CameraSeesSquare(identified, in.truth->robot, *in.square_plan)});
+      {"Model 12", "sq_m12.csv", CameraSeesSquare(identified, in.truth->robot, *in.square_plan),
+       ModelKind::k12});
   return in;
 }
 
