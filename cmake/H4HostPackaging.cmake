@@ -31,6 +31,9 @@ endforeach()
 add_custom_target(h4_workstation DEPENDS ${h4_installed_targets})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/boards/ DESTINATION share/h4cal/boards COMPONENT h4cal
         FILES_MATCHING PATTERN "*.yaml" PATTERN "*.svg" PATTERN "*.pdf" PATTERN "*.md")
+# The robot.yaml template of walkthrough step 6 (the paper's a priori robot, commented).
+install(FILES ${PROJECT_SOURCE_DIR}/examples/robot.yaml DESTINATION share/h4cal/examples
+        COMPONENT h4cal)
 foreach(doc README.md common/README.md common/formats/README.md messages/README.md
             boards/README.md firmware/packaging/README.md docs/robot-bridge.md docs/cli.md
             docs/development.md docs/architecture.md docs/results.md)

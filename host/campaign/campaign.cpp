@@ -37,7 +37,7 @@ Campaign::Campaign(bus::LcmBus& bus, PosePlan plan, DatasetJournal& journal,
     if (journal_.Contains(id)) continue;
     const auto unreachable = options_.unreachable.find(id);
     if (options_.mode == CampaignMode::kActive && unreachable != options_.unreachable.end()) {
-      skipped_.push_back({id, "not sent: " + unreachable->second});
+      skipped_.push_back({id, "not sent: " + unreachable->second, true});
       continue;
     }
     pending_.push_back(i);

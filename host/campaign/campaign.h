@@ -71,6 +71,7 @@ struct CampaignOptions {
 struct SkippedPose {
   int64_t pose_id = 0;
   std::string reason;
+  bool not_sent = false;  ///< out of reach by the plan's check (CampaignOptions::unreachable)
 };
 
 /// Messages the campaign did not use, and why (LCM hygiene: counted and logged, never fatal).

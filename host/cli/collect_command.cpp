@@ -13,6 +13,7 @@
 #include <optional>
 #include <set>
 #include <thread>
+#include <vector>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -39,6 +40,7 @@
 #include "host/identification/identification.h"
 #include "host/kinematics/model31.h"
 #include "host/report/html_report.h"
+#include "host/validation/measured_square.h"
 #include "messages/bus/lcm_bus.h"
 #include "messages/channels.h"
 
@@ -128,7 +130,10 @@ bool CheckPlanBeforeMoving(CollectOptions* options, const PosePlan& plan) {
   const std::map<int64_t, std::string> unreachable = CheckPlanReach(
       ReadRobotYaml(options->robot_path), plan, ParseJointRange(options->joint_range_deg));
   options->campaign.unreachable = unreachable;
-  if (!options->dry_run) return true;
+  if (!options->dry_run) {
+    for (const auto& [pose_id, why] : unreachable) spdlog::warn("not sent: {}", why);
+    return true;
+  }
   fmt::print("collect --dry-run: {} of {} planned poses out of the a priori robot's reach{}\n",
              unreachable.size(), plan.size(), unreachable.empty() ? "" : " (not sent):");
   for (const auto& [pose_id, why] : unreachable) fmt::print("  {}\n", why);
@@ -148,8 +153,18 @@ void PrintSummary(const Campaign& campaign, const DatasetJournal& journal,
              journal.rows().size(), campaign.planned_count(), journal.path(),
              journal.resumed_count(), interrupted ? ", interrupted" : "");
   fmt::print("  corners of {} poses in {}\n", corners.pose_count(), corners.path());
+  // The poses not sent for the reach check were named when it ran: their ids only here.
+  std::vector<int64_t> not_sent;
   for (const SkippedPose& s : campaign.skipped()) {
+    if (s.not_sent) {
+      not_sent.push_back(s.pose_id);
+      continue;
+    }
     fmt::print("  skipped pose {}: {}\n", static_cast<long long>(s.pose_id), s.reason);
+  }
+  if (!not_sent.empty()) {
+    fmt::print("  not sent, out of the a priori robot's reach (named above): {}\n",
+               PoseIdList(not_sent));
   }
   fmt::print(
       "  messages: {} joint states, {} board poses; not used: {} impossible, "

@@ -39,7 +39,6 @@ std::map<int64_t, std::string> CheckPlanReach(const RobotDescription& robot, con
                                               const std::optional<Eigen::Vector2d>& joint_range) {
   std::map<int64_t, std::string> unreachable;
   for (const UnreachablePose& pose : UnreachablePoses(robot, plan, joint_range)) {
-    spdlog::warn("{}: the a priori robot cannot take it", Describe(pose));
     unreachable[pose.pose_id] = Describe(pose);
   }
   const std::string limits = joint_range ? fmt::format(" with every joint in {:.1f}..{:.1f} deg",
@@ -50,8 +49,10 @@ std::map<int64_t, std::string> CheckPlanReach(const RobotDescription& robot, con
     spdlog::info("every one of the {} planned poses is within the a priori robot's reach{}",
                  plan.size(), limits);
   } else {
-    spdlog::warn("{} of the {} planned poses are out of the a priori robot's reach{}",
-                 unreachable.size(), plan.size(), limits);
+    spdlog::warn(
+        "{} of the {} planned poses are out of the a priori robot's reach{}: plan again within "
+        "it (h4cal plan --robot ... --joint-range-deg MIN,MAX, the controller's joint limits)",
+        unreachable.size(), plan.size(), limits);
   }
   return unreachable;
 }

@@ -22,7 +22,8 @@ CLI::Option* AddJointRangeOption(CLI::App* command, std::string* text);
 std::optional<Eigen::Vector2d> ParseJointRange(const std::string& text);
 
 /// The poses of `plan` out of `robot`'s reach, pose id -> why (X, Y, Z, theta and the leg or
-/// joint), each logged as a warning; a line saying every pose is within reach otherwise.
+/// joint), for the caller to name once; logs one line: every pose within reach, or how many
+/// are not and how to plan within the reach (--joint-range-deg).
 std::map<int64_t, std::string> CheckPlanReach(const RobotDescription& robot, const PosePlan& plan,
                                               const std::optional<Eigen::Vector2d>& joint_range);
 

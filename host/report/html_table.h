@@ -2,16 +2,36 @@
 // Cells are HTML already (callers escape text with MarkupEscape).
 #pragma once
 
+#include <cctype>
 #include <string>
 #include <vector>
 
 namespace h4::host {
 
+/// `text` with every number that rounded to zero written without its sign: "-0.0000" and
+/// "-0" become "0.0000" and "0" ("-0.0012" and "-10" stay), as a table should read.
+inline std::string WithoutNegativeZeros(std::string text) {
+  const auto digit = [&text](size_t i) {
+    return i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])) != 0;
+  };
+  for (size_t at = text.find("-0"); at != std::string::npos; at = text.find("-0", at + 1)) {
+    if (at > 0 && (digit(at - 1) || text[at - 1] == '.')) continue;  // "1-0", "e-05"
+    if (at > 0 && (text[at - 1] == 'e' || text[at - 1] == 'E')) continue;
+    size_t end = at + 2;
+    if (end < text.size() && text[end] == '.') {
+      ++end;
+      while (end < text.size() && text[end] == '0') ++end;
+    }
+    if (!digit(end)) text.erase(at, 1);  // all zeros: drop the sign
+  }
+  return text;
+}
+
 inline std::string Row(const std::string& head, const std::vector<std::string>& cells,
                        const std::string& css_class = "") {
   std::string row = css_class.empty() ? "<tr>" : "<tr class=\"" + css_class + "\">";
   row += "<th>" + head + "</th>";
-  for (const auto& c : cells) row += "<td>" + c + "</td>";
+  for (const auto& c : cells) row += "<td>" + WithoutNegativeZeros(c) + "</td>";
   return row + "</tr>\n";
 }
 

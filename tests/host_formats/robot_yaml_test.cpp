@@ -92,6 +92,25 @@ TEST(RobotYaml, ReadsTheExampleOfFormatsMd) {
   EXPECT_FALSE(robot.model31.has_value());
 }
 
+// The template the workstation package installs (examples/robot.yaml, share/h4cal/examples)
+// reads as the paper's a priori robot, the values it says it holds.
+TEST(RobotYaml, TheInstalledTemplateIsThePapersAprioriRobot) {
+  const RobotDescription robot =
+      ReadRobotYaml(std::string(H4_SOURCE_DIR) + "/examples/robot.yaml");
+  const RobotDescription paper = ParseRobotYaml(kExample, "robot.yaml");
+  EXPECT_EQ(robot.model12.h, paper.model12.h);
+  EXPECT_EQ(robot.model12.arm, paper.model12.arm);
+  EXPECT_EQ(robot.model12.forearm, paper.model12.forearm);
+  EXPECT_EQ(robot.model12.R, paper.model12.R);
+  EXPECT_EQ(robot.model12.d, paper.model12.d);
+  EXPECT_EQ(robot.model12.alpha, paper.model12.alpha);
+  EXPECT_EQ(robot.model12.q0, paper.model12.q0);
+  EXPECT_EQ(robot.assembly.bar, paper.assembly.bar);
+  EXPECT_EQ(robot.assembly.elbow, paper.assembly.elbow);
+  EXPECT_TRUE(robot.X_BC.IsNearlyEqualTo(paper.X_BC, 0.0, 0.0));
+  EXPECT_TRUE(robot.X_TE.IsNearlyEqualTo(paper.X_TE, 0.0, 0.0));
+}
+
 TEST(RobotYaml, AssemblyIsOptionalAndExtraTopLevelKeysAreIgnored) {
   std::string text = kExample;
   const size_t a = text.find("assembly:");

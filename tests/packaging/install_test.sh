@@ -73,7 +73,8 @@ for name in h4cal h4cam; do
   done
 done
 for file in share/h4cal/boards/aprilgrid_6x6_30mm.yaml share/h4cal/boards/sim_camera_1024x768.yaml \
-  share/doc/h4cal/README.md share/doc/h4cal/common/formats/README.md share/doc/h4cal/messages/README.md; do
+  share/doc/h4cal/README.md share/doc/h4cal/common/formats/README.md share/doc/h4cal/messages/README.md \
+  share/h4cal/examples/robot.yaml; do
   [ -s "$prefix/$file" ] || fail "$file is not installed"
 done
 # The README's walkthrough names boards and the simulated camera bare (--board

@@ -17,6 +17,7 @@
 #include "host/kinematics/pose_plan.h"
 #include "host/report/gnuplot_svg.h"
 #include "host/report/html_report.h"
+#include "host/report/html_table.h"
 #include "host/report/pose_residuals.h"
 #include "host/report/report_camera.h"
 #include "host/report/report_tables.h"
@@ -129,6 +130,19 @@ TEST(Report, WithoutTruthOrRulerRunsSaysWhatIsMissing) {
   EXPECT_EQ(Count(html, "<p class=\"not-applicable\">Not computed: "), 5);
   EXPECT_EQ(Count(html, "<p class=\"note\">Not computed"), 0);
   EXPECT_NE(html.find("optional: no ruler run given"), std::string::npos);
+}
+
+// Issue 43 point 8: a figure that rounds to zero reads 0, not -0, in the report's tables.
+TEST(Report, TableCellsShowNoNegativeZero) {
+  EXPECT_EQ(WithoutNegativeZeros("-0.0000"), "0.0000");
+  EXPECT_EQ(WithoutNegativeZeros("-0"), "0");
+  EXPECT_EQ(WithoutNegativeZeros("-0.0000, -0.0012, -0.0000"), "0.0000, -0.0012, 0.0000");
+  EXPECT_EQ(WithoutNegativeZeros("-0.05"), "-0.05");
+  EXPECT_EQ(WithoutNegativeZeros("-10.0"), "-10.0");
+  EXPECT_EQ(WithoutNegativeZeros("1.2e-05"), "1.2e-05");
+  EXPECT_EQ(WithoutNegativeZeros("(1, -0)"), "(1, 0)");
+  EXPECT_EQ(Row("offset", {"-0.0000, 0.0100, -0.0000"}),
+            "<tr><th>offset</th><td>0.0000, 0.0100, 0.0000</td></tr>\n");
 }
 
 TEST(Report, MeasuredSquareRunsAddTheirRowsAndFigure) {
