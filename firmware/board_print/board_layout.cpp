@@ -110,19 +110,64 @@ std::string DescribeBoard(const BoardSpec& board) {
                      Mm(chess.col_spacing), Mm(chess.row_spacing));
 }
 
+namespace {
+
+constexpr double kA4Width = 210 * kMm, kA4Height = 297 * kMm;
+constexpr double kA3Width = 297 * kMm, kA3Height = 420 * kMm;
+
+const char* PaperName(PaperSize paper) { return paper == PaperSize::kA4 ? "A4" : "A3"; }
+
+// The page (width, height) for content of `content_w` x `content_h`: portrait when it holds
+// the content, else landscape; false with the reason when the paper asked for is too small.
+bool PageSize(PaperSize paper, double content_w, double content_h, double* page_w,
+              double* page_h, std::string* error) {
+  *page_w = content_w;
+  *page_h = content_h;
+  if (paper == PaperSize::kFit) return true;
+  if (paper == PaperSize::kSmallestIso) {
+    for (const PaperSize iso : {PaperSize::kA4, PaperSize::kA3}) {
+      std::string too_small;
+      if (PageSize(iso, content_w, content_h, page_w, page_h, &too_small)) return true;
+    }
+    return true;  // beyond A3: the board's own size
+  }
+  const double short_side = paper == PaperSize::kA4 ? kA4Width : kA3Width;
+  const double long_side = paper == PaperSize::kA4 ? kA4Height : kA3Height;
+  if (content_w <= short_side && content_h <= long_side) {
+    *page_w = short_side;
+    *page_h = long_side;
+    return true;
+  }
+  if (content_w <= long_side && content_h <= short_side) {
+    *page_w = long_side;
+    *page_h = short_side;
+    return true;
+  }
+  *error = fmt::format(
+      "the board with its margins and caption is {:.1f} x {:.1f} mm, more than {} ({:.0f} x "
+      "{:.0f} mm) either way round: choose a larger paper, or fit",
+      content_w / kMm, content_h / kMm, PaperName(paper), short_side / kMm, long_side / kMm);
+  return false;
+}
+
+}  // namespace
+
 bool LayoutBoard(const BoardSpec& board, const BoardPrintOptions& options, BoardLayout* layout,
                  std::string* error) {
   if (!options.IsValid(error)) return false;
   const BoardModel model(board);
   const double pattern_w = model.pattern_max().x() - model.pattern_min().x();
   const double pattern_h = model.pattern_max().y() - model.pattern_min().y();
+  double content_w = pattern_w + 2 * options.margin;
+  if (options.caption) content_w = std::max(content_w, kMinCaptionWidth + 2 * options.margin);
+  const double content_h = pattern_h + 2 * options.margin + (options.caption ? kCaptionHeight : 0.0);
   BoardLayout out;
-  out.width = pattern_w + 2 * options.margin;
-  if (options.caption) out.width = std::max(out.width, kMinCaptionWidth + 2 * options.margin);
-  // Centre the pattern horizontally when the caption widened the page.
-  out.pattern_x = (out.width - pattern_w) / 2 - model.pattern_min().x();
-  out.pattern_y = options.margin - model.pattern_min().y();
-  out.height = pattern_h + 2 * options.margin + (options.caption ? kCaptionHeight : 0.0);
+  if (!PageSize(options.paper, content_w, content_h, &out.width, &out.height, error)) return false;
+  // The content centred on the page (a fitted page is the content: no shift).
+  const double dx = (out.width - content_w) / 2, dy = (out.height - content_h) / 2;
+  // Centre the pattern horizontally when the caption widened the content.
+  out.pattern_x = dx + (content_w - pattern_w) / 2 - model.pattern_min().x();
+  out.pattern_y = dy + options.margin - model.pattern_min().y();
 
   if (const auto* grid = std::get_if<AprilGridSpec>(&board)) {
     if (!LayoutAprilGrid(*grid, model, out.pattern_x, out.pattern_y, &out.black, error)) {
@@ -133,13 +178,16 @@ bool LayoutBoard(const BoardSpec& board, const BoardPrintOptions& options, Board
   }
 
   if (options.caption) {
-    const double x = std::max(options.margin, 2 * kMm);
+    const double x = dx + std::max(options.margin, 2 * kMm);
     // Baselines one line gap apart below the bottom margin, then the bar.
-    double y = pattern_h + 2 * options.margin + kLineGap;
+    double y = dy + pattern_h + 2 * options.margin + kLineGap;
     out.texts.push_back({x, y, kTextSize, DescribeBoard(board)});
     y += kLineGap;
-    out.texts.push_back(
-        {x, y, kTextSize, "Print at 100% scale (no fit to page). Check: this bar is 100 mm."});
+    // The two lengths the walkthrough's step 1 asks to measure.
+    out.texts.push_back({x, y, kTextSize,
+                         fmt::format("Print at 100% scale (no fit to page). Check: this bar is "
+                                     "100 mm, the pattern {:.1f} x {:.1f} mm.",
+                                     pattern_w / kMm, pattern_h / kMm)});
     out.scale_bar = {x, y + 1.0 * kMm, kScaleBarLength, kBarHeight};
   }
   *layout = std::move(out);

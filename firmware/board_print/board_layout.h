@@ -22,8 +22,15 @@ struct PrintText {
   std::string text;     ///< ASCII only (PDF's standard Helvetica, OpenCV's Hershey fonts)
 };
 
+/// The page a board is laid out on: exactly the pattern, its margins and caption (kFit), an
+/// ISO page (portrait, or landscape when only that holds it) with the board centred on it,
+/// or the smallest of A4 and A3 that holds the board (kSmallestIso; the board's own size
+/// when neither does), so that a printer prints it at 100 % without a custom page size.
+enum class PaperSize { kFit, kA4, kA3, kSmallestIso };
+
 struct BoardPrintOptions {
   double margin = 0.01;  ///< white border around the pattern, m (>= 0)
+  PaperSize paper = PaperSize::kFit;
   /// Caption and 100 mm check bar below the pattern (off only for tests of the pattern).
   bool caption = true;
 

@@ -1,6 +1,7 @@
 // `h4cam make-board`; see make_board_command.h.
 #include "firmware/cli/make_board_command.h"
 
+#include <map>
 #include <memory>
 #include <ostream>
 #include <stdexcept>
@@ -18,6 +19,7 @@ void RunMakeBoard(const MakeBoardArgs& args, std::ostream& out) {
   const BoardSpec board = ReadBoardYaml(args.board_path);
   BoardPrintOptions options;
   options.margin = args.margin;
+  options.paper = args.paper;
   BoardLayout layout;
   std::string error;
   if (!LayoutBoard(board, options, &layout, &error)) {
@@ -35,6 +37,17 @@ void DeclareMakeBoardCommand(CLI::App* command) {
   command->add_option("--dpi", args->dpi, "PNG resolution, dots per inch")->default_val(args->dpi);
   command->add_option("--margin", args->margin, "White border around the pattern, m")
       ->default_val(args->margin);
+  const std::map<std::string, PaperSize> papers = {{"auto", PaperSize::kSmallestIso},
+                                                   {"a4", PaperSize::kA4},
+                                                   {"a3", PaperSize::kA3},
+                                                   {"fit", PaperSize::kFit}};
+  command
+      ->add_option("--paper", args->paper,
+                   "Page: auto (the smallest of A4 and A3 that holds the board, centred, portrait "
+                   "when it fits; the board's own size beyond A3), a4, a3, or fit (the board and "
+                   "its margins)")
+      ->transform(CLI::CheckedTransformer(papers, CLI::ignore_case))
+      ->default_str("auto");
   h4::cli::RunWhenParsed(command, args,
                          [](const MakeBoardArgs& parsed) { RunMakeBoard(parsed, std::cout); });
 }

@@ -92,6 +92,33 @@ TEST(BoardPrint, CaptionStatesTheAprilGridDimensions) {
             "Kalibr layout (tag 0 bottom-left)");
 }
 
+// Issue 43 point 8: the page a printer takes at 100 % (A3 for the 217.5 mm grid, the board
+// centred), and the caption names the pattern's size, which step 1 asks to measure.
+TEST(BoardPrint, TheGridIsCentredOnAnA3PageWhoseCaptionGivesThePatternSize) {
+  BoardPrintOptions options;
+  options.paper = PaperSize::kSmallestIso;
+  BoardLayout layout;
+  std::string error;
+  ASSERT_TRUE(LayoutBoard(LegacyGrid(), options, &layout, &error)) << error;
+  EXPECT_DOUBLE_EQ(layout.width, 0.297);
+  EXPECT_DOUBLE_EQ(layout.height, 0.420);
+  // Centred across: the pattern's left edge as far from the page's as its right edge.
+  EXPECT_NEAR(layout.pattern_x, (0.297 - 0.2175) / 2, 1e-12);
+  ASSERT_EQ(layout.texts.size(), 2u);
+  EXPECT_NE(layout.texts[1].text.find("the pattern 217.5 x 217.5 mm"), std::string::npos)
+      << layout.texts[1].text;
+  // A4 cannot hold it either way round: said, not shrunk.
+  options.paper = PaperSize::kA4;
+  EXPECT_FALSE(LayoutBoard(LegacyGrid(), options, &layout, &error));
+  EXPECT_NE(error.find("more than A4 (210 x 297 mm)"), std::string::npos) << error;
+  // The chessboard (260 mm wide) takes A4 landscape.
+  options.paper = PaperSize::kSmallestIso;
+  options.margin = 0.005;
+  ASSERT_TRUE(LayoutBoard(CheckerboardSpec{}, options, &layout, &error)) << error;
+  EXPECT_DOUBLE_EQ(layout.width, 0.297);
+  EXPECT_DOUBLE_EQ(layout.height, 0.210);
+}
+
 TEST(BoardPrint, PngOfTheChessboardIsDetectedAtTheExpectedPixelSpacing) {
   const double dpi = 100;
   const double px_per_m = dpi / 0.0254;
