@@ -34,7 +34,9 @@
 #include "host/identification/corner_identification.h"
 #include "host/identification/identification.h"
 #include "host/identification/identified_robot.h"
+#include "host/identification/verdict.h"
 #include "host/report/html_report.h"
+#include "host/validation/corner_residual_map.h"
 
 namespace h4::host::cli {
 namespace {
@@ -229,6 +231,23 @@ IdentificationOutcome IdentifyAsAsked(const IdentifyCommandOptions& options,
   return IdentifyModel31FromModel12(robot, from, rows, id_options);
 }
 
+/// A Model 31 the corners say cannot describe the robot: the advice the corner residuals'
+/// pattern over the image gives (the lens, the focal length, or the robot and mounts)
+/// replaces the board-pose advice, which can only name the robot (issue 43 point 7).
+void AdviseFromCornerPattern(const Assembly& assembly, const std::vector<DatasetRow>& rows,
+                             const std::vector<CornerObservation>& observed,
+                             const BoardModel& board, const CameraIntrinsics& camera,
+                             IdentificationOutcome* outcome) {
+  std::optional<ResultVerdict>& verdict = outcome->result.verdict;
+  if (outcome->verdict != Verdict::kModelCannotDescribe || !verdict) return;
+  const size_t at = verdict->text.find(kModel31MisfitAdvice);
+  if (at == std::string::npos) return;
+  const CornerResidualMap map =
+      ComputeCornerResidualMap(outcome->result, assembly, rows, observed, board, camera);
+  verdict->text.replace(at, std::string(kModel31MisfitAdvice).size(),
+                        CornerResidualPatternAdvice(map));
+}
+
 /// The report of this result: validation on its held-out poses, with the Model 12 result
 /// it started from when there is one.
 void WriteReport(const IdentifyCommandOptions& options, ModelKind model,
@@ -301,6 +320,7 @@ int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription&
   if (path.fit.ok && path.outcome.summary.usable) {
     FlagOverstatedCornerNoise(path.fit.uncertainty.chi2_per_dof, &path.outcome.verdict,
                               &path.outcome.result);
+    AdviseFromCornerPattern(robot.assembly, path.rows, observed, board, camera, &path.outcome);
   }
   if (!path.fit.ok) {
     PrintCornerFit(path);
@@ -337,6 +357,9 @@ int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription&
   files.robot_path = options.robot_path;
   files.data_path = refit_path;
   (model == ModelKind::k12 ? files.result12_path : files.result31_path) = options.out_path;
+  // The Model 12 result it started from, as the pose path's report has it: the a priori row
+  // then uses the same identified placement, and both reports give the same a priori error.
+  if (!options.from_path.empty()) files.result12_path = options.from_path;
   files.corners_path = options.corners_path;  // the camera section's residual map
   files.board_path = options.board_path;
   files.camera_path = options.camera_path;

@@ -130,10 +130,7 @@ std::optional<VerdictCase> ModelCannotDescribe(const VerdictInputs& in,
   }
   return VerdictCase{Verdict::kModelCannotDescribe,
                      "Model 31 does not describe this robot within the camera noise: " + misfit +
-                         ". Check that the robot is rigid and settled at every pose (backlash, "
-                         "flexure, loose camera or board) and that the camera's pose covariance "
-                         "is right." +
-                         sigmas};
+                         ". " + kModel31MisfitAdvice + sigmas};
 }
 
 // Many outliers on a model that fits the rest within the noise: the data, not the model.

@@ -28,6 +28,13 @@ enum class Verdict {
   kNoiseOverstated,
 };
 
+/// The advice of a Model 31 fit that cannot describe the robot from board poses alone: the
+/// robot and the mounts. The corner path replaces it with what the corner residuals' pattern
+/// over the image shows (host/validation/corner_residual_map.h CornerResidualPatternAdvice).
+inline constexpr const char* kModel31MisfitAdvice =
+    "Check that the robot is rigid and settled at every pose (backlash, flexure, loose camera "
+    "or board) and that the camera's pose covariance is right.";
+
 /// "good", "model_cannot_describe", "inconsistent_with_apriori", "not_identifiable",
 /// "too_few_poses", "noise_overstated": the `verdict.code` of the result JSON.
 const char* VerdictCode(Verdict verdict);

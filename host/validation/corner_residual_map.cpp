@@ -132,6 +132,35 @@ void RequireCornersMatchTheBoard(const CornerResidualMap& map, const BoardModel&
 
 }  // namespace
 
+std::string CornerResidualPatternAdvice(const CornerResidualMap& map) {
+  double weighted_mean_sq = 0.0;
+  double largest_mean = 0.0;
+  for (const CornerResidualCell& cell : map.cells) {
+    weighted_mean_sq += cell.corners * cell.mean_px.squaredNorm() / 2.0;  // per axis
+    largest_mean = std::max(largest_mean, cell.mean_px.norm());
+  }
+  const double pattern_rms = map.corners > 0 ? std::sqrt(weighted_mean_sq / map.corners) : 0.0;
+  const std::string figures = fmt::format(
+      "corner residuals {:.3f} px RMS per axis within half the half-diagonal of the image "
+      "centre, {:.3f} px beyond; cell means {:.3f} px RMS, up to {:.3f} px",
+      map.inner_rms_px, map.outer_rms_px, pattern_rms, largest_mean);
+  if (map.outer_rms_px > 1.5 * map.inner_rms_px && pattern_rms > 0.5 * map.rms_px) {
+    return "The corners show the camera model misfitting the lens (" + figures +
+           ": they grow toward the image's edges). Calibrate the intrinsics again "
+           "(h4cam calibrate-intrinsics) with views reaching the image's corners, or with a lens "
+           "model of more terms; the report's camera section maps the pattern.";
+  }
+  if (pattern_rms > 0.5 * map.rms_px) {
+    return "The corners show a pattern over the image (" + figures +
+           "): the camera model misfits (focal length, principal point): check the camera "
+           "file is the one of this camera and focus, and calibrate its intrinsics again if "
+           "it is; the report's camera section maps the pattern.";
+  }
+  return "The corners show no pattern over the image (" + figures +
+         "): not the camera model, the robot or the mounts: check that the robot is rigid and "
+         "settled at every pose (backlash, flexure) and that the camera and board are fixed.";
+}
+
 CornerResidualMap ComputeCornerResidualMap(const IdentificationResult& result,
                                            const Assembly& assembly,
                                            const std::vector<DatasetRow>& rows,

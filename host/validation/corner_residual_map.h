@@ -76,4 +76,12 @@ CornerResidualMap ComputeCornerResidualMap(const IdentificationResult& result,
                                            const CameraIntrinsics& file_camera, int columns = 16,
                                            int grid_rows = 12);
 
+/// What the corner residuals' pattern over the image points to, for a fit the model cannot
+/// describe (issue 43 point 7): residuals that grow toward the edges (outer RMS over 1.5x the
+/// inner) point to the lens model; cell means that stand out of the noise everywhere (their
+/// corner-weighted RMS over half the residual RMS) to the focal length or principal point;
+/// neither, to the robot or the mounts rather than the camera model. One or two sentences
+/// with the figures.
+std::string CornerResidualPatternAdvice(const CornerResidualMap& map);
+
 }  // namespace h4::host

@@ -368,5 +368,35 @@ TEST(JointNoiseStudy, IsSeenInTheCornerResidualsAtItsSimulatedSize) {
   }
 }
 
+// Issue 43 point 7: a corner fit the model cannot describe is sent where its residuals'
+// pattern points. A map of two cells, 100 corners each, with the figures set by hand.
+CornerResidualMap TwoCellMap(Eigen::Vector2d mean_inner, Eigen::Vector2d mean_outer,
+                             double inner_rms, double outer_rms) {
+  CornerResidualMap map;
+  map.cells = {{0, 0, 100, mean_inner, inner_rms}, {1, 0, 100, mean_outer, outer_rms}};
+  map.corners = 200;
+  map.inner_rms_px = inner_rms;
+  map.outer_rms_px = outer_rms;
+  map.rms_px = std::sqrt((inner_rms * inner_rms + outer_rms * outer_rms) / 2);
+  return map;
+}
+
+TEST(CornerResidualPatternAdvice, NamesTheLensTheFocalLengthOrTheRobot) {
+  // Growing toward the edges, and systematic: the lens model.
+  const std::string lens = CornerResidualPatternAdvice(
+      TwoCellMap({0.05, 0.0}, {0.6, -0.6}, 0.1, 0.7));
+  EXPECT_NE(lens.find("misfitting the lens"), std::string::npos) << lens;
+  EXPECT_NE(lens.find("calibrate-intrinsics"), std::string::npos) << lens;
+  // Systematic but even across the image: the focal length or principal point.
+  const std::string focal = CornerResidualPatternAdvice(
+      TwoCellMap({0.4, 0.3}, {-0.4, -0.3}, 0.5, 0.5));
+  EXPECT_NE(focal.find("focal length, principal point"), std::string::npos) << focal;
+  // Noise in every cell: not the camera model.
+  const std::string robot = CornerResidualPatternAdvice(
+      TwoCellMap({0.01, -0.01}, {-0.01, 0.02}, 0.3, 0.31));
+  EXPECT_NE(robot.find("not the camera model"), std::string::npos) << robot;
+  EXPECT_NE(robot.find("backlash"), std::string::npos) << robot;
+}
+
 }  // namespace
 }  // namespace h4::host
