@@ -26,6 +26,7 @@
 #include "common/formats/file_output.h"
 #include "host/campaign/campaign.h"
 #include "host/campaign/control_law.h"
+#include "host/cli/calibration_workflow.h"
 #include "host/cli/collect_stages.h"
 #include "host/cli/commands.h"
 #include "host/cli/identification_print.h"
@@ -200,11 +201,12 @@ bool IdentifyAndReport(const CollectOptions& options, const std::string& command
   const std::string result12 = (fs::path(options.identify_dir) / "result12.json").string();
   const std::string result31 = (fs::path(options.identify_dir) / "result31.json").string();
   const auto [m12, m31] = IdentifyModel12Then31(robot, rows, IdentificationOptions{});
-  WriteIdentificationResult(result12, m12.result);
+  const std::vector<std::string> inputs{options.robot_path, options.out_path};
+  WriteResultWithProvenance(result12, m12.result, inputs);
   PrintHeadline(m12);
   spdlog::info("Model 12 result written to {}", result12);
   if (!m12.summary.usable) throw std::runtime_error("Model 12 identification not usable");
-  WriteIdentificationResult(result31, m31.result);
+  WriteResultWithProvenance(result31, m31.result, inputs);
   PrintHeadline(m31);
   spdlog::info("Model 31 result written to {}", result31);
   ValidationFileOptions files;
@@ -212,10 +214,10 @@ bool IdentifyAndReport(const CollectOptions& options, const std::string& command
   files.data_path = options.out_path;
   files.result12_path = result12;
   if (m31.summary.usable) files.result31_path = result31;
-  const ValidationInputs inputs = LoadValidationInputs(files);
-  const ValidationReport report = Validate(inputs);
-  std::fputs(FormatValidationText(report).c_str(), stdout);
-  spdlog::info("wrote {}", WriteHtmlReport(options.identify_dir, inputs, report, command_line));
+  // The corners the campaign recorded beside its dataset: the report's camera section.
+  AddCornersIfRecorded(options.corners_out_path, options.board_path, options.camera_path, &files);
+  const ValidationReport report =
+      ValidateAndReport(files, options.identify_dir, command_line, true);
   PrintAccuracyMapLine(report.models.back());
   const bool good12 = m12.verdict == Verdict::kGood;
   const bool good31 = m31.summary.usable && m31.verdict == Verdict::kGood;
@@ -375,10 +377,15 @@ void CheckOptionCombinations(const CollectOptions& options) {
     throw std::invalid_argument("--from-log reads the log itself: do not give --lcm-url");
   }
   if (options.sequential.empty()) {
-    if (!options.camera_path.empty() || !options.board_path.empty()) {
+    const bool camera = !options.camera_path.empty(), board = !options.board_path.empty();
+    if ((camera || board) && options.identify_dir.empty()) {
       throw std::invalid_argument(
-          "--camera and --board are what --sequential plans for: give --sequential FIRST,TOTAL "
-          "or leave them out");
+          "--camera and --board are what --sequential plans for and what --report-dir's report "
+          "maps the recorded corners through: give one of those, or leave them out");
+    }
+    if (camera != board) {
+      throw std::invalid_argument(
+          "--camera and --board go together: the camera h4cam measured with and its board");
     }
     return;
   }
@@ -462,7 +469,9 @@ void AddSequentialOptions(CLI::App* command, CollectOptions* options) {
       ->delimiter(',')
       ->expected(2);
   h4::cli::AddCameraOption(command, &options->camera_path,
-                           "Camera intrinsics YAML the sequential campaign is planned for");
+                           "Camera intrinsics YAML h4cam measured with: the sequential campaign "
+                           "is planned for it, and --report-dir's report maps the recorded "
+                           "corners through it (with --board)");
   h4::cli::AddBoardOption(command, &options->board_path);
 }
 

@@ -16,6 +16,7 @@
 
 #include "common/formats/board_yaml.h"
 #include "common/formats/camera_yaml.h"
+#include "host/cli/calibration_workflow.h"
 #include "host/cli/identification_print.h"
 #include "host/cli/plan_reach.h"
 #include "host/formats/identification_result.h"
@@ -124,7 +125,8 @@ double HeldOutPositionRms(const IdentificationOutcome& outcome) {
 /// and a second stage planned on Model 31's camera found no candidate it would see.
 IdentificationResult IdentifyFirstStage(const RobotDescription& apriori,
                                         const std::vector<DatasetRow>& rows,
-                                        const std::string& result_path) {
+                                        const std::string& result_path,
+                                        const std::vector<std::string>& inputs) {
   const auto [m12, m31] = IdentifyModel12Then31(apriori, rows, IdentificationOptions{});
   PrintHeadline(m12);
   PrintHeadline(m31);
@@ -141,7 +143,7 @@ IdentificationResult IdentifyFirstStage(const RobotDescription& apriori,
       "stage 1 of 2: the rest is planned on the Model {} result (held-out board "
       "position RMS: Model 12 {}, Model 31 {})\n",
       ToString(kept.result.model), FormatRmsMm(rms12), FormatRmsMm(rms31));
-  WriteIdentificationResult(result_path, kept.result);
+  WriteResultWithProvenance(result_path, kept.result, inputs);
   return kept.result;
 }
 
@@ -222,7 +224,8 @@ PosePlan SecondStagePlan(const CollectStagesOptions& options, const PosePlan& fi
              first_stage_rows.size());
   const RobotDescription apriori = ReadRobotYaml(options.robot_path);
   const IdentificationResult first =
-      IdentifyFirstStage(apriori, first_stage_rows, files.first_result);
+      IdentifyFirstStage(apriori, first_stage_rows, files.first_result,
+                         {options.robot_path, options.dataset_path});
   const RobotDescription identified = IdentifiedDescription(apriori, first);
   int64_t last_id = 0;
   for (const PlannedPose& pose : first_stage) last_id = std::max(last_id, pose.pose_id);

@@ -3,9 +3,7 @@
 // common/formats/README.md. `--from result12.json` starts Model 31 from a Model 12 result (paper
 // IV.C).
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <ctime>
 #include <filesystem>
 #include <memory>
 #include <numbers>
@@ -23,6 +21,7 @@
 #include "common/formats/corners_csv.h"
 #include "common/formats/file_output.h"
 #include "common/units.h"
+#include "host/cli/calibration_workflow.h"
 #include "host/cli/commands.h"
 #include "host/cli/identification_print.h"
 #include "host/cli/progress.h"
@@ -35,7 +34,6 @@
 #include "host/identification/identification.h"
 #include "host/identification/identified_robot.h"
 #include "host/identification/verdict.h"
-#include "host/report/html_report.h"
 #include "host/validation/corner_residual_map.h"
 
 namespace h4::host::cli {
@@ -93,21 +91,11 @@ void RequireUsableSplit(const IdentifyCommandOptions& options,
   }
 }
 
-// Now as ISO 8601 UTC, e.g. 2026-11-23T20:01:02Z.
-std::string UtcTimestamp() {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
-  return text;
-}
-
-// Who made the result, when, from which files.
-ResultProvenance ProvenanceOf(const IdentifyCommandOptions& options) {
-  ResultProvenance provenance{H4_VERSION, UtcTimestamp(), {options.robot_path, options.data_path}};
-  if (!options.from_path.empty()) provenance.inputs.push_back(options.from_path);
-  return provenance;
+// The files a result came from, as given on the command line (its provenance).
+std::vector<std::string> InputsOf(const IdentifyCommandOptions& options) {
+  std::vector<std::string> inputs{options.robot_path, options.data_path};
+  if (!options.from_path.empty()) inputs.push_back(options.from_path);
+  return inputs;
 }
 
 // The corner path's account: what the camera became, beside the file's values.
@@ -257,9 +245,7 @@ void WriteReport(const IdentifyCommandOptions& options, ModelKind model,
   files.data_path = options.data_path;
   (model == ModelKind::k12 ? files.result12_path : files.result31_path) = options.out_path;
   if (!options.from_path.empty()) files.result12_path = options.from_path;
-  const ValidationInputs inputs = LoadValidationInputs(files);
-  const ValidationReport report = Validate(inputs);
-  spdlog::info("wrote {}", WriteHtmlReport(options.report_dir, inputs, report, command_line));
+  const ValidationReport report = ValidateAndReport(files, options.report_dir, command_line, false);
   PrintAccuracyMapLine(report.models.back());
 }
 
@@ -276,13 +262,11 @@ int Run(const IdentifyCommandOptions& options, const std::string& command_line) 
   if (!options.corners_path.empty()) {
     return RunCornerPath(options, robot, model, rows, outcome, id_options, command_line);
   }
-  IdentificationResult result = outcome.result;
-  result.provenance = ProvenanceOf(options);
   // The verdict first: a result its reader would refuse is not written (the write throws),
   // and the verdict still says what went wrong.
   spdlog::debug("{}", outcome.summary.FullReport());
   PrintHeadline(outcome);
-  WriteIdentificationResult(options.out_path, result);
+  WriteResultWithProvenance(options.out_path, outcome.result, InputsOf(options));
   spdlog::info("result written to {}", options.out_path);
   if (!outcome.summary.usable) {
     spdlog::error("the identification is not usable: {}", outcome.summary.message);
@@ -332,13 +316,11 @@ int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription&
     PrintCornerFit(path);
     throw std::runtime_error("the corner fit's camera cannot be trusted: " + problem);
   }
-  IdentificationResult result = path.outcome.result;
-  result.provenance = ProvenanceOf(options);
-  result.provenance->inputs.insert(result.provenance->inputs.end(),
-                                   {options.corners_path, options.board_path, options.camera_path});
+  std::vector<std::string> inputs = InputsOf(options);
+  inputs.insert(inputs.end(), {options.corners_path, options.board_path, options.camera_path});
   PrintHeadline(path.outcome);
   PrintCornerFit(path);
-  WriteIdentificationResult(options.out_path, result);
+  WriteResultWithProvenance(options.out_path, path.outcome.result, inputs);
   if (!options.camera_out_path.empty()) {
     WriteCameraYaml(options.camera_out_path, path.fit.camera);
     spdlog::info("refined camera written to {}", options.camera_out_path);
@@ -363,9 +345,7 @@ int RunCornerPath(const IdentifyCommandOptions& options, const RobotDescription&
   files.corners_path = options.corners_path;  // the camera section's residual map
   files.board_path = options.board_path;
   files.camera_path = options.camera_path;
-  const ValidationInputs inputs = LoadValidationInputs(files);
-  const ValidationReport report = Validate(inputs);
-  spdlog::info("wrote {}", WriteHtmlReport(options.report_dir, inputs, report, command_line));
+  const ValidationReport report = ValidateAndReport(files, options.report_dir, command_line, false);
   PrintAccuracyMapLine(report.models.back());
   return exit_code;
 }

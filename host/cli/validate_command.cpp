@@ -5,13 +5,11 @@
 // self-contained HTML file with the validation tables and figures, host/report).
 #include <memory>
 
-#include <spdlog/spdlog.h>
-
 #include "common/cli/shared_options.h"
 #include "common/cli/subcommand.h"
+#include "host/cli/calibration_workflow.h"
 #include "host/cli/commands.h"
 #include "host/cli/validation_inputs.h"
-#include "host/report/html_report.h"
 
 namespace h4::host::cli {
 namespace {
@@ -23,13 +21,7 @@ struct ValidateOptions {
 };
 
 void Run(const ValidateOptions& options, const std::string& command_line) {
-  const ValidationInputs inputs = LoadValidationInputs(options.files);
-  const ValidationReport report = Validate(inputs);
-  if (options.print_tables) std::fputs(FormatValidationText(report).c_str(), stdout);
-  if (!options.report_dir.empty()) {
-    const std::string path = WriteHtmlReport(options.report_dir, inputs, report, command_line);
-    spdlog::info("wrote {}", path);
-  }
+  ValidateAndReport(options.files, options.report_dir, command_line, options.print_tables);
 }
 
 }  // namespace

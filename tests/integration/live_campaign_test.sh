@@ -132,14 +132,22 @@ cmp dataset.corners.csv from_log.corners.csv || fail "--from-log rebuilt other c
 grep -q " 0 not authentic" from_log.log || fail "--from-log with the key dropped messages"
 # collect --report-dir judges its results as identify does: a verdict for each model first,
 # exit 3 when none is good (twelve poses are too few, below).
+# Its results carry their provenance, and with --camera and --board its report maps the
+# corners the campaign recorded (issue 43 point 5: neither did).
 "$h4cal" collect --from-log campaign.lcmlog --plan plan.csv --out from_log_id.csv \
-  --auth-key h4.key --report-dir identified --robot sim/robot.yaml > from_log_id.log 2>&1 \
-  && status=0 || status=$?
+  --auth-key h4.key --report-dir identified --robot sim/robot.yaml \
+  --camera "$src/boards/sim_camera_1024x768.yaml" \
+  --board "$src/boards/aprilgrid_6x6_30mm.yaml" > from_log_id.log 2>&1 && status=0 || status=$?
 [ $status -eq 3 ] || fail "collect --report-dir on 12 poses exited $status, expected 3"
 [ "$(grep -c '^VERDICT: too_few_poses' from_log_id.log)" -eq 2 ] ||
   fail "collect --report-dir did not print both verdicts: $(grep -c VERDICT from_log_id.log)"
 grep -q "^collect: no model's verdict is good" from_log_id.log || fail "no closing verdict line"
 [ -s identified/report.html ] || fail "collect --report-dir wrote no report"
+grep -q '"h4cal_version"' identified/result12.json || fail "collect's result has no provenance"
+! grep -q "This result does not record which h4cal made it" identified/report.html ||
+  fail "collect's report says its result has no provenance"
+! grep -q "no corners given" identified/report.html ||
+  fail "collect's report has no camera section though the campaign recorded corners"
 "$h4cal" collect --passive --plan plan.csv --out passive.csv > passive.log 2>&1 &
 listener=$!; pids+=($listener)
 "$h4cal" collect --passive --plan plan.csv --out foreign.csv --auth-key other.key \
