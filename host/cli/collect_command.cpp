@@ -28,6 +28,7 @@
 #include "host/campaign/control_law.h"
 #include "host/cli/calibration_workflow.h"
 #include "host/cli/collect_stages.h"
+#include "host/cli/plan_noise_options.h"
 #include "host/cli/commands.h"
 #include "host/cli/identification_print.h"
 #include "host/cli/plan_reach.h"
@@ -65,6 +66,7 @@ struct CollectOptions {
   bool dry_run = false;                 ///< check the plan, move nothing
   std::vector<int> sequential;          ///< FIRST,TOTAL of a sequential campaign, empty: one plan
   std::string camera_path, board_path;  ///< what a sequential campaign is planned for
+  PlanNoiseOptions plan_noise;          ///< what it is planned for, as `plan` takes it
 };
 
 /// How a campaign over one plan ended.
@@ -348,6 +350,7 @@ CampaignEnd RunStages(CollectOptions options, const std::atomic<bool>& stop) {
   stages.board_path = options.board_path;
   stages.joint_range_deg = options.joint_range_deg;
   stages.dataset_path = options.out_path;
+  stages.noise = options.plan_noise;
   const PosePlan first = FirstStagePlan(stages);
   CheckPlanBeforeMoving(&options, first);
   const CampaignEnd first_end = RunCampaignOver(options, first, stop);
@@ -459,15 +462,21 @@ void AddCampaignOptions(CLI::App* command, CampaignOptions* campaign) {
 
 // A sequential campaign's stages, and what they are planned for.
 void AddSequentialOptions(CLI::App* command, CollectOptions* options) {
-  command
-      ->add_option("--sequential", options->sequential,
-                   "A sequential campaign of TOTAL poses: FIRST planned on the a priori robot "
-                   "inside the paper's grid box and measured, identified, then the rest "
-                   "planned on the identified robot and measured (as h4cal plan --from "
-                   "--existing; each stage's plan is written beside --out, and a resumed "
-                   "campaign keeps it). Needs --robot, --camera, --board; not with --plan")
-      ->delimiter(',')
-      ->expected(2);
+  CLI::Option* sequential =
+      command
+          ->add_option("--sequential", options->sequential,
+                       "A sequential campaign of TOTAL poses: FIRST planned on the a priori "
+                       "robot inside the paper's grid box and measured, identified, then the "
+                       "rest planned on the identified robot and measured (as h4cal plan --from "
+                       "--existing; each stage's plan is written beside --out, and a resumed "
+                       "campaign keeps it). Needs --robot, --camera, --board; not with --plan")
+          ->delimiter(',')
+          ->expected(2);
+  // What both stages are planned for, as `plan` takes it (issue 44).
+  AddPlanNoiseOptions(command, &options->plan_noise);
+  for (const char* name : {"--corner-sigma-px", "--setup-sigma-mm", "--setup-sigma-deg"}) {
+    command->get_option(name)->needs(sequential);
+  }
   h4::cli::AddCameraOption(command, &options->camera_path,
                            "Camera intrinsics YAML h4cam measured with: the sequential campaign "
                            "is planned for it, and --report-dir's report maps the recorded "

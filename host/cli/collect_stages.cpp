@@ -35,10 +35,11 @@ namespace {
 namespace fs = std::filesystem;
 
 /// `plan`'s defaults (the target region is the paper's grid box; robots drawn from the a
-/// priori uncertainty) with the campaign's joint range.
+/// priori uncertainty) with the campaign's joint range and measurement noise.
 PlanningProblemOptions StageProblemOptions(const CollectStagesOptions& options) {
   PlanningProblemOptions problem;
   problem.candidates.joint_range = ParseJointRange(options.joint_range_deg);
+  ApplyPlanNoise(options.noise, &problem);
   return problem;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "host/cli/plan_noise_options.h"
 #include "host/formats/dataset_csv.h"
 #include "host/kinematics/pose_plan.h"
 
@@ -19,6 +20,9 @@ struct CollectStagesOptions {
   std::string robot_path, camera_path, board_path;
   std::string joint_range_deg;  ///< "MIN,MAX" or empty, as --joint-range-deg
   std::string dataset_path;     ///< the campaign's --out: the stage files go beside it
+  /// What both stages are planned for, as `plan` takes it: the corner noise, and the set-up
+  /// spread the first stage must be robust to (the second plans on the identified set-up).
+  PlanNoiseOptions noise;
 };
 
 /// The free parameters a fit has beside the kinematic ones: the camera's placement X_BC and

@@ -21,6 +21,7 @@
 #include "common/formats/file_output.h"
 #include "common/units.h"
 #include "host/cli/commands.h"
+#include "host/cli/plan_noise_options.h"
 #include "host/cli/plan_reach.h"
 #include "host/formats/dataset_csv.h"
 #include "host/formats/identification_result.h"
@@ -66,10 +67,7 @@ struct PlanCommandOptions {
   std::vector<double> region_size_mm = {200.0, 200.0, 150.0};
   std::vector<double> region_theta_deg = {-20.0, 20.0};
   int robust_robots = RobustOptions{}.robots;
-  double corner_sigma_px = 0.0;  ///< PlanningProblemOptions::corner_sigma_px
-  /// The camera set-up spread of the drawn robots (RobustOptions::spread), mm and deg.
-  double setup_sigma_mm = 1e3 * RobustOptions{}.spread.camera_translation_std;
-  double setup_sigma_deg = DegreesFromRadians(RobustOptions{}.spread.camera_rotation_std);
+  PlanNoiseOptions noise;
   /// A sequential campaign's second stage: the first batch's result and dataset.
   std::string from_result_path, existing_dataset_path;
 };
@@ -115,11 +113,7 @@ PlanningProblemOptions ProblemOptions(const PlanCommandOptions& o) {
   options.target = RegionOf(o);
   if (o.first_stage) options = FirstStageOptions(options);
   options.robust.robots = o.robust_robots;
-  options.corner_sigma_px = o.corner_sigma_px;
-  std::string why;
-  if (!options.IsValid(&why)) throw std::invalid_argument("--corner-sigma-px: " + why);
-  options.robust.spread.camera_translation_std = 1e-3 * o.setup_sigma_mm;
-  options.robust.spread.camera_rotation_std = RadiansFromDegrees(o.setup_sigma_deg);
+  ApplyPlanNoise(o.noise, &options);
   return options;
 }
 
@@ -330,21 +324,7 @@ void AddTargetAndRobustOptions(CLI::App* command, PlanCommandOptions* options) {
       "Robots drawn from the a priori uncertainty the accuracy is averaged over "
       "(0: the a priori alone)",
       CLI::Range(0, 100));
-  h4::cli::AddOptionShowingDefault(
-      command, "--setup-sigma-mm", &options->setup_sigma_mm,
-      "How far the camera may be from robot.yaml's X_BC, one sigma per axis, mm "
-      "(the drawn robots' cameras; candidates one of them misses are left out)",
-      CLI::NonNegativeNumber);
-  h4::cli::AddOptionShowingDefault(command, "--setup-sigma-deg", &options->setup_sigma_deg,
-                                   "The same for the camera's orientation, deg",
-                                   CLI::NonNegativeNumber);
-  h4::cli::AddOptionShowingDefault(
-      command, "--corner-sigma-px", &options->corner_sigma_px,
-      "Corner noise of the camera, px: each pose's noise from the board pose "
-      "solved from its corners, as the camera reports it (0: 0.2 mm, 0.03 deg "
-      "for every pose, as a dataset without sigma columns); else within the corners CSV's "
-      "sigma_px bounds, 1e-06..100",
-      CLI::NonNegativeNumber);
+  AddPlanNoiseOptions(command, &options->noise);
   command->add_flag("--first-stage", options->first_stage,
                     "Sequential campaign, first stage: candidates inside the target region only "
                     "(a camera set up centimetres away still sees them); then identify, and "

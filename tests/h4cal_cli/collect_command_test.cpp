@@ -258,6 +258,29 @@ TEST_F(CollectCommandTest, SequentialCountsAreCheckedBeforeAnythingMoves) {
   }
 }
 
+// Issue 44: a sequential campaign is planned for the measurement `plan` is told of. The
+// noise options need --sequential, and a corner sigma outside the corners CSV's bounds
+// stops the campaign before stage 1 is planned, written or moved.
+TEST_F(CollectCommandTest, SequentialTakesThePlannersNoiseOptions) {
+  const std::string robot = (dir_ / "robot.yaml").string();
+  WriteRobotYaml(robot, PaperAprioriRobot());
+  std::string output;
+  EXPECT_GE(RunProgram(kH4cal + " collect --out " + out_ + " --corner-sigma-px 0.4", &output),
+            100)
+      << output;
+  EXPECT_NE(output.find("--corner-sigma-px requires --sequential"), std::string::npos) << output;
+  const std::string sequential = kH4cal + " collect --out " + out_ + " --robot " + robot +
+                                 " --camera " H4_SOURCE_DIR
+                                 "/boards/sim_camera_1024x768.yaml --board " H4_SOURCE_DIR
+                                 "/boards/aprilgrid_6x6_30mm.yaml --lcm-url memq:// "
+                                 "--sequential 20,40 --setup-sigma-mm 10 --setup-sigma-deg 1 "
+                                 "--corner-sigma-px 500";
+  EXPECT_EQ(RunProgram(sequential, &output), 1) << output;
+  EXPECT_NE(output.find("--corner-sigma-px: "), std::string::npos) << output;
+  EXPECT_EQ(output.find("stage 1 of 2:"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(out_)) << "nothing is written before the plan";
+}
+
 // Issue 42, defect 5: a resumed sequential campaign whose stage-2 plan file was empty or
 // reused stage 1's pose ids measured nothing of stage 2 and exited 0 ("6 of 6 planned
 // poses"). Stage 1 is whole in the dataset here, so nothing waits on the bus.
