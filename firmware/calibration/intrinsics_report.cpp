@@ -204,7 +204,7 @@ std::string ResidualHistogramPanel(const ResidualSamples& samples, double sigma,
 
 std::string HtmlParameterTable(const IntrinsicsCalibrationResult& result) {
   std::string html =
-      "<table>\n<tr><th>parameter</th><th>value</th><th>1-sigma</th><th></th></tr>\n";
+      "<table>\n<tr><th>parameter</th><th>value</th><th>1-sigma</th><th>unit</th></tr>\n";
   for (const ParameterRow& row : ParameterRows(result)) {
     html += "<tr><td>" + row.name + "</td><td>" + Decimal(row.value, 6) + "</td><td>" +
             (row.has_sigma ? Decimal(row.sigma, 6) : std::string("-")) + "</td><td>" + row.unit +
@@ -216,10 +216,11 @@ std::string HtmlParameterTable(const IntrinsicsCalibrationResult& result) {
 std::string HtmlViewTable(const IntrinsicsCalibrationResult& result) {
   std::string html =
       "<table>\n<tr><th>view</th><th>corners</th><th>RMS, px</th><th>tilt, deg</th>"
-      "<th></th></tr>\n";
+      "<th>in the fit</th></tr>\n";
   for (const ViewReport& view : result.views) {
-    const std::string note = std::string(view.outlier ? "outlier" : "") +
-                             (view.used ? "" : (view.outlier ? ", dropped" : "dropped"));
+    // Every cell says something: an empty last column read as a layout fault (issue 43).
+    const std::string note = std::string(view.outlier ? "outlier, " : "") +
+                             (view.used ? "used" : "dropped");
     html += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
                         MarkupEscape(view.name), view.points, Decimal(view.rms_px, 4),
                         Decimal(view.tilt_deg, 1), note);
@@ -361,7 +362,8 @@ std::string ReportHtml(const IntrinsicsCalibrationResult& result, const Coverage
   const std::string title = "Intrinsics calibration: " + MarkupEscape(files.camera_yaml);
   std::string html =
       "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" + title +
-      "</title>\n<style>body{font-family:sans-serif;max-width:1400px;margin:1em auto}"
+      "</title>\n<style>body{font-family:sans-serif;max-width:1400px;margin:1em auto;"
+      "padding:0 1.5em}"
       "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 8px;"
       "text-align:right}img{max-width:100%}</style></head><body>\n<h1>" +
       title + "</h1>\n";

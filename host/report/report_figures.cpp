@@ -356,12 +356,14 @@ GnuplotPlot AccuracyMapPlot(const AccuracyMap& map, const std::string& label,
                     extent);
   gp += fmt::format("set cbrange [0:{:.6g}]\nset palette rgbformulae 22,13,-31\n",
                     std::max(map.MaxPositionSigma() * 1e3, 1e-9));
+  // Labels of 11 px at the page's 1:1 scale (the report's column is 1200 px, three panels
+  // of 400 px): 8 px was too small to read (issue 43 point 8).
   gp +=
-      "set key outside below horizontal font ',8' samplen 1\nset tics font ',8'\n"
-      "set xlabel 'X - centre (mm)' font ',8'\nset ylabel 'Y - centre (mm)' font ',8'\n";
+      "set key outside below horizontal font ',11' samplen 1\nset tics font ',11'\n"
+      "set xlabel 'X - centre (mm)' font ',11'\nset ylabel 'Y - centre (mm)' font ',11'\n";
   for (size_t t = 0; t < thetas; ++t) {
     for (size_t l = 0; l < levels; ++l) {
-      gp += fmt::format("set title 'Z {:+.0f} mm, theta {:+.0f} deg' font ',9'\n",
+      gp += fmt::format("set title 'Z {:+.0f} mm, theta {:+.0f} deg' font ',12'\n",
                         map.options.z_offsets_m[l] * 1e3,
                         DegreesFromRadians(map.options.theta_rad[t]));
       gp += fmt::format(
@@ -379,8 +381,8 @@ GnuplotPlot AccuracyMapPlot(const AccuracyMap& map, const std::string& label,
   }
   gp += "unset multiplot\n";
   return GnuplotPlot{.script = gp,
-                     .width_px = 320 * static_cast<int>(levels),
-                     .height_px = 320 * static_cast<int>(thetas)};
+                     .width_px = 400 * static_cast<int>(levels),
+                     .height_px = 400 * static_cast<int>(thetas)};
 }
 
 GnuplotPlot CornerResidualPlot(const CornerResidualMap& map) {

@@ -277,6 +277,22 @@ TEST(IntrinsicsReport, LinksAreRelativeUrlsThatCannotBeSchemes) {
   EXPECT_EQ(html.find("href=\"javascript"), std::string::npos);
 }
 
+// Issue 43 point 8: at 1366 px the page touched the window's edges and its tables ended in
+// a column with no header and empty cells. The body has side padding; every header and every
+// cell of the views' table says something.
+TEST(IntrinsicsReport, EveryColumnHasAHeaderAndThePageAMargin) {
+  const auto result = CalibrateIntrinsics(SyntheticViews(10), cv::Size(640, 480), {});
+  ASSERT_TRUE(result.ok()) << result.message;
+  const ReportFiles files = {"camera.yaml", "camera-coverage.svg", "camera-residuals.svg",
+                             "camera-report.txt"};
+  const std::string html = ReportHtml(result, CornerCoverage(result), files);
+  EXPECT_EQ(html.find("<th></th>"), std::string::npos);
+  EXPECT_EQ(html.find("<td></td>"), std::string::npos);
+  EXPECT_NE(html.find("<th>unit</th>"), std::string::npos);
+  EXPECT_NE(html.find("<th>in the fit</th>"), std::string::npos);
+  EXPECT_NE(html.find("padding:0 1.5em"), std::string::npos);
+}
+
 TEST(IntrinsicsCalibration, RefusesFewerViewsThanTheMinimum) {
   const auto result = CalibrateIntrinsics(SyntheticViews(7), cv::Size(640, 480), {});
   EXPECT_EQ(result.status, IntrinsicsCalibrationResult::Status::kTooFewViews);
