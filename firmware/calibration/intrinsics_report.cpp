@@ -207,8 +207,8 @@ std::string HtmlParameterTable(const IntrinsicsCalibrationResult& result) {
       "<table>\n<tr><th>parameter</th><th>value</th><th>1-sigma</th><th>unit</th></tr>\n";
   for (const ParameterRow& row : ParameterRows(result)) {
     html += "<tr><td>" + row.name + "</td><td>" + Decimal(row.value, 6) + "</td><td>" +
-            (row.has_sigma ? Decimal(row.sigma, 6) : std::string("-")) + "</td><td>" + row.unit +
-            "</td></tr>\n";
+            (row.has_sigma ? Decimal(row.sigma, 6) : std::string("-")) + "</td><td>" +
+            (row.unit.empty() ? std::string("-") : row.unit) + "</td></tr>\n";  // "-": no unit
   }
   return html + "</table>\n";
 }
