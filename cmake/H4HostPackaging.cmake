@@ -1,6 +1,6 @@
 # The workstation's installation (component h4cal) and its Debian package: /usr/bin/h4cal,
 # /usr/bin/h4cam (its offline commands: capture, preview, calibrate-intrinsics, measure,
-# render, make-board), their man pages (cmake/H4ManPages.cmake), the boards in
+# render, make-board), /usr/bin/h4cal-lcm-spy (scripts/lcm-spy), their man pages (cmake/H4ManPages.cmake), the boards in
 # share/h4cal/boards and the documentation in share/doc/h4cal (the repository's README
 # files, in the same folders, so that their links hold).
 #   cmake --install build --component h4cal [--prefix /usr/local]   # the workstation's files
@@ -31,6 +31,13 @@ endforeach()
 add_custom_target(h4_workstation DEPENDS ${h4_installed_targets})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/boards/ DESTINATION share/h4cal/boards COMPONENT h4cal
         FILES_MATCHING PATTERN "*.yaml" PATTERN "*.svg" PATTERN "*.pdf" PATTERN "*.md")
+# scripts/lcm-spy as h4cal-lcm-spy, with the message types it compiles for lcm-spy (the
+# walkthrough's step 4 names it).
+install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/lcm-spy DESTINATION bin RENAME h4cal-lcm-spy
+        COMPONENT h4cal)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/messages/ DESTINATION share/h4cal/messages
+        COMPONENT h4cal FILES_MATCHING PATTERN "*.lcm" PATTERN "DecodeLog.java"
+        PATTERN "bus" EXCLUDE)
 # The robot.yaml template of walkthrough step 6 (the paper's a priori robot, commented).
 install(FILES ${PROJECT_SOURCE_DIR}/examples/robot.yaml DESTINATION share/h4cal/examples
         COMPONENT h4cal)

@@ -83,7 +83,12 @@ done
   --camera sim_camera_1024x768.yaml --count 1 > preview.log 2>&1) \
   || { cat "$scratch/preview.log"; fail "h4cam preview --board aprilgrid_6x6_30mm.yaml"; }
 grep -q "board ok" "$scratch/preview.log" || fail "preview: $(cat "$scratch/preview.log")"
-echo "ok:   installed: --version on both, --help on $checked subcommands, man pages, boards, docs"
+# The traffic watcher the walkthrough's step 4 names, installed with the types it compiles.
+"$prefix/bin/h4cal-lcm-spy" --help > "$scratch/spy_help" 2>&1 || fail "h4cal-lcm-spy --help exited $?"
+grep -q -- "--check LOGFILE" "$scratch/spy_help" || fail "h4cal-lcm-spy --help: $(cat "$scratch/spy_help")"
+[ -s "$prefix/share/h4cal/messages/board_pose_t.lcm" ] || fail "the message types are not installed"
+[ -s "$prefix/share/h4cal/messages/java/DecodeLog.java" ] || fail "DecodeLog.java is not installed"
+echo "ok:   installed: --version on both, --help on $checked subcommands, man pages, boards, docs, h4cal-lcm-spy"
 
 if ! command -v dpkg-deb > /dev/null; then
   echo "SKIPPED: the package part (dpkg-deb not found)"; exit 77
