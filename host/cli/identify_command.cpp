@@ -230,10 +230,15 @@ void AdviseFromCornerPattern(const Assembly& assembly, const std::vector<Dataset
   if (outcome->verdict != Verdict::kModelCannotDescribe || !verdict) return;
   const size_t at = verdict->text.find(kModel31MisfitAdvice);
   if (at == std::string::npos) return;
-  const CornerResidualMap map =
-      ComputeCornerResidualMap(outcome->result, assembly, rows, observed, board, camera);
-  verdict->text.replace(at, std::string(kModel31MisfitAdvice).size(),
-                        CornerResidualPatternAdvice(map));
+  std::string advice;
+  try {
+    advice = CornerResidualPatternAdvice(
+        ComputeCornerResidualMap(outcome->result, assembly, rows, observed, board, camera));
+  } catch (const std::invalid_argument& e) {  // no map (e.g. corners far off the board)
+    spdlog::warn("no corner residual pattern to advise from: {}", e.what());
+    return;
+  }
+  verdict->text.replace(at, std::string(kModel31MisfitAdvice).size(), advice);
 }
 
 /// The report of this result: validation on its held-out poses, with the Model 12 result
