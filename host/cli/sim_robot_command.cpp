@@ -96,6 +96,14 @@ void Run(const SimRobotArgs& args) {
   spdlog::info("sim-robot: {}; LCM {}; {} Hz, joint speed {} rad/s, settle {} s, sigma_q {} rad",
                scenario.description, bus.url(), args.node.rate_hz, args.controller.joint_speed,
                args.controller.settle_time, args.controller.sigma_q);
+  // A rehearsal on LCM's default group is heard by every LCM program of the machine, and
+  // hears theirs (issue 43 point 6: another campaign on the host was heard).
+  if (bus.url() == bus::kDefaultLcmUrl) {
+    spdlog::warn(
+        "sim-robot: on LCM's default group, which every LCM program on this machine shares: "
+        "to keep a rehearsal to itself, set LCM_DEFAULT_URL to a group of its own in every "
+        "terminal (README.md, walkthrough step 8), or run inside scripts/in-private-netns");
+  }
   node.Run(stop, std::chrono::duration<double>(args.duration_s));
   spdlog::info(
       "sim-robot: stopped after {} target(s) ({} refused), {} joint states, {} bad "

@@ -44,4 +44,18 @@ wait $pid
 rc=$?
 [ $rc -eq 0 ] || fail "SIGTERM exit code $rc: $(cat "$dir/term.log")"
 grep -q "stopped after" "$dir/term.log" || fail "no stop line: $(cat "$dir/term.log")"
+# On LCM's default group it says that every LCM program of the machine shares it and how to
+# keep a rehearsal to itself (issue 43 point 6); on a group of its own, or memq://, not.
+grep -q "default group" "$dir/term.log" && fail "memq:// warned of the default group"
+netns=$(dirname "$0")/../../scripts/in-private-netns
+if "$netns" --check > /dev/null 2>&1; then
+  out=$(env -u LCM_DEFAULT_URL "$netns" "$h4cal" sim-robot --paper --duration 0.3 2>&1)
+  echo "$out" | grep -q "on LCM's default group.*set LCM_DEFAULT_URL" ||
+    fail "no warning on the default group: $out"
+  out=$(LCM_DEFAULT_URL="udpm://239.255.76.99:7667?ttl=0" "$netns" "$h4cal" sim-robot --paper \
+    --duration 0.3 2>&1)
+  ! echo "$out" | grep -q "default group" || fail "warned on a group of its own: $out"
+else
+  echo "note: no private network namespace here, the default-group warning was not checked" >&2
+fi
 echo "PASS"
