@@ -9,20 +9,22 @@
 namespace h4::host {
 
 /// `text` with every number that rounded to zero written without its sign: "-0.0000" and
-/// "-0" become "0.0000" and "0" ("-0.0012" and "-10" stay), as a table should read.
+/// "-0" become "0.0000" and "0" ("-0.0012", "-10", "1e-05" and a name such as "run-0.csv"
+/// stay), as a table should read.
 inline std::string WithoutNegativeZeros(std::string text) {
-  const auto digit = [&text](size_t i) {
-    return i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])) != 0;
+  const auto word = [&text](size_t i) {  // part of a number or a name
+    if (i >= text.size()) return false;
+    const unsigned char c = static_cast<unsigned char>(text[i]);
+    return std::isalnum(c) != 0 || c == '_' || c == '.';
   };
   for (size_t at = text.find("-0"); at != std::string::npos; at = text.find("-0", at + 1)) {
-    if (at > 0 && (digit(at - 1) || text[at - 1] == '.')) continue;  // "1-0", "e-05"
-    if (at > 0 && (text[at - 1] == 'e' || text[at - 1] == 'E')) continue;
+    if (at > 0 && word(at - 1)) continue;  // "1-0", "e-05", "run-0"
     size_t end = at + 2;
     if (end < text.size() && text[end] == '.') {
       ++end;
       while (end < text.size() && text[end] == '0') ++end;
     }
-    if (!digit(end)) text.erase(at, 1);  // all zeros: drop the sign
+    if (!word(end)) text.erase(at, 1);  // all zeros, not part of a name: drop the sign
   }
   return text;
 }

@@ -141,6 +141,7 @@ TEST(Report, TableCellsShowNoNegativeZero) {
   EXPECT_EQ(WithoutNegativeZeros("-10.0"), "-10.0");
   EXPECT_EQ(WithoutNegativeZeros("1.2e-05"), "1.2e-05");
   EXPECT_EQ(WithoutNegativeZeros("(1, -0)"), "(1, 0)");
+  EXPECT_EQ(WithoutNegativeZeros("run-0.csv, sq-0"), "run-0.csv, sq-0");
   EXPECT_EQ(Row("offset", {"-0.0000, 0.0100, -0.0000"}),
             "<tr><th>offset</th><td>0.0000, 0.0100, 0.0000</td></tr>\n");
 }
